@@ -1,0 +1,10 @@
+// Each subcommand registers its options on the app and, when chosen, sets `run`
+// to the work it does, which returns the process's exit status (asset/errors.h).
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+void add_info_command(CLI::App& app, std::function<int()>& run);
+void add_gen_command(CLI::App& app, std::function<int()>& run);

@@ -1,0 +1,37 @@
+// crowdprof: profile skinned-crowd scenes. This file only dispatches to the
+// subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
+// 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
+#include <iostream>
+#include <new>
+
+#include "asset/errors.h"
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
+  app.require_subcommand(1);
+  std::function<int()> run;
+  add_info_command(app, run);
+  add_gen_command(app, run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int status = app.exit(e);
+    return status == 0 ? 0 : crowdprof::kExitUsage;
+  }
+  try {
+    return run ? run() : crowdprof::kExitUsage;
+  } catch (const crowdprof::InputError& e) {
+    std::cerr << "crowdprof: " << e.what() << "\n";
+    return crowdprof::kExitBadInput;
+  } catch (const crowdprof::UsageError& e) {
+    std::cerr << "crowdprof: " << e.what() << "\n";
+    return crowdprof::kExitUsage;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "crowdprof: out of memory\n";
+    return crowdprof::kExitRuntime;
+  } catch (const std::exception& e) {
+    std::cerr << "crowdprof: " << e.what() << "\n";
+    return crowdprof::kExitRuntime;
+  }
+}

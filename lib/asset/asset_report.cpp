@@ -1,0 +1,118 @@
+#include "asset/asset_report.h"
+
+#include <set>
+#include <sstream>
+
+namespace crowdprof {
+
+namespace {
+
+// "LINEAR" or "LINEAR+STEP": the interpolations an action uses.
+std::string interpolations(const Action& action) {
+  std::set<std::string> names;
+  for (const Channel& c : action.channels) names.insert(to_string(c.interpolation));
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : "+") + n;
+  return out;
+}
+
+nlohmann::json describe_action(const Action& a) {
+  return {{"name", a.name},
+          {"start_s", a.start},
+          {"end_s", a.end},
+          {"duration_s", a.duration()},
+          {"channels", a.channels.size()},
+          {"interpolation", interpolations(a)}};
+}
+
+nlohmann::json describe_fixups(const Fixups& f) {
+  return {{"influences_trimmed", f.influences_trimmed},   {"weights_renormalised", f.weights_renormalised},
+          {"weightless_vertices", f.weightless_vertices}, {"normals_computed", f.normals_computed},
+          {"rotations_normalised", f.rotations_normalised}, {"channels_dropped", f.channels_dropped},
+          {"names_made_unique", f.names_made_unique}};
+}
+
+}  // namespace
+
+std::array<size_t, 4> influence_histogram(const SkinnedMesh& mesh) {
+  std::array<size_t, 4> histogram{};
+  for (const glm::vec4& w : mesh.weights) {
+    int used = (w.x > 0) + (w.y > 0) + (w.z > 0) + (w.w > 0);
+    ++histogram[static_cast<size_t>(std::max(used, 1) - 1)];
+  }
+  return histogram;
+}
+
+nlohmann::json describe_asset(const GltfAsset& asset) {
+  nlohmann::json out = {{"file", asset.file}, {"draco_decoded", asset.draco_decoded}};
+  out["characters"] = nlohmann::json::array();
+  for (size_t s = 0; s < asset.characters.size(); ++s) {
+    const Character& c = asset.characters[s];
+    auto histogram = influence_histogram(c.mesh);
+    nlohmann::json actions = nlohmann::json::array();
+    for (const Action& a : c.actions) actions.push_back(describe_action(a));
+    out["characters"].push_back({{"skin", s},
+                                 {"name", c.name},
+                                 {"joints", c.skeleton.joint_count()},
+                                 {"hierarchy_depth", c.skeleton.depth()},
+                                 {"vertices", c.mesh.vertex_count()},
+                                 {"triangles", c.mesh.triangle_count()},
+                                 {"primitives", c.mesh.primitives.size()},
+                                 {"influences_histogram", {{"1", histogram[0]}, {"2", histogram[1]},
+                                                           {"3", histogram[2]}, {"4", histogram[3]}}},
+                                 {"fixups", describe_fixups(c.fixups)},
+                                 {"actions", actions},
+                                 {"draco_decoded", c.draco_decoded},
+                                 {"shared_bytes", c.shared_bytes()}});
+  }
+  if (asset.characters.empty()) {
+    nlohmann::json actions = nlohmann::json::array();
+    for (const Action& a : asset.node_actions) actions.push_back(describe_action(a));
+    out["node_animations"] = actions;
+  }
+  return out;
+}
+
+std::string format_asset(const GltfAsset& asset) {
+  std::ostringstream out;
+  out << asset.file << (asset.draco_decoded ? " (Draco decoded)" : "") << "\n";
+  if (asset.characters.empty()) {
+    out << "  no skin: nothing crowdprof can animate as a character\n";
+    out << "  node animations: " << asset.node_actions.size() << "\n";
+    for (const Action& a : asset.node_actions)
+      out << "    " << a.name << ": " << a.start << "-" << a.end << " s, " << a.channels.size() << " channels, "
+          << interpolations(a) << "\n";
+    return out.str();
+  }
+  for (size_t s = 0; s < asset.characters.size(); ++s) {
+    const Character& c = asset.characters[s];
+    auto h = influence_histogram(c.mesh);
+    out << "character " << s << " \"" << c.name << "\"";
+    if (asset.characters.size() > 1) out << "  (select with " << asset.file << "#skin=" << s << ")";
+    out << "\n";
+    out << "  joints:      " << c.skeleton.joint_count() << " (hierarchy depth " << c.skeleton.depth() << ")\n";
+    out << "  vertices:    " << c.mesh.vertex_count() << "\n";
+    out << "  triangles:   " << c.mesh.triangle_count() << "\n";
+    out << "  primitives:  " << c.mesh.primitives.size() << "\n";
+    out << "  influences:  1: " << h[0] << "  2: " << h[1] << "  3: " << h[2] << "  4: " << h[3] << " vertices\n";
+    const Fixups& f = c.fixups;
+    out << "  fix-ups:     " << (f.total() ? "" : "none");
+    nlohmann::json fixups = describe_fixups(f);
+    bool first = true;
+    for (auto& [name, value] : fixups.items())
+      if (value.get<size_t>() > 0) {
+        out << (first ? "" : ", ") << name << " " << value.get<size_t>();
+        first = false;
+      }
+    out << "\n";
+    out << "  actions:     " << c.actions.size() << "\n";
+    for (const Action& a : c.actions)
+      out << "    " << a.name << ": " << a.duration() << " s (" << a.start << "-" << a.end << "), "
+          << a.channels.size() << " channels, " << interpolations(a) << "\n";
+    out << "  Draco:       " << (c.draco_decoded ? "decoded" : "no") << "\n";
+    out << "  shared data: " << c.shared_bytes() << " bytes\n";
+  }
+  return out.str();
+}
+
+}  // namespace crowdprof

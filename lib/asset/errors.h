@@ -1,0 +1,31 @@
+// Errors that reach the user. Every command turns these into one line on stderr
+// and a documented exit status (see docs/cli.md).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace crowdprof {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitRegression = 1,  // `check`: a metric regressed
+  kExitUsage = 2,       // bad command line
+  kExitBadInput = 3,    // a file that cannot be used (unreadable, malformed, unsupported)
+  kExitRuntime = 4,     // the run itself failed (GL error, out of memory at run time)
+};
+
+// A problem with an input file: `what()` is "<file>: <problem>".
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& file, const std::string& problem)
+      : std::runtime_error(file + ": " + problem) {}
+};
+
+// A problem with the command line or with options that do not fit the input.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace crowdprof

@@ -1,0 +1,40 @@
+// The first, untrusting read of a glTF file: the bytes, the GLB chunks, the JSON,
+// and the checks that must pass before tiny_gltf sees anything (tiny_gltf trusts
+// indices inside KHR_draco_mesh_compression and expands paths with wordexp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace crowdprof {
+
+// Files larger than this are refused before reading: a character is megabytes.
+inline constexpr uint64_t kMaxAssetBytes = 1ull << 30;
+
+struct GltfContainer {
+  std::string path;      // as the user gave it (used in messages)
+  std::string base_dir;  // folder that external URIs must stay inside
+  bool binary = false;   // GLB
+  nlohmann::json json;
+  std::vector<unsigned char> bin;  // GLB BIN chunk; empty for .gltf
+};
+
+// Reads and splits the file and parses its JSON. Throws InputError for a missing
+// file, a directory, an empty or non-glTF file, a truncated GLB or broken JSON.
+GltfContainer read_gltf_container(const std::string& path);
+
+// Checks what tiny_gltf would trust: buffer and image URIs stay inside base_dir
+// (no absolute paths, no "..", no schemes but data:), required extensions are
+// supported, and Draco extension indices point at existing views and accessors.
+// Throws InputError.
+void preflight_gltf(const GltfContainer& container);
+
+// Resolves a relative URI against base_dir, refusing anything that leaves it.
+// Returns the absolute path. Throws InputError naming `what` ("buffer 0").
+std::string resolve_inside(const GltfContainer& container, const std::string& uri,
+                           const std::string& what);
+
+}  // namespace crowdprof

@@ -1,0 +1,418 @@
+// Turning a tinygltf::Model into characters: the skeleton, the skinned mesh and
+// the actions of one skin, checking every index and value on the way.
+#include "asset/gltf_convert.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/matrix_decompose.hpp>
+#include <tiny_gltf.h>
+
+#include "asset/errors.h"
+#include "asset/gltf_accessor.h"
+#include "asset/mesh_normals.h"
+
+namespace crowdprof {
+
+namespace {
+
+std::string str(size_t i) { return std::to_string(i); }
+
+struct Trs {
+  glm::vec3 t{0.0f};
+  glm::quat r{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 s{1.0f};
+};
+
+Trs node_trs(const tinygltf::Node& node, size_t index, const std::string& file) {
+  Trs trs;
+  auto finite = [&](const std::vector<double>& v) {
+    for (double x : v)
+      if (!std::isfinite(x)) throw InputError(file, "node " + str(index) + " has a NaN or Inf transform");
+  };
+  finite(node.matrix);
+  finite(node.translation);
+  finite(node.rotation);
+  finite(node.scale);
+  if (node.matrix.size() == 16) {
+    glm::mat4 m = glm::make_mat4(node.matrix.data());
+    glm::vec3 skew;
+    glm::vec4 perspective;
+    if (!glm::decompose(m, trs.s, trs.r, trs.t, skew, perspective))
+      throw InputError(file, "node " + str(index) + " has a matrix that is not a transform");
+    return trs;
+  }
+  if (node.translation.size() == 3) trs.t = glm::vec3(glm::make_vec3(node.translation.data()));
+  if (node.scale.size() == 3) trs.s = glm::vec3(glm::make_vec3(node.scale.data()));
+  if (node.rotation.size() == 4) {
+    const auto& q = node.rotation;
+    trs.r = glm::quat(static_cast<float>(q[3]), static_cast<float>(q[0]), static_cast<float>(q[1]),
+                      static_cast<float>(q[2]));
+    if (glm::length(trs.r) < 1e-6f) throw InputError(file, "node " + str(index) + " has a zero rotation");
+    trs.r = glm::normalize(trs.r);
+  }
+  return trs;
+}
+
+glm::mat4 to_matrix(const Trs& trs) {
+  return glm::translate(glm::mat4(1.0f), trs.t) * glm::mat4_cast(trs.r) * glm::scale(glm::mat4(1.0f), trs.s);
+}
+
+// Joint names must be unique for string-path lookups to find the right joint:
+// nameless joints get "joint<N>", repeats get Blender's ".001" suffixes.
+std::vector<std::string> unique_names(std::vector<std::string> names, Fixups& fixups) {
+  std::set<std::string> seen;
+  for (size_t j = 0; j < names.size(); ++j) {
+    std::string base = names[j].empty() ? "joint" + str(j) : names[j];
+    std::string name = base;
+    for (int n = 1; seen.count(name); ++n) {
+      char suffix[16];
+      std::snprintf(suffix, sizeof suffix, ".%03d", n);
+      name = base + suffix;
+    }
+    if (name != names[j]) ++fixups.names_made_unique;
+    seen.insert(name);
+    names[j] = name;
+  }
+  return names;
+}
+
+Interpolation parse_interpolation(const std::string& text, const std::string& where, const std::string& file) {
+  if (text.empty() || text == "LINEAR") return Interpolation::Linear;
+  if (text == "STEP") return Interpolation::Step;
+  if (text == "CUBICSPLINE") return Interpolation::CubicSpline;
+  throw InputError(file, where + ": unknown interpolation \"" + text.substr(0, 40) + "\"");
+}
+
+struct Skin {
+  std::vector<int> nodes;          // joint -> node, in crowdprof's parent-first order
+  std::vector<int> from_skin;      // skin's joint index -> crowdprof joint
+  std::vector<int> node_to_joint;  // node -> crowdprof joint, -1 if none
+};
+
+// Orders the skin's joints parent first (depth-first, keeping the file's order
+// among siblings), so subtrees are contiguous and parents[j] < j.
+Skin order_joints(const tinygltf::Model& model, const std::vector<int>& parents, const tinygltf::Skin& skin,
+                  int s, const std::string& file) {
+  size_t node_count = model.nodes.size();
+  std::vector<int> skin_index(node_count, -1);
+  for (size_t i = 0; i < skin.joints.size(); ++i) {
+    int node = skin.joints[i];
+    if (node < 0 || static_cast<size_t>(node) >= node_count)
+      throw InputError(file, "skin " + str(s) + " joint " + str(i) + " names node " + std::to_string(node) +
+                                 ", which does not exist");
+    if (skin_index[static_cast<size_t>(node)] >= 0)
+      throw InputError(file, "skin " + str(s) + " lists node " + std::to_string(node) + " twice");
+    skin_index[static_cast<size_t>(node)] = static_cast<int>(i);
+  }
+  std::vector<std::vector<int>> children(skin.joints.size());
+  std::vector<int> roots;
+  for (size_t i = 0; i < skin.joints.size(); ++i) {
+    int up = parents[static_cast<size_t>(skin.joints[i])];
+    while (up >= 0 && skin_index[static_cast<size_t>(up)] < 0) up = parents[static_cast<size_t>(up)];
+    if (up < 0) roots.push_back(static_cast<int>(i));
+    else children[static_cast<size_t>(skin_index[static_cast<size_t>(up)])].push_back(static_cast<int>(i));
+  }
+  Skin out;
+  out.from_skin.assign(skin.joints.size(), -1);
+  out.node_to_joint.assign(node_count, -1);
+  std::vector<int> stack(roots.rbegin(), roots.rend());
+  while (!stack.empty()) {
+    int i = stack.back();
+    stack.pop_back();
+    int node = skin.joints[static_cast<size_t>(i)];
+    out.from_skin[static_cast<size_t>(i)] = static_cast<int>(out.nodes.size());
+    out.node_to_joint[static_cast<size_t>(node)] = static_cast<int>(out.nodes.size());
+    out.nodes.push_back(node);
+    const auto& kids = children[static_cast<size_t>(i)];
+    stack.insert(stack.end(), kids.rbegin(), kids.rend());
+  }
+  return out;
+}
+
+Skeleton build_skeleton(const tinygltf::Model& model, const std::vector<int>& parents, const Skin& order,
+                        const tinygltf::Skin& skin, int s, const std::string& file, Fixups& fixups) {
+  size_t count = order.nodes.size();
+  Skeleton sk;
+  sk.parents.resize(count);
+  sk.parent_offsets.resize(count);
+  std::vector<std::string> names(count);
+  for (size_t j = 0; j < count; ++j) {
+    size_t node = static_cast<size_t>(order.nodes[j]);
+    Trs trs = node_trs(model.nodes[node], node, file);
+    sk.rest_translations.push_back(trs.t);
+    sk.rest_rotations.push_back(trs.r);
+    sk.rest_scales.push_back(trs.s);
+    names[j] = model.nodes[node].name;
+    // Fold the non-joint nodes between this joint and its parent joint.
+    glm::mat4 offset(1.0f);
+    int up = parents[node];
+    while (up >= 0 && order.node_to_joint[static_cast<size_t>(up)] < 0) {
+      offset = to_matrix(node_trs(model.nodes[static_cast<size_t>(up)], static_cast<size_t>(up), file)) * offset;
+      up = parents[static_cast<size_t>(up)];
+    }
+    sk.parents[j] = up < 0 ? -1 : order.node_to_joint[static_cast<size_t>(up)];
+    sk.parent_offsets[j] = offset;
+  }
+  sk.names = unique_names(std::move(names), fixups);
+  sk.inverse_binds.assign(count, glm::mat4(1.0f));
+  if (skin.inverseBindMatrices >= 0) {
+    AccessorReader reader{model, file};
+    std::vector<float> ibm = reader.floats(skin.inverseBindMatrices, 16, "skin " + str(s) + " inverse bind matrices");
+    if (ibm.size() / 16 < count)
+      throw InputError(file, "skin " + str(s) + " has " + str(ibm.size() / 16) + " inverse bind matrices for " +
+                                 str(count) + " joints");
+    for (size_t i = 0; i < count; ++i)
+      sk.inverse_binds[static_cast<size_t>(order.from_skin[i])] = glm::make_mat4(&ibm[16 * i]);
+  }
+  return sk;
+}
+
+void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Skin& order, size_t joint_count,
+                      const std::string& file, SkinnedMesh& mesh, Fixups& fixups) {
+  const tinygltf::Primitive& prim = model.meshes[m].primitives[p];
+  std::string where = "mesh " + str(m) + " primitive " + str(p);
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES)
+    throw InputError(file, where + ": mode " + std::to_string(prim.mode) + " is not supported (triangles only)");
+  auto attribute = [&](const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  AccessorReader reader{model, file};
+  if (attribute("POSITION") < 0) throw InputError(file, where + ": has no POSITION");
+  if (attribute("JOINTS_0") < 0 || attribute("WEIGHTS_0") < 0)
+    throw InputError(file, where + ": is bound to a skin but has no JOINTS_0/WEIGHTS_0");
+  std::vector<float> positions = reader.floats(attribute("POSITION"), 3, where + " POSITION");
+  size_t n = positions.size() / 3;
+  auto same_count = [&](const std::vector<float>& v, int components, const char* name) {
+    if (v.size() != n * static_cast<size_t>(components))
+      throw InputError(file, where + ": " + name + " has " + str(v.size() / static_cast<size_t>(components)) +
+                                 " elements, POSITION " + str(n));
+  };
+  std::vector<float> normals;
+  if (attribute("NORMAL") >= 0) {
+    normals = reader.floats(attribute("NORMAL"), 3, where + " NORMAL");
+    same_count(normals, 3, "NORMAL");
+  }
+  // Up to two sets of four influences (JOINTS_1/WEIGHTS_1 carry the next four).
+  std::vector<uint32_t> joints[2];
+  std::vector<float> weights[2];
+  int sets = attribute("JOINTS_1") >= 0 && attribute("WEIGHTS_1") >= 0 ? 2 : 1;
+  for (int set = 0; set < sets; ++set) {
+    std::string suffix = set == 0 ? "_0" : "_1";
+    joints[set] = reader.uints(attribute(("JOINTS" + suffix).c_str()), 4, where + " JOINTS" + suffix);
+    weights[set] = reader.floats(attribute(("WEIGHTS" + suffix).c_str()), 4, where + " WEIGHTS" + suffix);
+    std::vector<float> as_float(joints[set].begin(), joints[set].end());
+    same_count(as_float, 4, ("JOINTS" + suffix).c_str());
+    same_count(weights[set], 4, ("WEIGHTS" + suffix).c_str());
+  }
+  std::vector<uint32_t> indices;
+  if (prim.indices >= 0) {
+    indices = reader.uints(prim.indices, 1, where + " indices");
+    for (size_t i = 0; i < indices.size(); ++i)
+      if (indices[i] >= n)
+        throw InputError(file, where + ": index " + str(i) + " is " + std::to_string(indices[i]) + ", past its " +
+                                   str(n) + " vertices");
+  } else {
+    indices.resize(n);
+    for (size_t i = 0; i < n; ++i) indices[i] = static_cast<uint32_t>(i);
+  }
+  if (indices.size() % 3) throw InputError(file, where + ": " + str(indices.size()) + " indices is not whole triangles");
+
+  uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+  Primitive range{static_cast<uint32_t>(mesh.indices.size()), static_cast<uint32_t>(indices.size()), base,
+                  static_cast<uint32_t>(n)};
+  for (uint32_t i : indices) mesh.indices.push_back(base + i);
+  for (size_t v = 0; v < n; ++v) {
+    mesh.positions.emplace_back(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    struct Influence {
+      float weight;
+      uint32_t joint;
+    } influence[8];
+    int used = 0;
+    for (int set = 0; set < sets; ++set)
+      for (size_t k = 0; k < 4; ++k) {
+        uint32_t joint = joints[set][4 * v + k];
+        float weight = weights[set][4 * v + k];
+        if (joint >= joint_count)
+          throw InputError(file, where + ": vertex " + str(v) + " uses joint " + std::to_string(joint) +
+                                     ", but the skin has " + str(joint_count) + " joints");
+        if (weight < 0.0f) throw InputError(file, where + ": vertex " + str(v) + " has a negative weight");
+        if (weight > 0.0f) influence[used++] = {weight, joint};
+      }
+    // Largest first; ties keep file order, so loading is deterministic.
+    std::stable_sort(influence, influence + used, [](const Influence& a, const Influence& b) { return a.weight > b.weight; });
+    bool trimmed = used > 4;
+    if (trimmed) {
+      ++fixups.influences_trimmed;  // the renormalisation that follows is part of this fix-up
+      used = 4;
+    }
+    glm::u16vec4 out_joints(0);
+    glm::vec4 out_weights(0.0f);
+    float sum = 0.0f;
+    for (int k = 0; k < used; ++k) sum += influence[k].weight;
+    if (used == 0) {
+      ++fixups.weightless_vertices;
+      out_weights[0] = 1.0f;
+    } else {
+      bool renormalise = std::abs(sum - 1.0f) > 1e-5f;
+      if (renormalise && !trimmed) ++fixups.weights_renormalised;
+      for (int k = 0; k < used; ++k) {
+        out_joints[k] = static_cast<uint16_t>(order.from_skin[influence[k].joint]);
+        out_weights[k] = renormalise ? influence[k].weight / sum : influence[k].weight;
+      }
+    }
+    mesh.joints.push_back(out_joints);
+    mesh.weights.push_back(out_weights);
+  }
+  if (normals.empty()) {
+    std::vector<glm::vec3> computed = face_normals(std::span(mesh.positions).subspan(base), std::span(indices));
+    mesh.normals.insert(mesh.normals.end(), computed.begin(), computed.end());
+    fixups.normals_computed += n;
+  } else {
+    for (size_t v = 0; v < n; ++v) {
+      glm::vec3 normal(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+      float length = glm::length(normal);
+      if (length < 1e-12f) {
+        normal = glm::vec3(0.0f, 0.0f, 1.0f);
+        ++fixups.normals_computed;
+      } else if (std::abs(length - 1.0f) > 1e-3f) {
+        normal /= length;
+      }
+      mesh.normals.push_back(normal);
+    }
+  }
+  mesh.primitives.push_back(range);
+}
+
+}  // namespace
+
+std::vector<int> node_parents(const tinygltf::Model& model, const std::string& file) {
+  size_t count = model.nodes.size();
+  std::vector<int> parents(count, -1);
+  for (size_t i = 0; i < count; ++i) {
+    const tinygltf::Node& node = model.nodes[i];
+    if (node.mesh >= 0 && static_cast<size_t>(node.mesh) >= model.meshes.size())
+      throw InputError(file, "node " + str(i) + " names mesh " + std::to_string(node.mesh) + ", which does not exist");
+    if (node.skin >= 0 && static_cast<size_t>(node.skin) >= model.skins.size())
+      throw InputError(file, "node " + str(i) + " names skin " + std::to_string(node.skin) + ", which does not exist");
+    for (int child : node.children) {
+      if (child < 0 || static_cast<size_t>(child) >= count)
+        throw InputError(file, "node " + str(i) + " has child " + std::to_string(child) + ", which does not exist");
+      if (static_cast<size_t>(child) == i) throw InputError(file, "node " + str(i) + " is its own child (a cycle)");
+      if (parents[static_cast<size_t>(child)] >= 0)
+        throw InputError(file, "node " + std::to_string(child) + " has two parents (nodes " +
+                                   std::to_string(parents[static_cast<size_t>(child)]) + " and " + str(i) + ")");
+      parents[static_cast<size_t>(child)] = static_cast<int>(i);
+    }
+  }
+  for (size_t i = 0; i < count; ++i) {
+    size_t steps = 0;
+    for (int up = parents[i]; up >= 0; up = parents[static_cast<size_t>(up)])
+      if (++steps > count) throw InputError(file, "the node graph has a cycle through node " + str(i));
+  }
+  return parents;
+}
+
+std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vector<int>& node_to_joint,
+                                    const std::string& file, Fixups* fixups) {
+  AccessorReader reader{model, file};
+  std::vector<Action> actions;
+  for (size_t a = 0; a < model.animations.size(); ++a) {
+    const tinygltf::Animation& anim = model.animations[a];
+    Action action;
+    action.name = anim.name.empty() ? "action" + str(a) : anim.name;
+    action.start = INFINITY;
+    action.end = -INFINITY;
+    for (size_t c = 0; c < anim.channels.size(); ++c) {
+      const tinygltf::AnimationChannel& ch = anim.channels[c];
+      std::string where = "animation " + str(a) + " channel " + str(c);
+      if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= anim.samplers.size())
+        throw InputError(file, where + " names sampler " + std::to_string(ch.sampler) + ", which does not exist");
+      if (ch.target_node >= 0 && static_cast<size_t>(ch.target_node) >= model.nodes.size())
+        throw InputError(file, where + " targets node " + std::to_string(ch.target_node) + ", which does not exist");
+      Channel channel;
+      if (ch.target_path == "translation") channel.path = ChannelPath::Translation;
+      else if (ch.target_path == "rotation") channel.path = ChannelPath::Rotation;
+      else if (ch.target_path == "scale") channel.path = ChannelPath::Scale;
+      else if (ch.target_path != "weights")
+        throw InputError(file, where + ": unknown target path \"" + ch.target_path.substr(0, 40) + "\"");
+      int joint = ch.target_node < 0 ? -1 : node_to_joint[static_cast<size_t>(ch.target_node)];
+      if (ch.target_path == "weights" || joint < 0) {
+        if (fixups) ++fixups->channels_dropped;
+        continue;
+      }
+      channel.joint = joint;
+      const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<size_t>(ch.sampler)];
+      std::string sampler_where = "animation " + str(a) + " sampler " + std::to_string(ch.sampler);
+      channel.interpolation = parse_interpolation(sampler.interpolation, sampler_where, file);
+      channel.times = reader.floats(sampler.input, 1, sampler_where + " input");
+      for (size_t k = 1; k < channel.times.size(); ++k)
+        if (!(channel.times[k] > channel.times[k - 1]))
+          throw InputError(file, sampler_where + ": key times do not increase at key " + str(k));
+      size_t per_key = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      int components = channel.components();
+      channel.values = reader.floats(sampler.output, components, sampler_where + " output");
+      size_t expected = channel.times.size() * per_key * static_cast<size_t>(components);
+      if (channel.values.size() != expected)
+        throw InputError(file, sampler_where + ": output has " + str(channel.values.size() / static_cast<size_t>(components)) +
+                                   " values for " + str(channel.times.size()) + " keys (needs " +
+                                   str(expected / static_cast<size_t>(components)) + ")");
+      if (channel.path == ChannelPath::Rotation) {
+        // Only the value of each key is a rotation; cubic tangents are not unit.
+        for (size_t k = 0; k < channel.times.size(); ++k) {
+          float* q = &channel.values[(k * per_key + (per_key == 3 ? 1 : 0)) * 4];
+          float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+          if (length < 1e-6f) throw InputError(file, sampler_where + ": key " + str(k) + " is a zero rotation");
+          if (std::abs(length - 1.0f) > 1e-3f) {
+            for (int i = 0; i < 4; ++i) q[i] /= length;
+            if (fixups) ++fixups->rotations_normalised;
+          }
+        }
+      }
+      action.start = std::min(action.start, channel.times.front());
+      action.end = std::max(action.end, channel.times.back());
+      action.channels.push_back(std::move(channel));
+    }
+    if (action.channels.empty()) continue;
+    actions.push_back(std::move(action));
+  }
+  return actions;
+}
+
+std::vector<Action> convert_node_actions(const tinygltf::Model& model, const std::string& file) {
+  std::vector<int> identity(model.nodes.size());
+  for (size_t i = 0; i < identity.size(); ++i) identity[i] = static_cast<int>(i);
+  return convert_actions(model, identity, file, nullptr);
+}
+
+Character convert_skin(const tinygltf::Model& model, const std::vector<int>& parents, int s, const std::string& file) {
+  const tinygltf::Skin& skin = model.skins[static_cast<size_t>(s)];
+  if (skin.joints.empty()) throw InputError(file, "skin " + str(static_cast<size_t>(s)) + " has no joints");
+  if (skin.joints.size() > 65535)
+    throw InputError(file, "skin " + str(static_cast<size_t>(s)) + " has " + str(skin.joints.size()) +
+                               " joints; crowdprof supports at most 65535");
+  Character character;
+  Skin order = order_joints(model, parents, skin, s, file);
+  character.skeleton = build_skeleton(model, parents, order, skin, s, file, character.fixups);
+  std::string mesh_node_name;
+  std::set<int> meshes_done;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const tinygltf::Node& node = model.nodes[n];
+    if (node.skin != s || node.mesh < 0 || !meshes_done.insert(node.mesh).second) continue;
+    if (mesh_node_name.empty()) mesh_node_name = node.name;
+    size_t m = static_cast<size_t>(node.mesh);
+    for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
+      append_primitive(model, m, p, order, skin.joints.size(), file, character.mesh, character.fixups);
+  }
+  character.actions = convert_actions(model, order.node_to_joint, file, &character.fixups);
+  character.name = !skin.name.empty() ? skin.name : !mesh_node_name.empty() ? mesh_node_name : "skin" + str(static_cast<size_t>(s));
+  return character;
+}
+
+}  // namespace crowdprof

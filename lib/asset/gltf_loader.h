@@ -1,0 +1,39 @@
+// Loading characters from .gltf (external buffers, data URIs) and .glb files,
+// with KHR_draco_mesh_compression decoded. Inputs are treated as hostile: every
+// failure is an InputError "<file>: <problem>", never a crash or a guess.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "asset/character.h"
+
+namespace crowdprof {
+
+// "scene.glb" or "scene.glb#skin=2": which file, and which of its skins.
+struct CharacterSpec {
+  std::string file;
+  int skin = -1;  // -1: the file's only skin
+};
+// Throws UsageError for a malformed "#..." suffix.
+CharacterSpec parse_character_spec(const std::string& spec);
+
+// Everything crowdprof reads from one file.
+struct GltfAsset {
+  std::string file;
+  std::vector<Character> characters;  // one per skin, in the file's skin order
+  // Animations as they target nodes (Channel::joint is a node index), for files
+  // that animate nodes rather than skins (such as InterpolationTest).
+  std::vector<Action> node_actions;
+  std::vector<std::string> node_names;
+  bool draco_decoded = false;
+};
+
+// Loads every skin of the file as a character.
+GltfAsset load_gltf(const std::string& file);
+
+// Loads the character the spec selects. A file with several skins and no
+// "#skin=N" is refused with the list, never resolved silently.
+Character load_character(const std::string& spec);
+
+}  // namespace crowdprof

@@ -1,0 +1,39 @@
+// A deterministic procedural humanoid: the project's stand-in for the thesis's
+// character (a 69-bone armature and a 4,951-vertex mesh, dancing), which is not
+// public. Y-up, metres, about 1.8 m tall, facing +Z, bound in a T-pose.
+#pragma once
+
+#include <cstdint>
+
+#include "asset/character.h"
+
+namespace crowdprof {
+
+struct HumanoidOptions {
+  int bones = 69;       // exact joint count, kMinBones..kMaxBones
+  int vertices = 4951;  // exact vertex count, kMinVertices..kMaxVertices
+  uint32_t seed = 1;    // varies proportions and motion slightly
+};
+
+inline constexpr int kHumanoidMinBones = 20;  // hips, spine, neck, head, limbs without fingers
+inline constexpr int kHumanoidMaxBones = 1024;
+inline constexpr int kHumanoidMinVertices = 500;  // the coarsest body with every part
+inline constexpr int kHumanoidMaxVertices = 10'000'000;
+
+// Builds the character: exactly `bones` joints in parent-before-child order and
+// exactly `vertices` vertices in one primitive, every vertex on a triangle, with
+// up to 4 influences sorted largest first and summing to 1. Three looping
+// actions, "dance", "walk" and "wave", key a rotation for every joint (and the
+// root's translation) at 30 fps with LINEAR interpolation; each moves every joint.
+//
+// 69 bones: hips, spine_01-04, neck_01-02, head, jaw and per side a clavicle,
+// two upper-arm and two forearm segments, a hand, four metacarpals, 5 fingers of
+// 3 phalanges, two thigh segments, calf, foot and ball. Fewer bones drop the
+// metacarpals, phalanges, fingers, segments and jaw; more subdivide the spine,
+// limbs, fingers and neck, so the body keeps its shape at any count.
+//
+// The same options give the same character, bit for bit (it is computed in
+// double precision and rounded once). Throws UsageError for options out of range.
+Character generate_humanoid(const HumanoidOptions& options = {});
+
+}  // namespace crowdprof

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# crowdprof set-up on Debian 12: install what is missing, configure, build, then
+#   ./setup.sh run [bench options]   run the main job on the bundled default scene
+#   ./setup.sh test                  run the whole test suite
+#   ./setup.sh build                 only build
+# The build goes to ./build (override with CROWDPROF_BUILD_DIR).
+set -euo pipefail
+cd "$(dirname "$0")"
+
+action=${1:-run}
+shift || true
+build_dir=${CROWDPROF_BUILD_DIR:-build}
+
+packages=(build-essential cmake ninja-build git pkg-config
+  libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev)
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [[ $(id -u) -eq 0 ]] || sudo=sudo
+  echo "setup: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build_dir" -j"$(nproc)"
+
+case "$action" in
+  run) exec "$build_dir/crowdprof" bench scenes/humanoid.glb -n 160 "$@" ;;
+  test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
+  build) ;;
+  *) echo "usage: ./setup.sh [run|test|build] [options]" >&2; exit 2 ;;
+esac
