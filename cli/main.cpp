@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
+  add_bench_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,127 @@
+#include "cli/bench_options.h"
+
+#include <cmath>
+#include <thread>
+
+#include "asset/errors.h"
+
+using crowdprof::UsageError;
+
+void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
+  cmd.add_option("file", o.file, "Character: .glb or .gltf, FILE#skin=N to pick a skin (see crowdprof info)")
+      ->required();
+  cmd.add_option("-n,--characters", o.characters, "Copies in the crowd")->capture_default_str();
+  cmd.add_option("--actions", o.actions,
+                 "shared: every copy plays one action in phase (the thesis scene); random: a random action and "
+                 "phase per copy (the thesis's -random)")
+      ->capture_default_str();
+  cmd.add_option("--action", o.action, "With --actions shared: the action's name (default: the first)");
+  cmd.add_option("--seed", o.seed, "Seed for --actions random")->capture_default_str();
+  cmd.add_option("--frames", o.frames, "Frames measured")->capture_default_str();
+  cmd.add_option("--warmup", o.warmup, "Frames run before measuring")->capture_default_str();
+  cmd.add_option("--fps", o.fps,
+                 "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible")
+      ->capture_default_str();
+  cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin (see docs/modes.md)")
+      ->capture_default_str();
+  cmd.add_option("--threads", o.threads, "Worker threads for parallel modes (default: all cores)");
+  cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close, or "
+                                       "EX,EY,EZ,TX,TY,TZ")
+      ->capture_default_str();
+  cmd.add_option("--backend", o.backend, "Where frames are drawn: none (CPU only)")->capture_default_str();
+  cmd.add_option("--lookups", o.lookups, "Override the mode: string (every channel by path, every frame) or bundled");
+  cmd.add_option("--culling", o.culling, "Override the mode: on or off (animation culling, 4.1)");
+  cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
+  cmd.add_option("--parallel", o.parallel, "Override the mode: on or off (oneTBB over copies)");
+  cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there) or gpu");
+  cmd.add_flag("--static", o.allow_static, "Accept a character without actions: a crowd in its rest pose");
+  cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
+}
+
+namespace {
+
+bool parse_on_off(const std::string& value, const char* option) {
+  if (value == "on") return true;
+  if (value == "off") return false;
+  throw UsageError(std::string(option) + " '" + value + "': expected on or off");
+}
+
+template <typename Enum>
+Enum parse_choice(const std::string& value, const char* option,
+                  std::initializer_list<std::pair<const char*, Enum>> choices) {
+  std::string names;
+  for (const auto& [name, e] : choices) {
+    if (value == name) return e;
+    names += names.empty() ? name : std::string(", ") + name;
+  }
+  throw UsageError(std::string(option) + " '" + value + "': expected one of " + names);
+}
+
+}  // namespace
+
+crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdprof::Character& character) {
+  using namespace crowdprof;
+  if (o.characters < 1) throw UsageError("-n " + std::to_string(o.characters) + ": a crowd needs at least 1 copy");
+  if (o.characters > 10'000'000) throw UsageError("-n " + std::to_string(o.characters) + ": at most 10,000,000 copies");
+  if (o.frames < 1) throw UsageError("--frames " + std::to_string(o.frames) + ": at least 1 frame is measured");
+  if (o.warmup < 0) throw UsageError("--warmup " + std::to_string(o.warmup) + ": cannot be negative");
+  if (o.frames > 10'000'000 || o.warmup > 10'000'000) throw UsageError("--frames/--warmup: at most 10,000,000");
+  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 100000)
+    throw UsageError("--fps " + std::to_string(o.fps) + ": expected a rate between 0 and 100000");
+  if (o.seed < 0 || o.seed > 0xffffffffLL) throw UsageError("--seed: expected 0 to 4294967295");
+  if (o.backend != "none")
+    throw UsageError("--backend '" + o.backend + "': only 'none' (CPU only) is available in this build");
+
+  BenchConfig config;
+  const ModePreset* preset = find_mode(o.mode);
+  if (!preset) throw UsageError("--mode '" + o.mode + "': expected one of " + mode_names());
+  config.mode = preset->switches;
+  config.mode_name = std::string(preset->name);
+  bool custom = false;
+  if (!o.lookups.empty()) {
+    config.mode.lookups = parse_choice<Lookups>(o.lookups, "--lookups",
+                                                {{"string", Lookups::PerFrameString}, {"bundled", Lookups::Bundled}});
+    custom = true;
+  }
+  if (!o.culling.empty()) config.mode.animation_culling = parse_on_off(o.culling, "--culling"), custom = true;
+  if (!o.pose.empty()) {
+    config.mode.pose = parse_choice<PoseStorage>(o.pose, "--pose",
+                                                 {{"shared", PoseStorage::SharedScratch}, {"per-copy", PoseStorage::PerCopy}});
+    custom = true;
+  }
+  if (!o.parallel.empty()) config.mode.parallel = parse_on_off(o.parallel, "--parallel"), custom = true;
+  if (!o.skinning.empty()) {
+    config.mode.skinning = parse_choice<SkinningSite>(
+        o.skinning, "--skinning",
+        {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
+    custom = true;
+  }
+  if (custom) config.mode_name += "+custom";
+
+  if (o.threads < 0 || o.threads > 1024) throw UsageError("--threads " + std::to_string(o.threads) + ": expected 1 to 1024");
+  unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (o.threads > 1 && !config.mode.parallel)
+    throw UsageError("--threads " + std::to_string(o.threads) + ": mode " + config.mode_name +
+                     " runs on one thread; threads apply to parallel modes (threaded, hwskin, or --parallel on)");
+  config.threads = config.mode.parallel ? (o.threads > 0 ? static_cast<int>(o.threads) : static_cast<int>(cores)) : 1;
+
+  config.crowd.copies = static_cast<size_t>(o.characters);
+  config.crowd.seed = static_cast<uint32_t>(o.seed);
+  config.crowd.actions = parse_choice<ActionChoice>(o.actions, "--actions",
+                                                    {{"shared", ActionChoice::Shared}, {"random", ActionChoice::Random}});
+  if (character.actions.empty() && !o.allow_static)
+    throw UsageError(character.name + " has no actions: its crowd would stand still (pass --static to bench that)");
+  if (!o.action.empty()) {
+    int found = -1;
+    std::string names;
+    for (size_t a = 0; a < character.actions.size(); ++a) {
+      if (character.actions[a].name == o.action && found < 0) found = static_cast<int>(a);
+      names += (names.empty() ? "" : ", ") + character.actions[a].name;
+    }
+    if (found < 0) throw UsageError("--action '" + o.action + "': the character's actions are " + names);
+    config.crowd.shared_action = found;
+  }
+  config.fps = o.fps;
+  config.camera = o.camera;
+  return config;
+}

@@ -1,0 +1,235 @@
+#include "frame/crowd_bench.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "animation/pose.h"
+#include "asset/errors.h"
+#include "skinning/skinning.h"
+
+namespace crowdprof {
+
+uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
+  uint64_t joints = c.skeleton.joint_count(), vertices = c.mesh.vertex_count();
+  uint64_t channels = 0;
+  for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies;
+  uint64_t per_copy = joints * sizeof(SkinMatrix) + vertices * 2 * sizeof(glm::vec3) + channels * 4 + 64 +
+                      sizeof(glm::mat4) /* world */ + sizeof(Aabb);
+  uint64_t per_slot = joints * (sizeof(glm::vec3) * 2 + sizeof(glm::quat) + sizeof(glm::mat4)) + channels * 4;
+  return c.shared_bytes() + copies * per_copy + slots * per_slot;
+}
+
+CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
+    : character_(character), config_(config) {
+  std::string conflict = conflicts(config.mode);
+  if (!conflict.empty()) throw UsageError(conflict);
+  if (config.mode.skinning == SkinningSite::Gpu)
+    throw UsageError("skinning on the GPU (mode hwskin) needs a GL backend, and this build has none yet");
+  if (character.actions.empty() && config.crowd.actions == ActionChoice::Random)
+    throw UsageError("random actions need a character with actions");
+  joints_ = character.skeleton.joint_count();
+  vertices_ = character.mesh.vertex_count();
+  crowd_ = make_crowd(character, config.crowd);
+  camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect);
+  frustum_ = frustum_of(camera_.view_projection());
+  size_t n = crowd_.size();
+
+  for (const Action& action : character.actions) {
+    bindings_.push_back(bind_action(character.skeleton, action));
+    max_channels_ = std::max(max_channels_, action.channels.size());
+  }
+  times_.assign(n, 0.0f);
+  visible_.assign(n, 0);
+  cursors_.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    if (!character.actions.empty()) reset_cursor(character.actions[crowd_.action[i]], &cursors_[i]);
+  size_t slots = config.mode.pose == PoseStorage::SharedScratch ? 1 : n;
+  poses_.resize(slots);
+  for (LocalPose& pose : poses_) reset_to_rest(character.skeleton, &pose);
+  model_.resize(slots * joints_);
+  targets_.assign(slots * max_channels_, -1);
+  palettes_.resize(n * joints_);
+  positions_.resize(n * vertices_);
+  normals_.resize(n * vertices_);
+  // Until a pose is computed, copies show the rest pose.
+  LocalPose rest;
+  reset_to_rest(character.skeleton, &rest);
+  std::vector<glm::mat4> model(joints_);
+  LocalToModelJob{&character.skeleton, &rest, model}.Run();
+  for (size_t i = 0; i < n; ++i) {
+    SkinningMatricesJob{&character.skeleton, model, std::span(palettes_).subspan(i * joints_, joints_)}.Run();
+    std::copy(character.mesh.positions.begin(), character.mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
+    std::copy(character.mesh.normals.begin(), character.mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
+  }
+  if (config.mode.parallel) arena_ = std::make_unique<tbb::task_arena>(std::max(1, config.threads));
+  // The scenegraph of "frame -1": the first frame's animation culling needs it.
+  Counters unused;
+  update_scenegraph(unused);
+}
+
+CrowdBench::~CrowdBench() = default;
+
+template <typename Body>
+void CrowdBench::for_each_copy(const Body& body) {
+  size_t n = crowd_.size();
+  if (!arena_) {
+    for (size_t i = 0; i < n; ++i) body(i);
+    return;
+  }
+  // One copy per task: a copy is tens of microseconds of work, enough to pay
+  // for the task, and fine grains balance copies that are culled.
+  arena_->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) body(i);
+    });
+  });
+}
+
+FrameRecord CrowdBench::step() {
+  FrameRecord record;
+  Counters& counters = record.counters;
+  clock_.begin_frame(Category::Logic);
+  update_logic();
+  clock_.switch_to(Category::Physics);  // no physics in a crowd benchmark
+  clock_.switch_to(Category::Animations);
+  update_poses(counters);
+  clock_.switch_to(Category::Scenegraph);
+  update_scenegraph(counters);
+  clock_.switch_to(Category::Rasterizer);
+  if (config_.mode.skinning == SkinningSite::CpuInRasterizer) skin_copies(counters);
+  clock_.switch_to(Category::GpuLatency);  // no GL backend: nothing to wait for
+  clock_.switch_to(Category::Overhead);
+  ++frame_;
+  // Between frames (reports, progress) is outside the engine's frame.
+  clock_.switch_to(Category::Outside);
+  record.times = clock_.end_frame();
+  return record;
+}
+
+void CrowdBench::update_logic() {
+  double t = static_cast<double>(frame_) / config_.fps;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (character_.actions.empty()) break;
+    const Action& action = character_.actions[crowd_.action[i]];
+    double duration = action.duration();
+    double local = duration > 0 ? std::fmod(static_cast<double>(crowd_.phase[i]) + t, duration) : 0.0;
+    times_[i] = action.start + static_cast<float>(local);
+  }
+}
+
+void CrowdBench::update_scenegraph(Counters& counters) {
+  uint64_t visible = 0;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    visible_[i] = intersects(frustum_, crowd_.world_boxes[i]) ? 1 : 0;
+    visible += visible_[i];
+  }
+  counters.copies_visible = visible;
+}
+
+void CrowdBench::update_poses(Counters& counters) {
+  if (character_.actions.empty()) return;
+  bool skin_here = config_.mode.skinning == SkinningSite::CpuInAnimations;
+  bool shared = config_.mode.pose == PoseStorage::SharedScratch;
+  uint64_t posed = 0, lookups = 0;
+  for (size_t i = 0; i < crowd_.size(); ++i) posed += animates(i);
+  if (!arena_) {
+    for (size_t i = 0; i < crowd_.size(); ++i)
+      if (animates(i)) update_copy(i, shared ? 0 : i, skin_here, &lookups);
+  } else {
+    std::atomic<uint64_t> total{0};
+    for_each_copy([&](size_t i) {
+      if (!animates(i)) return;
+      uint64_t mine = 0;
+      update_copy(i, i, skin_here, &mine);
+      total.fetch_add(mine, std::memory_order_relaxed);
+    });
+    lookups = total.load();
+  }
+  counters.poses_updated = posed;
+  counters.copies_culled = crowd_.size() - posed;
+  counters.channel_lookups = lookups;
+  if (skin_here) counters.vertices_skinned = posed * vertices_;
+}
+
+void CrowdBench::update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups) {
+  const Skeleton& skeleton = character_.skeleton;
+  size_t action_index = crowd_.action[copy];
+  const Action& action = character_.actions[action_index];
+  const ActionBindings& bindings = bindings_[action_index];
+  LocalPose& pose = poses_[slot];
+  std::span<const int32_t> targets = bindings.targets;
+  if (config_.mode.lookups == Lookups::PerFrameString) {
+    std::span<int32_t> scratch = std::span(targets_).subspan(slot * max_channels_, action.channels.size());
+    size_t count = 0;
+    ResolvePathsJob{&skeleton, &bindings, scratch, &count}.Run();
+    *lookups += count;
+    targets = scratch;
+  }
+  // A shared scratch pose still holds the previous copy's joints: start from rest,
+  // as the BGE's pose swap copied the armature's own pose in.
+  if (config_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
+  SamplingJob{&action, times_[copy], targets, &cursors_[copy], &pose}.Run();
+  std::span<glm::mat4> model = std::span(model_).subspan(slot * joints_, joints_);
+  LocalToModelJob{&skeleton, &pose, model}.Run();
+  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(copy * joints_, joints_)}.Run();
+  if (skin) skin_copy(copy);
+}
+
+void CrowdBench::skin_copy(size_t copy) {
+  SkinningJob{std::span<const SkinMatrix>(palettes_).subspan(copy * joints_, joints_), &character_.mesh, 0, vertices_,
+              std::span(positions_).subspan(copy * vertices_, vertices_),
+              std::span(normals_).subspan(copy * vertices_, vertices_)}
+      .Run();
+}
+
+void CrowdBench::skin_copies(Counters& counters) {
+  uint64_t skinned = 0;
+  for (size_t i = 0; i < crowd_.size(); ++i) skinned += animates(i);
+  for_each_copy([&](size_t i) {
+    if (animates(i)) skin_copy(i);
+  });
+  counters.vertices_skinned = skinned * vertices_;
+}
+
+std::span<const SkinMatrix> CrowdBench::skinning_matrices(size_t copy) const {
+  return std::span(palettes_).subspan(copy * joints_, joints_);
+}
+std::span<const glm::vec3> CrowdBench::skinned_positions(size_t copy) const {
+  return std::span(positions_).subspan(copy * vertices_, vertices_);
+}
+std::span<const glm::vec3> CrowdBench::skinned_normals(size_t copy) const {
+  return std::span(normals_).subspan(copy * vertices_, vertices_);
+}
+
+namespace {
+void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 0x100000001b3ull;
+}
+}  // namespace
+
+std::string CrowdBench::digest() const {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  bool cpu_skinned = config_.mode.skinning != SkinningSite::Gpu;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!visible_[i]) continue;
+    auto palette = skinning_matrices(i);
+    fnv1a(hash, palette.data(), palette.size_bytes());
+    if (cpu_skinned) {
+      fnv1a(hash, skinned_positions(i).data(), skinned_positions(i).size_bytes());
+      fnv1a(hash, skinned_normals(i).data(), skinned_normals(i).size_bytes());
+    }
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
+}  // namespace crowdprof

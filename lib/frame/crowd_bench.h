@@ -1,0 +1,101 @@
+// The frame loop: a crowd of copies of one character, stepped one frame at a
+// time through the BGE's stages in the BGE's order, each charged to its
+// profile category by one clock.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "animation/binding.h"
+#include "animation/local_pose.h"
+#include "animation/sampling.h"
+#include "animation/skin_matrix.h"
+#include "asset/character.h"
+#include "frame/modes.h"
+#include "profile/category_clock.h"
+#include "profile/counters.h"
+#include "scene/camera.h"
+#include "scene/crowd.h"
+
+namespace crowdprof {
+
+struct BenchConfig {
+  CrowdOptions crowd;
+  std::string mode_name = "threaded";
+  ModeSwitches mode;
+  int threads = 1;  // worker threads when mode.parallel
+  double fps = 60.0;  // the simulated clock: frame k shows time k / fps
+  std::string camera = "default";
+  float aspect = 16.0f / 9.0f;
+};
+
+// Bytes a crowd of `copies` would allocate, to refuse a scene before trying.
+uint64_t estimate_bench_bytes(const Character& character, size_t copies, const ModeSwitches& mode);
+
+class CrowdBench {
+ public:
+  // Allocates everything the frames need; steps allocate nothing. Throws
+  // UsageError for switches that cannot run together.
+  CrowdBench(const Character& character, const BenchConfig& config);
+  ~CrowdBench();
+  CrowdBench(const CrowdBench&) = delete;
+  CrowdBench& operator=(const CrowdBench&) = delete;
+
+  // Runs one frame and returns where its time went and the work it did.
+  FrameRecord step();
+
+  // A hash (hex FNV-1a 64) of the last frame's skinning matrices and skinned
+  // vertices of the copies inside the frustum: equal across modes and thread
+  // counts when they compute the same thing.
+  std::string digest() const;
+
+  const Crowd& crowd() const { return crowd_; }
+  const Camera& camera() const { return camera_; }
+  const Character& character() const { return character_; }
+  const BenchConfig& config() const { return config_; }
+  size_t frames_run() const { return frame_; }
+  bool visible(size_t copy) const { return visible_[copy] != 0; }
+  std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
+  std::span<const glm::vec3> skinned_positions(size_t copy) const;
+  std::span<const glm::vec3> skinned_normals(size_t copy) const;
+
+ private:
+  void update_logic();
+  void update_scenegraph(Counters& counters);
+  void update_poses(Counters& counters);
+  void skin_copies(Counters& counters);
+  // Pose (and, when `skin`, vertices) of one copy; `slot` picks the pose storage.
+  void update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups);
+  void skin_copy(size_t copy);
+  bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
+  template <typename Body>
+  void for_each_copy(const Body& body);
+
+  const Character& character_;
+  BenchConfig config_;
+  Crowd crowd_;
+  Camera camera_;
+  Frustum frustum_;
+  CategoryClock clock_;
+  size_t frame_ = 0;
+  size_t joints_ = 0, vertices_ = 0;
+
+  std::vector<ActionBindings> bindings_;      // per action, resolved once
+  std::vector<float> times_;                  // per copy: where in its action
+  std::vector<uint8_t> visible_;              // per copy, from the last scenegraph stage
+  std::vector<SamplingCursor> cursors_;       // per copy
+  std::vector<LocalPose> poses_;              // per pose slot (1 when shared)
+  std::vector<glm::mat4> model_;              // per pose slot x joints
+  std::vector<int32_t> targets_;              // per pose slot x channels (string lookups)
+  size_t max_channels_ = 0;
+  std::vector<SkinMatrix> palettes_;          // per copy x joints
+  std::vector<glm::vec3> positions_, normals_;  // per copy x vertices
+  std::unique_ptr<tbb::task_arena> arena_;
+};
+
+}  // namespace crowdprof

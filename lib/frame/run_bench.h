@@ -1,0 +1,32 @@
+// A whole benchmark run: warm-up, measured frames, and the report.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "asset/character.h"
+#include "frame/crowd_bench.h"
+#include "profile/report.h"
+
+namespace crowdprof {
+
+struct RunOptions {
+  size_t frames = 120;
+  size_t warmup = 10;
+  // Called after every frame with (frames done, frames in all), warm-up included.
+  std::function<void(size_t, size_t)> progress;
+};
+
+// Bytes of memory the machine can still give (MemAvailable), 0 if unknown.
+uint64_t available_memory_bytes();
+
+// Throws UsageError, before anything is allocated, when the crowd would not fit
+// in the machine's available memory; the message says how much it needs.
+void check_fits_in_memory(const Character& character, size_t copies, const ModeSwitches& mode);
+
+// What a report says about a bench's scene and mode.
+RunDescription describe_run(const CrowdBench& bench, const std::string& file);
+
+RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
+
+}  // namespace crowdprof

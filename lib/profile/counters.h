@@ -1,0 +1,43 @@
+// The work a frame did, counted: these depend on the scene and the mode, never
+// on the machine, so CI can compare them exactly.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "profile/category_clock.h"
+
+namespace crowdprof {
+
+struct Counters {
+  uint64_t poses_updated = 0;     // copies whose pose was sampled and rebuilt
+  uint64_t copies_culled = 0;     // copies skipped by animation culling
+  uint64_t copies_visible = 0;    // copies inside the camera's frustum (drawn)
+  uint64_t vertices_skinned = 0;  // vertices skinned on the CPU
+  uint64_t channel_lookups = 0;   // string-path lookups (zero with bundled lookups)
+  uint64_t bytes_uploaded = 0;    // vertex data and bone matrices sent to the GPU
+  uint64_t draw_calls = 0;
+};
+
+struct CounterField {
+  std::string_view name;
+  uint64_t Counters::*member;
+};
+// Every counter with its report name, in report order.
+inline constexpr std::array<CounterField, 7> kCounterFields = {{
+    {"poses_updated", &Counters::poses_updated},
+    {"copies_culled", &Counters::copies_culled},
+    {"copies_visible", &Counters::copies_visible},
+    {"vertices_skinned", &Counters::vertices_skinned},
+    {"channel_lookups", &Counters::channel_lookups},
+    {"bytes_uploaded", &Counters::bytes_uploaded},
+    {"draw_calls", &Counters::draw_calls},
+}};
+
+struct FrameRecord {
+  FrameTimes times;
+  Counters counters;
+};
+
+}  // namespace crowdprof

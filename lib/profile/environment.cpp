@@ -1,0 +1,27 @@
+#include "profile/environment.h"
+
+#include <fstream>
+#include <thread>
+
+namespace crowdprof {
+
+Environment current_environment() {
+  Environment env;
+  env.version = CROWDPROF_VERSION;
+  env.commit = CROWDPROF_COMMIT;
+  env.compiler = CROWDPROF_COMPILER;
+  env.build_type = CROWDPROF_BUILD_TYPE;
+  env.cores = std::thread::hardware_concurrency();
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) != 0) continue;
+    size_t colon = line.find(':');
+    if (colon != std::string::npos) env.cpu = line.substr(line.find_first_not_of(" \t", colon + 1));
+    break;
+  }
+  if (env.cpu.empty()) env.cpu = "unknown";
+  return env;
+}
+
+}  // namespace crowdprof

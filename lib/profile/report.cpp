@@ -1,0 +1,142 @@
+#include "profile/report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+
+#include "profile/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+std::vector<double> frame_ms(const std::vector<FrameRecord>& frames) {
+  std::vector<double> out;
+  for (const FrameRecord& f : frames) out.push_back(f.times.total_ms());
+  return out;
+}
+
+std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t category) {
+  std::vector<double> out;
+  for (const FrameRecord& f : frames) out.push_back(f.times.ms[category]);
+  return out;
+}
+
+nlohmann::json summary_json(const Summary& s) {
+  return {{"min_ms", s.min},   {"median_ms", s.median}, {"mean_ms", s.mean},
+          {"p95_ms", s.p95},   {"max_ms", s.max},       {"stddev_ms", s.stddev}};
+}
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+size_t median_frame(const std::vector<FrameRecord>& frames) {
+  if (frames.empty()) return 0;
+  std::vector<size_t> order(frames.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return frames[a].times.total_ms() < frames[b].times.total_ms();
+  });
+  return order[(order.size() - 1) / 2];
+}
+
+std::string format_profile(const RunReport& report) {
+  std::ostringstream out;
+  const RunDescription& run = report.run;
+  if (report.frames.empty()) return "no frames measured\n";
+  const FrameRecord& frame = report.frames[median_frame(report.frames)];
+  double total = frame.times.total_ms();
+  char line[160];
+  std::snprintf(line, sizeof line, "Frametime : %8.2fms (%.1ffps)   median of %zu frames\n", total,
+                total > 0 ? 1000.0 / total : 0.0, report.frames.size());
+  out << line;
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    double ms = frame.times.ms[c];
+    double share = total > 0 ? ms / total : 0.0;
+    std::string name(category_name(static_cast<Category>(c)));
+    std::string bar(static_cast<size_t>(share * 40.0 + 0.5), '|');
+    std::snprintf(line, sizeof line, "%-11s: %8.2fms | %3.0f%% %s\n", name.c_str(), ms, share * 100.0, bar.c_str());
+    out << line;
+  }
+  const Counters& k = frame.counters;
+  out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode "
+      << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
+      << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
+      << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
+      << " lookups per frame\n";
+  out << "actions " << run.action_choice;
+  if (run.action_choice == "random") out << " (seed " << run.seed << ")";
+  out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
+      << " fps simulated | digest " << report.digest << "\n";
+  return out.str();
+}
+
+std::string csv_header() {
+  std::string header = "frame,mode,characters,threads,frame_ms";
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    header += ',';
+    header += category_column(static_cast<Category>(c));
+    header += "_ms";
+  }
+  for (const CounterField& field : kCounterFields) {
+    header += ',';
+    header += field.name;
+  }
+  return header;
+}
+
+void write_csv(const RunReport& report, std::ostream& out) {
+  out << csv_header() << "\n";
+  for (size_t i = 0; i < report.frames.size(); ++i) {
+    const FrameRecord& f = report.frames[i];
+    out << i << "," << report.run.mode << "," << report.run.characters << "," << report.run.threads << ","
+        << fixed(f.times.total_ms(), 4);
+    for (double ms : f.times.ms) out << "," << fixed(ms, 4);
+    for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
+    out << "\n";
+  }
+}
+
+nlohmann::json to_json(const RunReport& report) {
+  const RunDescription& run = report.run;
+  const Environment& env = report.environment;
+  nlohmann::json j;
+  j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"format", 1}};
+  j["environment"] = {{"cpu", env.cpu},           {"cores", env.cores},       {"compiler", env.compiler},
+                      {"build_type", env.build_type}, {"backend", run.backend}, {"renderer", run.renderer}};
+  j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
+                {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
+                {"action_choice", run.action_choice}, {"seed", run.seed}, {"camera", run.camera}};
+  j["mode"] = run.mode;
+  j["switches"] = run.switches;
+  j["threads"] = run.threads;
+  j["frames"] = report.frames.size();
+  j["warmup"] = run.warmup;
+  j["fps"] = run.fps;
+  std::vector<double> totals = frame_ms(report.frames);
+  j["frame"] = summary_json(summarize(totals));
+  nlohmann::json samples = {{"frame_ms", totals}};
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    std::string name(category_name(static_cast<Category>(c)));
+    std::vector<double> values = category_ms(report.frames, c);
+    j["categories"][name] = summary_json(summarize(values));
+    samples[name] = values;
+  }
+  // Counters per frame: the median over frames (they rarely vary at all).
+  for (const CounterField& field : kCounterFields) {
+    std::vector<double> values;
+    for (const FrameRecord& f : report.frames) values.push_back(static_cast<double>(f.counters.*field.member));
+    j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
+  }
+  j["digest"] = report.digest;
+  j["samples"] = samples;
+  return j;
+}
+
+}  // namespace crowdprof

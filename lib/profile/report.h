@@ -1,0 +1,53 @@
+// A finished run and the three ways crowdprof reports it: the BGE's profile
+// overlay as text, one CSV row per frame, and a JSON summary (docs/formats.md).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "profile/counters.h"
+#include "profile/environment.h"
+
+namespace crowdprof {
+
+struct RunDescription {
+  std::string file;        // the character's file (with #skin=N when chosen)
+  std::string character;   // its name
+  size_t characters = 0;   // copies in the crowd
+  size_t joints = 0, vertices = 0, actions = 0;
+  std::string action_choice;  // "shared" or "random"
+  uint32_t seed = 0;
+  std::string mode;            // preset name, or "custom"
+  nlohmann::json switches;     // the mode's switches by name
+  int threads = 1;
+  std::string backend = "none", renderer = "none";
+  size_t warmup = 0;
+  double fps = 60.0;
+  std::string camera;
+};
+
+struct RunReport {
+  RunDescription run;
+  Environment environment;
+  std::vector<FrameRecord> frames;  // after warm-up
+  std::string digest;
+};
+
+// Index of the frame whose time is the median (the lower one for an even count).
+size_t median_frame(const std::vector<FrameRecord>& frames);
+
+// The BGE overlay for the median frame, then a line describing the run.
+std::string format_profile(const RunReport& report);
+
+// Header, then one row per frame (docs/formats.md).
+void write_csv(const RunReport& report, std::ostream& out);
+std::string csv_header();
+
+// The summary document (docs/formats.md), with the per-frame samples that
+// `check` compares.
+nlohmann::json to_json(const RunReport& report);
+
+}  // namespace crowdprof

@@ -1,0 +1,83 @@
+#include "scene/camera.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "asset/errors.h"
+
+namespace crowdprof {
+
+glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+
+glm::mat4 Camera::projection() const {
+  return glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+}
+
+Frustum frustum_of(const glm::mat4& m) {
+  // Rows of the matrix (glm is column-major: m[column][row]).
+  auto row = [&](int r) { return glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  Frustum f;
+  f.planes = {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(3) + row(2), row(3) - row(2)};
+  for (glm::vec4& p : f.planes) p /= glm::length(glm::vec3(p));
+  return f;
+}
+
+bool intersects(const Frustum& frustum, const Aabb& box) {
+  for (const glm::vec4& p : frustum.planes) {
+    // The corner farthest along the plane's normal: if even it is outside, all are.
+    glm::vec3 corner(p.x >= 0 ? box.max.x : box.min.x, p.y >= 0 ? box.max.y : box.min.y,
+                     p.z >= 0 ? box.max.z : box.min.z);
+    if (glm::dot(glm::vec3(p), corner) + p.w < 0.0f) return false;
+  }
+  return true;
+}
+
+Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect) {
+  Camera camera;
+  camera.aspect = aspect;
+  glm::vec3 size = crowd.size();
+  glm::vec3 center = crowd.center();
+  float extent = std::max({size.x, size.z, 1e-3f});
+  float height = std::max(size.y, 1e-3f);
+  if (spec == "default") {
+    // From the front (+Z), above, aimed a little in front of the crowd's centre:
+    // the front rows fill the view and the far, wide rows spill out of it.
+    camera.target = glm::vec3(center.x, crowd.min.y + 0.4f * height, center.z + 0.15f * size.z);
+    camera.eye = camera.target + glm::vec3(0.0f, 0.35f * extent, 0.55f * extent);
+  } else if (spec == "all") {
+    camera.target = center;
+    camera.eye = center + glm::vec3(0.0f, 0.6f * extent, 1.4f * extent);
+  } else if (spec == "close") {
+    camera.target = glm::vec3(center.x, crowd.min.y + 0.5f * height, crowd.max.z);
+    camera.eye = camera.target + glm::vec3(0.0f, 0.3f * height, 3.0f * height);
+  } else {
+    std::vector<float> values;
+    const char* p = spec.data();
+    const char* end = p + spec.size();
+    while (p < end) {
+      float v = 0;
+      auto [next, ec] = std::from_chars(p, end, v);
+      if (ec != std::errc() || !std::isfinite(v)) break;
+      values.push_back(v);
+      p = next;
+      if (p < end && *p == ',') ++p;
+      else break;
+    }
+    if (values.size() != 6 || p != end)
+      throw UsageError("--camera '" + spec + "': expected default, all, close or EX,EY,EZ,TX,TY,TZ");
+    camera.eye = glm::vec3(values[0], values[1], values[2]);
+    camera.target = glm::vec3(values[3], values[4], values[5]);
+    if (glm::length(camera.eye - camera.target) < 1e-6f)
+      throw UsageError("--camera '" + spec + "': the eye and the target are the same point");
+  }
+  float distance = glm::length(camera.eye - camera.target);
+  camera.far_plane = std::max(1000.0f, 4.0f * (distance + extent));
+  camera.near_plane = std::max(0.01f, distance * 1e-3f);
+  return camera;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,46 @@
+// The camera the crowd is culled (and later rendered) with.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/bounds.h"
+
+namespace crowdprof {
+
+struct Camera {
+  glm::vec3 eye{0.0f, 2.0f, 10.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_degrees = 49.1f;  // Blender's default 35 mm lens, as in the thesis's scene
+  float aspect = 16.0f / 9.0f;  // the thesis's 1600x900 window
+  float near_plane = 0.1f;
+  float far_plane = 1000.0f;
+
+  glm::mat4 view() const;
+  glm::mat4 projection() const;
+  glm::mat4 view_projection() const { return projection() * view(); }
+};
+
+// The six planes (a, b, c, d with ax + by + cz + d >= 0 inside) of a
+// view-projection matrix (Gribb and Hartmann).
+struct Frustum {
+  std::array<glm::vec4, 6> planes;
+};
+Frustum frustum_of(const glm::mat4& view_projection);
+
+// True when any part of the box may be inside (conservative: a box near a
+// corner can pass although it is outside, never the other way).
+bool intersects(const Frustum& frustum, const Aabb& box);
+
+// Cameras by name, for a crowd whose copies lie inside `crowd_box`:
+//   default  the thesis's framing: from the front and above, the near rows fill
+//            the view and the crowd's far corners fall outside it;
+//   all      back far enough to see every copy;
+//   close    a few copies near the front centre.
+// Or "EX,EY,EZ,TX,TY,TZ" for an eye and a target. Throws UsageError.
+Camera make_camera(const std::string& spec, const Aabb& crowd_box, float aspect);
+
+}  // namespace crowdprof
