@@ -98,7 +98,8 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
   }
   if (custom) config.mode_name += "+custom";
 
-  if (o.threads < 0 || o.threads > 1024) throw UsageError("--threads " + std::to_string(o.threads) + ": expected 1 to 1024");
+  if (o.threads != kThreadsUnset && (o.threads < 1 || o.threads > 1024))
+    throw UsageError("--threads " + std::to_string(o.threads) + ": expected 1 to 1024");
   unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   if (o.threads > 1 && !config.mode.parallel)
     throw UsageError("--threads " + std::to_string(o.threads) + ": mode " + config.mode_name +

@@ -9,6 +9,10 @@
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
 
+#include <climits>
+
+inline constexpr long long kThreadsUnset = LLONG_MIN;
+
 struct BenchCliOptions {
   std::string file;
   long long characters = 160;
@@ -19,7 +23,7 @@ struct BenchCliOptions {
   long long warmup = 10;
   double fps = 60.0;
   std::string mode = "threaded";
-  long long threads = 0;  // 0: all cores
+  long long threads = kThreadsUnset;  // all cores in parallel modes
   std::string camera = "default";
   std::string backend = "none";
   bool allow_static = false;

@@ -17,8 +17,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int status = app.exit(e);
-    return status == 0 ? 0 : crowdprof::kExitUsage;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // One line, like every other error (CLI11 would add a second).
+    std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
+    return crowdprof::kExitUsage;
   }
   try {
     return run ? run() : crowdprof::kExitUsage;

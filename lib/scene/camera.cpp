@@ -44,10 +44,14 @@ Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect) {
   float extent = std::max({size.x, size.z, 1e-3f});
   float height = std::max(size.y, 1e-3f);
   if (spec == "default") {
-    // From the front (+Z), above, aimed a little in front of the crowd's centre:
-    // the front rows fill the view and the far, wide rows spill out of it.
-    camera.target = glm::vec3(center.x, crowd.min.y + 0.4f * height, center.z + 0.15f * size.z);
-    camera.eye = camera.target + glm::vec3(0.0f, 0.35f * extent, 0.55f * extent);
+    // From the front (+Z) and above, near enough that the view's width at the
+    // crowd's middle row covers about 70% of the crowd's: the corners of the
+    // near rows fall outside the view, the far rows fit, as in the thesis scene.
+    float tan_half_h = std::tan(glm::radians(camera.fov_y_degrees) * 0.5f) * aspect;
+    float distance = 0.35f * std::max(size.x, 1e-3f) / tan_half_h;
+    float pitch = glm::radians(25.0f);
+    camera.target = glm::vec3(center.x, crowd.min.y + 0.5f * height, center.z);
+    camera.eye = camera.target + distance * glm::vec3(0.0f, std::sin(pitch), std::cos(pitch));
   } else if (spec == "all") {
     camera.target = center;
     camera.eye = center + glm::vec3(0.0f, 0.6f * extent, 1.4f * extent);

@@ -1,0 +1,62 @@
+// `crowdprof bench` from the outside: bad command lines exit 2 with one line on
+// stderr, bad files exit 3, and a good run prints the profile.
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+using crowdprof::test::run_cli;
+
+namespace {
+
+std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
+
+void expect_usage_error(const std::string& args, const std::string& words) {
+  auto r = run_cli("bench '" + scene() + "' " + args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+}  // namespace
+
+TEST(BenchCli, RunsTheDefaultSceneAndPrintsTheProfile) {
+  auto r = run_cli("bench '" + scene() + "' -n 6 --frames 3 --warmup 1 --mode culled");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* line : {"Frametime :", "Physics", "Animations :", "Rasterizer :", "GPU Latency:", "mode culled",
+                           "copies culled", "digest"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // no progress when stderr is not a terminal
+}
+
+TEST(BenchCli, BadNumbersAndNames) {
+  expect_usage_error("-n 0", "at least 1");
+  expect_usage_error("-n -4", "at least 1");
+  expect_usage_error("-n many", "--characters");
+  expect_usage_error("--frames 0", "--frames");
+  expect_usage_error("--warmup -1", "--warmup");
+  expect_usage_error("--fps 0", "--fps");
+  expect_usage_error("--mode fastest", "master, culled, threaded, hwskin");
+  expect_usage_error("--threads 0", "--threads");
+  expect_usage_error("--mode master --threads 4", "one thread");
+  expect_usage_error("--actions sometimes", "shared, random");
+  expect_usage_error("--action tango", "dance");
+  expect_usage_error("--camera 1,2,3", "--camera");
+  expect_usage_error("--culling maybe", "on or off");
+  expect_usage_error("--mode master --parallel on", "shared scratch pose");
+  expect_usage_error("--backend vulkan", "--backend");
+  expect_usage_error("-n 9000000", "memory");
+}
+
+TEST(BenchCli, BadFilesExit3) {
+  auto r = run_cli("bench /nonexistent/crowd.glb");
+  EXPECT_EQ(r.status, 3);
+  EXPECT_NE(r.err.find("crowdprof: /nonexistent/crowd.glb: no such file"), std::string::npos) << r.err;
+}
+
+TEST(BenchCli, ACharacterWithoutSkinOrActions) {
+  CROWDPROF_REQUIRE_SAMPLES();
+  auto r = run_cli("bench '" + crowdprof::test::sample("InterpolationTest/glTF-Binary/InterpolationTest.glb") + "'");
+  EXPECT_EQ(r.status, 3);
+  EXPECT_NE(r.err.find("has no skin"), std::string::npos) << r.err;
+}
