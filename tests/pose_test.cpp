@@ -1,0 +1,137 @@
+// Local to model space in parent order (with glTF's parent offsets), and
+// skinning matrices, against matrices worked out by hand.
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "animation/local_pose.h"
+#include "animation/pose.h"
+
+namespace crowdprof {
+namespace {
+
+void expect_matrix(const glm::mat4& actual, const glm::mat4& expected) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      EXPECT_NEAR(actual[c][r], expected[c][r], 1e-6f) << "column " << c << " row " << r;
+}
+
+// Columns as written on paper: x axis, y axis, z axis, origin.
+glm::mat4 columns(glm::vec3 x, glm::vec3 y, glm::vec3 z, glm::vec3 origin) {
+  return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(origin, 1));
+}
+
+glm::quat about(float degrees, glm::vec3 axis) { return glm::angleAxis(glm::radians(degrees), axis); }
+
+// A chain root -> child -> grandchild; the child sits under a non-joint node that
+// moves it 3 along z (its parent offset).
+Skeleton chain() {
+  Skeleton s;
+  s.names = {"root", "child", "grandchild"};
+  s.parents = {-1, 0, 1};
+  s.rest_translations = {glm::vec3(1, 0, 0), glm::vec3(0, 2, 0), glm::vec3(1, 0, 0)};
+  s.rest_rotations = {about(90, {0, 0, 1}), glm::quat(1, 0, 0, 0), about(90, {1, 0, 0})};
+  s.rest_scales = {glm::vec3(1), glm::vec3(2), glm::vec3(1)};
+  s.parent_offsets = {glm::mat4(1), glm::translate(glm::mat4(1), glm::vec3(0, 0, 3)), glm::mat4(1)};
+  s.inverse_binds.assign(3, glm::mat4(1));
+  return s;
+}
+
+TEST(Pose, ResetToRestCopiesTheRestTransforms) {
+  const Skeleton s = chain();
+  LocalPose pose;
+  pose.translations.assign(7, glm::vec3(9));
+  reset_to_rest(s, &pose);
+  ASSERT_EQ(pose.joint_count(), 3u);
+  EXPECT_EQ(pose.translations, s.rest_translations);
+  EXPECT_EQ(pose.rotations, s.rest_rotations);
+  EXPECT_EQ(pose.scales, s.rest_scales);
+}
+
+TEST(Pose, LocalToModelOfAChainWithAParentOffset) {
+  const Skeleton s = chain();
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  std::vector<glm::mat4> model(3);
+  ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+
+  // root: 90 degrees about z (x -> y, y -> -x), at (1, 0, 0).
+  expect_matrix(model[0], columns({0, 1, 0}, {-1, 0, 0}, {0, 0, 1}, {1, 0, 0}));
+  // child: root * offset T(0,0,3) * T(0,2,0) S(2): axes twice the root's; origin
+  // root applied to (0, 2, 3) = (-2, 0, 3) + (1, 0, 0).
+  expect_matrix(model[1], columns({0, 2, 0}, {-2, 0, 0}, {0, 0, 2}, {-1, 0, 3}));
+  // grandchild: child * T(1,0,0) R_x(90) (y -> z, z -> -y): x axis = child's x
+  // (0,2,0); y axis = child's z (0,0,2); z axis = -child's y (2,0,0); origin =
+  // child applied to (1, 0, 0) = (0, 2, 0) + (-1, 0, 3).
+  expect_matrix(model[2], columns({0, 2, 0}, {0, 0, 2}, {2, 0, 0}, {-1, 2, 3}));
+}
+
+TEST(Pose, RootParentOffsetAppliesBeforeTheRoot) {
+  Skeleton s = chain();
+  s.parent_offsets[0] = glm::translate(glm::mat4(1), glm::vec3(0, 5, 0));
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  std::vector<glm::mat4> model(3);
+  ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+  expect_matrix(model[0], columns({0, 1, 0}, {-1, 0, 0}, {0, 0, 1}, {1, 5, 0}));
+  expect_matrix(model[2], columns({0, 2, 0}, {0, 0, 2}, {2, 0, 0}, {-1, 7, 3}));
+}
+
+TEST(Pose, OffsetsThatAreNotIdentityAreNotSkipped) {
+  // Within a rounding error of the identity is still not the identity.
+  Skeleton s = chain();
+  s.parent_offsets[2][3][0] = 1e-3f;
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  std::vector<glm::mat4> model(3);
+  ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+  // The offset moves the grandchild 1e-3 along the child's x axis (0, 2, 0).
+  EXPECT_NEAR(model[2][3][1], 2.0f + 2e-3f, 1e-6f);
+}
+
+TEST(Pose, SkinningMatricesAreModelTimesInverseBind) {
+  Skeleton s = chain();
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  std::vector<glm::mat4> model(3);
+  ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+  // Bound in the rest pose: every skinning matrix of the rest pose is the identity.
+  for (size_t j = 0; j < 3; ++j) s.inverse_binds[j] = glm::inverse(model[j]);
+  std::vector<SkinMatrix> skin(3);
+  ASSERT_TRUE((SkinningMatricesJob{&s, model, skin}.Run()));
+  for (const SkinMatrix& m : skin) expect_matrix(m, glm::mat4(1));
+
+  // And by hand: model T(1,2,3) after inverse bind T(-1,0,0) is T(0,2,3).
+  std::vector<glm::mat4> moved(3, glm::translate(glm::mat4(1), glm::vec3(1, 2, 3)));
+  s.inverse_binds.assign(3, glm::translate(glm::mat4(1), glm::vec3(-1, 0, 0)));
+  ASSERT_TRUE((SkinningMatricesJob{&s, moved, skin}.Run()));
+  expect_matrix(skin[1], columns({1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 2, 3}));
+}
+
+TEST(Pose, JobsValidateTheirInput) {
+  Skeleton s = chain();
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  std::vector<glm::mat4> model(3), short_model(2);
+  EXPECT_FALSE((LocalToModelJob{&s, &pose, short_model}.Run()));
+  EXPECT_FALSE((LocalToModelJob{nullptr, &pose, model}.Run()));
+  EXPECT_FALSE((LocalToModelJob{&s, nullptr, model}.Run()));
+  LocalPose small = pose;
+  small.scales.pop_back();
+  EXPECT_FALSE((LocalToModelJob{&s, &small, model}.Run()));
+  Skeleton cyclic = s;
+  cyclic.parents[1] = 2;  // a child before its parent
+  EXPECT_FALSE((LocalToModelJob{&cyclic, &pose, model}.Run()));
+  Skeleton no_offsets = s;
+  no_offsets.parent_offsets.clear();
+  EXPECT_FALSE((LocalToModelJob{&no_offsets, &pose, model}.Run()));
+
+  std::vector<SkinMatrix> skin(3), short_skin(2);
+  EXPECT_FALSE((SkinningMatricesJob{&s, model, short_skin}.Run()));
+  EXPECT_FALSE((SkinningMatricesJob{&s, short_model, skin}.Run()));
+  EXPECT_FALSE((SkinningMatricesJob{nullptr, model, skin}.Run()));
+  EXPECT_TRUE((SkinningMatricesJob{&s, model, skin}.Run()));
+}
+
+}  // namespace
+}  // namespace crowdprof
