@@ -48,12 +48,20 @@ void inverse_lengths(const float* length2, float* inverse) {
 #endif
 }
 
+// The mesh's arrays from one vertex on, read by skin_vertex.
+struct VertexArrays {
+  const glm::vec3* positions;
+  const glm::vec3* normals;
+  const glm::u16vec4* joints;
+  const glm::vec4* weights;
+};
+
 // Skins vertex i: writes its position, and its unnormalised normal and that
 // normal's squared length for the block's normalisation.
-inline void skin_vertex(const SkinMatrix* palette, const SkinnedMesh& mesh, size_t i,
+inline void skin_vertex(const SkinMatrix* palette, const VertexArrays& in, size_t i,
                         glm::vec3* position, Float4* normal, float* length2) {
-  const glm::u16vec4 joint = mesh.joints[i];
-  const glm::vec4 w = mesh.weights[i];
+  const glm::u16vec4 joint = in.joints[i];
+  const glm::vec4 w = in.weights[i];
   const float* m = &palette[joint.x][0][0];
   Float8 lo = load8(m) * w.x;
   Float8 hi = load8(m + 8) * w.x;
@@ -75,14 +83,14 @@ inline void skin_vertex(const SkinMatrix* palette, const SkinnedMesh& mesh, size
   // column0 * x + column1 * y + column2 * z + column3 * (1 for points, 0 for
   // normals): the halves hold columns 0|1 and 2|3, so multiply each by its
   // coordinates and add the two 4-float halves.
-  const glm::vec3 p = mesh.positions[i];
+  const glm::vec3 p = in.positions[i];
   const Float8 s = lo * Float8{p.x, p.x, p.x, p.x, p.y, p.y, p.y, p.y} +
                    hi * Float8{p.z, p.z, p.z, p.z, 1.0f, 1.0f, 1.0f, 1.0f};
   const Float4 skinned_p =
       __builtin_shufflevector(s, s, 0, 1, 2, 3) + __builtin_shufflevector(s, s, 4, 5, 6, 7);
   *position = glm::vec3(skinned_p[0], skinned_p[1], skinned_p[2]);
 
-  const glm::vec3 n = mesh.normals[i];
+  const glm::vec3 n = in.normals[i];
   const Float8 t = lo * Float8{n.x, n.x, n.x, n.x, n.y, n.y, n.y, n.y} +
                    hi * Float8{n.z, n.z, n.z, n.z, 0.0f, 0.0f, 0.0f, 0.0f};
   const Float4 skinned_n =
@@ -101,31 +109,32 @@ bool SkinningJob::Validate() const {
   if (first_vertex > n || vertex_count > n - first_vertex) return false;
   if (out_positions.size() != vertex_count || out_normals.size() != vertex_count) return false;
   // Joint indices come from the file: one past the palette would read beyond it.
+  // As one flat array of indices, so that the scan vectorises.
+  const uint16_t* joints = &mesh->joints.data()[first_vertex].x;
   uint16_t largest = 0;
-  for (size_t i = first_vertex; i < first_vertex + vertex_count; ++i) {
-    const glm::u16vec4 j = mesh->joints[i];
-    largest = std::max(largest, std::max(std::max(j.x, j.y), std::max(j.z, j.w)));
-  }
+  for (size_t k = 0; k < 4 * vertex_count; ++k) largest = std::max(largest, joints[k]);
   return vertex_count == 0 || largest < skinning_matrices.size();
 }
 
 bool SkinningJob::Run() const {
   if (!Validate()) return false;
   const SkinMatrix* palette = skinning_matrices.data();
-  alignas(32) Float4 normals[kBlock];
+  const VertexArrays in{mesh->positions.data() + first_vertex, mesh->normals.data() + first_vertex,
+                        mesh->joints.data() + first_vertex, mesh->weights.data() + first_vertex};
+  glm::vec3* positions = out_positions.data();
+  glm::vec3* normals = out_normals.data();
+  alignas(32) Float4 unnormalised[kBlock];
   alignas(32) float length2[kBlock];
   alignas(32) float inverse[kBlock];
   for (size_t start = 0; start < vertex_count; start += kBlock) {
     const size_t count = std::min(kBlock, vertex_count - start);
-    std::fill(length2 + count, length2 + kBlock, 0.0f);  // lanes past the end
-    for (size_t k = 0; k < count; ++k) {
-      skin_vertex(palette, *mesh, first_vertex + start + k, &out_positions[start + k], &normals[k],
-                  &length2[k]);
-    }
+    for (size_t k = count; k < kBlock; ++k) length2[k] = 0.0f;  // lanes past the end
+    for (size_t k = 0; k < count; ++k)
+      skin_vertex(palette, in, start + k, &positions[start + k], &unnormalised[k], &length2[k]);
     inverse_lengths(length2, inverse);
     for (size_t k = 0; k < count; ++k) {
-      const Float4 unit = normals[k] * inverse[k];
-      out_normals[start + k] = glm::vec3(unit[0], unit[1], unit[2]);
+      const Float4 unit = unnormalised[k] * inverse[k];
+      normals[start + k] = glm::vec3(unit[0], unit[1], unit[2]);
     }
   }
   return true;
