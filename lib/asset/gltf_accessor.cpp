@@ -67,16 +67,18 @@ AccessorReader::Layout AccessorReader::layout(int index, int components, const s
   if (v.buffer < 0 || static_cast<size_t>(v.buffer) >= model.buffers.size())
     fail(view_name + " names buffer " + std::to_string(v.buffer) + ", which does not exist");
   const tinygltf::Buffer& b = model.buffers[static_cast<size_t>(v.buffer)];
-  if (uint64_t(v.byteOffset) + uint64_t(v.byteLength) > b.data.size())
-    fail(view_name + " reaches past the end of buffer " + std::to_string(v.buffer) + " (" +
-         std::to_string(uint64_t(v.byteOffset) + uint64_t(v.byteLength)) + " > " + std::to_string(b.data.size()) +
-         " bytes)");
+  // Offsets come from the file and may be near 2^64: compare without adding them.
+  if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
+    fail(view_name + " reaches past the end of buffer " + std::to_string(v.buffer) + " (bytes " +
+         std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) + " of " +
+         std::to_string(b.data.size()) + ")");
   uint64_t stride = v.byteStride ? uint64_t(v.byteStride) : element;
   if (stride < element) fail(view_name + " has a stride smaller than " + name + "'s elements");
-  uint64_t end = uint64_t(a.byteOffset) + stride * (a.count - 1) + element;
-  if (end > v.byteLength)
-    fail(name + " reads past the end of " + view_name + " (" + std::to_string(end) + " > " +
-         std::to_string(v.byteLength) + " bytes)");
+  // count <= 2^24 and stride <= 2^8 here, so the span cannot overflow.
+  uint64_t span = stride * (a.count - 1) + element;
+  if (a.byteOffset > v.byteLength || span > v.byteLength - a.byteOffset)
+    fail(name + " reads past the end of " + view_name + " (bytes " + std::to_string(a.byteOffset) + " + " +
+         std::to_string(span) + " of " + std::to_string(v.byteLength) + ")");
   return {b.data.data() + v.byteOffset + a.byteOffset, a.count, static_cast<size_t>(stride), a.componentType,
           components, a.normalized};
 }

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <set>
 
 #include "asset/errors.h"
 
@@ -39,15 +38,20 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
 }
 
 nlohmann::json parse_json(const std::string& path, const char* begin, const char* end) {
+  nlohmann::json::parser_callback_t limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(path, "broken JSON: nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+    return true;
+  };
   try {
-    nlohmann::json json = nlohmann::json::parse(begin, end);
+    nlohmann::json json = nlohmann::json::parse(begin, end, limit_depth);
     if (!json.is_object()) throw InputError(path, "broken JSON: the top level is not an object");
     return json;
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 1, ...".
     std::string what = e.what();
     size_t at = what.find("] ");
-    throw InputError(path, "broken JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    throw InputError(path, "broken JSON: " + printable(at == std::string::npos ? what : what.substr(at + 2), 200));
   }
 }
 
@@ -85,60 +89,14 @@ void split_glb(GltfContainer& c, const std::vector<unsigned char>& bytes) {
   if (!have_json) throw InputError(path, "truncated GLB: no JSON chunk");
 }
 
-// Index `key` of `object`, if present, must name an element of top-level array `array`.
-void check_index(const GltfContainer& c, const nlohmann::json& object, const char* key,
-                 const char* array, const std::string& where) {
-  if (!object.contains(key)) return;
-  const auto& v = object[key];
-  size_t count = c.json.contains(array) && c.json[array].is_array() ? c.json[array].size() : 0;
-  if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<uint64_t>() >= count)
-    throw InputError(c.path, where + ": " + key + " " + v.dump() + " names no element of " + array +
-                                 " (" + std::to_string(count) + " present)");
-}
-
-const nlohmann::json& array_or_empty(const nlohmann::json& json, const char* key) {
-  static const nlohmann::json empty = nlohmann::json::array();
-  return json.contains(key) && json[key].is_array() ? json[key] : empty;
-}
-
-void preflight_draco(const GltfContainer& c) {
-  const auto& meshes = array_or_empty(c.json, "meshes");
-  for (size_t m = 0; m < meshes.size(); ++m) {
-    const auto& primitives = array_or_empty(meshes[m], "primitives");
-    for (size_t p = 0; p < primitives.size(); ++p) {
-      const auto& prim = primitives[p];
-      if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object()) continue;
-      const auto& ext = prim["extensions"];
-      if (!ext.contains("KHR_draco_mesh_compression")) continue;
-      std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p) + " Draco extension";
-      const auto& draco = ext["KHR_draco_mesh_compression"];
-      if (!draco.is_object() || !draco.contains("bufferView") || !draco.contains("attributes") ||
-          !draco["attributes"].is_object())
-        throw InputError(c.path, where + ": needs bufferView and attributes");
-      check_index(c, draco, "bufferView", "bufferViews", where);
-      const auto& view = c.json["bufferViews"][draco["bufferView"].get<size_t>()];
-      check_index(c, view, "buffer", "buffers", "buffer view " + draco["bufferView"].dump());
-      check_index(c, prim, "indices", "accessors", where);
-      if (!prim.contains("attributes") || !prim["attributes"].is_object())
-        throw InputError(c.path, where + ": primitive has no attributes");
-      for (auto& [name, id] : draco["attributes"].items()) {
-        if (!id.is_number_integer() || id.get<int64_t>() < 0)
-          throw InputError(c.path, where + ": attribute " + name + " has id " + id.dump());
-        if (!prim["attributes"].contains(name))
-          throw InputError(c.path, where + ": attribute " + name + " is not among the primitive's");
-        check_index(c, prim["attributes"], name.c_str(), "accessors", where);
-      }
-    }
-  }
-}
-
-const std::set<std::string>& supported_required_extensions() {
-  static const std::set<std::string> names = {"KHR_draco_mesh_compression", "KHR_mesh_quantization",
-                                              "KHR_materials_unlit", "KHR_texture_transform"};
-  return names;
-}
-
 }  // namespace
+
+std::string printable(std::string_view text, size_t limit) {
+  std::string out;
+  for (char ch : text.substr(0, limit)) out += std::iscntrl(static_cast<unsigned char>(ch)) ? '?' : ch;
+  if (text.size() > limit) out += "...";
+  return out;
+}
 
 GltfContainer read_gltf_container(const std::string& path) {
   GltfContainer c;
@@ -155,7 +113,7 @@ GltfContainer read_gltf_container(const std::string& path) {
   size_t first = 0;
   while (first < bytes.size() && std::isspace(bytes[first])) ++first;
   if (first == bytes.size() || bytes[first] != '{')
-    throw InputError(path, "is not a glTF file (neither GLB nor JSON)");
+    throw InputError(path, "is not a glTF file (neither GLB nor a JSON object)");
   const char* text = reinterpret_cast<const char*>(bytes.data());
   c.json = parse_json(path, text, text + bytes.size());
   return c;
@@ -163,11 +121,12 @@ GltfContainer read_gltf_container(const std::string& path) {
 
 std::string resolve_inside(const GltfContainer& c, const std::string& uri, const std::string& what) {
   auto refuse = [&](const std::string& why) {
-    throw InputError(c.path, what + " URI \"" + uri.substr(0, 80) + "\" " + why);
+    throw InputError(c.path, what + " URI \"" + printable(uri, 80) + "\" " + why);
   };
   if (uri.empty()) refuse("is empty");
+  if (uri.find('\\') != std::string::npos) refuse("holds a backslash; URIs separate folders with /");
   if (uri.find(':') != std::string::npos) refuse("has a scheme; only data: URIs and relative paths are read");
-  if (uri[0] == '/' || uri[0] == '\\') refuse("is an absolute path; refused, assets may only read beside themselves");
+  if (uri[0] == '/') refuse("is an absolute path; refused, assets may only read beside themselves");
   // Check the decoded form, so that "..%2F" cannot slip past.
   std::string decoded;
   for (size_t i = 0; i < uri.size(); ++i) {
@@ -179,7 +138,8 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
       decoded += uri[i];
     }
   }
-  if (decoded[0] == '/' || decoded[0] == '\\') refuse("is an absolute path; refused, assets may only read beside themselves");
+  if (decoded.find('\\') != std::string::npos) refuse("holds a backslash; URIs separate folders with /");
+  if (decoded[0] == '/') refuse("is an absolute path; refused, assets may only read beside themselves");
   if (decoded.find('\0') != std::string::npos) refuse("holds a NUL byte");
   fs::path relative(decoded);
   for (const auto& part : relative)
@@ -192,38 +152,6 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
   auto [b, f] = std::mismatch(base.begin(), base.end(), full.begin(), full.end());
   if (b != base.end()) refuse("points outside the asset's folder; refused");
   return full.string();
-}
-
-void preflight_gltf(const GltfContainer& c) {
-  const auto& json = c.json;
-  if (!json.contains("asset") || !json["asset"].is_object() || !json["asset"].contains("version") ||
-      !json["asset"]["version"].is_string())
-    throw InputError(c.path, "is not glTF: no asset.version");
-  std::string version = json["asset"]["version"].get<std::string>();
-  if (version.rfind("2.", 0) != 0) throw InputError(c.path, "glTF version " + version + " is not 2.x");
-  for (const auto& name : array_or_empty(json, "extensionsRequired")) {
-    if (!name.is_string() || !supported_required_extensions().count(name.get<std::string>()))
-      throw InputError(c.path, "requires extension " + name.dump() + ", which crowdprof does not support");
-  }
-  const auto& buffers = array_or_empty(json, "buffers");
-  for (size_t b = 0; b < buffers.size(); ++b) {
-    if (!buffers[b].is_object()) throw InputError(c.path, "buffer " + std::to_string(b) + " is not an object");
-    if (!buffers[b].contains("uri")) continue;
-    if (!buffers[b]["uri"].is_string()) throw InputError(c.path, "buffer " + std::to_string(b) + " has a non-string uri");
-    std::string uri = buffers[b]["uri"].get<std::string>();
-    if (uri.rfind("data:", 0) == 0) continue;
-    std::string full = resolve_inside(c, uri, "buffer " + std::to_string(b));
-    std::error_code ec;
-    if (!fs::is_regular_file(full, ec))
-      throw InputError(c.path, "buffer " + std::to_string(b) + " file \"" + uri + "\" is missing");
-  }
-  const auto& images = array_or_empty(json, "images");
-  for (size_t i = 0; i < images.size(); ++i) {
-    if (!images[i].is_object() || !images[i].contains("uri") || !images[i]["uri"].is_string()) continue;
-    std::string uri = images[i]["uri"].get<std::string>();
-    if (uri.rfind("data:", 0) != 0) resolve_inside(c, uri, "image " + std::to_string(i));
-  }
-  preflight_draco(c);
 }
 
 }  // namespace crowdprof

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -12,7 +13,16 @@
 namespace crowdprof {
 
 // Files larger than this are refused before reading: a character is megabytes.
+// The same bound holds for all of a file's buffers together.
 inline constexpr uint64_t kMaxAssetBytes = 1ull << 30;
+
+// JSON nested deeper than this is refused: glTF needs about 8 levels, and the JSON
+// walkers after the parser (dump, tiny_gltf's extras) recurse once per level.
+inline constexpr int kMaxJsonDepth = 64;
+
+// Text from the file, made safe for a one-line message: control characters become
+// '?', and anything past `limit` characters becomes "...".
+std::string printable(std::string_view text, size_t limit = 60);
 
 struct GltfContainer {
   std::string path;      // as the user gave it (used in messages)
@@ -26,10 +36,10 @@ struct GltfContainer {
 // file, a directory, an empty or non-glTF file, a truncated GLB or broken JSON.
 GltfContainer read_gltf_container(const std::string& path);
 
-// Checks what tiny_gltf would trust: buffer and image URIs stay inside base_dir
-// (no absolute paths, no "..", no schemes but data:), required extensions are
-// supported, and Draco extension indices point at existing views and accessors.
-// Throws InputError.
+// Checks what tiny_gltf would trust (gltf_preflight.cpp): buffer and image URIs
+// stay inside base_dir (no absolute paths, no "..", no schemes but data:),
+// required extensions are supported, every index names an existing element, buffer
+// views lie inside their buffers, and Draco extensions are complete. Throws InputError.
 void preflight_gltf(const GltfContainer& container);
 
 // Resolves a relative URI against base_dir, refusing anything that leaves it.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -15,6 +16,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_accessor.h"
+#include "asset/gltf_container.h"
 #include "asset/mesh_normals.h"
 
 namespace crowdprof {
@@ -22,6 +24,13 @@ namespace crowdprof {
 namespace {
 
 std::string str(size_t i) { return std::to_string(i); }
+
+template <typename V>
+bool finite(const V& v) {
+  for (int i = 0; i < V::length(); ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
 
 struct Trs {
   glm::vec3 t{0.0f};
@@ -31,19 +40,24 @@ struct Trs {
 
 Trs node_trs(const tinygltf::Node& node, size_t index, const std::string& file) {
   Trs trs;
-  auto finite = [&](const std::vector<double>& v) {
+  auto check = [&](const std::vector<double>& v, size_t size, const char* what) {
+    if (!v.empty() && v.size() != size)
+      throw InputError(file, "node " + str(index) + " has a " + what + " of " + str(v.size()) + " numbers, not " + str(size));
+    // Beyond float's range a value would become Inf when narrowed.
     for (double x : v)
-      if (!std::isfinite(x)) throw InputError(file, "node " + str(index) + " has a NaN or Inf transform");
+      if (!(std::abs(x) <= double(std::numeric_limits<float>::max())))
+        throw InputError(file, "node " + str(index) + " has a NaN or Inf " + what + " (or a value past float's range)");
   };
-  finite(node.matrix);
-  finite(node.translation);
-  finite(node.rotation);
-  finite(node.scale);
+  check(node.matrix, 16, "matrix");
+  check(node.translation, 3, "translation");
+  check(node.rotation, 4, "rotation");
+  check(node.scale, 3, "scale");
   if (node.matrix.size() == 16) {
     glm::mat4 m = glm::make_mat4(node.matrix.data());
     glm::vec3 skew;
     glm::vec4 perspective;
-    if (!glm::decompose(m, trs.s, trs.r, trs.t, skew, perspective))
+    if (!glm::decompose(m, trs.s, trs.r, trs.t, skew, perspective) || !finite(trs.t) || !finite(trs.s) ||
+        !finite(glm::vec4(trs.r.x, trs.r.y, trs.r.z, trs.r.w)))
       throw InputError(file, "node " + str(index) + " has a matrix that is not a transform");
     return trs;
   }
@@ -80,13 +94,6 @@ std::vector<std::string> unique_names(std::vector<std::string> names, Fixups& fi
     names[j] = name;
   }
   return names;
-}
-
-Interpolation parse_interpolation(const std::string& text, const std::string& where, const std::string& file) {
-  if (text.empty() || text == "LINEAR") return Interpolation::Linear;
-  if (text == "STEP") return Interpolation::Step;
-  if (text == "CUBICSPLINE") return Interpolation::CubicSpline;
-  throw InputError(file, where + ": unknown interpolation \"" + text.substr(0, 40) + "\"");
 }
 
 struct Skin {
@@ -189,6 +196,9 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
     throw InputError(file, where + ": is bound to a skin but has no JOINTS_0/WEIGHTS_0");
   std::vector<float> positions = reader.floats(attribute("POSITION"), 3, where + " POSITION");
   size_t n = positions.size() / 3;
+  if (mesh.positions.size() + n > kMaxMeshVertices)
+    throw InputError(file, where + ": the skinned mesh would have more than " + str(kMaxMeshVertices) +
+                               " vertices; refused as absurd");
   auto same_count = [&](const std::vector<float>& v, int components, const char* name) {
     if (v.size() != n * static_cast<size_t>(components))
       throw InputError(file, where + ": " + name + " has " + str(v.size() / static_cast<size_t>(components)) +
@@ -223,6 +233,9 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
     for (size_t i = 0; i < n; ++i) indices[i] = static_cast<uint32_t>(i);
   }
   if (indices.size() % 3) throw InputError(file, where + ": " + str(indices.size()) + " indices is not whole triangles");
+  if (mesh.indices.size() + indices.size() > 3 * kMaxMeshVertices)
+    throw InputError(file, where + ": the skinned mesh would have more than " + str(kMaxMeshVertices) +
+                               " triangles; refused as absurd");
 
   uint32_t base = static_cast<uint32_t>(mesh.positions.size());
   Primitive range{static_cast<uint32_t>(mesh.indices.size()), static_cast<uint32_t>(indices.size()), base,
@@ -256,6 +269,7 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
     glm::vec4 out_weights(0.0f);
     float sum = 0.0f;
     for (int k = 0; k < used; ++k) sum += influence[k].weight;
+    if (!std::isfinite(sum)) throw InputError(file, where + ": vertex " + str(v) + "'s weights add up past float's range");
     if (used == 0) {
       ++fixups.weightless_vertices;
       out_weights[0] = 1.0f;
@@ -290,6 +304,31 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
   mesh.primitives.push_back(range);
 }
 
+// The last check before a character leaves the loader. Values read from the file
+// were checked as they were read; this catches what was computed from them
+// (normals of huge triangles, decomposed matrices, sums of huge weights).
+void check_finite(const Character& c, int s, const std::string& file) {
+  auto fail = [&](const std::string& what) {
+    throw InputError(file, "skin " + str(static_cast<size_t>(s)) + ": " + what +
+                               " is not finite (values in the file too large?)");
+  };
+  auto finite_matrix = [](const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); };
+  const Skeleton& k = c.skeleton;
+  for (size_t j = 0; j < k.joint_count(); ++j) {
+    const glm::quat& r = k.rest_rotations[j];
+    if (!finite(k.rest_translations[j]) || !finite(k.rest_scales[j]) || !finite(glm::vec4(r.x, r.y, r.z, r.w)) ||
+        !finite_matrix(k.inverse_binds[j]) || !finite_matrix(k.parent_offsets[j]))
+      fail("joint " + str(j) + "'s rest pose or bind matrix");
+  }
+  for (size_t v = 0; v < c.mesh.vertex_count(); ++v)
+    if (!finite(c.mesh.positions[v]) || !finite(c.mesh.normals[v]) || !finite(c.mesh.weights[v]))
+      fail("vertex " + str(v));
+  for (const Action& action : c.actions)
+    for (const Channel& channel : action.channels)
+      for (float x : channel.values)
+        if (!std::isfinite(x)) fail("a key of action \"" + printable(action.name, 40) + "\"");
+}
+
 }  // namespace
 
 std::vector<int> node_parents(const tinygltf::Model& model, const std::string& file) {
@@ -311,84 +350,33 @@ std::vector<int> node_parents(const tinygltf::Model& model, const std::string& f
       parents[static_cast<size_t>(child)] = static_cast<int>(i);
     }
   }
+  // Each node's depth, walking every chain once (a chain of a million nodes must
+  // not take a million walks); a walk that meets its own chain is a cycle.
+  std::vector<int> depth(count, 0);  // 0: unknown, -1: on the chain being walked
+  std::vector<size_t> chain;
   for (size_t i = 0; i < count; ++i) {
-    size_t steps = 0;
-    for (int up = parents[i]; up >= 0; up = parents[static_cast<size_t>(up)])
-      if (++steps > count) throw InputError(file, "the node graph has a cycle through node " + str(i));
+    chain.clear();
+    size_t n = i;
+    int base = 0;
+    while (true) {
+      if (depth[n] > 0) {
+        base = depth[n];
+        break;
+      }
+      if (depth[n] < 0) throw InputError(file, "the node graph has a cycle through node " + str(n));
+      depth[n] = -1;
+      chain.push_back(n);
+      if (parents[n] < 0) break;
+      n = static_cast<size_t>(parents[n]);
+    }
+    for (size_t k = chain.size(); k-- > 0;) {
+      depth[chain[k]] = ++base;
+      if (base > kMaxNodeDepth)
+        throw InputError(file, "node " + str(chain[k]) + " lies more than " + std::to_string(kMaxNodeDepth) +
+                                   " levels deep in the node graph; refused as absurd");
+    }
   }
   return parents;
-}
-
-std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vector<int>& node_to_joint,
-                                    const std::string& file, Fixups* fixups) {
-  AccessorReader reader{model, file};
-  std::vector<Action> actions;
-  for (size_t a = 0; a < model.animations.size(); ++a) {
-    const tinygltf::Animation& anim = model.animations[a];
-    Action action;
-    action.name = anim.name.empty() ? "action" + str(a) : anim.name;
-    action.start = INFINITY;
-    action.end = -INFINITY;
-    for (size_t c = 0; c < anim.channels.size(); ++c) {
-      const tinygltf::AnimationChannel& ch = anim.channels[c];
-      std::string where = "animation " + str(a) + " channel " + str(c);
-      if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= anim.samplers.size())
-        throw InputError(file, where + " names sampler " + std::to_string(ch.sampler) + ", which does not exist");
-      if (ch.target_node >= 0 && static_cast<size_t>(ch.target_node) >= model.nodes.size())
-        throw InputError(file, where + " targets node " + std::to_string(ch.target_node) + ", which does not exist");
-      Channel channel;
-      if (ch.target_path == "translation") channel.path = ChannelPath::Translation;
-      else if (ch.target_path == "rotation") channel.path = ChannelPath::Rotation;
-      else if (ch.target_path == "scale") channel.path = ChannelPath::Scale;
-      else if (ch.target_path != "weights")
-        throw InputError(file, where + ": unknown target path \"" + ch.target_path.substr(0, 40) + "\"");
-      int joint = ch.target_node < 0 ? -1 : node_to_joint[static_cast<size_t>(ch.target_node)];
-      if (ch.target_path == "weights" || joint < 0) {
-        if (fixups) ++fixups->channels_dropped;
-        continue;
-      }
-      channel.joint = joint;
-      const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<size_t>(ch.sampler)];
-      std::string sampler_where = "animation " + str(a) + " sampler " + std::to_string(ch.sampler);
-      channel.interpolation = parse_interpolation(sampler.interpolation, sampler_where, file);
-      channel.times = reader.floats(sampler.input, 1, sampler_where + " input");
-      for (size_t k = 1; k < channel.times.size(); ++k)
-        if (!(channel.times[k] > channel.times[k - 1]))
-          throw InputError(file, sampler_where + ": key times do not increase at key " + str(k));
-      size_t per_key = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      int components = channel.components();
-      channel.values = reader.floats(sampler.output, components, sampler_where + " output");
-      size_t expected = channel.times.size() * per_key * static_cast<size_t>(components);
-      if (channel.values.size() != expected)
-        throw InputError(file, sampler_where + ": output has " + str(channel.values.size() / static_cast<size_t>(components)) +
-                                   " values for " + str(channel.times.size()) + " keys (needs " +
-                                   str(expected / static_cast<size_t>(components)) + ")");
-      if (channel.path == ChannelPath::Rotation) {
-        // Only the value of each key is a rotation; cubic tangents are not unit.
-        for (size_t k = 0; k < channel.times.size(); ++k) {
-          float* q = &channel.values[(k * per_key + (per_key == 3 ? 1 : 0)) * 4];
-          float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-          if (length < 1e-6f) throw InputError(file, sampler_where + ": key " + str(k) + " is a zero rotation");
-          if (std::abs(length - 1.0f) > 1e-3f) {
-            for (int i = 0; i < 4; ++i) q[i] /= length;
-            if (fixups) ++fixups->rotations_normalised;
-          }
-        }
-      }
-      action.start = std::min(action.start, channel.times.front());
-      action.end = std::max(action.end, channel.times.back());
-      action.channels.push_back(std::move(channel));
-    }
-    if (action.channels.empty()) continue;
-    actions.push_back(std::move(action));
-  }
-  return actions;
-}
-
-std::vector<Action> convert_node_actions(const tinygltf::Model& model, const std::string& file) {
-  std::vector<int> identity(model.nodes.size());
-  for (size_t i = 0; i < identity.size(); ++i) identity[i] = static_cast<int>(i);
-  return convert_actions(model, identity, file, nullptr);
 }
 
 Character convert_skin(const tinygltf::Model& model, const std::vector<int>& parents, int s, const std::string& file) {
@@ -412,6 +400,7 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
   }
   character.actions = convert_actions(model, order.node_to_joint, file, &character.fixups);
   character.name = !skin.name.empty() ? skin.name : !mesh_node_name.empty() ? mesh_node_name : "skin" + str(static_cast<size_t>(s));
+  check_finite(character, s, file);
   return character;
 }
 
