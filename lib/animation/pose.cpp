@@ -9,18 +9,47 @@ const glm::mat4 kIdentity(1.0f);
 
 bool is_identity(const glm::mat4& m) { return std::memcmp(&m, &kIdentity, sizeof m) == 0; }
 
+// A matrix as four column vectors (GCC/Clang vector types), so that products
+// are column multiply-adds whatever glm's own code compiles to.
+typedef float Float4 __attribute__((vector_size(16)));
+struct Columns {
+  Float4 c[4];
+};
+
+Columns columns_of(const glm::mat4& m) {
+  Columns columns;
+  std::memcpy(&columns, &m[0][0], sizeof m);  // glm::mat4 is only 4-byte aligned
+  return columns;
+}
+
+glm::mat4 to_mat4(const Columns& columns) {
+  glm::mat4 m;
+  std::memcpy(&m[0][0], &columns, sizeof m);
+  return m;
+}
+
+// a * b, general 4x4.
+glm::mat4 multiply(const glm::mat4& a, const glm::mat4& b) {
+  const Columns ca = columns_of(a);
+  Columns out;
+  for (int c = 0; c < 4; ++c)
+    out.c[c] = ca.c[0] * b[c][0] + ca.c[1] * b[c][1] + ca.c[2] * b[c][2] + ca.c[3] * b[c][3];
+  return to_mat4(out);
+}
+
 // parent * TRS(t, r, s) without forming TRS as a 4x4 and without the products by
 // its constant bottom row: three scaled rotation columns and a translation.
 glm::mat4 times_trs(const glm::mat4& parent, const glm::vec3& t, const glm::quat& r,
                     const glm::vec3& s) {
   const glm::mat3 rotation = glm::mat3_cast(r);
-  glm::mat4 out;
+  const Columns p = columns_of(parent);
+  Columns out;
   for (int c = 0; c < 3; ++c) {
-    const glm::vec3 column = rotation[c] * s[c];
-    out[c] = parent[0] * column.x + parent[1] * column.y + parent[2] * column.z;
+    const glm::vec3 axis = rotation[c] * s[c];
+    out.c[c] = p.c[0] * axis.x + p.c[1] * axis.y + p.c[2] * axis.z;
   }
-  out[3] = parent[0] * t.x + parent[1] * t.y + parent[2] * t.z + parent[3];
-  return out;
+  out.c[3] = p.c[0] * t.x + p.c[1] * t.y + p.c[2] * t.z + p.c[3];
+  return to_mat4(out);
 }
 
 glm::mat4 trs(const glm::vec3& t, const glm::quat& r, const glm::vec3& s) {
@@ -63,7 +92,7 @@ bool LocalToModelJob::Run() const {
     } else {
       const glm::mat4& parent_model = output[static_cast<size_t>(parent)];
       output[j] = is_identity(offset) ? times_trs(parent_model, t, r, s)
-                                      : times_trs(parent_model * offset, t, r, s);
+                                      : times_trs(multiply(parent_model, offset), t, r, s);
     }
   }
   return true;
@@ -78,7 +107,7 @@ bool SkinningMatricesJob::Validate() const {
 bool SkinningMatricesJob::Run() const {
   if (!Validate()) return false;
   const size_t n = output.size();
-  for (size_t j = 0; j < n; ++j) output[j] = model[j] * skeleton->inverse_binds[j];
+  for (size_t j = 0; j < n; ++j) output[j] = multiply(model[j], skeleton->inverse_binds[j]);
   return true;
 }
 
