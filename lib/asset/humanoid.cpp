@@ -3,6 +3,7 @@
 // rig in humanoid_mesh.cpp and humanoid_actions.cpp.
 #include "asset/humanoid.h"
 
+#include <cmath>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -238,8 +239,9 @@ Skeleton make_skeleton(const Rig& rig) {
       parent_rot = rig.bones[static_cast<size_t>(b.parent)].orientation;
       parent_pos = rig.bones[static_cast<size_t>(b.parent)].head;
     }
-    glm::vec3 t(glm::conjugate(parent_rot) * (b.head - parent_pos));
-    glm::quat q(glm::normalize(glm::conjugate(parent_rot) * b.orientation));
+    glm::vec3 t = stable_float(glm::conjugate(parent_rot) * (b.head - parent_pos));
+    glm::dquat r = glm::normalize(glm::conjugate(parent_rot) * b.orientation);
+    glm::quat q(stable_float(r.w), stable_float(r.x), stable_float(r.y), stable_float(r.z));
     sk.names.push_back(b.name);
     sk.parents.push_back(b.parent);
     sk.rest_translations.push_back(t);
@@ -248,7 +250,11 @@ Skeleton make_skeleton(const Rig& rig) {
     sk.parent_offsets.emplace_back(1.0f);
     glm::dmat4 local = glm::translate(glm::dmat4(1.0), glm::dvec3(t)) * glm::mat4_cast(glm::dquat(q));
     model[j] = b.parent >= 0 ? model[static_cast<size_t>(b.parent)] * local : local;
-    sk.inverse_binds.emplace_back(glm::inverse(model[j]));
+    glm::dmat4 inverse = glm::inverse(model[j]);
+    glm::mat4 narrow;
+    for (int col = 0; col < 4; ++col)
+      for (int row = 0; row < 4; ++row) narrow[col][row] = stable_float(inverse[col][row]);
+    sk.inverse_binds.push_back(narrow);
   }
   return sk;
 }

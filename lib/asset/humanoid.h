@@ -32,8 +32,10 @@ inline constexpr int kHumanoidMaxVertices = 10'000'000;
 // metacarpals, phalanges, fingers, segments and jaw; more subdivide the spine,
 // limbs, fingers and neck, so the body keeps its shape at any count.
 //
-// The same options give the same character, bit for bit (it is computed in
-// double precision and rounded once). Throws UsageError for options out of range.
+// The same options give the same character, bit for bit, from any x86-64
+// build: it is computed in double precision and every value is rounded to a
+// 2^-24 grid before it becomes a float, so FMA contraction and libm rounding
+// do not show. Throws UsageError for options out of range.
 Character generate_humanoid(const HumanoidOptions& options = {});
 
 }  // namespace crowdprof

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +52,17 @@ struct Rig {
   int first(Part part, int side = 0, int finger = -1) const;  // -1 when absent
   int last(Part part, int side = 0, int finger = -1) const;   // -1 when absent
 };
+
+// Narrows a generated value to float by way of a multiple of 2^-24. The last
+// bits of a double result depend on the build (FMA contraction under
+// -march=native, the libm) and near-zero results are noise (1e-17 or -2e-17);
+// rounding both away first (zero without its sign) makes the generated file
+// the same bytes from any x86-64 build, which the committed default scene relies on.
+inline float stable_float(double v) {
+  double r = std::nearbyint(v * 0x1p24) * 0x1p-24;
+  return r == 0.0 ? 0.0f : static_cast<float>(r);
+}
+inline glm::vec3 stable_float(const glm::dvec3& v) { return {stable_float(v.x), stable_float(v.y), stable_float(v.z)}; }
 
 // A small, portable random source: the same seed gives the same numbers everywhere.
 class Random {
