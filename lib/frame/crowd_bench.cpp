@@ -11,6 +11,7 @@
 
 #include "animation/pose.h"
 #include "asset/errors.h"
+#include "profile/trace.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -77,7 +78,7 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
 CrowdBench::~CrowdBench() = default;
 
 template <typename Body>
-void CrowdBench::for_each_copy(const Body& body) {
+void CrowdBench::for_each_copy(std::string_view task, const Body& body) {
   size_t n = crowd_.size();
   if (!arena_) {
     for (size_t i = 0; i < n; ++i) body(i);
@@ -87,7 +88,15 @@ void CrowdBench::for_each_copy(const Body& body) {
   // for the task, and fine grains balance copies that are culled.
   arena_->execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
+      if (!config_.tracer) {
+        for (size_t i = range.begin(); i != range.end(); ++i) body(i);
+        return;
+      }
+      auto start = CategoryClock::Clock::now();
       for (size_t i = range.begin(); i != range.end(); ++i) body(i);
+      config_.tracer->span(task, "task", start, CategoryClock::Clock::now(), config_.trace_pid,
+                           {{"first_copy", static_cast<int64_t>(range.begin())},
+                            {"copies", static_cast<int64_t>(range.size())}});
     });
   });
 }
@@ -96,21 +105,33 @@ FrameRecord CrowdBench::step() {
   FrameRecord record;
   Counters& counters = record.counters;
   clock_.begin_frame(Category::Logic);
+  if (config_.tracer) frame_start_ = stage_start_ = CategoryClock::Clock::now();
   update_logic();
-  clock_.switch_to(Category::Physics);  // no physics in a crowd benchmark
-  clock_.switch_to(Category::Animations);
+  enter(Category::Physics);  // no physics in a crowd benchmark
+  enter(Category::Animations);
   update_poses(counters);
-  clock_.switch_to(Category::Scenegraph);
+  enter(Category::Scenegraph);
   update_scenegraph(counters);
-  clock_.switch_to(Category::Rasterizer);
+  enter(Category::Rasterizer);
   if (config_.mode.skinning == SkinningSite::CpuInRasterizer) skin_copies(counters);
-  clock_.switch_to(Category::GpuLatency);  // no GL backend: nothing to wait for
-  clock_.switch_to(Category::Overhead);
+  enter(Category::GpuLatency);  // no GL backend: nothing to wait for
+  enter(Category::Overhead);
   ++frame_;
   // Between frames (reports, progress) is outside the engine's frame.
-  clock_.switch_to(Category::Outside);
+  enter(Category::Outside);
+  if (config_.tracer)
+    config_.tracer->span("frame", "frame", frame_start_, stage_start_, config_.trace_pid,
+                         {{"frame", static_cast<int64_t>(frame_ - 1)}});
   record.times = clock_.end_frame();
   return record;
+}
+
+void CrowdBench::enter(Category category) {
+  Category left = clock_.switch_to(category);
+  if (!config_.tracer) return;
+  auto now = CategoryClock::Clock::now();
+  config_.tracer->span(category_name(left), "stage", stage_start_, now, config_.trace_pid);
+  stage_start_ = now;
 }
 
 void CrowdBench::update_logic() {
@@ -144,7 +165,7 @@ void CrowdBench::update_poses(Counters& counters) {
       if (animates(i)) update_copy(i, shared ? 0 : i, skin_here, &lookups);
   } else {
     std::atomic<uint64_t> total{0};
-    for_each_copy([&](size_t i) {
+    for_each_copy(skin_here ? "pose+skin" : "pose", [&](size_t i) {
       if (!animates(i)) return;
       uint64_t mine = 0;
       update_copy(i, i, skin_here, &mine);
@@ -192,7 +213,7 @@ void CrowdBench::skin_copy(size_t copy) {
 void CrowdBench::skin_copies(Counters& counters) {
   uint64_t skinned = 0;
   for (size_t i = 0; i < crowd_.size(); ++i) skinned += animates(i);
-  for_each_copy([&](size_t i) {
+  for_each_copy("skin", [&](size_t i) {
     if (animates(i)) skin_copy(i);
   });
   counters.vertices_skinned = skinned * vertices_;

@@ -24,6 +24,8 @@
 
 namespace crowdprof {
 
+class Tracer;
+
 struct BenchConfig {
   CrowdOptions crowd;
   std::string mode_name = "threaded";
@@ -32,6 +34,10 @@ struct BenchConfig {
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
   std::string camera = "default";
   float aspect = 16.0f / 9.0f;
+  // When set, each stage of each frame and each parallel task is recorded as a
+  // span under process `trace_pid` (--trace); null records nothing, at no cost.
+  Tracer* tracer = nullptr;
+  int trace_pid = 1;
 };
 
 // Bytes a crowd of `copies` would allocate, to refuse a scene before trying.
@@ -49,6 +55,10 @@ class CrowdBench {
   // Runs one frame and returns where its time went and the work it did.
   FrameRecord step();
 
+  // Forgets the time since the last frame: the next frame is not charged (as
+  // Outside) for what ran in between, e.g. the other modes of a compare.
+  void restart_clock() { clock_ = CategoryClock{}; }
+
   // A hash (hex FNV-1a 64) of the last frame's skinning matrices and skinned
   // vertices of the copies inside the frustum: equal across modes and thread
   // counts when they compute the same thing.
@@ -65,6 +75,8 @@ class CrowdBench {
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
 
  private:
+  // The clock's switch to `category`, recording the stage it leaves when tracing.
+  void enter(Category category);
   void update_logic();
   void update_scenegraph(Counters& counters);
   void update_poses(Counters& counters);
@@ -73,8 +85,9 @@ class CrowdBench {
   void update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups);
   void skin_copy(size_t copy);
   bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
+  // `task` names the spans of its tasks in a trace.
   template <typename Body>
-  void for_each_copy(const Body& body);
+  void for_each_copy(std::string_view task, const Body& body);
 
   const Character& character_;
   BenchConfig config_;
@@ -82,6 +95,7 @@ class CrowdBench {
   Camera camera_;
   Frustum frustum_;
   CategoryClock clock_;
+  CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer
   size_t frame_ = 0;
   size_t joints_ = 0, vertices_ = 0;
 

@@ -1,0 +1,78 @@
+// A recorder of timed spans, written as Chrome trace-event JSON (opens in
+// Perfetto and chrome://tracing): one span per stage per frame on the main
+// thread and one per task on each worker thread, so the balance of the threaded
+// mode can be seen. A bench without a tracer records nothing and pays nothing.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace crowdprof {
+
+struct TraceArg {
+  std::string_view key;  // static storage, e.g. "frame"
+  int64_t value = 0;
+};
+
+// One complete ("ph":"X") event. Names and keys must outlive the tracer (string
+// literals, category_name()): recording copies no strings.
+struct TraceSpan {
+  std::string_view name, category;
+  int64_t start_ns = 0, duration_ns = 0;  // since the tracer's epoch
+  int pid = 1;
+  uint32_t tid = 0;
+  TraceArg args[2]{};
+  uint8_t arg_count = 0;
+};
+
+class Tracer {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // The constructing thread becomes tid 1, "main"; other threads get 2, 3, ...
+  // in the order they first record, named "worker 2", "worker 3", ...
+  Tracer();
+  Tracer(const Tracer&) = delete;
+  Tracer& operator=(const Tracer&) = delete;
+
+  // Records [start, end) on the calling thread; safe from any thread. Only the
+  // first recording of a thread takes a lock.
+  void span(std::string_view name, std::string_view category, Clock::time_point start, Clock::time_point end,
+            int pid, std::initializer_list<TraceArg> args = {});
+
+  // Names a process track (Perfetto shows it as the group's title).
+  void name_process(int pid, std::string name);
+
+  // Spans recorded so far, by thread, in the order each thread recorded them.
+  std::vector<TraceSpan> spans() const;
+
+  // {"traceEvents": [...], "displayTimeUnit": "ms"}: metadata naming every
+  // process and thread, then the spans with ts and dur in microseconds.
+  nlohmann::json to_json() const;
+  void write(std::ostream& out) const;
+
+ private:
+  struct ThreadBuffer {
+    std::thread::id thread;
+    uint32_t tid = 0;
+    std::vector<TraceSpan> spans;
+  };
+  ThreadBuffer& buffer_for_this_thread();
+
+  const uint64_t serial_;  // tells a thread's cached buffer from another tracer's
+  const Clock::time_point epoch_;
+  mutable std::mutex mutex_;
+  std::vector<std::unique_ptr<ThreadBuffer>> buffers_;
+  std::vector<std::pair<int, std::string>> processes_;
+};
+
+}  // namespace crowdprof
