@@ -1,0 +1,300 @@
+#include "profile/regression.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "asset/errors.h"
+#include "profile/category_clock.h"
+#include "profile/counters.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+// The counters every format-1 result has; later counters are compared when
+// both results have them.
+constexpr std::string_view kRequiredCounters[] = {"poses_updated",    "copies_culled",   "copies_visible",
+                                                  "vertices_skinned", "channel_lookups", "bytes_uploaded",
+                                                  "draw_calls"};
+
+std::string lower(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string display_name(const std::string& key) { return key == "frame_ms" ? "frame" : key; }
+
+// "/scene/file" as users read it: "scene.file".
+std::string dotted(const std::string& pointer) {
+  std::string out = pointer.substr(1);
+  std::replace(out.begin(), out.end(), '/', '.');
+  return out;
+}
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::string percent(double fraction) {
+  if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "n/a";
+  std::string text = fraction >= 0 ? "+" : "";
+  return text + fixed(fraction * 100.0, 1) + "%";
+}
+
+std::string p_value(double p) {
+  char text[32];
+  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
+  return text;
+}
+
+// The value at a JSON pointer, or an InputError naming the field.
+const json& field(const json& doc, const std::string& pointer, const std::string& path) {
+  json::json_pointer at(pointer);
+  if (!doc.contains(at)) throw InputError(path, "not a complete crowdprof result: no \"" + dotted(pointer) + "\"");
+  return doc.at(at);
+}
+
+// Unsigned, or signed and not negative: nlohmann keeps the C++ type it was given.
+bool whole(const json& value) {
+  return value.is_number_unsigned() || (value.is_number_integer() && value.get<int64_t>() >= 0);
+}
+
+void require_type(bool ok, const std::string& pointer, const char* expected, const std::string& path) {
+  if (!ok) throw InputError(path, "\"" + dotted(pointer) + "\" should be " + expected);
+}
+
+void validate_samples(const json& doc, const std::string& key, size_t frames, const std::string& path) {
+  std::string where = "/samples/" + key;  // no key holds "~" or "/"
+  const json& values = field(doc, where, path);
+  require_type(values.is_array(), where, "an array of milliseconds", path);
+  if (values.size() != frames)
+    throw InputError(path, "\"samples." + key + "\" has " + std::to_string(values.size()) + " values for " +
+                               std::to_string(frames) + " frames");
+  for (const json& v : values)
+    require_type(v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() >= 0, where,
+                 "finite, non-negative milliseconds", path);
+}
+
+std::vector<double> samples_of(const json& doc, const std::string& key) {
+  return doc.at("samples").at(key).get<std::vector<double>>();
+}
+
+}  // namespace
+
+double parse_tolerance(std::string_view text) {
+  std::string s(text);
+  bool is_percent = !s.empty() && s.back() == '%';
+  if (is_percent) s.pop_back();
+  double value = 0;
+  size_t used = 0;
+  bool parsed = !s.empty() && (std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '.');
+  if (parsed) {
+    try {
+      value = std::stod(s, &used);
+    } catch (const std::exception&) {
+      parsed = false;
+    }
+  }
+  if (!parsed || used != s.size() || !std::isfinite(value))
+    throw UsageError("--tolerance '" + std::string(text) + "': expected a percentage such as 10% or a fraction such as 0.1");
+  if (!is_percent && value >= 1)
+    throw UsageError("--tolerance '" + std::string(text) + "': a fraction is below 1; for percent write " +
+                     std::string(text) + "%");
+  if (is_percent) value /= 100.0;
+  if (value > 10.0)
+    throw UsageError("--tolerance '" + std::string(text) + "': at most 1000%");
+  return value;
+}
+
+std::string resolve_metric(std::string_view name) {
+  std::string wanted = lower(name);
+  if (wanted == "frame" || wanted == "frame_ms") return "frame_ms";
+  std::string choices = "frame";
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    auto category = static_cast<Category>(c);
+    if (wanted == lower(category_name(category)) || wanted == category_column(category))
+      return std::string(category_name(category));
+    choices += ", " + std::string(category_name(category));
+  }
+  throw UsageError("--metric '" + std::string(name) + "': expected one of " + choices);
+}
+
+nlohmann::json read_result(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) throw InputError(path, "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot be read");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw InputError(path, "empty file, not a crowdprof result");
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // An error at the very end (mid-string or mid-object) is a file cut short.
+    bool truncated = e.byte >= text.size() || std::string(e.what()).find("end of input") != std::string::npos;
+    throw InputError(path, truncated ? "truncated JSON (it ends after " + std::to_string(text.size()) + " bytes)"
+                                     : "not JSON (byte " + std::to_string(e.byte) + ")");
+  }
+  validate_result(doc, path);
+  return doc;
+}
+
+void validate_result(const nlohmann::json& doc, const std::string& path) {
+  if (!doc.is_object() || !doc.contains("crowdprof") || !doc["crowdprof"].is_object())
+    throw InputError(path, "not a crowdprof result (no \"crowdprof\" section)");
+  const json& tag = doc["crowdprof"];
+  auto text = [&](const char* key, const char* otherwise) {
+    return tag.contains(key) && tag[key].is_string() ? tag[key].get<std::string>() : std::string(otherwise);
+  };
+  if (text("kind", "bench") != "bench")
+    throw InputError(path, "a '" + text("kind", "") + "' result; check compares results of bench --json");
+  if (!tag.contains("format") || !tag["format"].is_number_integer())
+    throw InputError(path, "not a crowdprof result (no \"crowdprof.format\")");
+  int64_t format = tag["format"].get<int64_t>();
+  if (format != kResultFormat)
+    throw InputError(path, "result format " + std::to_string(format) + " (crowdprof " + text("version", "?") +
+                               "); this crowdprof reads format " + std::to_string(kResultFormat) +
+                               ": record it again with this version");
+  for (const char* key : {"/scene/file", "/scene/character", "/scene/action_choice", "/scene/camera", "/mode",
+                          "/digest"})
+    require_type(field(doc, key, path).is_string(), key, "a string", path);
+  for (const char* key : {"/scene/characters", "/scene/joints", "/scene/vertices", "/scene/actions", "/scene/seed",
+                          "/frames", "/warmup", "/threads"})
+    require_type(whole(field(doc, key, path)), key, "a whole number", path);
+  require_type(field(doc, "/fps", path).is_number(), "/fps", "a number", path);
+  require_type(field(doc, "/switches", path).is_object(), "/switches", "an object", path);
+  size_t frames = doc["frames"].get<size_t>();
+  if (frames == 0) throw InputError(path, "a result of 0 frames");
+  const json& samples = field(doc, "/samples", path);
+  require_type(samples.is_object(), "/samples", "an object", path);
+  validate_samples(doc, "frame_ms", frames, path);
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    validate_samples(doc, std::string(category_name(static_cast<Category>(c))), frames, path);
+  const json& counters = field(doc, "/counters", path);
+  require_type(counters.is_object(), "/counters", "an object", path);
+  for (std::string_view name : kRequiredCounters)
+    field(doc, std::string("/counters/").append(name), path);
+  for (const auto& [name, value] : counters.items())
+    require_type(whole(value), std::string("/counters/").append(name), "a whole number", path);
+}
+
+void require_same_run(const nlohmann::json& baseline, const nlohmann::json& current, const std::string& path) {
+  auto differ = [&](const std::string& what, const json& a, const json& b) {
+    if (a == b) return;
+    throw InputError(path, "the baseline is of another run: " + what + " " + a.dump() + " there, " + b.dump() +
+                               " here (rerun with the baseline's options, or record it again with --update-baseline)");
+  };
+  auto file_name = [](const json& doc) {
+    return std::filesystem::path(doc["scene"]["file"].get<std::string>()).filename().string();
+  };
+  differ("scene file", file_name(baseline), file_name(current));
+  for (const char* key : {"character", "characters", "joints", "vertices", "actions", "action_choice", "camera"})
+    differ(key, baseline["scene"][key], current["scene"][key]);
+  if (current["scene"]["action_choice"] == "random") differ("seed", baseline["scene"]["seed"], current["scene"]["seed"]);
+  differ("mode", baseline["mode"], current["mode"]);
+  differ("mode switches", baseline["switches"], current["switches"]);
+  for (const char* key : {"frames", "warmup", "fps"}) differ(key, baseline[key], current[key]);
+}
+
+std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current) {
+  std::vector<std::string> notes;
+  auto note = [&](const std::string& what, const json& a, const json& b) {
+    if (a != b) notes.push_back("timings may not compare: " + what + " " + a.dump() + " in the baseline, " + b.dump() + " here");
+  };
+  note("threads", baseline["threads"], current["threads"]);
+  const json none = "?";
+  const json& be = baseline.contains("environment") ? baseline["environment"] : json::object();
+  const json& ce = current.contains("environment") ? current["environment"] : json::object();
+  for (const char* key : {"cpu", "build_type", "backend"}) note(key, be.value(key, none), ce.value(key, none));
+  return notes;
+}
+
+bool CheckResult::regressed() const {
+  if (digest_differs() || !counters.empty() || !counters_missing.empty()) return true;
+  return std::any_of(metrics.begin(), metrics.end(), [](const MetricCheck& m) { return m.regressed; });
+}
+
+MetricCheck check_metric(std::string metric, std::span<const double> baseline, std::span<const double> current,
+                         const CheckOptions& options) {
+  MetricCheck m;
+  m.metric = std::move(metric);
+  m.baseline = summarize(baseline);
+  m.current = summarize(current);
+  m.baseline_iqr = quantile(baseline, 0.75) - quantile(baseline, 0.25);
+  m.current_iqr = quantile(current, 0.75) - quantile(current, 0.25);
+  double grew = m.current.median - m.baseline.median;
+  m.change = m.baseline.median > 0 ? grew / m.baseline.median : (grew > 0 ? INFINITY : 0.0);
+  m.test = mann_whitney(current, baseline);
+  m.beyond_tolerance = m.change > options.tolerance;
+  m.too_few_samples = std::min(baseline.size(), current.size()) < kMannWhitneyMinSamples;
+  m.significant = m.test.p < options.alpha && m.test.z > 0;
+  m.regressed = m.beyond_tolerance && (m.significant || m.too_few_samples);
+  return m;
+}
+
+CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options) {
+  CheckResult result;
+  for (const std::string& key : options.metrics)
+    result.metrics.push_back(check_metric(display_name(key), samples_of(baseline, key), samples_of(current, key), options));
+  const json& before = baseline["counters"];
+  const json& after = current["counters"];
+  for (const auto& [name, value] : before.items()) {
+    if (!after.contains(name)) {
+      result.counters_missing.push_back(name);
+      continue;
+    }
+    uint64_t b = value.get<uint64_t>(), a = after[name].get<uint64_t>();
+    if (a != b) result.counters.push_back({name, b, a});
+  }
+  result.baseline_digest = baseline["digest"].get<std::string>();
+  result.current_digest = current["digest"].get<std::string>();
+  return result;
+}
+
+std::string format_check(const CheckResult& result, const CheckOptions& options) {
+  std::ostringstream out;
+  std::string tolerance = fixed(options.tolerance * 100.0, options.tolerance * 100.0 == std::floor(options.tolerance * 100.0) ? 0 : 1) + "%";
+  auto metric_line = [&](const MetricCheck& m, const char* verdict) {
+    out << verdict << " " << m.metric << ": median " << fixed(m.baseline.median, 3) << " ms -> "
+        << fixed(m.current.median, 3) << " ms (" << percent(m.change) << ", tolerance " << tolerance << "), IQR "
+        << fixed(m.baseline_iqr, 3) << " -> " << fixed(m.current_iqr, 3) << " ms, p = " << p_value(m.test.p)
+        << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " frames"
+        << (m.too_few_samples ? "; too few for the test, decided on the tolerance" : "") << ")\n";
+  };
+  for (const MetricCheck& m : result.metrics)
+    if (m.regressed) metric_line(m, "REGRESSION");
+  for (const CounterDifference& d : result.counters)
+    out << "CHANGED counter " << d.name << ": " << d.baseline << " -> " << d.current << " per frame\n";
+  for (const std::string& name : result.counters_missing)
+    out << "CHANGED counter " << name << ": in the baseline, missing here\n";
+  if (result.digest_differs())
+    out << "CHANGED digest: " << result.baseline_digest << " -> " << result.current_digest
+        << " (the last frame's poses or skinned vertices differ)\n";
+  if (result.regressed()) return out.str();
+  // One line: every metric's verdict, then the exact checks.
+  out << "ok";
+  for (const MetricCheck& m : result.metrics) {
+    out << " " << m.metric << " " << fixed(m.baseline.median, 3) << " -> " << fixed(m.current.median, 3) << " ms ("
+        << percent(m.change) << ", p = " << p_value(m.test.p);
+    if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
+    else if (m.change < -options.tolerance && m.test.p < options.alpha) out << ", faster";
+    else out << ", within " << tolerance;
+    out << ");";
+  }
+  out << " counters and digest match\n";
+  return out.str();
+}
+
+}  // namespace crowdprof

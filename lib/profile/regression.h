@@ -1,0 +1,97 @@
+// `crowdprof check`: did this change make things slower, or change the work?
+// Timing is judged on the per-frame samples of two results (bench --json) with
+// a tolerance and the Mann-Whitney U test together, so noise alone does not
+// fail; the deterministic counters and the digest are compared exactly.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "profile/mann_whitney.h"
+#include "profile/stats.h"
+
+namespace crowdprof {
+
+// The "crowdprof.format" that report.cpp writes and check reads.
+inline constexpr int kResultFormat = 1;
+
+// "10%" or "0.1" (both a tenth) to a fraction; UsageError for anything else:
+// words, negative values, NaN, more than 1000%.
+double parse_tolerance(std::string_view text);
+
+// The metric's key in "samples": "frame" gives "frame_ms"; a category is named
+// as the BGE printed it or as a CSV column ("Animations", "animations",
+// "GPU Latency", "gpu_latency"). UsageError listing the choices otherwise.
+std::string resolve_metric(std::string_view name);
+
+// Reads and validates a result written by bench --json (see validate_result).
+// InputError naming `path` when the file is unreadable, empty, not JSON or
+// truncated, or not a result this version can read.
+nlohmann::json read_result(const std::string& path);
+
+// InputError("<path>: ...") unless `doc` is a bench result of kResultFormat with
+// the scene, the mode, per-frame samples for the frame and every category (as
+// many as "frames", finite, not negative), the counters and a digest.
+void validate_result(const nlohmann::json& doc, const std::string& path);
+
+// InputError naming the baseline and the first field that differs when the two
+// results are not runs of the same thing: the scene (file name, character,
+// characters, joints, vertices, actions, seed, camera), the mode and its
+// switches, frames, warm-up and simulated fps. Counters and digest depend on all
+// of these, so comparing them across a difference would mean nothing.
+void require_same_run(const nlohmann::json& baseline, const nlohmann::json& current, const std::string& baseline_path);
+
+// What differs without stopping the comparison (another CPU, thread count,
+// build type, or crowdprof version): lines for stderr.
+std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current);
+
+struct CheckOptions {
+  std::vector<std::string> metrics = {"frame_ms"};  // keys of "samples" (resolve_metric)
+  double tolerance = 0.10;  // a slowdown of the median beyond this fraction...
+  double alpha = 0.05;      // ...that the U test finds significant at this level
+};
+
+struct MetricCheck {
+  std::string metric;  // as the user named it: "frame", "Animations"
+  Summary baseline, current;
+  double baseline_iqr = 0, current_iqr = 0;  // interquartile range, ms
+  double change = 0;                         // of the median, a fraction; +0.2 is 20% slower
+  MannWhitney test;                          // current against baseline
+  bool beyond_tolerance = false, significant = false;
+  bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance alone
+  bool regressed = false;
+};
+
+struct CounterDifference {
+  std::string name;
+  uint64_t baseline = 0, current = 0;
+};
+
+struct CheckResult {
+  std::vector<MetricCheck> metrics;
+  std::vector<CounterDifference> counters;  // only those that differ
+  std::vector<std::string> counters_missing;  // in the baseline, not in the current result
+  std::string baseline_digest, current_digest;
+  bool digest_differs() const { return baseline_digest != current_digest; }
+  bool regressed() const;
+};
+
+// Judges one metric's samples: regressed when the median grew by more than the
+// tolerance and the U test says the shift is significant (or, with too few
+// samples for the test, on the tolerance alone).
+MetricCheck check_metric(std::string metric, std::span<const double> baseline, std::span<const double> current,
+                         const CheckOptions& options);
+
+// Both documents validated and of the same run (require_same_run).
+CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options);
+
+// What stdout shows: a line per regressed metric or changed counter (metric,
+// both medians, their IQRs, the change and the p-value), or one summary line
+// when nothing regressed.
+std::string format_check(const CheckResult& result, const CheckOptions& options);
+
+}  // namespace crowdprof
