@@ -1,0 +1,208 @@
+#include "profile/compare_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "profile/stats.h"
+#include "profile/svg_chart.h"
+
+namespace crowdprof {
+
+namespace {
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// Columns two spaces apart, right-aligned except those in `left` (text).
+std::string align(const std::vector<std::vector<std::string>>& rows, const std::vector<size_t>& left) {
+  std::vector<size_t> width;
+  for (const auto& row : rows)
+    for (size_t c = 0; c < row.size(); ++c) {
+      if (width.size() <= c) width.push_back(0);
+      width[c] = std::max(width[c], row[c].size());
+    }
+  std::string out;
+  for (const auto& row : rows) {
+    std::string line;
+    for (size_t c = 0; c < row.size(); ++c) {
+      std::string pad(width[c] - row[c].size(), ' ');
+      bool to_left = std::find(left.begin(), left.end(), c) != left.end();
+      line += (c ? "  " : "") + (to_left ? row[c] + pad : pad + row[c]);
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+std::vector<double> frame_ms(const RunReport& run) {
+  std::vector<double> out;
+  for (const FrameRecord& f : run.frames) out.push_back(f.times.total_ms());
+  return out;
+}
+
+nlohmann::json medians_json(const ModeMedians& m, const RunReport& run) {
+  nlohmann::json categories;
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    categories[std::string(category_name(static_cast<Category>(c)))] = m.category_ms[c];
+  nlohmann::json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
+                      {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
+                      {"speedup", m.speedup}, {"digest", run.digest}};
+  const FrameRecord& median = run.frames.empty() ? FrameRecord{} : run.frames[median_frame(run.frames)];
+  for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = median.counters.*field.member;
+  return j;
+}
+
+}  // namespace
+
+std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs) {
+  std::vector<ModeMedians> out;
+  std::map<size_t, double> first_at_size;  // characters -> first mode's median
+  for (const RunReport& run : runs) {
+    ModeMedians m;
+    m.mode = run.run.mode;
+    m.characters = run.run.characters;
+    m.threads = run.run.threads;
+    std::vector<double> totals = frame_ms(run);
+    m.frame_ms = summarize(totals).median;
+    for (size_t c = 0; c < kCategoryCount; ++c) {
+      std::vector<double> values;
+      for (const FrameRecord& f : run.frames) values.push_back(f.times.ms[c]);
+      m.category_ms[c] = summarize(values).median;
+    }
+    auto [first, inserted] = first_at_size.emplace(m.characters, m.frame_ms);
+    m.speedup = m.frame_ms > 0 ? first->second / m.frame_ms : 0.0;
+    out.push_back(m);
+  }
+  return out;
+}
+
+std::vector<Category> shown_categories(const std::vector<ModeMedians>& medians) {
+  std::vector<Category> shown;
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (std::any_of(medians.begin(), medians.end(), [c](const ModeMedians& m) { return m.category_ms[c] >= 0.005; }))
+      shown.push_back(static_cast<Category>(c));
+  return shown;
+}
+
+std::string format_comparison(const Comparison& comparison) {
+  std::vector<ModeMedians> medians = mode_medians(comparison.runs);
+  std::vector<Category> shown = shown_categories(medians);
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> header = {"mode", "characters", "threads", "frame_ms"};
+  for (Category c : shown) header.push_back(std::string(category_column(c)) + "_ms");
+  for (const char* tail : {"speedup_x", "copies_culled", "digest"}) header.push_back(tail);
+  rows.push_back(header);
+  for (size_t r = 0; r < medians.size(); ++r) {
+    const ModeMedians& m = medians[r];
+    const RunReport& run = comparison.runs[r];
+    std::vector<std::string> row = {m.mode, std::to_string(m.characters), std::to_string(m.threads),
+                                    fixed(m.frame_ms, 3)};
+    for (Category c : shown) row.push_back(fixed(m.category_ms[static_cast<size_t>(c)], 3));
+    uint64_t culled = run.frames.empty() ? 0 : run.frames[median_frame(run.frames)].counters.copies_culled;
+    row.push_back(fixed(m.speedup, 2));
+    row.push_back(std::to_string(culled));
+    row.push_back(run.digest);
+    rows.push_back(row);
+  }
+  std::string out = align(rows, {0, rows.front().size() - 1});
+  if (!comparison.runs.empty())
+    out += "median of " + std::to_string(comparison.runs.front().frames.size()) + " frames per mode, run in blocks of " +
+           std::to_string(comparison.block) + " frames; speedup_x = " + comparison.runs.front().run.mode +
+           "'s frame_ms / the mode's\n";
+  if (comparison.sweep.empty()) return out;
+  rows.clear();
+  rows.push_back({"characters", "mode", "frame_ms", "speedup_x"});
+  for (const ModeMedians& m : mode_medians(comparison.sweep))
+    rows.push_back({std::to_string(m.characters), m.mode, fixed(m.frame_ms, 3), fixed(m.speedup, 2)});
+  return out + "\nsweep: median frame time by crowd size\n" + align(rows, {1});
+}
+
+void write_comparison_csv(const Comparison& comparison, std::ostream& out) {
+  bool first = true;
+  auto write = [&](const RunReport& run) {
+    std::ostringstream rows;
+    write_csv(run, rows);
+    std::string text = rows.str();
+    out << (first ? text : text.substr(text.find('\n') + 1));
+    first = false;
+  };
+  for (const RunReport& run : comparison.runs) write(run);
+  // The sweep's runs at the main size are the main runs: written once.
+  size_t main_size = comparison.runs.empty() ? 0 : comparison.runs.front().run.characters;
+  for (const RunReport& run : comparison.sweep)
+    if (run.run.characters != main_size) write(run);
+}
+
+nlohmann::json comparison_to_json(const Comparison& comparison) {
+  nlohmann::json j;
+  nlohmann::json runs = nlohmann::json::array(), summary = nlohmann::json::array(), sweep = nlohmann::json::array();
+  std::vector<ModeMedians> medians = mode_medians(comparison.runs);
+  for (size_t r = 0; r < comparison.runs.size(); ++r) {
+    runs.push_back(to_json(comparison.runs[r]));
+    summary.push_back(medians_json(medians[r], comparison.runs[r]));
+    j["modes"].push_back(medians[r].mode);
+  }
+  std::vector<ModeMedians> sweep_medians = mode_medians(comparison.sweep);
+  for (size_t r = 0; r < comparison.sweep.size(); ++r) sweep.push_back(medians_json(sweep_medians[r], comparison.sweep[r]));
+  if (!runs.empty()) {
+    j["crowdprof"] = runs[0]["crowdprof"];
+    j["environment"] = runs[0]["environment"];
+    j["scene"] = runs[0]["scene"];
+  }
+  j["crowdprof"]["kind"] = "compare";
+  j["block_frames"] = comparison.block;
+  j["summary"] = summary;
+  j["sweep"] = sweep;
+  j["runs"] = runs;
+  return j;
+}
+
+std::string comparison_svg(const Comparison& comparison) {
+  SvgDocument svg;
+  std::string scene;
+  if (!comparison.runs.empty()) {
+    const RunDescription& run = comparison.runs.front().run;
+    scene = " (" + std::to_string(run.characters) + " characters x " + std::to_string(run.joints) + " joints, " +
+            std::to_string(run.vertices) + " vertices)";
+  }
+  LineChart frames{"Frame time per frame" + scene, "frame (after warm-up)", "frame time (ms)", {}, false};
+  for (const RunReport& run : comparison.runs) {
+    LineSeries series{run.run.mode, {}, frame_ms(run)};
+    for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
+    frames.series.push_back(std::move(series));
+  }
+  svg.add(frames);
+
+  std::vector<ModeMedians> medians = mode_medians(comparison.runs);
+  StackedBars bars{"Median time per category" + scene, "median time (ms)", {}, {}, {}};
+  std::vector<Category> shown = shown_categories(medians);
+  for (Category c : shown) bars.segments.emplace_back(category_name(c));
+  for (const ModeMedians& m : medians) {
+    bars.bars.push_back(m.mode);
+    std::vector<double> values;
+    for (Category c : shown) values.push_back(m.category_ms[static_cast<size_t>(c)]);
+    bars.values.push_back(values);
+  }
+  svg.add(bars);
+
+  if (!comparison.sweep.empty()) {
+    LineChart sweep{"Median frame time against crowd size", "characters", "median frame time (ms)", {}, true};
+    for (const ModeMedians& m : mode_medians(comparison.sweep)) {
+      auto it = std::find_if(sweep.series.begin(), sweep.series.end(),
+                             [&](const LineSeries& s) { return s.name == m.mode; });
+      if (it == sweep.series.end()) it = sweep.series.insert(sweep.series.end(), LineSeries{m.mode, {}, {}});
+      it->x.push_back(static_cast<double>(m.characters));
+      it->y.push_back(m.frame_ms);
+    }
+    svg.add(sweep);
+  }
+  return svg.str();
+}
+
+}  // namespace crowdprof
