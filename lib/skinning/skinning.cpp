@@ -27,8 +27,9 @@ inline Float8 load8(const float* p) {
 constexpr size_t kBlock = 64;
 
 // inverse[k] = 1 / sqrt(length2[k]), or 0 where length2[k] is not positive. The
-// exact IEEE sqrt and divide (never the approximate rsqrt), so every path below
-// gives the same bits, on any CPU.
+// correctly rounded sqrt and divide (never the approximate rsqrt, whose bits
+// differ between CPU makers), so a vertex's result depends neither on its lane
+// nor on which of the paths below was compiled.
 void inverse_lengths(const float* length2, float* inverse) {
 #if defined(__AVX__)
   for (size_t k = 0; k < kBlock; k += 8) {
