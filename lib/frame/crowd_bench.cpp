@@ -31,8 +31,12 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
     : character_(character), config_(config) {
   std::string conflict = conflicts(config.mode);
   if (!conflict.empty()) throw UsageError(conflict);
-  if (config.mode.skinning == SkinningSite::Gpu)
-    throw UsageError("skinning on the GPU (mode hwskin) needs a GL backend, and this build has none yet");
+  skin_site_ = config.mode.skinning;
+  if (skin_site_ == SkinningSite::Gpu && !config.renderer)
+    throw UsageError("skinning on the GPU (mode hwskin) needs a GL backend: --backend auto, egl or osmesa");
+  // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
+  if (skin_site_ == SkinningSite::Gpu && character.skeleton.joint_count() > config.renderer->max_gpu_joints())
+    skin_site_ = SkinningSite::CpuInAnimations;
   if (character.actions.empty() && config.crowd.actions == ActionChoice::Random)
     throw UsageError("random actions need a character with actions");
   joints_ = character.skeleton.joint_count();
@@ -113,8 +117,10 @@ FrameRecord CrowdBench::step() {
   enter(Category::Scenegraph);
   update_scenegraph(counters);
   enter(Category::Rasterizer);
-  if (config_.mode.skinning == SkinningSite::CpuInRasterizer) skin_copies(counters);
-  enter(Category::GpuLatency);  // no GL backend: nothing to wait for
+  if (skin_site_ == SkinningSite::CpuInRasterizer) skin_copies(counters);
+  if (config_.renderer) config_.renderer->draw(*this, counters);
+  enter(Category::GpuLatency);  // without a GL backend, nothing to wait for
+  if (config_.renderer) config_.renderer->finish();
   enter(Category::Overhead);
   ++frame_;
   // Between frames (reports, progress) is outside the engine's frame.
@@ -156,7 +162,7 @@ void CrowdBench::update_scenegraph(Counters& counters) {
 
 void CrowdBench::update_poses(Counters& counters) {
   if (character_.actions.empty()) return;
-  bool skin_here = config_.mode.skinning == SkinningSite::CpuInAnimations;
+  bool skin_here = skin_site_ == SkinningSite::CpuInAnimations;
   bool shared = config_.mode.pose == PoseStorage::SharedScratch;
   uint64_t posed = 0, lookups = 0;
   for (size_t i = 0; i < crowd_.size(); ++i) posed += animates(i);
@@ -177,6 +183,7 @@ void CrowdBench::update_poses(Counters& counters) {
   counters.copies_culled = crowd_.size() - posed;
   counters.channel_lookups = lookups;
   if (skin_here) counters.vertices_skinned = posed * vertices_;
+  if (skin_here && config_.mode.skinning == SkinningSite::Gpu) counters.copies_fallback = posed;
 }
 
 void CrowdBench::update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups) {
@@ -238,7 +245,7 @@ void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
 
 std::string CrowdBench::digest() const {
   uint64_t hash = 0xcbf29ce484222325ull;
-  bool cpu_skinned = config_.mode.skinning != SkinningSite::Gpu;
+  bool cpu_skinned = skin_site_ != SkinningSite::Gpu;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     if (!visible_[i]) continue;
     auto palette = skinning_matrices(i);

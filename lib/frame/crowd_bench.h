@@ -16,6 +16,7 @@
 #include "animation/sampling.h"
 #include "animation/skin_matrix.h"
 #include "asset/character.h"
+#include "frame/frame_renderer.h"
 #include "frame/modes.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
@@ -34,6 +35,9 @@ struct BenchConfig {
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
   std::string camera = "default";
   float aspect = 16.0f / 9.0f;
+  // Draws each frame (Rasterizer) and waits for it (GPU Latency); null: no
+  // backend. Needed for skinning on the GPU. Not owned; outlives the bench.
+  FrameRenderer* renderer = nullptr;
   // When set, each stage of each frame and each parallel task is recorded as a
   // span under process `trace_pid` (--trace); null records nothing, at no cost.
   Tracer* tracer = nullptr;
@@ -70,6 +74,9 @@ class CrowdBench {
   const BenchConfig& config() const { return config_; }
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return visible_[copy] != 0; }
+  // True when the renderer skins (mode hwskin and the character within its
+  // bone limit): skinned_positions() then stay in the rest pose.
+  bool gpu_skinned() const { return skin_site_ == SkinningSite::Gpu; }
   std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
   std::span<const glm::vec3> skinned_positions(size_t copy) const;
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
@@ -98,6 +105,9 @@ class CrowdBench {
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer
   size_t frame_ = 0;
   size_t joints_ = 0, vertices_ = 0;
+  // Where skinning really runs: the mode's site, except that a character over
+  // the GPU's bone limit falls back to the CPU, in Animations.
+  SkinningSite skin_site_ = SkinningSite::CpuInAnimations;
 
   std::vector<ActionBindings> bindings_;      // per action, resolved once
   std::vector<float> times_;                  // per copy: where in its action

@@ -18,6 +18,7 @@ struct Counters {
   uint64_t channel_lookups = 0;   // string-path lookups (zero with bundled lookups)
   uint64_t bytes_uploaded = 0;    // vertex data and bone matrices sent to the GPU
   uint64_t draw_calls = 0;
+  uint64_t copies_fallback = 0;   // copies skinned on the CPU although the mode skins on the GPU
 };
 
 struct CounterField {
@@ -25,7 +26,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 7> kCounterFields = {{
+inline constexpr std::array<CounterField, 8> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -33,6 +34,7 @@ inline constexpr std::array<CounterField, 7> kCounterFields = {{
     {"channel_lookups", &Counters::channel_lookups},
     {"bytes_uploaded", &Counters::bytes_uploaded},
     {"draw_calls", &Counters::draw_calls},
+    {"copies_fallback", &Counters::copies_fallback},
 }};
 
 struct FrameRecord {

@@ -70,6 +70,13 @@ std::string format_profile(const RunReport& report) {
       << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
       << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
       << " lookups per frame\n";
+  if (run.backend != "none" || k.copies_fallback > 0) {
+    out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
+        << " bytes uploaded per frame";
+    if (k.copies_fallback > 0)
+      out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
+    out << "\n";
+  }
   out << "actions " << run.action_choice;
   if (run.action_choice == "random") out << " (seed " << run.seed << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)

@@ -1,0 +1,23 @@
+#include "render/bench_rendering.h"
+
+namespace crowdprof {
+
+std::string BenchRendering::backend_name() const {
+  return context ? std::string(to_string(context->backend())) : "none";
+}
+
+std::string BenchRendering::renderer_name() const {
+  if (!context) return "none";
+  return context->renderer() + " (" + context->platform() + ", OpenGL " + context->version() + ")";
+}
+
+BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
+                              const RendererConfig& config, std::string* warning) {
+  BenchRendering rendering;
+  rendering.context = open_backend(choice, warning);
+  if (rendering.context)
+    rendering.renderer = std::make_unique<GlCrowdRenderer>(*rendering.context, character, copies, config);
+  return rendering;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,30 @@
+// What a bench needs to draw its frames: a GL context of the chosen backend and
+// a crowd renderer, or nothing for --backend none.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "asset/character.h"
+#include "render/crowd_renderer.h"
+#include "render/gl_context.h"
+
+namespace crowdprof {
+
+struct BenchRendering {
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<GlCrowdRenderer> renderer;  // null with no backend
+
+  // For the report: "egl", "osmesa" or "none"; the GL_RENDERER and platform.
+  std::string backend_name() const;
+  std::string renderer_name() const;
+};
+
+// Opens `choice` (gl_context.h: auto falls back to none, saying why in
+// *warning) and makes a renderer of `config` for `copies` copies. Throws
+// GlUnavailable for an explicit backend that fails, UsageError for a
+// resolution the GL cannot render, GlError for shaders.
+BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
+                              const RendererConfig& config, std::string* warning);
+
+}  // namespace crowdprof

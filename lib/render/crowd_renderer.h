@@ -1,0 +1,88 @@
+// Draws the crowd with GL, one draw per copy on screen (the BGE drew each mesh
+// on its own too). Copies skinned on the CPU have their vertices uploaded every
+// frame; with skinning on the GPU (thesis 4.4) the rest mesh is uploaded once
+// and each frame sends only the skinning matrices, as a uniform array.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "asset/character.h"
+#include "frame/frame_renderer.h"
+#include "render/framebuffer.h"
+#include "render/gl.h"
+#include "render/gl_context.h"
+#include "render/gl_program.h"
+
+namespace crowdprof {
+
+// What no copy covers, linear RGB 0..1 (the PNG holds it unchanged).
+inline constexpr float kBackground[3] = {0.09f, 0.10f, 0.12f};
+
+struct RendererConfig {
+  int width = 1600, height = 900;  // the thesis's window
+  // The thesis's cap on the vertex shader's bone array. Tests lower it to make
+  // a character fall back to CPU skinning.
+  size_t joint_cap = 128;
+};
+
+// The bone limit of the thesis (4.4): half the vertex stage's uniform
+// components, in 16-float matrices, at most `cap`. On Mesa and NVIDIA (4,096
+// components) that is 128.
+size_t gpu_joint_limit(GLint max_vertex_uniform_components, size_t cap);
+
+class GlCrowdRenderer final : public FrameRenderer {
+ public:
+  // Makes the framebuffer, compiles the shaders and uploads what never
+  // changes: the index buffer and, for GPU skinning, the rest mesh with its
+  // joints and weights. `context` must be current now and at every call, and
+  // outlive the renderer. `copies` sizes the per-frame vertex buffer.
+  // Throws UsageError (resolution) or GlError.
+  GlCrowdRenderer(GlContext& context, const Character& character, size_t copies, const RendererConfig& config);
+  ~GlCrowdRenderer() override;
+  GlCrowdRenderer(const GlCrowdRenderer&) = delete;
+  GlCrowdRenderer& operator=(const GlCrowdRenderer&) = delete;
+
+  size_t max_gpu_joints() const override { return max_joints_; }
+  // Uploads and draws every copy that bench.visible() says is on screen.
+  // Throws GlError "GL error ... during Rasterizer".
+  void draw(const CrowdBench& bench, Counters& counters) override;
+  // glFinish. Throws GlError "GL error ... during GPU Latency".
+  void finish() override;
+
+  // The last frame drawn, RGBA8, rows top to bottom.
+  std::vector<uint8_t> read_pixels() const { return framebuffer_.read_rgba(); }
+  int width() const { return framebuffer_.width(); }
+  int height() const { return framebuffer_.height(); }
+  const GlContext& context() const { return context_; }
+
+  // Bytes one copy costs to send each frame: its skinned positions and normals,
+  // or its skinning matrices (3 rows of 4 floats each); plus its world matrix.
+  uint64_t vertex_bytes_per_copy() const;
+  uint64_t bone_bytes_per_copy() const;
+
+ private:
+  void draw_cpu_skinned(const CrowdBench& bench, Counters& counters);
+  void draw_gpu_skinned(const CrowdBench& bench, Counters& counters);
+  void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
+
+  GlContext& context_;
+  const Character& character_;
+  Framebuffer framebuffer_;
+  size_t max_joints_ = 0;
+  size_t vertices_ = 0, joints_ = 0;
+  GLsizei index_count_ = 0;
+  GlProgram cpu_program_, gpu_program_;
+  GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
+  GLuint indices_ = 0;
+  // CPU-skinned copies: a buffer per drawn copy (positions, then normals),
+  // orphaned and refilled every frame. With more copies on screen than
+  // buffers, buffers serve several copies.
+  GLuint cpu_vao_ = 0;
+  std::vector<GLuint> stream_;
+  // GPU skinning: the rest mesh, uploaded once (when the character fits).
+  GLuint gpu_vao_ = 0, rest_buffers_[4] = {0, 0, 0, 0};
+  std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
+};
+
+}  // namespace crowdprof

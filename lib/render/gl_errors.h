@@ -1,0 +1,24 @@
+// What can go wrong with GL, as exceptions the CLI turns into one line on
+// stderr and exit 4 (asset/errors.h): the run itself failed.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace crowdprof {
+
+// No usable GL: no EGL display or OSMesa, or no OpenGL 4.3 core context.
+class GlUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A GL error during a frame (names the error and the stage), a shader that does
+// not compile or link (names the file, the line, and has the driver's log), an
+// incomplete framebuffer.
+class GlError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace crowdprof
