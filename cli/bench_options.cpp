@@ -1,9 +1,12 @@
 #include "cli/bench_options.h"
 
 #include <cmath>
+#include <iostream>
+#include <tuple>
 #include <thread>
 
 #include "asset/errors.h"
+#include "render/gl_context.h"
 
 using crowdprof::UsageError;
 
@@ -28,7 +31,12 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close, or "
                                        "EX,EY,EZ,TX,TY,TZ")
       ->capture_default_str();
-  cmd.add_option("--backend", o.backend, "Where frames are drawn: none (CPU only)")->capture_default_str();
+  cmd.add_option("--backend", o.backend,
+                 "Where frames are drawn: egl (a GPU, else Mesa's surfaceless llvmpipe), osmesa, auto (egl, then "
+                 "osmesa, then none) or none (CPU only, nothing drawn)")
+      ->capture_default_str();
+  cmd.add_option("--resolution", o.resolution, "Frame size WxH in pixels (and the camera's aspect)")
+      ->capture_default_str();
   cmd.add_option("--lookups", o.lookups, "Override the mode: string (every channel by path, every frame) or bundled");
   cmd.add_option("--culling", o.culling, "Override the mode: on or off (animation culling, 4.1)");
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
@@ -59,6 +67,21 @@ Enum parse_choice(const std::string& value, const char* option,
 
 }  // namespace
 
+std::pair<int, int> parse_resolution(const std::string& value) {
+  int size[2] = {0, 0};
+  size_t x = value.find('x');
+  bool ok = x != std::string::npos && x > 0 && x + 1 < value.size();
+  for (int i = 0; ok && i < 2; ++i) {
+    std::string part = i == 0 ? value.substr(0, x) : value.substr(x + 1);
+    ok = part.size() <= 6 && part.find_first_not_of("0123456789") == std::string::npos;
+    if (ok) size[i] = std::stoi(part);
+  }
+  if (!ok) throw UsageError("--resolution '" + value + "': expected WIDTHxHEIGHT, e.g. 1600x900");
+  if (size[0] < 1 || size[1] < 1 || size[0] > 65536 || size[1] > 65536)
+    throw UsageError("--resolution '" + value + "': width and height must be 1 to 65536 pixels");
+  return {size[0], size[1]};
+}
+
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdprof::Character& character) {
   using namespace crowdprof;
   if (o.characters < 1) throw UsageError("-n " + std::to_string(o.characters) + ": a crowd needs at least 1 copy");
@@ -69,8 +92,9 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 100000)
     throw UsageError("--fps " + std::to_string(o.fps) + ": expected a rate between 0 and 100000");
   if (o.seed < 0 || o.seed > 0xffffffffLL) throw UsageError("--seed: expected 0 to 4294967295");
-  if (o.backend != "none")
-    throw UsageError("--backend '" + o.backend + "': only 'none' (CPU only) is available in this build");
+  if (!parse_backend(o.backend))
+    throw UsageError("--backend '" + o.backend + "': expected auto, egl, osmesa or none");
+  auto [width, height] = parse_resolution(o.resolution);
 
   BenchConfig config;
   const ModePreset* preset = find_mode(o.mode);
@@ -124,5 +148,18 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
   }
   config.fps = o.fps;
   config.camera = o.camera;
+  config.aspect = static_cast<float>(width) / static_cast<float>(height);
   return config;
+}
+
+crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::Character& character,
+                                               crowdprof::BenchConfig& config) {
+  using namespace crowdprof;
+  RendererConfig renderer;
+  std::tie(renderer.width, renderer.height) = parse_resolution(o.resolution);
+  std::string warning;
+  BenchRendering rendering = open_rendering(*parse_backend(o.backend), character, config.crowd.copies, renderer, &warning);
+  if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
+  config.renderer = rendering.renderer.get();
+  return rendering;
 }

@@ -8,6 +8,7 @@
 
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
+#include "render/bench_rendering.h"
 
 #include <climits>
 
@@ -25,15 +26,26 @@ struct BenchCliOptions {
   std::string mode = "threaded";
   long long threads = kThreadsUnset;  // all cores in parallel modes
   std::string camera = "default";
-  std::string backend = "none";
+  std::string backend = "none";  // auto, egl, osmesa or none
+  std::string resolution = "1600x900";  // the frame's size in pixels, and the camera's aspect
   bool allow_static = false;
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
   std::string lookups, culling, pose, parallel, skinning;
   std::string csv, json;
+  std::string screenshot;  // bench: the last frame as a PNG
 };
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 
+// "WxH" as {W, H}, each 1 to 65536; throws UsageError naming --resolution.
+std::pair<int, int> parse_resolution(const std::string& value);
+
 // Checks every value (UsageError with the option's name) and builds the config.
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const crowdprof::Character& character);
+
+// Opens --backend at --resolution for the config's crowd and points
+// config.renderer at its renderer (left null for none). When auto finds no GL,
+// says so on stderr and goes on without.
+crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& options, const crowdprof::Character& character,
+                                               crowdprof::BenchConfig& config);

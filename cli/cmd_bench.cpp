@@ -14,6 +14,8 @@
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "frame/run_bench.h"
+#include "render/gl_errors.h"
+#include "render/png.h"
 
 namespace {
 
@@ -46,16 +48,27 @@ int bench(const BenchCliOptions& options) {
   Character character = load_character(options.file);
   BenchConfig config = make_bench_config(options, character);
   check_fits_in_memory(character, config.crowd.copies, config.mode);
+  if (!options.screenshot.empty() && options.backend == "none")
+    throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
+  BenchRendering rendering = open_bench_rendering(options, character, config);
+  if (!options.screenshot.empty() && !rendering.renderer)
+    throw GlUnavailable("--screenshot: no GL backend could be opened, so no frame would be drawn");
   CrowdBench crowd(character, config);
   RunOptions run;
   run.frames = options.frames;
   run.warmup = options.warmup;
   run.progress = terminal_progress(options.quiet);
   RunReport report = run_bench(crowd, options.file, run);
+  report.run.backend = rendering.backend_name();
+  report.run.renderer = rendering.renderer_name();
   if (!options.quiet) std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
   if (!options.json.empty())
     write_text(options.json, "JSON", [&](std::ostream& out) { out << to_json(report).dump(2) << "\n"; });
+  if (!options.screenshot.empty()) {
+    std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
+    write_png(options.screenshot, rendering.renderer->width(), rendering.renderer->height(), pixels);
+  }
   return kExitOk;
 }
 
@@ -68,5 +81,6 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_bench_options(*cmd, *options);
   cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
   cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");
+  cmd->add_option("--screenshot", options->screenshot, "Write the last frame as a PNG (needs a GL backend)");
   cmd->callback([&run, options] { run = [options] { return bench(*options); }; });
 }

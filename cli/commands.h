@@ -9,3 +9,4 @@
 void add_info_command(CLI::App& app, std::function<int()>& run);
 void add_gen_command(CLI::App& app, std::function<int()>& run);
 void add_bench_command(CLI::App& app, std::function<int()>& run);
+void add_render_command(CLI::App& app, std::function<int()>& run);

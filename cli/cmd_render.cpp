@@ -1,0 +1,61 @@
+// `crowdprof render`: one frame of a bench, drawn with GL and written as a PNG,
+// to see what the profile measures (and that every mode draws the same crowd).
+#include <iostream>
+#include <memory>
+
+#include "asset/errors.h"
+#include "asset/gltf_loader.h"
+#include "cli/bench_options.h"
+#include "cli/commands.h"
+#include "frame/run_bench.h"
+#include "render/gl_errors.h"
+#include "render/png.h"
+
+namespace {
+
+using namespace crowdprof;
+
+struct RenderCliOptions {
+  BenchCliOptions bench;
+  long long frame = 0;
+  std::string output;
+};
+
+int render(const RenderCliOptions& options) {
+  if (options.frame < 0 || options.frame > 10'000'000)
+    throw UsageError("--frame " + std::to_string(options.frame) + ": expected 0 to 10,000,000");
+  if (options.bench.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
+  Character character = load_character(options.bench.file);
+  BenchConfig config = make_bench_config(options.bench, character);
+  check_fits_in_memory(character, config.crowd.copies, config.mode);
+  BenchRendering rendering = open_bench_rendering(options.bench, character, config);
+  if (!rendering.renderer) throw GlUnavailable("no GL backend could be opened, so there is nothing to render");
+  CrowdBench crowd(character, config);
+  // Frame k shows time k / fps; earlier frames run too, so cursors and any
+  // per-frame state reach frame k as they would in a bench.
+  FrameRecord record;
+  for (long long k = 0; k <= options.frame; ++k) record = crowd.step();
+  std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
+  write_png(options.output, rendering.renderer->width(), rendering.renderer->height(), pixels);
+  if (!options.bench.quiet)
+    std::cout << options.output << ": frame " << options.frame << ", " << rendering.renderer->width() << "x"
+              << rendering.renderer->height() << ", " << record.counters.draw_calls << " of " << crowd.crowd().size()
+              << " copies drawn, mode " << config.mode_name << (crowd.gpu_skinned() ? " (skinned on the GPU)" : "")
+              << ", " << rendering.renderer_name() << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<RenderCliOptions>();
+  options->bench.backend = "auto";
+  auto* cmd = app.add_subcommand("render", "Draw one frame of a bench with OpenGL and write it as a PNG");
+  add_bench_options(*cmd, options->bench);
+  // One frame, not a measured run.
+  cmd->remove_option(cmd->get_option("--frames"));
+  cmd->remove_option(cmd->get_option("--warmup"));
+  cmd->add_option("--frame", options->frame, "The frame to draw: it shows time frame/fps")->capture_default_str();
+  cmd->add_option("-o,--output", options->output, "The PNG to write")->required();
+  cmd->callback([&run, options] { run = [options] { return render(*options); }; });
+}
