@@ -2,6 +2,7 @@
 // bad sizes and backends refused with exit 2, the report names the renderer.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -118,4 +119,18 @@ TEST(RenderCli, EachBackendByName) {
     ASSERT_EQ(r.status, 0) << backend << "\n" << r.err;
     EXPECT_NE(r.out.find(std::string("backend ") + backend), std::string::npos) << r.out;
   }
+}
+
+TEST(RenderCli, WithoutEglAutoTakesOsMesaAndEglByNameExits4) {
+  REQUIRE_GL();
+  // glvnd finds no EGL vendor library: EGL fails, OSMesa does not need it.
+  ::setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json", 1);
+  auto by_name = run_cli("bench '" + scene() + "' -n 2 --frames 1 --warmup 0 --backend egl --resolution 64x36");
+  auto automatic = run_cli("bench '" + scene() + "' -n 2 --frames 1 --warmup 0 --backend auto --resolution 64x36");
+  ::unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
+  EXPECT_EQ(by_name.status, 4) << by_name.err;
+  EXPECT_NE(by_name.err.find("crowdprof: EGL"), std::string::npos) << by_name.err;
+  EXPECT_TRUE(by_name.out.empty());
+  ASSERT_EQ(automatic.status, 0) << automatic.err;
+  EXPECT_NE(automatic.out.find("backend osmesa"), std::string::npos) << automatic.out;
 }

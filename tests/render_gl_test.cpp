@@ -167,3 +167,21 @@ TEST(RenderGl, FramebufferSizeLimits) {
   EXPECT_EQ(pixels[1], 0);
   EXPECT_EQ(pixels[3], 255);
 }
+
+TEST(RenderGl, AutoFallsBackToNoneSayingWhy) {
+  BackendOpeners broken;
+  broken.egl = []() -> std::unique_ptr<GlContext> { throw GlUnavailable("EGL: no display here"); };
+  broken.osmesa = []() -> std::unique_ptr<GlContext> { throw GlUnavailable("OSMesa: no context here"); };
+  std::string warning;
+  EXPECT_EQ(open_backend(BackendChoice::Auto, &warning, broken), nullptr);
+  EXPECT_TRUE(contains(warning, "EGL: no display here")) << warning;
+  EXPECT_TRUE(contains(warning, "OSMesa: no context here")) << warning;
+  EXPECT_TRUE(contains(warning, "--backend none")) << warning;
+  EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;  // one line
+  // Asked for by name, a backend that fails is an error, not a fallback.
+  EXPECT_THROW(open_backend(BackendChoice::Egl, &warning, broken), GlUnavailable);
+  EXPECT_THROW(open_backend(BackendChoice::OsMesa, &warning, broken), GlUnavailable);
+  warning.clear();
+  EXPECT_EQ(open_backend(BackendChoice::None, &warning, broken), nullptr);
+  EXPECT_TRUE(warning.empty());
+}

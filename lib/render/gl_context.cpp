@@ -59,21 +59,21 @@ std::unique_ptr<GlContext> create_context(GlBackend backend) {
   return backend == GlBackend::Egl ? create_egl_context() : create_osmesa_context();
 }
 
-std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning) {
+std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning, const BackendOpeners& openers) {
   switch (choice) {
     case BackendChoice::None: return nullptr;
-    case BackendChoice::Egl: return create_egl_context();
-    case BackendChoice::OsMesa: return create_osmesa_context();
+    case BackendChoice::Egl: return openers.egl();
+    case BackendChoice::OsMesa: return openers.osmesa();
     case BackendChoice::Auto: break;
   }
   std::string egl_failure;
   try {
-    return create_egl_context();
+    return openers.egl();
   } catch (const GlUnavailable& e) {
     egl_failure = e.what();
   }
   try {
-    return create_osmesa_context();
+    return openers.osmesa();
   } catch (const GlUnavailable& e) {
     if (warning) *warning = "no usable GL (" + egl_failure + "; " + e.what() + "): running with --backend none";
   }

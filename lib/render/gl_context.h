@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -63,9 +64,16 @@ std::unique_ptr<GlContext> create_egl_context();
 std::unique_ptr<GlContext> create_osmesa_context();
 std::unique_ptr<GlContext> create_context(GlBackend backend);
 
+// How each backend's context is made: the real ones, or stand-ins in tests.
+struct BackendOpeners {
+  std::function<std::unique_ptr<GlContext>()> egl = create_egl_context;
+  std::function<std::unique_ptr<GlContext>()> osmesa = create_osmesa_context;
+};
+
 // The context `choice` asks for, current. None gives null. Auto tries EGL, then
 // OSMesa, and when neither works gives null and says why in *warning (one
 // line); an explicit backend that fails throws GlUnavailable.
-std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning);
+std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning,
+                                        const BackendOpeners& openers = {});
 
 }  // namespace crowdprof
