@@ -68,7 +68,9 @@ Trs node_trs(const tinygltf::Node& node, size_t index, const std::string& file) 
     trs.r = glm::quat(static_cast<float>(q[3]), static_cast<float>(q[0]), static_cast<float>(q[1]),
                       static_cast<float>(q[2]));
     if (glm::length(trs.r) < 1e-6f) throw InputError(file, "node " + str(index) + " has a zero rotation");
-    trs.r = glm::normalize(trs.r);
+    // Like animation keys: only a rotation that is visibly not unit is touched,
+    // so files round-trip bit for bit.
+    if (std::abs(glm::length(trs.r) - 1.0f) > 1e-3f) trs.r = glm::normalize(trs.r);
   }
   return trs;
 }
