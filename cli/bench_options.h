@@ -32,7 +32,7 @@ struct BenchCliOptions {
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
   std::string lookups, culling, pose, parallel, skinning;
-  std::string csv, json;
+  std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
 };
 

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   add_info_command(app, run);
   add_gen_command(app, run);
   add_bench_command(app, run);
+  add_compare_command(app, run);
+  add_check_command(app, run);
   add_render_command(app, run);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,180 @@
+// `crowdprof compare`: the modes side by side on one scene, interleaved in
+// blocks of frames, as a table of medians and speedups (the thesis's figures
+// 8-11 as numbers), with CSV, JSON, SVG charts, a crowd-size sweep and a trace.
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "asset/errors.h"
+#include "asset/gltf_loader.h"
+#include "cli/bench_options.h"
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "frame/compare.h"
+#include "profile/compare_report.h"
+#include "profile/trace.h"
+
+namespace {
+
+using namespace crowdprof;
+
+struct CompareCliOptions {
+  BenchCliOptions bench;
+  std::vector<std::string> modes;  // empty: every mode the backend can run
+  std::string sweep;
+  long long block = 10;
+  std::string svg, trace;
+};
+
+std::vector<size_t> parse_sweep(const std::string& text) {
+  std::string list = text.rfind("n=", 0) == 0 ? text.substr(2) : text;
+  std::vector<size_t> sizes;
+  std::stringstream in(list);
+  std::string item;
+  auto bad = [&](const std::string& why) { return UsageError("--sweep '" + text + "': " + why); };
+  while (std::getline(in, item, ',')) {
+    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos)
+      throw bad("expected crowd sizes such as n=10,20,40,80,160");
+    size_t n = std::stoul(item);
+    if (n < 1 || n > 10'000'000) throw bad("each size must be 1 to 10,000,000");
+    if (std::find(sizes.begin(), sizes.end(), n) == sizes.end()) sizes.push_back(n);
+  }
+  if (sizes.empty()) throw bad("expected crowd sizes such as n=10,20,40,80,160");
+  std::sort(sizes.begin(), sizes.end());
+  return sizes;
+}
+
+// The config of one mode: the shared options, with --threads applying only to
+// the modes that run in parallel.
+BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const Character& character) {
+  BenchCliOptions options = shared;
+  options.mode = mode;
+  const ModePreset* preset = find_mode(mode);
+  bool parallel = options.parallel.empty() ? preset && preset->switches.parallel : options.parallel == "on";
+  if (!parallel) options.threads = kThreadsUnset;
+  return make_bench_config(options, character);
+}
+
+struct ModeRun {
+  std::vector<BenchConfig> configs;
+  std::vector<std::unique_ptr<CrowdBench>> benches;
+};
+
+// Builds one bench per mode at `copies`; modes the user did not ask for by
+// name are skipped, with a note, when they cannot run here (hwskin without GL).
+ModeRun make_benches(const Character& character, std::vector<BenchConfig> configs, size_t copies, bool named,
+                     bool note) {
+  ModeRun run;
+  for (BenchConfig& config : configs) config.crowd.copies = copies;
+  check_fits_in_memory(character, configs);
+  for (BenchConfig& config : configs) {
+    try {
+      run.benches.push_back(std::make_unique<CrowdBench>(character, config));
+      run.configs.push_back(config);
+    } catch (const UsageError& e) {
+      if (named) throw;
+      if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << e.what() << "\n";
+    }
+  }
+  if (run.benches.empty()) throw UsageError("none of the modes can run here");
+  return run;
+}
+
+std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, const BenchRendering& rendering,
+                                 const std::string& what) {
+  std::vector<CrowdBench*> benches;
+  for (auto& bench : modes.benches) benches.push_back(bench.get());
+  RunOptions run;
+  run.frames = static_cast<size_t>(o.bench.frames);
+  run.warmup = static_cast<size_t>(o.bench.warmup);
+  run.progress = terminal_progress(o.bench.quiet, what);
+  std::vector<RunReport> reports = run_interleaved(benches, o.bench.file, run, static_cast<size_t>(o.block));
+  for (RunReport& report : reports) {
+    report.run.backend = rendering.backend_name();
+    report.run.renderer = rendering.renderer_name();
+  }
+  return reports;
+}
+
+int compare(const CompareCliOptions& o) {
+  if (o.block < 1 || o.block > 1'000'000) throw UsageError("--block " + std::to_string(o.block) + ": expected 1 to 1000000");
+  std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
+  std::vector<std::string> names = o.modes;
+  bool named = !names.empty();
+  if (!named)
+    for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (!find_mode(names[i])) throw UsageError("--modes '" + names[i] + "': expected some of " + mode_names());
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
+      throw UsageError("--modes: " + names[i] + " is listed twice");
+  }
+
+  Character character = load_character(o.bench.file);
+  std::vector<BenchConfig> configs;
+  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, character));
+  // One renderer draws every mode in turn: the modes run one block at a time.
+  BenchRendering rendering = open_bench_rendering(o.bench, character, configs.front());
+  for (BenchConfig& config : configs) config.renderer = rendering.renderer.get();
+
+  Comparison comparison;
+  comparison.block = static_cast<size_t>(o.block);
+  std::unique_ptr<Tracer> tracer;
+  if (!o.trace.empty()) {
+    tracer = std::make_unique<Tracer>();
+    for (size_t m = 0; m < configs.size(); ++m) {
+      configs[m].tracer = tracer.get();
+      configs[m].trace_pid = static_cast<int>(m + 1);
+    }
+  }
+  size_t copies = static_cast<size_t>(o.bench.characters);
+  {
+    ModeRun main = make_benches(character, configs, copies, named, true);
+    for (const BenchConfig& config : main.configs)
+      if (tracer) tracer->name_process(config.trace_pid, "mode " + config.mode_name);
+    comparison.runs = run_modes(main, o, rendering, "frame");
+  }
+  for (BenchConfig& config : configs) config.tracer = nullptr;  // the trace shows the main run only
+  for (size_t n : sweep) {
+    if (n == copies) {
+      comparison.sweep.insert(comparison.sweep.end(), comparison.runs.begin(), comparison.runs.end());
+      continue;
+    }
+    ModeRun point = make_benches(character, configs, n, named, false);
+    std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + " frame");
+    comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
+  }
+
+  if (!o.bench.quiet) std::cout << format_comparison(comparison);
+  if (!o.bench.csv.empty())
+    write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
+  if (!o.bench.json.empty())
+    write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
+  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
+  if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<CompareCliOptions>();
+  auto* cmd = app.add_subcommand("compare", "Run several modes on one scene, interleaved in blocks of frames, and "
+                                            "print each mode's median frame, categories and speedup");
+  add_bench_options(*cmd, options->bench);
+  cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
+  cmd->add_option("--modes", options->modes,
+                  "Modes to compare, the first being the reference for speedups (default: every mode the backend "
+                  "can run: master, culled, threaded, hwskin)")
+      ->delimiter(',');
+  cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
+  cmd->add_option("--sweep", options->sweep,
+                  "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160: rows in the table and JSON, "
+                  "a chart in the SVG");
+  cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
+  cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
+  cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, sweep");
+  cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
+  cmd->callback([&run, options] { run = [options] { return compare(*options); }; });
+}

@@ -1,0 +1,33 @@
+#include "cli/output.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "asset/errors.h"
+
+std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
+  if (quiet || !isatty(STDERR_FILENO)) return {};
+  auto start = std::chrono::steady_clock::now();
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(start);
+  return [start, last, what](size_t done, size_t total) {
+    auto now = std::chrono::steady_clock::now();
+    if (now - start < std::chrono::seconds(1) && done < total) return;
+    if (now - *last < std::chrono::milliseconds(100) && done < total) return;
+    *last = now;
+    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu", what.c_str(), done, total);
+    if (done == total) std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  };
+}
+
+void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body) {
+  std::ofstream out(path);
+  if (!out) throw crowdprof::UsageError("cannot write " + what + " file '" + path + "'");
+  body(out);
+  out.flush();
+  if (!out) throw crowdprof::UsageError("error writing " + what + " file '" + path + "'");
+}

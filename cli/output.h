@@ -1,0 +1,15 @@
+// What the commands that run benches share about output: progress on a
+// terminal, and writing result files with one clear error.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <ostream>
+#include <string>
+
+// Progress on stderr once a run has taken a second, only when a person watches
+// (stderr is a terminal) and not --quiet; an empty function otherwise.
+std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what = "frame");
+
+// Writes `path` with `body`; UsageError naming the file when it cannot.
+void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
