@@ -2,6 +2,8 @@
 // stderr, bad files exit 3, and a good run prints the profile.
 #include <gtest/gtest.h>
 
+#include "asset/gltf_writer.h"
+#include "asset/humanoid.h"
 #include "test_support.h"
 
 using crowdprof::test::run_cli;
@@ -59,4 +61,24 @@ TEST(BenchCli, ACharacterWithoutSkinOrActions) {
   auto r = run_cli("bench '" + crowdprof::test::sample("InterpolationTest/glTF-Binary/InterpolationTest.glb") + "'");
   EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.err.find("has no skin"), std::string::npos) << r.err;
+}
+
+// A character without actions is refused (its crowd would stand still, which is
+// rarely what was meant) unless --static asks for exactly that.
+TEST(BenchCli, ACharacterWithoutActionsNeedsStatic) {
+  crowdprof::Character character = crowdprof::generate_humanoid({30, 800, 7});
+  character.actions.clear();
+  std::string file = (crowdprof::test::scratch_dir("bench_static") / "still.glb").string();
+  crowdprof::write_gltf(character, file);
+
+  auto refused = run_cli("bench '" + file + "' -n 4 --frames 2 --warmup 0");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_NE(refused.err.find("has no actions"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--static"), std::string::npos) << refused.err;
+
+  auto still = run_cli("bench '" + file + "' -n 4 --frames 2 --warmup 0 --static --mode master");
+  EXPECT_EQ(still.status, 0) << still.err;
+  EXPECT_NE(still.out.find("4 characters x 30 joints"), std::string::npos) << still.out;
+  EXPECT_NE(still.out.find("0 lookups per frame"), std::string::npos) << still.out;
 }

@@ -85,16 +85,21 @@ struct GltfFixture {
     return json["bufferViews"][accessor(accessor_index)["bufferView"].get<size_t>()];
   }
 
-  // The buffer entry for the way it is stored; byteLength is the buffer's size unless set.
-  nlohmann::json buffer_entry() const {
-    nlohmann::json b = json["buffers"].empty() ? nlohmann::json::object() : json["buffers"][0];
+  // The "buffers" array to write: one buffer whose byteLength is bin's size unless
+  // set, with a uri from `uri` unless set. A test that damaged "buffers" gets it as is.
+  nlohmann::json buffers(const std::string& uri) const {
+    auto it = json.find("buffers");
+    if (it == json.end()) return nullptr;
+    if (!it->is_array() || it->size() > 1 || (it->size() == 1 && !(*it)[0].is_object())) return *it;
+    nlohmann::json b = it->empty() ? nlohmann::json::object() : (*it)[0];
     if (!b.contains("byteLength")) b["byteLength"] = bin.size();
-    return b;
+    if (!uri.empty() && !b.contains("uri")) b["uri"] = uri;
+    return nlohmann::json::array({b});
   }
 
   void write_glb(const std::filesystem::path& path) const {
     nlohmann::json doc = json;
-    doc["buffers"] = {buffer_entry()};
+    if (nlohmann::json b = buffers(""); !b.is_null()) doc["buffers"] = b;
     std::string text = doc.dump();
     while (text.size() % 4) text += ' ';
     std::vector<unsigned char> padded = bin;
@@ -117,18 +122,14 @@ struct GltfFixture {
 
   // .gltf with the buffer as "<stem>.bin" beside it, or inline as a data: URI.
   void write_gltf(const std::filesystem::path& path, bool data_uri = false) const {
+    std::string name = path.stem().string() + ".bin";
     nlohmann::json doc = json;
-    nlohmann::json b = buffer_entry();
-    if (!b.contains("uri")) {
-      if (data_uri) {
-        b["uri"] = "data:application/octet-stream;base64," + base64(bin);
-      } else {
-        std::string name = path.stem().string() + ".bin";
-        write_file(path.parent_path() / name, bin.data(), bin.size());
-        b["uri"] = name;
-      }
+    if (data_uri) {
+      doc["buffers"] = buffers("data:application/octet-stream;base64," + base64(bin));
+    } else {
+      write_file(path.parent_path() / name, bin.data(), bin.size());
+      doc["buffers"] = buffers(name);
     }
-    doc["buffers"] = {b};
     write_file(path, doc.dump(1));
   }
 };
