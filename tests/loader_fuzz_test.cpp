@@ -88,11 +88,11 @@ void fuzz_json(const GltfFixture& fixture, const std::string& name, int rounds) 
       if (random() % 6 == 0) {
         json& parent = damaged.json[at.parent_pointer()];
         if (parent.is_object()) parent.erase(at.back());
-        what += " erase " + at.to_string();
+        what.append(" erase ").append(at.to_string());
       } else {
         const json& value = hostile[random() % std::size(hostile)];
         damaged.json[at] = value;
-        what += " " + at.to_string() + "=" + value.dump();
+        what.append(" ").append(at.to_string()).append("=").append(value.dump());  // not "+": GCC 12 -Wrestrict false alarm
       }
     }
     fs::path file = dir / "damaged.glb";

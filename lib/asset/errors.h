@@ -1,5 +1,5 @@
 // Errors that reach the user. Every command turns these into one line on stderr
-// and a documented exit status (see docs/cli.md).
+// and a documented exit status (see docs/errors.md).
 #pragma once
 
 #include <stdexcept>

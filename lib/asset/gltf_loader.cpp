@@ -255,7 +255,7 @@ std::vector<DracoPrimitive> trial_decode_draco(const GltfContainer& c) {
       int expected = type_components(accessors[static_cast<size_t>(accessor)]);
       if (attribute->num_components() != expected || expected > 4)
         fail("Draco attribute " + printable(name) + " has " + std::to_string(attribute->num_components()) +
-             " components, its accessor " + std::to_string(accessor) + " " + std::to_string(expected));
+             " components, but its accessor " + std::to_string(accessor) + " has " + std::to_string(expected));
       d.accessors.push_back(accessor);
     }
   }
