@@ -3,12 +3,15 @@
 #include <fstream>
 #include <thread>
 
+// Defined in the source cmake/commit_stamp.cmake writes at every build.
+const char* crowdprof_build_commit();
+
 namespace crowdprof {
 
 Environment current_environment() {
   Environment env;
   env.version = CROWDPROF_VERSION;
-  env.commit = CROWDPROF_COMMIT;
+  env.commit = crowdprof_build_commit();
   env.compiler = CROWDPROF_COMPILER;
   env.build_type = CROWDPROF_BUILD_TYPE;
   env.cores = std::thread::hardware_concurrency();
