@@ -61,7 +61,8 @@ std::string format_profile(const RunReport& report) {
     double share = total > 0 ? ms / total : 0.0;
     std::string name(category_name(static_cast<Category>(c)));
     std::string bar(static_cast<size_t>(share * 40.0 + 0.5), '|');
-    std::snprintf(line, sizeof line, "%-11s: %8.2fms | %3.0f%% %s\n", name.c_str(), ms, share * 100.0, bar.c_str());
+    std::snprintf(line, sizeof line, "%-11s: %8.2fms | %3.0f%%%s%s\n", name.c_str(), ms, share * 100.0,
+                  bar.empty() ? "" : " ", bar.c_str());  // no trailing blank for diff-friendly output
     out << line;
   }
   const Counters& k = frame.counters;
