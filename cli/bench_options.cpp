@@ -6,7 +6,9 @@
 #include <thread>
 
 #include "asset/errors.h"
+#include "asset/output_file.h"
 #include "render/gl_context.h"
+#include "scene/camera.h"
 
 using crowdprof::UsageError;
 
@@ -82,7 +84,7 @@ std::pair<int, int> parse_resolution(const std::string& value) {
   return {size[0], size[1]};
 }
 
-crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdprof::Character& character) {
+static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   using namespace crowdprof;
   if (o.characters < 1) throw UsageError("-n " + std::to_string(o.characters) + ": a crowd needs at least 1 copy");
   if (o.characters > 10'000'000) throw UsageError("-n " + std::to_string(o.characters) + ": at most 10,000,000 copies");
@@ -101,26 +103,20 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
   if (!preset) throw UsageError("--mode '" + o.mode + "': expected one of " + mode_names());
   config.mode = preset->switches;
   config.mode_name = std::string(preset->name);
-  bool custom = false;
-  if (!o.lookups.empty()) {
+  if (!o.lookups.empty())
     config.mode.lookups = parse_choice<Lookups>(o.lookups, "--lookups",
                                                 {{"string", Lookups::PerFrameString}, {"bundled", Lookups::Bundled}});
-    custom = true;
-  }
-  if (!o.culling.empty()) config.mode.animation_culling = parse_on_off(o.culling, "--culling"), custom = true;
-  if (!o.pose.empty()) {
+  if (!o.culling.empty()) config.mode.animation_culling = parse_on_off(o.culling, "--culling");
+  if (!o.pose.empty())
     config.mode.pose = parse_choice<PoseStorage>(o.pose, "--pose",
                                                  {{"shared", PoseStorage::SharedScratch}, {"per-copy", PoseStorage::PerCopy}});
-    custom = true;
-  }
-  if (!o.parallel.empty()) config.mode.parallel = parse_on_off(o.parallel, "--parallel"), custom = true;
-  if (!o.skinning.empty()) {
+  if (!o.parallel.empty()) config.mode.parallel = parse_on_off(o.parallel, "--parallel");
+  if (!o.skinning.empty())
     config.mode.skinning = parse_choice<SkinningSite>(
         o.skinning, "--skinning",
         {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
-    custom = true;
-  }
-  if (custom) config.mode_name += "+custom";
+  // An override that repeats the preset leaves it the preset.
+  if (config.mode != preset->switches) config.mode_name += "+custom";
 
   if (o.threads != kThreadsUnset && (o.threads < 1 || o.threads > 1024))
     throw UsageError("--threads " + std::to_string(o.threads) + ": expected 1 to 1024");
@@ -130,6 +126,19 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
                      " runs on one thread; threads apply to parallel modes (threaded, hwskin, or --parallel on)");
   config.threads = config.mode.parallel ? (o.threads > 0 ? static_cast<int>(o.threads) : static_cast<int>(cores)) : 1;
 
+  config.fps = o.fps;
+  config.camera = o.camera;
+  config.aspect = static_cast<float>(width) / static_cast<float>(height);
+  config.resolution = std::to_string(width) + "x" + std::to_string(height);
+  make_camera(o.camera, Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, config.aspect);  // throws on a bad --camera
+  return config;
+}
+
+void validate_bench_options(const BenchCliOptions& options) { config_from_options(options); }
+
+crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdprof::Character& character) {
+  using namespace crowdprof;
+  BenchConfig config = config_from_options(o);
   config.crowd.copies = static_cast<size_t>(o.characters);
   config.crowd.seed = static_cast<uint32_t>(o.seed);
   config.crowd.actions = parse_choice<ActionChoice>(o.actions, "--actions",
@@ -146,10 +155,12 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
     if (found < 0) throw UsageError("--action '" + o.action + "': the character's actions are " + names);
     config.crowd.shared_action = found;
   }
-  config.fps = o.fps;
-  config.camera = o.camera;
-  config.aspect = static_cast<float>(width) / static_cast<float>(height);
   return config;
+}
+
+void require_writable_outputs(const BenchCliOptions& o) {
+  for (auto [path, what] : {std::pair{&o.csv, "CSV"}, {&o.json, "JSON"}, {&o.trace, "trace"}, {&o.screenshot, "PNG"}})
+    if (!path->empty()) crowdprof::require_writable(*path, what);
 }
 
 crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::Character& character,

@@ -41,8 +41,16 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 // "WxH" as {W, H}, each 1 to 65536; throws UsageError naming --resolution.
 std::pair<int, int> parse_resolution(const std::string& value);
 
+// Checks every value that does not depend on the character (UsageError with
+// the option's name).
+void validate_bench_options(const BenchCliOptions& options);
+
 // Checks every value (UsageError with the option's name) and builds the config.
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const crowdprof::Character& character);
+
+// UsageError when --csv, --json, --trace or --screenshot cannot be written,
+// found before a run that would otherwise be lost.
+void require_writable_outputs(const BenchCliOptions& options);
 
 // Opens --backend at --resolution for the config's crowd and points
 // config.renderer at its renderer (left null for none). When auto finds no GL,

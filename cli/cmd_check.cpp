@@ -7,9 +7,11 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
+#include "asset/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -31,32 +33,110 @@ struct CheckCliOptions {
   bool update = false;
   std::string svg;
   CLI::App* command = nullptr;  // to tell options given from defaults
+  bool action_from_baseline = false;
 };
 
-// Options left at their defaults take the baseline's values, so that
-// `check FILE --baseline B` reruns what B recorded.
-void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
-  auto given = [&](const char* name) { return o.command->count(name) > 0; };
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code error;
+  return !a.empty() && (a == b || std::filesystem::equivalent(a, b, error));
+}
+
+// A switch as its option takes it: strings as they are, booleans as on/off.
+std::string switch_value(const json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
+  return value.dump();
+}
+
+std::string optional_text(const json& section, const char* key) {
+  return section.is_object() && section.contains(key) && section[key].is_string() ? section[key].get<std::string>() : "";
+}
+
+// The bench options that recorded `baseline` (validated: types are by read_result).
+BenchCliOptions options_recorded_in(const json& baseline) {
   const json& scene = baseline["scene"];
-  if (o.bench.file.empty()) o.bench.file = scene["file"].get<std::string>();
-  if (!given("--characters")) o.bench.characters = scene["characters"].get<long long>();
-  if (!given("--frames")) o.bench.frames = baseline["frames"].get<long long>();
-  if (!given("--warmup")) o.bench.warmup = baseline["warmup"].get<long long>();
-  if (!given("--fps")) o.bench.fps = baseline["fps"].get<double>();
-  if (!given("--actions")) o.bench.actions = scene["action_choice"].get<std::string>();
-  if (!given("--seed")) o.bench.seed = scene["seed"].get<long long>();
-  if (!given("--camera")) o.bench.camera = scene["camera"].get<std::string>();
-  std::string mode = baseline["mode"].get<std::string>();
-  if (!given("--mode") && find_mode(mode)) o.bench.mode = mode;
-  const ModePreset* preset = find_mode(o.bench.mode);
-  if (!given("--threads") && preset && preset->switches.parallel) o.bench.threads = baseline["threads"].get<long long>();
-  if (!given("--backend") && baseline.contains("environment") && baseline["environment"].is_object() &&
-      baseline["environment"].value("backend", json("none")).is_string())
-    o.bench.backend = baseline["environment"].value("backend", json("none")).get<std::string>();
+  const json& switches = baseline["switches"];
+  BenchCliOptions r;
+  r.file = scene["file"].get<std::string>();
+  r.characters = scene["characters"].get<long long>();
+  r.frames = baseline["frames"].get<long long>();
+  r.warmup = baseline["warmup"].get<long long>();
+  r.fps = baseline["fps"].get<double>();
+  r.actions = scene["action_choice"].get<std::string>();
+  r.action = optional_text(scene, "action");
+  r.seed = scene["seed"].get<long long>();
+  r.camera = scene["camera"].get<std::string>();
+  if (std::string resolution = optional_text(scene, "resolution"); !resolution.empty()) r.resolution = resolution;
+  r.mode = baseline["mode"].get<std::string>();
+  if (r.mode.ends_with("+custom")) r.mode.resize(r.mode.size() - 7);
+  for (auto [key, value] : {std::pair<const char*, std::string*>{"lookups", &r.lookups}, {"culling", &r.culling},
+                            {"pose", &r.pose}, {"parallel", &r.parallel}, {"skinning", &r.skinning}})
+    if (switches.contains(key)) *value = switch_value(switches[key]);
+  if (r.parallel == "on") r.threads = baseline["threads"].get<long long>();
+  if (std::string backend = optional_text(baseline["environment"], "backend"); !backend.empty()) r.backend = backend;
+  r.allow_static = scene["actions"].get<long long>() == 0;
+  return r;
+}
+
+// Options left at their defaults take the baseline's values, so that
+// `check --baseline B` reruns what B recorded. A value no run could have
+// recorded is the baseline's fault, not the command line's: InputError.
+void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
+  BenchCliOptions recorded = options_recorded_in(baseline);
+  try {
+    validate_bench_options(recorded);
+  } catch (const UsageError& e) {
+    throw InputError(o.baseline, std::string("records a run that crowdprof cannot make: ") + e.what());
+  }
+  auto given = [&](const char* name) { return o.command->count(name) > 0; };
+  BenchCliOptions& b = o.bench;
+  if (b.file.empty()) b.file = recorded.file;
+  if (!given("--characters")) b.characters = recorded.characters;
+  if (!given("--frames")) b.frames = recorded.frames;
+  if (!given("--warmup")) b.warmup = recorded.warmup;
+  if (!given("--fps")) b.fps = recorded.fps;
+  if (!given("--actions")) b.actions = recorded.actions;
+  if (!given("--seed")) b.seed = recorded.seed;
+  if (!given("--camera")) b.camera = recorded.camera;
+  if (!given("--resolution")) b.resolution = recorded.resolution;
+  if (!given("--backend")) b.backend = recorded.backend;
+  if (!given("--static")) b.allow_static = recorded.allow_static;
+  if (!given("--action") && b.actions == "shared" && !recorded.action.empty()) {
+    b.action = recorded.action;
+    o.action_from_baseline = true;
+  }
+  // A mode given on the command line brings its own switches; else the
+  // baseline's mode with its switches as recorded.
+  if (!given("--mode")) {
+    b.mode = recorded.mode;
+    for (auto [option, mine, theirs] : {std::tuple{"--lookups", &b.lookups, &recorded.lookups},
+                                        {"--culling", &b.culling, &recorded.culling},
+                                        {"--pose", &b.pose, &recorded.pose},
+                                        {"--parallel", &b.parallel, &recorded.parallel},
+                                        {"--skinning", &b.skinning, &recorded.skinning}})
+      if (!given(option)) *mine = *theirs;
+  }
+  const ModePreset* preset = find_mode(b.mode);
+  bool parallel = b.parallel.empty() ? preset && preset->switches.parallel : b.parallel == "on";
+  if (!given("--threads") && parallel && recorded.threads != kThreadsUnset) b.threads = recorded.threads;
+}
+
+// The baseline named an action this character does not have: the baseline
+// is of another character, which is a bad baseline rather than a bad option.
+void require_recorded_action(const CheckCliOptions& o, const Character& character) {
+  if (!o.action_from_baseline) return;
+  std::string names;
+  for (const Action& action : character.actions) {
+    if (action.name == o.bench.action) return;
+    names += (names.empty() ? "" : ", ") + action.name;
+  }
+  throw InputError(o.baseline, "the baseline is of another run: its action '" + o.bench.action + "' is not one of " +
+                                   o.bench.file + "'s (" + names + ")");
 }
 
 json run_bench_result(const CheckCliOptions& o) {
   Character character = load_character(o.bench.file);
+  require_recorded_action(o, character);
   BenchConfig config = make_bench_config(o.bench, character);
   check_fits_in_memory(character, config.crowd.copies, config.mode);
   BenchRendering rendering = open_bench_rendering(o.bench, character, config);
@@ -109,6 +189,13 @@ int check(CheckCliOptions& o) {
       std::cerr << "crowdprof: note: replacing a baseline that cannot be read (" << e.what() << ")\n";
     }
   }
+  // Outputs are checked before a run that would be lost, and a comparison never
+  // overwrites what it compares against.
+  if (!o.update && same_file(o.bench.json, o.baseline))
+    throw UsageError("--json " + o.bench.json + " is the baseline; to replace it, use --update-baseline");
+  for (auto [path, what] : {std::pair{&o.bench.csv, "CSV"}, {&o.bench.json, "JSON"}, {&o.svg, "SVG"}})
+    if (!path->empty()) require_writable(*path, what);
+  if (o.update) require_writable(o.baseline, "baseline");
   json current;
   if (!o.result.empty()) {
     current = read_result(o.result);
@@ -147,6 +234,15 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   add_bench_options(*cmd, options->bench);
   cmd->get_option("file")->required(false)->description(
       "Character to bench (default: the baseline's scene file); not with --result");
+  // A run's options default to what the baseline recorded, not to bench's defaults.
+  for (const char* name : {"--characters", "--actions", "--action", "--seed", "--frames", "--warmup", "--fps", "--mode",
+                           "--threads", "--camera", "--backend", "--resolution", "--lookups", "--culling", "--pose",
+                           "--parallel", "--skinning", "--static"}) {
+    CLI::Option* option = cmd->get_option(name);
+    std::string text = option->get_description();
+    text = text.substr(0, text.find(" (default:"));
+    option->default_str("")->description(text + " (default: the baseline's)");
+  }
   cmd->add_option("--baseline", options->baseline, "Baseline result (bench --json or check --update-baseline)")
       ->required();
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");

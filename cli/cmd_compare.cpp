@@ -9,6 +9,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
+#include "asset/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -67,18 +68,16 @@ struct ModeRun {
 ModeRun make_benches(const Character& character, std::vector<BenchConfig> configs, size_t copies, bool named,
                      bool note) {
   ModeRun run;
-  for (BenchConfig& config : configs) config.crowd.copies = copies;
-  check_fits_in_memory(character, configs);
   for (BenchConfig& config : configs) {
-    try {
-      run.benches.push_back(std::make_unique<CrowdBench>(character, config));
-      run.configs.push_back(config);
-    } catch (const UsageError& e) {
-      if (named) throw;
-      if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << e.what() << "\n";
-    }
+    config.crowd.copies = copies;
+    std::string why = why_cannot_run(config);
+    if (why.empty()) run.configs.push_back(config);
+    else if (named) throw UsageError(why);
+    else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
   }
-  if (run.benches.empty()) throw UsageError("none of the modes can run here");
+  if (run.configs.empty()) throw UsageError("none of the modes can run here");
+  check_fits_in_memory(character, run.configs);  // only the modes that will run
+  for (const BenchConfig& config : run.configs) run.benches.push_back(std::make_unique<CrowdBench>(character, config));
   return run;
 }
 
@@ -111,6 +110,8 @@ int compare(const CompareCliOptions& o) {
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
 
+  require_writable_outputs(o.bench);
+  if (!o.svg.empty()) require_writable(o.svg, "SVG");
   Character character = load_character(o.bench.file);
   std::vector<BenchConfig> configs;
   for (const std::string& name : names) configs.push_back(config_for(o.bench, name, character));

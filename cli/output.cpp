@@ -4,10 +4,10 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <memory>
+#include <sstream>
 
-#include "asset/errors.h"
+#include "asset/output_file.h"
 
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
   if (quiet || !isatty(STDERR_FILENO)) return {};
@@ -25,9 +25,7 @@ std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::str
 }
 
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body) {
-  std::ofstream out(path);
-  if (!out) throw crowdprof::UsageError("cannot write " + what + " file '" + path + "'");
-  body(out);
-  out.flush();
-  if (!out) throw crowdprof::UsageError("error writing " + what + " file '" + path + "'");
+  std::ostringstream text;
+  body(text);
+  crowdprof::write_file(path, what, text.view());
 }

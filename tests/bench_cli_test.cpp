@@ -2,6 +2,8 @@
 // stderr, bad files exit 3, and a good run prints the profile.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "asset/gltf_writer.h"
 #include "asset/humanoid.h"
 #include "test_support.h"
@@ -68,7 +70,8 @@ TEST(BenchCli, ACharacterWithoutSkinOrActions) {
 TEST(BenchCli, ACharacterWithoutActionsNeedsStatic) {
   crowdprof::Character character = crowdprof::generate_humanoid({30, 800, 7});
   character.actions.clear();
-  std::string file = (crowdprof::test::scratch_dir("bench_static") / "still.glb").string();
+  auto dir = crowdprof::test::scratch_dir("bench_static");
+  std::string file = (dir / "still.glb").string();
   crowdprof::write_gltf(character, file);
 
   auto refused = run_cli("bench '" + file + "' -n 4 --frames 2 --warmup 0");
@@ -81,4 +84,24 @@ TEST(BenchCli, ACharacterWithoutActionsNeedsStatic) {
   EXPECT_EQ(still.status, 0) << still.err;
   EXPECT_NE(still.out.find("4 characters x 30 joints"), std::string::npos) << still.out;
   EXPECT_NE(still.out.find("0 lookups per frame"), std::string::npos) << still.out;
+
+  // A baseline of a static crowd reruns as one: check adopts --static.
+  std::string base = (dir / "still.json").string();
+  ASSERT_EQ(run_cli("bench '" + file + "' -n 4 --frames 8 --warmup 0 --static -q --json '" + base + "'").status, 0);
+  auto check = run_cli("check --baseline '" + base + "' --tolerance 900%");
+  EXPECT_EQ(check.status, 0) << check.out << check.err;
+}
+
+// A path that cannot take an output is a command-line error, found before the
+// run when it can be (a missing folder, a directory) and after it when only
+// writing tells (a full disk); stdout stays empty either way.
+TEST(BenchCli, OutputsThatCannotBeWritten) {
+  auto dir = crowdprof::test::scratch_dir("bench_outputs");
+  std::string missing = (dir / "no" / "frames.csv").string();
+  expect_usage_error("-n 2 --frames 1 --csv '" + missing + "'",
+                     "cannot write CSV file '" + missing + "': no folder " + (dir / "no").string());
+  expect_usage_error("-n 2 --frames 1 --json '" + dir.string() + "'",
+                     "cannot write JSON file '" + dir.string() + "': it is a directory");
+  if (std::filesystem::is_character_file("/dev/full"))
+    expect_usage_error("-n 2 --frames 1 -q --trace /dev/full", "cannot write trace file '/dev/full': No space left on device");
 }

@@ -63,6 +63,12 @@ TEST(RenderCli, WritesTheFrameAsAPng) {
   EXPECT_TRUE(is_png_of(png, 160, 90));
   EXPECT_NE(r.out.find("frame 3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("skinned on the GPU"), std::string::npos) << r.out;
+  // A PNG that cannot be written is never reported as written.
+  if (std::filesystem::is_character_file("/dev/full"))
+    expect_usage_error("render '" + scene() + "' -n 2 --resolution 16x9 -o /dev/full",
+                       "cannot write PNG file '/dev/full': No space left on device");
+  expect_usage_error("render '" + scene() + "' -n 2 --resolution 16x9 -o '" + dir.string() + "'",
+                     "cannot write PNG file '" + dir.string() + "': it is a directory");
 }
 
 TEST(RenderCli, BadSizesAndBackendsExit2) {

@@ -1,8 +1,5 @@
 #include "asset/gltf_writer.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -10,6 +7,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_draco_encode.h"
+#include "asset/output_file.h"
 
 namespace crowdprof {
 namespace {
@@ -262,12 +260,10 @@ std::vector<uint8_t> encode_gltf(const Character& c, const GltfWriteOptions& opt
 }
 
 void write_gltf(const Character& character, const std::string& path, const GltfWriteOptions& options) {
+  require_writable(path, options.binary ? "GLB" : "glTF");
   std::vector<uint8_t> bytes = encode_gltf(character, options);
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  file.close();
-  if (!file) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
+  write_file(path, options.binary ? "GLB" : "glTF",
+             std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace crowdprof

@@ -32,7 +32,8 @@ struct GltfWriteOptions {
 // Throws std::invalid_argument for a character whose arrays disagree.
 std::vector<uint8_t> encode_gltf(const Character& character, const GltfWriteOptions& options = {});
 
-// encode_gltf written to `path`. Throws InputError(path, "cannot write: ...").
+// encode_gltf written to `path`. Throws UsageError naming the path when it
+// cannot be written (asset/output_file.h).
 void write_gltf(const Character& character, const std::string& path, const GltfWriteOptions& options = {});
 
 }  // namespace crowdprof

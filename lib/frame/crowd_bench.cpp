@@ -27,13 +27,18 @@ uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitc
   return c.shared_bytes() + copies * per_copy + slots * per_slot;
 }
 
+std::string why_cannot_run(const BenchConfig& config) {
+  std::string conflict = conflicts(config.mode);
+  if (!conflict.empty()) return conflict;
+  if (config.mode.skinning == SkinningSite::Gpu && !config.renderer)
+    return "skinning on the GPU (mode hwskin) needs a GL backend: --backend auto, egl or osmesa";
+  return {};
+}
+
 CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
     : character_(character), config_(config) {
-  std::string conflict = conflicts(config.mode);
-  if (!conflict.empty()) throw UsageError(conflict);
+  if (std::string why = why_cannot_run(config); !why.empty()) throw UsageError(why);
   skin_site_ = config.mode.skinning;
-  if (skin_site_ == SkinningSite::Gpu && !config.renderer)
-    throw UsageError("skinning on the GPU (mode hwskin) needs a GL backend: --backend auto, egl or osmesa");
   // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
   if (skin_site_ == SkinningSite::Gpu && character.skeleton.joint_count() > config.renderer->max_gpu_joints())
     skin_site_ = SkinningSite::CpuInAnimations;
@@ -73,7 +78,12 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
     std::copy(character.mesh.positions.begin(), character.mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
     std::copy(character.mesh.normals.begin(), character.mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
   }
-  if (config.mode.parallel) arena_ = std::make_unique<tbb::task_arena>(std::max(1, config.threads));
+  if (config.mode.parallel) {
+    auto threads = static_cast<size_t>(std::max(1, config.threads));
+    if (threads > tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))
+      parallelism_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+    arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+  }
   // The scenegraph of "frame -1": the first frame's animation culling needs it.
   Counters unused;
   update_scenegraph(unused);

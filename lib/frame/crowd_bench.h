@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include "animation/binding.h"
@@ -35,6 +36,7 @@ struct BenchConfig {
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
   std::string camera = "default";
   float aspect = 16.0f / 9.0f;
+  std::string resolution = "1600x900";  // WxH of the frame the aspect is from, as reports show it
   // Draws each frame (Rasterizer) and waits for it (GPU Latency); null: no
   // backend. Needed for skinning on the GPU. Not owned; outlives the bench.
   FrameRenderer* renderer = nullptr;
@@ -43,6 +45,10 @@ struct BenchConfig {
   Tracer* tracer = nullptr;
   int trace_pid = 1;
 };
+
+// Empty when a bench of this config can run, else why not: switches that
+// conflict, or skinning on the GPU without a renderer.
+std::string why_cannot_run(const BenchConfig& config);
 
 // Bytes a crowd of `copies` would allocate, to refuse a scene before trying.
 uint64_t estimate_bench_bytes(const Character& character, size_t copies, const ModeSwitches& mode);
@@ -119,6 +125,9 @@ class CrowdBench {
   size_t max_channels_ = 0;
   std::vector<SkinMatrix> palettes_;          // per copy x joints
   std::vector<glm::vec3> positions_, normals_;  // per copy x vertices
+  // More threads than cores are given, not silently capped by TBB's default
+  // worker limit (one per core): the control lifts it while the bench lives.
+  std::unique_ptr<tbb::global_control> parallelism_;
   std::unique_ptr<tbb::task_arena> arena_;
 };
 

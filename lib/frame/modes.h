@@ -34,6 +34,8 @@ struct ModeSwitches {
   PoseStorage pose = PoseStorage::PerCopy;
   bool parallel = false;  // pose updates (and CPU skinning in Animations) on oneTBB
   SkinningSite skinning = SkinningSite::CpuInAnimations;
+
+  bool operator==(const ModeSwitches&) const = default;
 };
 
 struct ModePreset {

@@ -36,6 +36,8 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.vertices = c.mesh.vertex_count();
   run.actions = c.actions.size();
   run.action_choice = config.crowd.actions == ActionChoice::Random ? "random" : "shared";
+  if (config.crowd.actions == ActionChoice::Shared && static_cast<size_t>(config.crowd.shared_action) < c.actions.size())
+    run.action = c.actions[static_cast<size_t>(config.crowd.shared_action)].name;
   run.seed = config.crowd.seed;
   run.mode = config.mode_name;
   const ModeSwitches& s = config.mode;
@@ -47,6 +49,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;
+  run.resolution = config.resolution;
   return run;
 }
 

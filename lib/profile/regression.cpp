@@ -131,8 +131,15 @@ std::string resolve_metric(std::string_view name) {
 }
 
 nlohmann::json read_result(const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) throw InputError(path, "no such file");
+  fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InputError(path, "no such file");
+  if (fs::is_directory(status)) throw InputError(path, "a directory, not a crowdprof result");
+  if (!fs::is_regular_file(status)) throw InputError(path, "not a regular file, so not a crowdprof result");
+  // 10 million frames of eleven samples fit in well under this.
+  constexpr uintmax_t kMaxResultBytes = uintmax_t{2} << 30;
+  if (fs::file_size(path, error) > kMaxResultBytes) throw InputError(path, "larger than 2 GiB: not a crowdprof result");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot be read");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -175,6 +182,9 @@ void validate_result(const nlohmann::json& doc, const std::string& path) {
     require_type(whole(field(doc, key, path)), key, "a whole number", path);
   require_type(field(doc, "/fps", path).is_number(), "/fps", "a number", path);
   require_type(field(doc, "/switches", path).is_object(), "/switches", "an object", path);
+  // Added within format 1: optional, but strings when present.
+  for (const char* key : {"/scene/action", "/scene/resolution", "/environment/backend"})
+    if (doc.contains(json::json_pointer(key))) require_type(doc.at(json::json_pointer(key)).is_string(), key, "a string", path);
   size_t frames = doc["frames"].get<size_t>();
   if (frames == 0) throw InputError(path, "a result of 0 frames");
   const json& samples = field(doc, "/samples", path);
@@ -203,6 +213,17 @@ void require_same_run(const nlohmann::json& baseline, const nlohmann::json& curr
   for (const char* key : {"character", "characters", "joints", "vertices", "actions", "action_choice", "camera"})
     differ(key, baseline["scene"][key], current["scene"][key]);
   if (current["scene"]["action_choice"] == "random") differ("seed", baseline["scene"]["seed"], current["scene"]["seed"]);
+  for (const char* key : {"action", "resolution"})  // absent from results of early format-1 versions
+    if (baseline["scene"].contains(key) && current["scene"].contains(key))
+      differ(key, baseline["scene"][key], current["scene"][key]);
+  // Drawing or not changes the work (bytes uploaded, draw calls); which GL
+  // draws does not, and is only noted.
+  auto backend = [](const json& doc) {
+    bool known = doc.contains("environment") && doc["environment"].is_object();
+    return known ? doc["environment"].value("backend", json("none")) : json("none");
+  };
+  if ((backend(baseline) == "none") != (backend(current) == "none"))
+    differ("backend", backend(baseline), backend(current));
   differ("mode", baseline["mode"], current["mode"]);
   differ("mode switches", baseline["switches"], current["switches"]);
   for (const char* key : {"frames", "warmup", "fps"}) differ(key, baseline[key], current[key]);

@@ -80,6 +80,7 @@ std::string format_profile(const RunReport& report) {
   }
   out << "actions " << run.action_choice;
   if (run.action_choice == "random") out << " (seed " << run.seed << ")";
+  else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
   return out.str();
@@ -120,7 +121,8 @@ nlohmann::json to_json(const RunReport& report) {
                       {"build_type", env.build_type}, {"backend", run.backend}, {"renderer", run.renderer}};
   j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
                 {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
-                {"action_choice", run.action_choice}, {"seed", run.seed}, {"camera", run.camera}};
+                {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},
+                {"camera", run.camera}, {"resolution", run.resolution}};
   j["mode"] = run.mode;
   j["switches"] = run.switches;
   j["threads"] = run.threads;

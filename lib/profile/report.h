@@ -19,6 +19,7 @@ struct RunDescription {
   size_t characters = 0;   // copies in the crowd
   size_t joints = 0, vertices = 0, actions = 0;
   std::string action_choice;  // "shared" or "random"
+  std::string action;         // with shared: the action every copy plays ("" when there is none)
   uint32_t seed = 0;
   std::string mode;            // preset name, or "custom"
   nlohmann::json switches;     // the mode's switches by name
@@ -27,6 +28,7 @@ struct RunDescription {
   size_t warmup = 0;
   double fps = 60.0;
   std::string camera;
+  std::string resolution;  // WxH: the frame's size and so the camera's aspect
 };
 
 struct RunReport {

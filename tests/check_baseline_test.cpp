@@ -1,0 +1,150 @@
+// `check --baseline B` from the outside: it reruns everything B recorded
+// (switch overrides, the action, the resolution), and a baseline that is not
+// a file, records a run no crowdprof makes, or is of another run exits 3
+// naming it; a comparison never overwrites its baseline.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+using crowdprof::test::run_cli;
+using nlohmann::json;
+
+namespace {
+
+std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
+
+std::string write_json(const std::filesystem::path& path, const json& doc) {
+  std::ofstream(path) << doc.dump(1);
+  return path.string();
+}
+
+json read_json(const std::string& path) { return json::parse(std::ifstream(path)); }
+
+// A baseline of a run far from every default: string lookups in the threaded
+// preset, one thread, the second action, a square frame (so another aspect
+// and so other copies culled).
+std::string unusual_baseline(const std::filesystem::path& dir) {
+  std::string base = (dir / "base.json").string();
+  auto r = run_cli("bench '" + scene() + "' -n 12 --frames 8 --warmup 1 --mode threaded --lookups string --threads 1 "
+                   "--action walk --resolution 600x600 --fps 30 -q --json '" + base + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  return base;
+}
+
+TEST(CheckBaseline, RerunsEverythingTheBaselineRecorded) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_rerun");
+  std::string base = unusual_baseline(dir);
+  json recorded = read_json(base);
+  EXPECT_EQ(recorded["mode"], "threaded+custom");
+  EXPECT_EQ(recorded["scene"]["action"], "walk");
+  EXPECT_EQ(recorded["scene"]["resolution"], "600x600");
+
+  std::string current = (dir / "current.json").string();
+  auto r = run_cli("check --baseline '" + base + "' --tolerance 900% --json '" + current + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.rfind("ok frame", 0), 0u) << r.out;
+  json rerun = read_json(current);
+  for (const char* key : {"mode", "switches", "threads", "frames", "warmup", "fps", "digest", "counters"})
+    EXPECT_EQ(rerun[key], recorded[key]) << key;
+  EXPECT_EQ(rerun["scene"], recorded["scene"]);
+
+  // An option on the command line wins, and a different run is refused.
+  r = run_cli("check --baseline '" + base + "' --resolution 1600x900 -q");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("the baseline is of another run: resolution \"600x600\" there, \"1600x900\" here"),
+            std::string::npos)
+      << r.err;
+  // A mode given brings its own switches rather than the baseline's overrides.
+  r = run_cli("check --baseline '" + base + "' --mode threaded -q");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("mode \"threaded+custom\" there, \"threaded\" here"), std::string::npos) << r.err;
+}
+
+TEST(CheckBaseline, ValuesNoRunCouldRecordAreTheBaselinesFault) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_corrupt");
+  json good = read_json(unusual_baseline(dir));
+  struct Corruption {
+    const char* name;
+    json::json_pointer where;
+    json value;
+    const char* words;
+  };
+  const Corruption corruptions[] = {
+      {"threads", json::json_pointer("/threads"), json(18446744073709551615ull), "--threads"},
+      {"fps", json::json_pointer("/fps"), json(-5.0), "--fps"},
+      {"camera", json::json_pointer("/scene/camera"), json("somewhere"), "--camera 'somewhere'"},
+      {"backend", json::json_pointer("/environment/backend"), json("vulkan"), "--backend 'vulkan'"},
+      {"switch", json::json_pointer("/switches/culling"), json(7), "--culling '7'"},
+      {"mode", json::json_pointer("/mode"), json("turbo"), "--mode 'turbo'"},
+  };
+  for (const Corruption& c : corruptions) {
+    json bad = good;
+    bad[c.where] = c.value;
+    std::string path = write_json(dir / (std::string(c.name) + ".json"), bad);
+    auto r = run_cli("check --baseline '" + path + "' -q");
+    EXPECT_EQ(r.status, 3) << c.name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("crowdprof: " + path + ": records a run that crowdprof cannot make: " + c.words, 0), 0u)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  json moonwalk = good;
+  moonwalk["scene"]["action"] = "moonwalk";
+  std::string path = write_json(dir / "action.json", moonwalk);
+  auto r = run_cli("check --baseline '" + path + "' -q");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find(path + ": the baseline is of another run: its action 'moonwalk' is not one of"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(CheckBaseline, DrawingOrNotIsAnotherRun) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_backend");
+  std::string base = unusual_baseline(dir);
+  json drawn = read_json(base);
+  drawn["environment"]["backend"] = "egl";
+  std::string egl = write_json(dir / "egl.json", drawn);
+  auto r = run_cli("check --result '" + base + "' --baseline '" + egl + "'");
+  EXPECT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("backend \"egl\" there, \"none\" here"), std::string::npos) << r.err;
+  // Which GL draws is only noted: the work is the same.
+  json osmesa = drawn;
+  osmesa["environment"]["backend"] = "osmesa";
+  r = run_cli("check --result '" + write_json(dir / "osmesa.json", osmesa) + "' --baseline '" + egl + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find("note: timings may not compare: backend"), std::string::npos) << r.err;
+}
+
+TEST(CheckBaseline, OnlyARegularFileIsABaseline) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_files");
+  std::string base = unusual_baseline(dir);
+  auto r = run_cli("check --result '" + base + "' --baseline '" + dir.string() + "'");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(r.err, "crowdprof: " + dir.string() + ": a directory, not a crowdprof result\n");
+  if (std::filesystem::is_character_file("/dev/zero")) {  // would never end if read
+    r = run_cli("check --result /dev/zero --baseline '" + base + "'");
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(r.err, "crowdprof: /dev/zero: not a regular file, so not a crowdprof result\n");
+  }
+}
+
+TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_overwrite");
+  std::string base = unusual_baseline(dir);
+  std::string before = read_json(base).dump();
+  auto r = run_cli("check --baseline '" + base + "' --json '" + base + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is the baseline; to replace it, use --update-baseline"), std::string::npos) << r.err;
+  EXPECT_EQ(read_json(base).dump(), before);
+  // Outputs that cannot be written are found before the run, not after it.
+  r = run_cli("check --baseline '" + base + "' --svg '" + (dir / "no" / "chart.svg").string() + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot write SVG file"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+}  // namespace
