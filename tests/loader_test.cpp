@@ -148,6 +148,19 @@ TEST(Loader, MissingNormalsAreComputed) {
   for (const glm::vec3& n : c.mesh.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
 }
 
+TEST(Loader, AnActionWithNothingForTheSkinIsDroppedAndCounted) {
+  SkinnedFixture f;
+  // "spin" moves only the mesh's node, which is not a joint: nothing to play.
+  f.json["animations"].push_back({{"name", "spin"},
+                                  {"samplers", {{{"input", f.times}, {"output", f.rotations}}}},
+                                  {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}}}});
+  Character c = load_one(f, "action_dropped");
+  ASSERT_EQ(c.actions.size(), 1u);
+  EXPECT_EQ(c.actions[0].name, "bend");
+  EXPECT_EQ(c.fixups.channels_dropped, 1u);
+  EXPECT_EQ(c.fixups.actions_dropped, 1u);
+}
+
 TEST(Loader, DracoAgreesWithPlain) {
   Character plain = load_one(SkinnedFixture(), "draco_plain");
   Character draco = load_one(DracoFixture(), "draco_decoded");
@@ -214,6 +227,16 @@ TEST(Loader, InfoListsEverySkin) {
   ASSERT_EQ(doc["characters"].size(), 2u);
   EXPECT_EQ(doc["characters"][1]["name"], "tail");
   EXPECT_EQ(doc["characters"][1]["joints"], 2);
+  // The selector info suggests works on info too.
+  CliResult one = run_cli("info --json '" + file + "#skin=1'");
+  ASSERT_EQ(one.status, 0) << one.err;
+  doc = nlohmann::json::parse(one.out);
+  ASSERT_EQ(doc["characters"].size(), 1u);
+  EXPECT_EQ(doc["characters"][0]["skin"], 1);
+  EXPECT_EQ(doc["characters"][0]["name"], "tail");
+  CliResult past = run_cli("info '" + file + "#skin=2'");
+  EXPECT_EQ(past.status, 3);
+  EXPECT_EQ(past.err, "crowdprof: " + file + ": has no skin 2 (it holds 2)\n");
 }
 
 }  // namespace

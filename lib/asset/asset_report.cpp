@@ -29,7 +29,7 @@ nlohmann::json describe_fixups(const Fixups& f) {
   return {{"influences_trimmed", f.influences_trimmed},   {"weights_renormalised", f.weights_renormalised},
           {"weightless_vertices", f.weightless_vertices}, {"normals_computed", f.normals_computed},
           {"rotations_normalised", f.rotations_normalised}, {"channels_dropped", f.channels_dropped},
-          {"names_made_unique", f.names_made_unique}};
+          {"names_made_unique", f.names_made_unique}, {"actions_dropped", f.actions_dropped}};
 }
 
 }  // namespace
@@ -43,10 +43,11 @@ std::array<size_t, 4> influence_histogram(const SkinnedMesh& mesh) {
   return histogram;
 }
 
-nlohmann::json describe_asset(const GltfAsset& asset) {
+nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
   nlohmann::json out = {{"file", asset.file}, {"draco_decoded", asset.draco_decoded}};
   out["characters"] = nlohmann::json::array();
   for (size_t s = 0; s < asset.characters.size(); ++s) {
+    if (only_skin >= 0 && s != static_cast<size_t>(only_skin)) continue;
     const Character& c = asset.characters[s];
     auto histogram = influence_histogram(c.mesh);
     nlohmann::json actions = nlohmann::json::array();
@@ -73,7 +74,7 @@ nlohmann::json describe_asset(const GltfAsset& asset) {
   return out;
 }
 
-std::string format_asset(const GltfAsset& asset) {
+std::string format_asset(const GltfAsset& asset, int only_skin) {
   std::ostringstream out;
   out << asset.file << (asset.draco_decoded ? " (Draco decoded)" : "") << "\n";
   if (asset.characters.empty()) {
@@ -85,10 +86,11 @@ std::string format_asset(const GltfAsset& asset) {
     return out.str();
   }
   for (size_t s = 0; s < asset.characters.size(); ++s) {
+    if (only_skin >= 0 && s != static_cast<size_t>(only_skin)) continue;
     const Character& c = asset.characters[s];
     auto h = influence_histogram(c.mesh);
     out << "character " << s << " \"" << c.name << "\"";
-    if (asset.characters.size() > 1) out << "  (select with " << asset.file << "#skin=" << s << ")";
+    if (asset.characters.size() > 1 && only_skin < 0) out << "  (select with " << asset.file << "#skin=" << s << ")";
     out << "\n";
     out << "  joints:      " << c.skeleton.joint_count() << " (hierarchy depth " << c.skeleton.depth() << ")\n";
     out << "  vertices:    " << c.mesh.vertex_count() << "\n";

@@ -91,9 +91,10 @@ struct Fixups {
   size_t rotations_normalised = 0;  // rotation keys that were not unit quaternions
   size_t channels_dropped = 0;      // channels on nodes outside the skeleton (or weights)
   size_t names_made_unique = 0;     // joints renamed: nameless, or a name used twice
+  size_t actions_dropped = 0;       // animations left with no channel on this skin's joints
   size_t total() const {
     return influences_trimmed + weights_renormalised + weightless_vertices + normals_computed +
-           rotations_normalised + channels_dropped + names_made_unique;
+           rotations_normalised + channels_dropped + names_made_unique + actions_dropped;
   }
 };
 

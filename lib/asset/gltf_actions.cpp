@@ -104,7 +104,10 @@ std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vec
       action.end = std::max(action.end, channel.times.back());
       action.channels.push_back(std::move(channel));
     }
-    if (action.channels.empty()) continue;
+    if (action.channels.empty()) {
+      if (fixups) ++fixups->actions_dropped;
+      continue;
+    }
     actions.push_back(std::move(action));
   }
   return actions;

@@ -328,9 +328,7 @@ GltfAsset load_gltf(const std::string& file) {
   }
 }
 
-Character load_character(const std::string& spec_text) {
-  CharacterSpec spec = parse_character_spec(spec_text);
-  GltfAsset asset = load_gltf(spec.file);
+size_t checked_skin(const GltfAsset& asset, const CharacterSpec& spec) {
   size_t skins = asset.characters.size();
   if (skins == 0) throw InputError(spec.file, "has no skin: nothing to animate (see crowdprof info)");
   if (spec.skin < 0 && skins > 1) {
@@ -344,7 +342,13 @@ Character load_character(const std::string& spec_text) {
   size_t chosen = spec.skin < 0 ? 0 : static_cast<size_t>(spec.skin);
   if (chosen >= skins)
     throw InputError(spec.file, "has no skin " + std::to_string(chosen) + " (it holds " + std::to_string(skins) + ")");
-  return std::move(asset.characters[chosen]);
+  return chosen;
+}
+
+Character load_character(const std::string& spec_text) {
+  CharacterSpec spec = parse_character_spec(spec_text);
+  GltfAsset asset = load_gltf(spec.file);
+  return std::move(asset.characters[checked_skin(asset, spec)]);
 }
 
 }  // namespace crowdprof

@@ -32,6 +32,11 @@ struct GltfAsset {
 // Loads every skin of the file as a character.
 GltfAsset load_gltf(const std::string& file);
 
+// The index of the skin the spec selects in a loaded asset. InputError when
+// there is none, when the index is past the last, or when the file holds
+// several skins and the spec chose none.
+size_t checked_skin(const GltfAsset& asset, const CharacterSpec& spec);
+
 // Loads the character the spec selects. A file with several skins and no
 // "#skin=N" is refused with the list, never resolved silently.
 Character load_character(const std::string& spec);
