@@ -38,7 +38,7 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
                                         "by default) as .glb or .gltf");
   cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")->required();
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
-  cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 10,000,000")->capture_default_str();
+  cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 2,500,000 (the most the loader takes back)")->capture_default_str();
   cmd->add_option("--seed", args->humanoid.seed, "Varies proportions and motion slightly")->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
   cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "asset/errors.h"
+#include "asset/gltf_accessor.h"
 #include "asset/humanoid_rig.h"
 
 namespace crowdprof {
@@ -261,6 +262,9 @@ Skeleton make_skeleton(const Rig& rig) {
 
 }  // namespace
 }  // namespace humanoid
+
+// What gen writes, the loader must take back: about six indices per vertex.
+static_assert(6ull * kHumanoidMaxVertices + 1000 < kMaxAccessorElements);
 
 Character generate_humanoid(const HumanoidOptions& options) {
   if (options.bones < kHumanoidMinBones || options.bones > kHumanoidMaxBones)

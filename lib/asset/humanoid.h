@@ -10,15 +10,17 @@
 namespace crowdprof {
 
 struct HumanoidOptions {
-  int bones = 69;       // exact joint count, kMinBones..kMaxBones
-  int vertices = 4951;  // exact vertex count, kMinVertices..kMaxVertices
+  int bones = 69;       // exact joint count, kHumanoidMinBones..kHumanoidMaxBones
+  int vertices = 4951;  // exact vertex count, kHumanoidMinVertices..kHumanoidMaxVertices
   uint32_t seed = 1;    // varies proportions and motion slightly
 };
 
 inline constexpr int kHumanoidMinBones = 20;  // hips, spine, neck, head, limbs without fingers
 inline constexpr int kHumanoidMaxBones = 1024;
 inline constexpr int kHumanoidMinVertices = 500;  // the coarsest body with every part
-inline constexpr int kHumanoidMaxVertices = 10'000'000;
+// The body has about two triangles per vertex, so six indices: the most whose
+// index accessor the loader still accepts (kMaxAccessorElements), with room.
+inline constexpr int kHumanoidMaxVertices = 2'500'000;
 
 // Builds the character: exactly `bones` joints in parent-before-child order and
 // exactly `vertices` vertices in one primitive, every vertex on a triangle, with
