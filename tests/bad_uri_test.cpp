@@ -31,6 +31,20 @@ TEST(BadUri, BufferUriWithDotDot) {
   expect_bad_input(with_buffer_uri("uri_backslash", "..\\secret.bin"), {"buffer 0 URI"});
 }
 
+TEST(BadUri, DotDotThatStaysInsideIsRead) {
+  std::string file = with_buffer_uri("uri_dotdot_inside", "sub/../real.bin");
+  fs::path dir = fs::path(file).parent_path();
+  fs::create_directory(dir / "sub");
+  fs::copy_file(dir.parent_path() / "secret.bin", dir / "real.bin");
+  EXPECT_EQ(load_gltf(file).characters.size(), 1u);
+  // A symlinked folder's ".." is its target's parent: outside, so refused.
+  std::string linked = with_buffer_uri("uri_dotdot_link", "link/../secret.bin");
+  fs::path linked_dir = fs::path(linked).parent_path();
+  fs::create_directory_symlink(linked_dir.parent_path() / "elsewhere", linked_dir / "link");
+  fs::create_directory(linked_dir.parent_path() / "elsewhere");
+  expect_bad_input(linked, {"outside the asset's folder"});
+}
+
 TEST(BadUri, BufferUriAbsolute) {
   expect_bad_input(with_buffer_uri("uri_absolute", "/etc/passwd"), {"buffer 0 URI \"/etc/passwd\"", "absolute"});
 }

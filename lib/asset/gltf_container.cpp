@@ -142,8 +142,14 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
   if (decoded[0] == '/') refuse("is an absolute path; refused, assets may only read beside themselves");
   if (decoded.find('\0') != std::string::npos) refuse("holds a NUL byte");
   fs::path relative(decoded);
-  for (const auto& part : relative)
-    if (part == "..") refuse("points outside the asset's folder; refused");
+  // "sub/../x.bin" stays inside; "../x.bin" and "sub/../../x.bin" do not.
+  // (Symlinks are judged below, on the resolved path.)
+  int depth = 0;
+  for (const auto& part : relative) {
+    if (part == "..") --depth;
+    else if (part != "." && !part.empty()) ++depth;
+    if (depth < 0) refuse("points outside the asset's folder; refused");
+  }
   std::error_code ec;
   fs::path base = fs::weakly_canonical(c.base_dir, ec);
   fs::path full = fs::weakly_canonical(base / relative, ec);
