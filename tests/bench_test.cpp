@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "asset/errors.h"
@@ -135,6 +136,23 @@ TEST(Culling, CrowdCopiesOutsideACustomCameraAreSkipped) {
   config.camera = "all";
   CrowdBench all(small_humanoid(), config);
   EXPECT_EQ(all.step().counters.copies_culled, 0u);
+}
+
+TEST(Culling, ACameraLookingStraightDownSeesTheCrowd) {
+  BenchConfig config = config_for("culled", 1, 16);
+  CrowdBench probe(small_humanoid(), config);
+  const Aabb& crowd = probe.crowd().crowd_box;
+  glm::vec3 c = crowd.center();
+  for (float height : {30.0f, -30.0f}) {  // from above, and from below looking up
+    std::string spec = std::to_string(c.x) + "," + std::to_string(c.y + height) + "," + std::to_string(c.z) + "," +
+                       std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.z);
+    Camera camera = make_camera(spec, crowd, 16.0f / 9.0f);
+    glm::mat4 m = camera.view_projection();
+    for (int i = 0; i < 16; ++i) ASSERT_TRUE(std::isfinite(m[i / 4][i % 4])) << spec;
+    config.camera = spec;
+    CrowdBench above(small_humanoid(), config);
+    EXPECT_GT(above.step().counters.copies_visible, 0u) << spec;
+  }
 }
 
 TEST(Reports, CsvAndJsonParseAndAddUp) {

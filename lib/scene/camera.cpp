@@ -77,6 +77,11 @@ Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect) {
     camera.target = glm::vec3(values[3], values[4], values[5]);
     if (glm::length(camera.eye - camera.target) < 1e-6f)
       throw UsageError("--camera '" + spec + "': the eye and the target are the same point");
+    // Looking straight down (or up) the world's up axis leaves lookAt no
+    // sideways direction: the view would be NaN and the frame empty. Let the
+    // top of the picture point down -Z (away from the default camera) instead.
+    glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+    if (std::abs(glm::dot(forward, camera.up)) > 0.9999f) camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
   }
   float distance = glm::length(camera.eye - camera.target);
   camera.far_plane = std::max(1000.0f, 4.0f * (distance + extent));

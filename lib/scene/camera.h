@@ -40,7 +40,8 @@ bool intersects(const Frustum& frustum, const Aabb& box);
 //            the view and the crowd's far corners fall outside it;
 //   all      back far enough to see every copy;
 //   close    a few copies near the front centre.
-// Or "EX,EY,EZ,TX,TY,TZ" for an eye and a target. Throws UsageError.
+// Or "EX,EY,EZ,TX,TY,TZ" for an eye and a target (up is +Y, or -Z when looking
+// straight down or up). Throws UsageError.
 Camera make_camera(const std::string& spec, const Aabb& crowd_box, float aspect);
 
 }  // namespace crowdprof
