@@ -10,6 +10,10 @@ cd "$(dirname "$0")"
 action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
+case "$action" in
+  run | test | build) ;;
+  *) echo "usage: ./setup.sh [run|test|build] [options]" >&2; exit 2 ;;
+esac
 
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
@@ -34,5 +38,4 @@ case "$action" in
   run) exec "$build_dir/crowdprof" bench scenes/humanoid.glb -n 160 "$@" ;;
   test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
   build) ;;
-  *) echo "usage: ./setup.sh [run|test|build] [options]" >&2; exit 2 ;;
 esac
