@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "asset/errors.h"
-#include "asset/output_file.h"
+#include "output/output_file.h"
 #include "render/gl_context.h"
 #include "scene/camera.h"
 

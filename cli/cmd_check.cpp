@@ -11,7 +11,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
-#include "asset/output_file.h"
+#include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"

@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "asset/errors.h"
-#include "asset/gltf_writer.h"
-#include "asset/humanoid.h"
+#include "gen/gltf_writer.h"
+#include "gen/humanoid.h"
 #include "cli/commands.h"
 
 namespace {

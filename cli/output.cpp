@@ -7,7 +7,7 @@
 #include <memory>
 #include <sstream>
 
-#include "asset/output_file.h"
+#include "output/output_file.h"
 
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
   if (quiet || !isatty(STDERR_FILENO)) return {};

@@ -12,5 +12,5 @@
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what = "frame");
 
 // Writes `path` with `body`; UsageError naming the file when it cannot (see
-// asset/output_file.h, whose require_writable checks paths before a run).
+// output/output_file.h, whose require_writable checks paths before a run).
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "asset/gltf_writer.h"
-#include "asset/humanoid.h"
+#include "gen/gltf_writer.h"
+#include "gen/humanoid.h"
 #include "test_support.h"
 
 using crowdprof::test::run_cli;

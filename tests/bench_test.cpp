@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "asset/errors.h"
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "test_support.h"
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "asset/errors.h"
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"
 #include "test_support.h"

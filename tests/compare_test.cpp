@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 #include "frame/compare.h"
 #include "fake_run.h"
 #include "profile/compare_report.h"

@@ -1,7 +1,7 @@
 // The glTF writer: what tinygltf reads back from its files, and write -> load
 // round trips through crowdprof's own loader (exact, or within Draco's
 // quantisation). Also keeps scenes/humanoid.glb equal to what `gen` makes.
-#include "asset/gltf_writer.h"
+#include "gen/gltf_writer.h"
 
 #include <algorithm>
 #include <cstring>
@@ -16,7 +16,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 #include "test_support.h"
 
 using namespace crowdprof;

@@ -1,6 +1,6 @@
 // The generated humanoid: exact counts, a valid skin, and actions that loop and
 // move every joint in the way their names promise.
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <thread>
 
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 #include "frame/crowd_bench.h"
 #include "profile/trace.h"
 #include "test_support.h"

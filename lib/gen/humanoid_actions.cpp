@@ -6,8 +6,8 @@
 #include <cmath>
 #include <functional>
 
-#include "asset/humanoid.h"
-#include "asset/humanoid_rig.h"
+#include "gen/humanoid.h"
+#include "gen/humanoid_rig.h"
 
 namespace crowdprof::humanoid {
 namespace {

@@ -1,7 +1,7 @@
 // The humanoid's rig: which bones a given count buys, where they sit in the
 // bind pose, and the Skeleton made from them. Mesh and actions are built from the
 // rig in humanoid_mesh.cpp and humanoid_actions.cpp.
-#include "asset/humanoid.h"
+#include "gen/humanoid.h"
 
 #include <cmath>
 #include <string>
@@ -10,7 +10,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_accessor.h"
-#include "asset/humanoid_rig.h"
+#include "gen/humanoid_rig.h"
 
 namespace crowdprof {
 namespace humanoid {

@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 
-#include "asset/humanoid.h"
-#include "asset/humanoid_rig.h"
+#include "gen/humanoid.h"
+#include "gen/humanoid_rig.h"
 
 namespace crowdprof::humanoid {
 namespace {

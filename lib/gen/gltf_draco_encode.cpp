@@ -1,4 +1,4 @@
-#include "asset/gltf_draco_encode.h"
+#include "gen/gltf_draco_encode.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "asset/gltf_writer.h"
+#include "gen/gltf_writer.h"
 
 #include <map>
 #include <stdexcept>
@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "asset/errors.h"
-#include "asset/gltf_draco_encode.h"
-#include "asset/output_file.h"
+#include "gen/gltf_draco_encode.h"
+#include "output/output_file.h"
 
 namespace crowdprof {
 namespace {
