@@ -12,6 +12,7 @@
 #include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
+#include "cli/html_output.h"
 #include "cli/output.h"
 #include "frame/compare.h"
 #include "profile/compare_report.h"
@@ -152,7 +153,7 @@ int compare(const CompareCliOptions& o) {
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
-  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
+  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison, preset_mode_order()); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   return kExitOk;
 }

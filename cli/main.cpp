@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_compare_command(app, run);
   add_check_command(app, run);
   add_render_command(app, run);
+  add_report_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

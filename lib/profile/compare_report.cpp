@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "profile/chart_colours.h"
 #include "profile/stats.h"
 #include "profile/svg_chart.h"
 
@@ -163,17 +164,21 @@ nlohmann::json comparison_to_json(const Comparison& comparison) {
   return j;
 }
 
-std::string comparison_svg(const Comparison& comparison) {
+std::string comparison_svg(const Comparison& comparison, const std::vector<std::string>& mode_order) {
   SvgDocument svg;
-  std::string scene;
+  ModeColours colours(mode_order);
+  std::string scene, sweep_scene, warmup = "0";
   if (!comparison.runs.empty()) {
     const RunDescription& run = comparison.runs.front().run;
-    scene = " (" + std::to_string(run.characters) + " characters x " + std::to_string(run.joints) + " joints, " +
-            std::to_string(run.vertices) + " vertices)";
+    scene = ": " + run.character + " x " + std::to_string(run.characters) + " (" + std::to_string(run.joints) +
+            " joints, " + std::to_string(run.vertices) + " vertices), backend " + run.backend;
+    sweep_scene = ": " + run.character + ", backend " + run.backend;
+    warmup = std::to_string(run.warmup);
   }
-  LineChart frames{"Frame time per frame" + scene, "frame (after warm-up)", "frame time (ms)", {}, false};
+  LineChart frames{"Frame time per frame" + scene, "frame (0 = the first measured, after " + warmup + " warm-up)",
+                   "frame time (ms)", {}, false};
   for (const RunReport& run : comparison.runs) {
-    LineSeries series{run.run.mode, {}, frame_ms(run)};
+    LineSeries series{run.run.mode, {}, frame_ms(run), colours.colour(run.run.mode)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
     frames.series.push_back(std::move(series));
   }
@@ -182,7 +187,10 @@ std::string comparison_svg(const Comparison& comparison) {
   std::vector<ModeMedians> medians = mode_medians(comparison.runs);
   StackedBars bars{"Median time per category" + scene, "median time (ms)", {}, {}, {}};
   std::vector<Category> shown = shown_categories(medians);
-  for (Category c : shown) bars.segments.emplace_back(category_name(c));
+  for (Category c : shown) {
+    bars.segments.emplace_back(category_name(c));
+    bars.colours.emplace_back(category_colour(c));
+  }
   for (const ModeMedians& m : medians) {
     bars.bars.push_back(m.mode);
     std::vector<double> values;
@@ -192,11 +200,14 @@ std::string comparison_svg(const Comparison& comparison) {
   svg.add(bars);
 
   if (!comparison.sweep.empty()) {
-    LineChart sweep{"Median frame time against crowd size", "characters", "median frame time (ms)", {}, true};
+    LineChart sweep{"Median frame time against crowd size" + sweep_scene, "characters (log scale)",
+                    "median frame time (ms)", {}, true};
+    sweep.log_x = true;
     for (const ModeMedians& m : mode_medians(comparison.sweep)) {
       auto it = std::find_if(sweep.series.begin(), sweep.series.end(),
                              [&](const LineSeries& s) { return s.name == m.mode; });
-      if (it == sweep.series.end()) it = sweep.series.insert(sweep.series.end(), LineSeries{m.mode, {}, {}});
+      if (it == sweep.series.end())
+        it = sweep.series.insert(sweep.series.end(), LineSeries{m.mode, {}, {}, colours.colour(m.mode)});
       it->x.push_back(static_cast<double>(m.characters));
       it->y.push_back(m.frame_ms);
     }

@@ -50,7 +50,8 @@ nlohmann::json comparison_to_json(const Comparison& comparison);
 
 // Frame time per frame, one line per mode (the thesis's figure 11); a stacked
 // bar of the categories per mode; with a sweep, median frame time against
-// characters, one line per mode.
-std::string comparison_svg(const Comparison& comparison);
+// characters (log scale), one line per mode. Modes in `mode_order` (the
+// presets) keep their colours (chart_colours.h).
+std::string comparison_svg(const Comparison& comparison, const std::vector<std::string>& mode_order = {});
 
 }  // namespace crowdprof

@@ -131,6 +131,12 @@ std::string resolve_metric(std::string_view name) {
 }
 
 nlohmann::json read_result(const std::string& path) {
+  json doc = read_json_document(path);
+  validate_result(doc, path);
+  return doc;
+}
+
+nlohmann::json read_json_document(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   fs::file_status status = fs::status(path, error);
@@ -154,7 +160,6 @@ nlohmann::json read_result(const std::string& path) {
     throw InputError(path, truncated ? "truncated JSON (it ends after " + std::to_string(text.size()) + " bytes)"
                                      : "not JSON (byte " + std::to_string(e.byte) + ")");
   }
-  validate_result(doc, path);
   return doc;
 }
 

@@ -28,6 +28,11 @@ double parse_tolerance(std::string_view text);
 // "GPU Latency", "gpu_latency"). UsageError listing the choices otherwise.
 std::string resolve_metric(std::string_view name);
 
+// Reads a JSON document that should be one of crowdprof's results: InputError
+// naming `path` when the file is missing, unreadable, empty, not JSON or
+// truncated. Nothing is validated beyond JSON.
+nlohmann::json read_json_document(const std::string& path);
+
 // Reads and validates a result written by bench --json (see validate_result).
 // InputError naming `path` when the file is unreadable, empty, not JSON or
 // truncated, or not a result this version can read.

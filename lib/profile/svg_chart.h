@@ -1,7 +1,8 @@
 // Plain SVG charts for reports: lines (frame time per frame, the thesis's
-// figure 11; median frame time against crowd size) and stacked bars (where
-// each mode's frame goes). No scripts or external fonts: the file opens in any
-// browser and can be kept as a CI artifact.
+// figure 11; median frame time against crowd size), stacked bars (where each
+// mode's frame goes), stacked areas (where each frame goes) and a verdict per
+// metric (check). No scripts or external fonts: a file opens in any browser and
+// can be kept as a CI artifact, and the HTML report inlines the same charts.
 #pragma once
 
 #include <string>
@@ -12,12 +13,29 @@ namespace crowdprof {
 struct LineSeries {
   std::string name;
   std::vector<double> x, y;  // as many x as y
+  std::string colour = {};   // empty: the series' place in the chart picks one
+};
+
+// A horizontal line across a line chart at `y`: a frame budget, a percentile.
+struct Guide {
+  double y = 0;
+  std::string label;           // in the right margin; empty: only a tooltip
+  std::string colour = "#444";
+  std::string dash = "6,4";
+  std::string kind = "guide";  // the element's class, for readers and tests
+  // True: the y axis stretches to show it. False: when it is above the data's
+  // scale, a note at the top says so instead of squashing the data flat.
+  bool fit = true;
+  bool label_left = false;  // the label at the left end (percentiles), else the right (budgets)
 };
 
 struct LineChart {
   std::string title, x_label, y_label;  // labels carry units: "frame time (ms)"
-  std::vector<LineSeries> series;       // one polyline each, colour by position
+  std::vector<LineSeries> series;       // one polyline each
   bool markers = false;                 // a dot on every point (for few points)
+  bool log_x = false;                   // a log-scaled x axis (crowd sizes); x <= 0 not drawn
+  std::vector<Guide> guides = {};
+  std::string id = {};                  // data-chart, to find the chart in a page
 };
 
 struct StackedBars {
@@ -25,17 +43,54 @@ struct StackedBars {
   std::vector<std::string> segments;         // bottom to top, e.g. category names
   std::vector<std::string> bars;             // one bar each, left to right
   std::vector<std::vector<double>> values;   // [bar][segment]
+  std::vector<std::string> colours = {};     // per segment; empty: by position
+  std::string id = {};
 };
 
-// Charts stacked top to bottom in one <svg>. Every series is a
-// <g class="series" data-name="..."> and every bar a <g class="bar" ...>, so
-// scripts (and tests) can find them; names are escaped.
+// Layers stacked on one another over x (categories per frame).
+struct AreaLayer {
+  std::string name, colour;
+  std::vector<double> y;  // one per x; not finite or negative counts as 0
+};
+struct StackedArea {
+  std::string title, x_label, y_label;
+  std::vector<double> x;
+  std::vector<AreaLayer> layers;  // bottom to top
+  std::string id = {};
+};
+
+// One row per metric: the change of its median against the allowed band.
+struct VerdictRow {
+  std::string name;     // "frame", "Animations"
+  double change = 0;    // a fraction: +0.2 is 20% slower
+  std::string verdict;  // "ok", "REGRESSION", ...
+  std::string colour;
+  std::string detail;   // tooltip: medians, p-value
+};
+struct VerdictChart {
+  std::string title;
+  double tolerance = 0.1;  // the band [0, tolerance] of slowdown allowed
+  std::vector<VerdictRow> rows;
+  std::string id = {};
+};
+
+// Charts stacked top to bottom in one <svg>. Every chart is a
+// <g class="chart ..." data-chart="ID" data-series="N">, every series a
+// <g class="series" data-name="..." data-geometry="line|area|dots"
+// data-points="N"> and every bar a <g class="bar" data-segments="N">, so
+// scripts (and tests) can find them and count what the browser drew; names
+// are escaped.
 class SvgDocument {
  public:
   explicit SvgDocument(int width = 960) : width_(width) {}
   void add(const LineChart& chart);
   void add(const StackedBars& chart);
+  void add(const StackedArea& chart);
+  void add(const VerdictChart& chart);
+  // A standalone SVG file.
   std::string str() const;
+  // The same <svg> element without the XML prolog, to inline in HTML.
+  std::string inline_svg() const;
 
  private:
   int width_;

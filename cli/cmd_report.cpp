@@ -1,0 +1,46 @@
+// `crowdprof report RESULT.json [MORE.json ...] -o report.html`: the HTML
+// report of results already written (bench, check or compare --json). Every
+// input is read and checked before anything is written, so a bad file leaves
+// no report behind.
+#include <filesystem>
+#include <iostream>
+
+#include "asset/errors.h"
+#include "cli/commands.h"
+#include "cli/html_output.h"
+#include "output/output_file.h"
+
+namespace {
+
+using namespace crowdprof;
+
+struct ReportCliOptions {
+  std::vector<std::string> files;
+  std::string output, screenshot;
+};
+
+int report(const ReportCliOptions& o) {
+  for (const std::string& file : o.files) {
+    std::error_code error;
+    if (file == o.output || std::filesystem::equivalent(file, o.output, error))
+      throw UsageError("-o " + o.output + " is one of the results it reports on; name another file");
+  }
+  require_writable(o.output, "HTML");
+  HtmlReportInput input;
+  for (const std::string& file : o.files) add_result_file(input, file);
+  if (!o.screenshot.empty()) input.screenshot_png = read_png(o.screenshot);
+  write_html_report(o.output, std::move(input));
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<ReportCliOptions>();
+  auto* cmd = app.add_subcommand("report", "Write an HTML report (charts, tables, environment) of results of bench, "
+                                           "check or compare --json: one file that opens in any browser");
+  cmd->add_option("results", options->files, "Result files (JSON); several: side by side")->required();
+  cmd->add_option("-o,--output", options->output, "The HTML file to write")->required();
+  cmd->add_option("--screenshot", options->screenshot, "A PNG (bench --screenshot) to show in the report");
+  cmd->callback([&run, options] { run = [options] { return report(*options); }; });
+}

@@ -1,0 +1,27 @@
+#include "cli/html_output.h"
+
+#include <fstream>
+#include <iterator>
+
+#include "asset/errors.h"
+#include "frame/modes.h"
+#include "output/output_file.h"
+
+std::vector<std::string> preset_mode_order() {
+  std::vector<std::string> names;
+  for (const crowdprof::ModePreset& preset : crowdprof::mode_presets()) names.emplace_back(preset.name);
+  return names;
+}
+
+void write_html_report(const std::string& path, crowdprof::HtmlReportInput input) {
+  input.mode_order = preset_mode_order();
+  crowdprof::write_file(path, "HTML", crowdprof::html_report(input));
+}
+
+std::string read_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw crowdprof::InputError(path, "cannot be read");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  crowdprof::require_png(bytes, path);
+  return bytes;
+}

@@ -1,0 +1,412 @@
+#include "profile/html_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "asset/errors.h"
+#include "profile/report.h"
+#include "profile/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+std::string h(const std::string& text) { return xml_escape(text); }
+
+std::string base64(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t n = static_cast<uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+// A comparison's sweep rows, checked as validate_result checks a bench's fields.
+void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path) {
+  if (!doc.contains("sweep")) return;
+  const json& sweep = doc["sweep"];
+  if (!sweep.is_array()) throw InputError(path, "\"sweep\" should be an array");
+  for (const json& row : sweep) {
+    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains("characters") &&
+              row["characters"].is_number_unsigned() && row.contains("frame_median_ms") &&
+              row["frame_median_ms"].is_number() && std::isfinite(row["frame_median_ms"].get<double>()) &&
+              row["frame_median_ms"].get<double>() >= 0;
+    if (!ok) throw InputError(path, "a \"sweep\" row without mode, characters and frame_median_ms");
+    input.sweep.push_back({row["mode"].get<std::string>(), row["characters"].get<size_t>(),
+                           row["frame_median_ms"].get<double>()});
+  }
+}
+
+// Labels: the mode; with the crowd size when a mode comes at several sizes;
+// with the file when even that is not enough to tell two results apart.
+void label_runs(std::vector<ReportRun>& runs) {
+  auto key = [](const ReportRun& r, int level) {
+    std::string mode = r.doc["mode"].get<std::string>();
+    if (level == 0) return mode;
+    std::string sized = mode + " n=" + std::to_string(r.doc["scene"]["characters"].get<size_t>());
+    return level == 1 ? sized : sized + " (" + file_name(r.source) + ")";
+  };
+  for (int level = 0; level < 3; ++level) {
+    std::map<std::string, int> seen;
+    for (const ReportRun& r : runs) ++seen[key(r, level)];
+    if (std::all_of(seen.begin(), seen.end(), [](const auto& s) { return s.second == 1; }) || level == 2) {
+      std::map<std::string, int> count;
+      for (ReportRun& r : runs) {
+        r.label = key(r, level);
+        if (seen[r.label] > 1) r.label += " #" + std::to_string(++count[r.label]);
+      }
+      return;
+    }
+  }
+}
+
+const char* kStyle = R"(
+body{font-family:sans-serif;margin:24px auto;max-width:1000px;color:#222;padding:0 12px}
+h1{font-size:1.5em;margin-bottom:4px}h2{font-size:1.2em;margin-top:28px;border-bottom:1px solid #ccc}
+table{border-collapse:collapse;margin:8px 0}td,th{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}
+th{background:#f4f4f4}td.name,th.name{text-align:left}.sources{color:#555;font-size:.9em}
+svg{max-width:100%;height:auto;display:block;margin:8px 0}.bar{display:inline-block;height:10px;background:#4E79A7}
+.regression{color:#B00020;font-weight:bold}.ok{color:#1B7F3B;font-weight:bold}pre{background:#f7f7f7;padding:8px}
+img.screenshot{max-width:100%;border:1px solid #ccc}.swatch{display:inline-block;width:10px;height:10px;margin-right:4px}
+)";
+
+// Records script errors where a reader (and the browser test) finds them.
+const char* kErrorHook = R"(<script>
+window.addEventListener('error', function (e) {
+  var html = document.documentElement;
+  html.setAttribute('data-js-errors', (html.getAttribute('data-js-errors') || '') + e.message + '; ');
+});
+</script>
+)";
+
+// Counts what the browser drew of every chart and compares it with what the
+// chart says it holds: series, points per series (parsed by the browser from
+// the SVG), segments per bar; and every point inside its picture.
+const char* kSelfCheck = R"(<script>
+(function () {
+  var problems = [];
+  var charts = document.querySelectorAll('g.chart');
+  charts.forEach(function (chart) {
+    var id = chart.getAttribute('data-chart') || '?';
+    var box = chart.ownerSVGElement.viewBox.baseVal;
+    var inside = function (p) { return isFinite(p.x) && isFinite(p.y) && p.x >= 0 && p.y >= 0 && p.x <= box.width && p.y <= box.height; };
+    var series = chart.querySelectorAll('g.series'), bars = chart.querySelectorAll('g.bar');
+    var drawn = series.length + bars.length;
+    chart.setAttribute('data-drawn-series', drawn);
+    if (String(drawn) !== chart.getAttribute('data-series')) problems.push(id + ': ' + drawn + ' series drawn, ' + chart.getAttribute('data-series') + ' said');
+    series.forEach(function (s) {
+      var geometry = s.getAttribute('data-geometry'), n = 0, points = [];
+      if (geometry === 'line' || geometry === 'area') {
+        var shape = s.querySelector(geometry === 'line' ? 'polyline' : 'polygon');
+        for (var i = 0; shape && i < shape.points.numberOfItems; ++i) points.push(shape.points.getItem(i));
+        n = geometry === 'line' ? points.length : points.length / 2;
+      } else {
+        s.querySelectorAll('circle').forEach(function (c) { points.push({x: c.cx.baseVal.value, y: c.cy.baseVal.value}); });
+        n = points.length;
+      }
+      s.setAttribute('data-drawn-points', n);
+      var name = id + '/' + s.getAttribute('data-name');
+      if (String(n) !== s.getAttribute('data-points')) problems.push(name + ': ' + n + ' points drawn, ' + s.getAttribute('data-points') + ' said');
+      if (!points.every(inside)) problems.push(name + ': a point outside the chart');
+    });
+    bars.forEach(function (b) {
+      var n = b.querySelectorAll('rect').length;
+      b.setAttribute('data-drawn-segments', n);
+      if (String(n) !== b.getAttribute('data-segments')) problems.push(id + '/' + b.getAttribute('data-name') + ': ' + n + ' segments drawn');
+    });
+  });
+  var expected = document.body.getAttribute('data-charts');
+  if (String(charts.length) !== expected) problems.push(charts.length + ' charts drawn, ' + expected + ' made');
+  document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') : 'ok ' + charts.length + ' charts');
+})();
+</script>
+)";
+
+std::string env_value(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
+
+// Rows of what a run was measured on: the result's environment as recorded
+// (whatever fields its version wrote), the threads and crowdprof's version.
+std::vector<std::pair<std::string, std::string>> environment_rows(const json& doc) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  const json& tag = doc["crowdprof"];
+  rows.push_back({"crowdprof", env_value(tag.value("version", json("?"))) + " (" + env_value(tag.value("commit", json("?"))) + ")"});
+  if (doc.contains("environment") && doc["environment"].is_object())
+    for (const auto& [key, value] : doc["environment"].items()) rows.push_back({key, env_value(value)});
+  rows.push_back({"threads", env_value(doc["threads"])});
+  rows.push_back({"mode", doc["mode"].get<std::string>() + " " + doc["switches"].dump()});
+  return rows;
+}
+
+std::string environment_section(const std::vector<ReportRun>& runs) {
+  // One column when every run was measured alike, else one per run.
+  std::vector<std::vector<std::pair<std::string, std::string>>> tables;
+  for (const ReportRun& run : runs) tables.push_back(environment_rows(run.doc));
+  bool alike = std::all_of(tables.begin(), tables.end(), [&](const auto& t) {
+    auto skip_mode = [](const auto& rows) {
+      std::vector<std::pair<std::string, std::string>> out;
+      for (const auto& row : rows)
+        if (row.first != "mode" && row.first != "threads") out.push_back(row);
+      return out;
+    };
+    return skip_mode(t) == skip_mode(tables.front());
+  });
+  std::string out = "<section id=\"environment\"><h2>Environment</h2>\n<table><tr><th class=\"name\">field</th>";
+  size_t columns = alike ? 1 : runs.size();
+  for (size_t c = 0; c < columns; ++c) out += "<th class=\"name\">" + h(alike ? "value" : runs[c].label) + "</th>";
+  out += "</tr>\n";
+  std::vector<std::string> keys;
+  for (const auto& table : tables)
+    for (const auto& row : table)
+      if (std::find(keys.begin(), keys.end(), row.first) == keys.end()) keys.push_back(row.first);
+  for (const std::string& key : keys) {
+    out += "<tr><td class=\"name\">" + h(key) + "</td>";
+    if (alike && (key == "mode" || key == "threads")) {
+      std::set<std::string> values;
+      for (const auto& table : tables)
+        for (const auto& row : table)
+          if (row.first == key) values.insert(row.second);
+      std::string joined;
+      for (const std::string& v : values) joined += (joined.empty() ? "" : "; ") + v;
+      out += "<td class=\"name\">" + h(joined) + "</td>";
+    } else {
+      for (size_t c = 0; c < columns; ++c) {
+        std::string value;
+        for (const auto& row : tables[c])
+          if (row.first == key) value = row.second;
+        out += "<td class=\"name\">" + h(value) + "</td>";
+      }
+    }
+    out += "</tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
+std::string counters_text(const json& counters) {
+  std::string out;
+  for (const auto& [name, value] : counters.items()) out += (out.empty() ? "" : ", ") + name + " " + env_value(value);
+  return out;
+}
+
+// The BGE's overlay for each run's median frame: ms and share per category.
+std::string profile_section(const std::vector<ReportRun>& runs) {
+  std::string out = "<section id=\"profile\"><h2>Profile (the BGE's table, median frame)</h2>\n<table><tr><th class=\"name\">category</th>";
+  std::vector<FrameTimes> medians;
+  for (const ReportRun& run : runs) {
+    out += "<th>" + h(run.label) + " ms</th><th>%</th>";
+    std::vector<FrameRecord> frames(run.doc["frames"].get<size_t>());
+    for (size_t c = 0; c < kCategoryCount; ++c) {
+      std::vector<double> ms = result_samples(run.doc, std::string(category_name(static_cast<Category>(c))));
+      for (size_t i = 0; i < frames.size(); ++i) frames[i].times.ms[c] = ms[i];
+    }
+    medians.push_back(frames[median_frame(frames)].times);
+  }
+  out += "</tr>\n<tr><td class=\"name\"><b>Frametime</b></td>";
+  for (const FrameTimes& t : medians)
+    out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
+  out += "</tr>\n";
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    auto category = static_cast<Category>(c);
+    out += "<tr><td class=\"name\"><span class=\"swatch\" style=\"background:" + std::string(category_colour(category)) +
+           "\"></span>" + h(std::string(category_name(category))) + "</td>";
+    for (const FrameTimes& t : medians) {
+      double share = t.total_ms() > 0 ? t.ms[c] / t.total_ms() : 0.0;
+      out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) + "% <span class=\"bar\" style=\"width:" +
+             report_number(share * 60, 1) + "px;background:" + category_colour(category) + "\"></span></td>";
+    }
+    out += "</tr>\n";
+  }
+  out += "</table>\n";
+  for (const ReportRun& run : runs) {
+    const json& scene = run.doc["scene"];
+    out += "<p>" + h(run.label) + ": " + std::to_string(scene["characters"].get<size_t>()) + " characters x " +
+           std::to_string(scene["joints"].get<size_t>()) + " joints, " + std::to_string(scene["vertices"].get<size_t>()) +
+           " vertices (" + h(scene["file"].get<std::string>()) + ") | " + std::to_string(run.doc["frames"].get<size_t>()) +
+           " frames after " + std::to_string(run.doc["warmup"].get<size_t>()) + " warm-up | actions " +
+           h(scene["action_choice"].get<std::string>()) + " | per frame: " + h(counters_text(run.doc["counters"])) + " | digest " +
+           h(run.doc["digest"].get<std::string>()) + "</p>\n";
+  }
+  return out + "</section>\n";
+}
+
+std::string percentile_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>p50 ms</th><th>p95 ms</th><th>p99 ms</th>"
+                    "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    std::vector<double> ms = result_samples(run.doc, "frame_ms");
+    auto over = [&](double budget) { return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; }); };
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(ms.size()) + "</td><td>" +
+           report_number(quantile(ms, 0.5), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
+           report_number(quantile(ms, 0.99), 3) + "</td><td>" + report_number(*std::max_element(ms.begin(), ms.end()), 3) + "</td><td>" +
+           std::to_string(over(kBudgetsMs[0])) + "</td><td>" + std::to_string(over(kBudgetsMs[1])) + "</td></tr>\n";
+  }
+  return out + "</table>\n";
+}
+
+std::string modes_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table><tr><th class=\"name\">run</th><th>characters</th><th>threads</th><th>median frame ms</th>"
+                    "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
+  std::map<size_t, double> first;  // per crowd size: the first run's median
+  for (const ReportRun& run : runs) {
+    size_t n = run.doc["scene"]["characters"].get<size_t>();
+    double median = quantile(result_samples(run.doc, "frame_ms"), 0.5);
+    double reference = first.emplace(n, median).first->second;
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(n) + "</td><td>" +
+           env_value(run.doc["threads"]) + "</td><td>" + report_number(median, 3) + "</td><td>" +
+           (median > 0 ? report_number(reference / median, 2) + "x" : "-") + "</td><td class=\"name\">" +
+           h(run.doc["digest"].get<std::string>()) + "</td></tr>\n";
+  }
+  return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";
+}
+
+std::string check_section(const CheckSection& check, std::string& charts) {
+  const CheckResult& r = check.result;
+  std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
+  std::string out = "<section id=\"check\"><h2>Check against " + h(check.baseline) + ": " + verdict + "</h2>\n";
+  SvgDocument svg;
+  svg.add(verdict_chart(r, check.options));
+  charts += "v";
+  out += svg.inline_svg();
+  out += "<table><tr><th class=\"name\">metric</th><th>baseline median ms</th><th>current median ms</th><th>change</th>"
+         "<th>p (Mann-Whitney U)</th><th class=\"name\">verdict</th></tr>\n";
+  VerdictChart rows = verdict_chart(r, check.options);
+  for (size_t m = 0; m < r.metrics.size(); ++m) {
+    const MetricCheck& metric = r.metrics[m];
+    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + "</td><td>" +
+           report_number(metric.current.median, 3) + "</td><td>" +
+           (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
+           "</td><td>" + report_number(metric.test.p, 4) + "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
+  }
+  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "%, significance level " +
+         report_number(check.options.alpha, 3) + ".</p>\n<p>";
+  if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs()) out += "Counters and digest match the baseline.";
+  for (const CounterDifference& d : r.counters)
+    out += "<span class=\"regression\">Counter " + h(d.name) + " changed: " + std::to_string(d.baseline) + " &#8594; " +
+           std::to_string(d.current) + " per frame.</span><br>";
+  for (const std::string& name : r.counters_missing)
+    out += "<span class=\"regression\">Counter " + h(name) + " is in the baseline, missing here.</span><br>";
+  if (r.digest_differs())
+    out += "<span class=\"regression\">Digest changed: " + h(r.baseline_digest) + " &#8594; " + h(r.current_digest) +
+           "</span>";
+  return out + "</p></section>\n";
+}
+
+}  // namespace
+
+void require_png(const std::string& bytes, const std::string& path) {
+  static const std::string kSignature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 33 || bytes.compare(0, 8, kSignature) != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    throw InputError(path, "not a PNG image");
+}
+
+void add_result_document(HtmlReportInput& input, const json& doc, const std::string& source) {
+  validate_result(doc, source);
+  input.runs.push_back({"", doc, source});
+}
+
+void add_result_file(HtmlReportInput& input, const std::string& path) {
+  json doc = read_json_document(path);
+  std::string kind = "bench";
+  if (doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() && doc["crowdprof"].contains("kind") &&
+      doc["crowdprof"]["kind"].is_string())
+    kind = doc["crowdprof"]["kind"].get<std::string>();
+  if (kind == "compare") {
+    if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
+      throw InputError(path, "a comparison without \"runs\": not a complete crowdprof result");
+    for (const json& run : doc["runs"]) add_result_document(input, run, path);
+    add_sweep(input, doc, path);
+  } else if (kind == "bench") {
+    add_result_document(input, doc, path);
+  } else {
+    throw InputError(path, "a '" + kind + "' result; report reads results of bench, check and compare --json");
+  }
+  input.sources.push_back(path);
+}
+
+std::string html_report(const HtmlReportInput& given) {
+  HtmlReportInput input = given;
+  if (input.runs.empty()) throw UsageError("a report needs at least one result");
+  label_runs(input.runs);
+  ModeColours colours(input.mode_order);
+  for (const ReportRun& run : input.runs) colours.colour(run.label);  // in order, before any chart asks
+  const json& first = input.runs.front().doc;
+  std::string caption = scene_caption(first);
+  std::string title = "crowdprof report: " + caption +
+                      (input.check ? ", check" : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
+  std::string charts;  // one letter per chart, for the count the page checks
+  std::string body;
+  body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";
+  if (!input.sources.empty()) {
+    body += "From ";
+    for (size_t s = 0; s < input.sources.size(); ++s) body += (s ? ", " : "") + h(input.sources[s]);
+    body += ". ";
+  }
+  body += "Made by crowdprof " + h(env_value(first["crowdprof"].value("version", json("?")))) +
+          "; one file, no network needed.</p>\n";
+  if (input.check) body += check_section(*input.check, charts);
+  body += profile_section(input.runs);
+
+  SvgDocument frame_svg;
+  frame_svg.add(frame_time_chart(input.runs, colours));
+  charts += "f";
+  body += "<section id=\"frame-time\"><h2>Frame time per frame</h2>\n" + frame_svg.inline_svg() + percentile_table(input.runs) +
+          "</section>\n";
+
+  body += "<section id=\"categories\"><h2>Categories per frame</h2>\n";
+  for (const ReportRun& run : input.runs) {
+    SvgDocument svg;
+    svg.add(categories_chart(run));
+    charts += "c";
+    body += svg.inline_svg();
+  }
+  body += "</section>\n";
+
+  if (input.runs.size() > 1) {
+    SvgDocument svg;
+    svg.add(modes_chart(input.runs));
+    charts += "m";
+    body += "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
+  }
+
+  std::vector<SweepPoint> sweep = input.sweep;
+  std::set<size_t> sizes;
+  for (const ReportRun& run : input.runs) sizes.insert(run.doc["scene"]["characters"].get<size_t>());
+  if (sweep.empty() && sizes.size() > 1)
+    for (const ReportRun& run : input.runs)
+      sweep.push_back({run.doc["mode"].get<std::string>(), run.doc["scene"]["characters"].get<size_t>(),
+                       quantile(result_samples(run.doc, "frame_ms"), 0.5)});
+  if (!sweep.empty()) {
+    SvgDocument svg;
+    std::string character = first["scene"]["character"].get<std::string>();
+    svg.add(sweep_chart(sweep, character, colours));
+    charts += "s";
+    body += "<section id=\"sweep\"><h2>Crowd size sweep</h2>\n" + svg.inline_svg() + "</section>\n";
+  }
+
+  body += environment_section(input.runs);
+  if (!input.screenshot_png.empty())
+    body += "<section id=\"screenshot\"><h2>Screenshot (the last frame)</h2>\n<img class=\"screenshot\" alt=\"the last "
+            "frame drawn\" src=\"data:image/png;base64," + base64(input.screenshot_png) + "\"></section>\n";
+
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
+         "content=\"width=device-width, initial-scale=1\">\n<title>" + h(title) + "</title>\n" + kErrorHook +
+         "<style>" + kStyle + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
+         kSelfCheck + "</body>\n</html>\n";
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,54 @@
+// The HTML report: one self-contained page (inline SVG charts, inline CSS and
+// a small inline script, no network, no external font) that a person opens
+// from a CI artifact store or an e-mail. It holds the BGE table, frame time per
+// frame with the 16.7 and 33.3 ms budgets and p50/p95/p99, the categories
+// stacked per frame, the modes side by side and the sweep for several results,
+// check's verdict per metric, the environment and the screenshot (docs/report.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "profile/regression.h"
+#include "profile/report_charts.h"
+
+namespace crowdprof {
+
+struct CheckSection {
+  CheckResult result;
+  CheckOptions options;
+  std::string baseline;  // the baseline's path, as given
+};
+
+struct HtmlReportInput {
+  std::vector<std::string> sources;  // files the report was made from, named under the title
+  std::vector<ReportRun> runs;       // bench results (validate_result), in order; labels made by html_report
+  std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
+  std::optional<CheckSection> check;
+  std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
+  // Modes whose colour is fixed, in order (the presets): ModeColours.
+  std::vector<std::string> mode_order;
+};
+
+// Adds a result read from `path`: a bench result (bench or check --json) or a
+// comparison (compare --json, its runs and sweep). InputError naming the file
+// when it is not crowdprof's, truncated, of another format or incomplete.
+void add_result_file(HtmlReportInput& input, const std::string& path);
+
+// Adds a result document made in this process (validated; `source` names it
+// in errors).
+void add_result_document(HtmlReportInput& input, const nlohmann::json& doc, const std::string& source);
+
+// InputError naming `path` unless `bytes` are a PNG (its signature and IHDR).
+void require_png(const std::string& bytes, const std::string& path);
+
+// The page. Each chart is an inline <svg> (svg_chart.h's data attributes); the
+// script at the end counts what the browser drew of each chart and writes
+// "ok N charts" or what differs into <body data-report-check>, and any script
+// error into <html data-js-errors>.
+std::string html_report(const HtmlReportInput& input);
+
+}  // namespace crowdprof

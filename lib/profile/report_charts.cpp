@@ -1,0 +1,164 @@
+#include "profile/report_charts.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "profile/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+std::string text_of(const json& section, const char* key, const char* otherwise) {
+  return section.is_object() && section.contains(key) && section[key].is_string() ? section[key].get<std::string>()
+                                                                                  : std::string(otherwise);
+}
+
+std::vector<double> frame_numbers(size_t count) {
+  std::vector<double> x(count);
+  for (size_t i = 0; i < count; ++i) x[i] = static_cast<double>(i);
+  return x;
+}
+
+std::string frames_axis(const std::vector<ReportRun>& runs) {
+  std::string warmup = runs.empty() ? "0" : std::to_string(runs.front().doc.value("warmup", size_t{0}));
+  return "frame (0 = the first measured, after " + warmup + " warm-up)";
+}
+
+}  // namespace
+
+std::string report_number(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::vector<double> result_samples(const json& doc, const std::string& key) {
+  return doc.at("samples").at(key).get<std::vector<double>>();
+}
+
+std::string scene_caption(const json& doc) {
+  const json& scene = doc["scene"];
+  return text_of(scene, "character", "?") + " x " + std::to_string(scene.value("characters", size_t{0})) +
+         ", backend " + text_of(doc.contains("environment") ? doc["environment"] : json(), "backend", "none");
+}
+
+LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
+  LineChart chart{"Frame time per frame: " + (runs.empty() ? std::string() : scene_caption(runs.front().doc)),
+                  frames_axis(runs), "frame time (ms)", {}, false};
+  chart.id = "frame-time";
+  double highest = 0;
+  for (const ReportRun& run : runs) {
+    std::vector<double> ms = result_samples(run.doc, "frame_ms");
+    for (double v : ms) highest = std::max(highest, v);
+    std::string colour = colours.colour(run.label);
+    struct Mark {
+      const char* name;
+      double q;
+      const char* dash;
+    };
+    for (Mark mark : {Mark{"p50", 0.5, "2,3"}, Mark{"p95", 0.95, "6,3"}, Mark{"p99", 0.99, "12,3"}}) {
+      double value = quantile(ms, mark.q);
+      std::string label = std::string(mark.name) + (runs.size() > 1 ? " " + run.label : "") + " " + report_number(value, 2) + " ms";
+      chart.guides.push_back({value, label, colour, mark.dash, std::string("percentile ") + mark.name, true, true});
+    }
+    chart.series.push_back({run.label, frame_numbers(ms.size()), std::move(ms), colour});
+  }
+  // A budget far above every frame would squash the frames flat: it is then
+  // named at the top of the chart instead of drawn.
+  for (double budget : kBudgetsMs)
+    chart.guides.push_back({budget, report_number(budget, 1) + " ms budget (" + report_number(1000.0 / budget, 0) + " fps)", "#B00020",
+                            "8,4", "budget", highest >= 0.4 * budget, false});
+  // Several runs: labels of every percentile would pile up; the table below the
+  // chart gives them, the lines keep their tooltips.
+  if (runs.size() > 2)
+    for (Guide& guide : chart.guides)
+      if (guide.kind != "budget") guide.label.clear();
+  return chart;
+}
+
+StackedArea categories_chart(const ReportRun& run) {
+  StackedArea chart{"Time per category per frame, " + run.label + ": " + scene_caption(run.doc),
+                    frames_axis({run}), "time (ms), categories stacked", {}, {}};
+  chart.id = "categories";
+  chart.x = frame_numbers(run.doc["frames"].get<size_t>());
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    auto category = static_cast<Category>(c);
+    std::vector<double> ms = result_samples(run.doc, std::string(category_name(category)));
+    if (std::none_of(ms.begin(), ms.end(), [](double v) { return v > 0; })) continue;
+    chart.layers.push_back({std::string(category_name(category)), category_colour(category), std::move(ms)});
+  }
+  return chart;
+}
+
+StackedBars modes_chart(const std::vector<ReportRun>& runs) {
+  std::vector<std::array<double, kCategoryCount>> medians;
+  for (const ReportRun& run : runs) {
+    medians.emplace_back();
+    for (size_t c = 0; c < kCategoryCount; ++c)
+      medians.back()[c] = quantile(result_samples(run.doc, std::string(category_name(static_cast<Category>(c)))), 0.5);
+  }
+  StackedBars chart{"Median time per category, modes side by side: " +
+                        (runs.empty() ? std::string() : scene_caption(runs.front().doc)),
+                    "median time (ms)", {}, {}, {}};
+  chart.id = "modes";
+  std::vector<size_t> shown;
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (std::any_of(medians.begin(), medians.end(), [c](const auto& m) { return m[c] >= 0.005; })) {
+      shown.push_back(c);
+      chart.segments.emplace_back(category_name(static_cast<Category>(c)));
+      chart.colours.emplace_back(category_colour(static_cast<Category>(c)));
+    }
+  for (size_t r = 0; r < runs.size(); ++r) {
+    chart.bars.push_back(runs[r].label);
+    std::vector<double> values;
+    for (size_t c : shown) values.push_back(medians[r][c]);
+    chart.values.push_back(std::move(values));
+  }
+  return chart;
+}
+
+LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours) {
+  LineChart chart{"Median frame time against crowd size: " + caption, "characters (log scale)",
+                  "median frame time (ms)", {}, true};
+  chart.log_x = true;
+  chart.id = "sweep";
+  for (const SweepPoint& point : points) {
+    auto it = std::find_if(chart.series.begin(), chart.series.end(),
+                           [&](const LineSeries& s) { return s.name == point.mode; });
+    if (it == chart.series.end())
+      it = chart.series.insert(chart.series.end(), LineSeries{point.mode, {}, {}, colours.colour(point.mode)});
+    it->x.push_back(static_cast<double>(point.characters));
+    it->y.push_back(point.frame_median_ms);
+  }
+  for (LineSeries& series : chart.series) {  // left to right, whatever order the points came in
+    std::vector<size_t> order(series.x.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return series.x[a] < series.x[b]; });
+    LineSeries sorted{series.name, {}, {}, series.colour};
+    for (size_t i : order) sorted.x.push_back(series.x[i]), sorted.y.push_back(series.y[i]);
+    series = std::move(sorted);
+  }
+  return chart;
+}
+
+VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options) {
+  VerdictChart chart{"check: change of each metric's median, baseline to current", options.tolerance, {}};
+  chart.id = "verdict";
+  for (const MetricCheck& m : result.metrics) {
+    // The words format_check uses for the same outcomes.
+    std::string verdict = m.regressed                                                     ? "REGRESSION"
+                          : m.beyond_tolerance                                            ? "slower, not significant"
+                          : m.change < -options.tolerance && m.test.p < options.alpha ? "faster"
+                                                                                          : "ok";
+    std::string colour = m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
+    std::string detail = m.metric + ": median " + report_number(m.baseline.median, 3) + " -> " + report_number(m.current.median, 3) +
+                         " ms, p = " + report_number(m.test.p, 4);
+    chart.rows.push_back({m.metric, m.change, verdict, colour, detail});
+  }
+  return chart;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,62 @@
+// The charts of the HTML report, drawn from result documents (bench --json,
+// the runs of compare --json) so the report shows what the files hold. Every
+// chart colours categories and modes by chart_colours.h, numbers frames from
+// the first measured one, and names the character and backend in its title.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "profile/chart_colours.h"
+#include "profile/regression.h"
+#include "profile/svg_chart.h"
+
+namespace crowdprof {
+
+// One bench result (validate_result) and how the report names it: its mode,
+// or more when two results share a mode.
+struct ReportRun {
+  std::string label;
+  nlohmann::json doc;
+  std::string source;  // the file it came from ("" when made in this process)
+};
+
+// A median frame time at one crowd size (compare --sweep, or several results).
+struct SweepPoint {
+  std::string mode;
+  size_t characters = 0;
+  double frame_median_ms = 0;
+};
+
+// Frame budgets drawn on frame-time charts: 60 and 30 frames a second.
+inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};
+
+// `value` with `decimals` decimals, as the report's tables and labels print it.
+std::string report_number(double value, int decimals);
+
+// The samples of one metric ("frame_ms", "Animations") of a result.
+std::vector<double> result_samples(const nlohmann::json& doc, const std::string& key);
+
+// "humanoid x 160, backend none": what every title names.
+std::string scene_caption(const nlohmann::json& doc);
+
+// Frame time per frame, a line per run, the budgets and each run's p50, p95
+// and p99 as dashed lines.
+LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colours);
+
+// One run's categories stacked per frame: a layer per category that took any
+// time in any frame.
+StackedArea categories_chart(const ReportRun& run);
+
+// Median time per category, a bar per run (categories of at least 0.005 ms).
+StackedBars modes_chart(const std::vector<ReportRun>& runs);
+
+// Median frame time against crowd size on a log axis, a line per mode.
+LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours);
+
+// check's verdict per metric against the tolerance band.
+VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options);
+
+}  // namespace crowdprof

@@ -1,0 +1,232 @@
+// The HTML report without a browser: what each kind of report holds, that it
+// needs nothing from the network, one colour per category and per mode in
+// every chart, and bad result files refused with exit 3 and no report left.
+// tests/browser/ loads the same reports in chromium.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+
+#include "asset/errors.h"
+#include "fake_run.h"
+#include "profile/chart_colours.h"
+#include "profile/compare_report.h"
+#include "profile/html_report.h"
+#include "test_support.h"
+
+using namespace crowdprof;
+using nlohmann::json;
+
+namespace {
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// A run as a bench would describe it, made up from frame times.
+RunReport fake_bench(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
+  RunReport run = test::fake_run(mode, characters, frame_ms, 0.25);
+  run.run.switches = json::object({{"culling", true}});
+  return run;
+}
+
+json fake_result(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
+  RunReport run = fake_bench(mode, characters, frame_ms);
+  run.run.character = "walker";
+  run.run.warmup = 2;
+  run.environment.cpu = "Test CPU <9000>";
+  return to_json(run);
+}
+
+std::string write_json(const std::filesystem::path& path, const json& doc) {
+  std::ofstream(path) << doc.dump(1);
+  return path.string();
+}
+
+// The fill colour of the series (or legend entry) named `name` in a chart.
+std::string series_colour(const std::string& html, const std::string& name) {
+  std::smatch m;
+  std::regex pattern("data-name=\"" + name + "\" data-geometry=\"line\" data-points=\"[0-9]+\" fill=\"(#[0-9A-Fa-f]{6})\"");
+  return std::regex_search(html, m, pattern) ? m[1].str() : "";
+}
+
+}  // namespace
+
+TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
+  HtmlReportInput input;
+  add_result_document(input, fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json");
+  input.screenshot_png = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) + std::string(20, '\0');
+  std::string html = html_report(input);
+  for (const char* section : {"id=\"profile\"", "id=\"frame-time\"", "id=\"categories\"", "id=\"environment\"",
+                              "id=\"screenshot\"", "data:image/png;base64,iVBORw0KGgo"})
+    EXPECT_NE(html.find(section), std::string::npos) << section;
+  EXPECT_EQ(html.find("id=\"modes\""), std::string::npos) << "one run: nothing side by side";
+  EXPECT_EQ(html.find("id=\"sweep\""), std::string::npos);
+  // Self-contained: no URL of any kind but the data URI.
+  for (const char* outside : {"http:", "https:", "src=\"/", "href=", "@import", "url("})
+    EXPECT_EQ(html.find(outside), std::string::npos) << outside;
+  EXPECT_NE(html.find("Test CPU &lt;9000&gt;"), std::string::npos) << "the environment, escaped";
+  EXPECT_NE(html.find("data-charts=\"2\""), std::string::npos);
+  // Frame time: one series of 10 points; the 16.7 ms budget drawn (a frame of
+  // 20 ms), p50/p95/p99 marked; categories: Animations and Rasterizer.
+  EXPECT_NE(html.find("data-chart=\"frame-time\" data-series=\"1\""), std::string::npos);
+  EXPECT_NE(html.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"10\""), std::string::npos);
+  EXPECT_NE(html.find("<g class=\"budget\" data-value=\"16.6667\""), std::string::npos);
+  EXPECT_NE(html.find("<g class=\"budget\" data-value=\"33.3333\""), std::string::npos);
+  for (const char* mark : {"percentile p50", "percentile p95", "percentile p99"})
+    EXPECT_EQ(count(html, "<g class=\"" + std::string(mark) + "\""), 1u) << mark;
+  EXPECT_NE(html.find("data-chart=\"categories\" data-series=\"2\""), std::string::npos);
+  EXPECT_EQ(count(html, "data-geometry=\"area\" data-points=\"10\""), 2u);
+  EXPECT_NE(html.find("frame (0 = the first measured, after 2 warm-up)"), std::string::npos);
+  EXPECT_NE(html.find("walker x 40, backend none"), std::string::npos) << "character and backend in titles";
+}
+
+TEST(HtmlReport, FastFramesNameTheBudgetsInsteadOfSquashingTheChart) {
+  HtmlReportInput input;
+  add_result_document(input, fake_result("threaded", 40, {1, 1.2, 1.1}), "a.json");
+  std::string html = html_report(input);
+  EXPECT_EQ(count(html, "<g class=\"budget\""), 0u);
+  EXPECT_EQ(count(html, "class=\"budget above\""), 2u);
+}
+
+TEST(HtmlReport, SeveralRunsSideBySideWithASweepAndOneColourPerMode) {
+  HtmlReportInput input;
+  input.mode_order = {"master", "culled", "threaded", "hwskin"};
+  add_result_document(input, fake_result("threaded", 40, {3, 3, 3}), "t40.json");
+  add_result_document(input, fake_result("master", 40, {9, 9, 10}), "m40.json");
+  add_result_document(input, fake_result("threaded", 80, {6, 6, 6}), "t80.json");
+  add_result_document(input, fake_result("master", 80, {18, 19, 18}), "m80.json");
+  std::string html = html_report(input);
+  EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"4\""), std::string::npos);
+  EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
+  EXPECT_EQ(count(html, "data-geometry=\"line\" data-points=\"2\""), 2u) << "two sizes per mode";
+  EXPECT_NE(html.find("characters (log scale)"), std::string::npos);
+  // Labels tell the runs apart; the sweep's lines carry the plain mode.
+  EXPECT_NE(html.find("data-name=\"master n=80\""), std::string::npos);
+  // A preset has its colour whatever else is in the report, in every chart.
+  EXPECT_EQ(series_colour(html, "master"), ModeColours({"master", "culled", "threaded", "hwskin"}).colour("master"));
+  EXPECT_EQ(series_colour(html, "threaded"), "#0072B2");
+  EXPECT_EQ(series_colour(html, "master"), "#D55E00");
+}
+
+TEST(ChartColours, OneColourPerCategoryAndPerModeInEveryChart) {
+  ModeColours a({"master", "culled", "threaded", "hwskin"}), b({"master", "culled", "threaded", "hwskin"});
+  EXPECT_STREQ(a.colour("custom"), a.colour("custom"));
+  EXPECT_STRNE(a.colour("custom"), a.colour("master"));
+  EXPECT_STREQ(a.colour("hwskin"), b.colour("hwskin")) << "asked in another order, the same colour";
+  std::set<std::string> categories;
+  for (size_t c = 0; c < kCategoryCount; ++c) categories.insert(category_colour(static_cast<Category>(c)));
+  EXPECT_EQ(categories.size(), kCategoryCount);
+
+  // The compare SVG: a mode's line and a category's bar segment have their
+  // colours whichever modes and categories the chart shows.
+  Comparison comparison;
+  comparison.runs = {test::fake_run("hwskin", 40, {3, 3}, 0.5), test::fake_run("master", 40, {9, 9}, 1.0)};
+  std::string svg = comparison_svg(comparison, {"master", "culled", "threaded", "hwskin"});
+  EXPECT_NE(svg.find("data-name=\"hwskin\" data-geometry=\"line\" data-points=\"2\" fill=\"#009E73\""), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"" + std::string(category_colour(Category::Rasterizer)) + "\"><title>Rasterizer"),
+            std::string::npos);
+  EXPECT_NE(svg.find("fill=\"" + std::string(category_colour(Category::Animations)) + "\"><title>Animations"),
+            std::string::npos);
+}
+
+TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
+  json base = fake_result("threaded", 40, std::vector<double>(30, 2.0));
+  std::vector<double> slower(30, 3.0);
+  json current = fake_result("threaded", 40, slower);
+  CheckOptions options;
+  options.metrics = {"frame_ms", "Animations", "Rasterizer"};
+  HtmlReportInput input;
+  add_result_document(input, current, "current");
+  input.check = CheckSection{check_results(base, current, options), options, "base.json"};
+  std::string html = html_report(input);
+  EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"3\""), std::string::npos);
+  EXPECT_EQ(count(html, "data-verdict=\"REGRESSION\""), 3u);
+  EXPECT_NE(html.find("class=\"tolerance\""), std::string::npos);
+  EXPECT_NE(html.find("Check against base.json: <span class=\"regression\">REGRESSION"), std::string::npos);
+}
+
+TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {
+  auto dir = test::scratch_dir("html_report_files");
+  json bench = fake_result("culled", 10, {2, 2, 3});
+  HtmlReportInput input;
+  add_result_file(input, write_json(dir / "bench.json", bench));
+  EXPECT_EQ(input.runs.size(), 1u);
+
+  Comparison comparison;
+  comparison.runs = {fake_bench("master", 10, {4, 4}), fake_bench("culled", 10, {3, 3})};
+  comparison.sweep = {fake_bench("master", 5, {2}), fake_bench("culled", 5, {1.5}), comparison.runs[0],
+                      comparison.runs[1]};
+  add_result_file(input, write_json(dir / "compare.json", comparison_to_json(comparison)));
+  EXPECT_EQ(input.runs.size(), 3u);
+  EXPECT_EQ(input.sweep.size(), 4u);
+
+  json older = bench;
+  older["crowdprof"]["format"] = 0;
+  json no_samples = bench;
+  no_samples.erase("samples");
+  json other_kind = bench;
+  other_kind["crowdprof"]["kind"] = "spreadsheet";
+  json bad_sweep = comparison_to_json(comparison);
+  bad_sweep["sweep"][0].erase("mode");
+  std::ofstream(dir / "cut.json") << bench.dump().substr(0, 100);
+  std::ofstream(dir / "words.json") << "frame,mode\n0,master\n";
+  struct Bad {
+    const char* name;
+    json doc;
+    const char* says;
+  };
+  for (const Bad& bad : {Bad{"older", older, "result format 0"}, Bad{"no_samples", no_samples, "samples"},
+                         Bad{"other_kind", other_kind, "'spreadsheet'"}, Bad{"array", json::array({1}), "not a crowdprof result"},
+                         Bad{"bad_sweep", bad_sweep, "sweep"}}) {
+    HtmlReportInput fresh;
+    try {
+      add_result_file(fresh, write_json(dir / (std::string(bad.name) + ".json"), bad.doc));
+      ADD_FAILURE() << bad.name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.says), std::string::npos) << bad.name << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(bad.name), std::string::npos) << "names the file: " << e.what();
+    }
+  }
+  HtmlReportInput fresh;
+  EXPECT_THROW(add_result_file(fresh, (dir / "cut.json").string()), InputError);
+  EXPECT_THROW(add_result_file(fresh, (dir / "words.json").string()), InputError);
+  EXPECT_THROW(require_png("GIF89a and more bytes than a PNG header needs", "x.png"), InputError);
+}
+
+TEST(ReportCli, WritesOneFileFromResultsAndNoneFromBadInput) {
+  auto dir = test::scratch_dir("report_cli");
+  std::string a = write_json(dir / "a.json", fake_result("master", 10, {2, 3, 2}));
+  std::string b = write_json(dir / "b.json", fake_result("threaded", 10, {1, 1, 1}));
+  std::string out = (dir / "report.html").string();
+  auto r = test::run_cli("report '" + a + "' '" + b + "' -o '" + out + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  std::ifstream in(out);
+  std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"2\""), std::string::npos);
+
+  json doc = json::parse(std::ifstream(a));
+  std::ofstream(dir / "cut.json") << doc.dump().substr(0, doc.dump().size() / 2);
+  json older = doc;
+  older["crowdprof"]["format"] = 0;
+  write_json(dir / "older.json", older);
+  std::ofstream(dir / "foreign.json") << R"({"name": "some other tool", "frames": [1, 2]})";
+  for (const char* bad : {"cut.json", "older.json", "foreign.json", "missing.json"}) {
+    std::string target = (dir / (std::string(bad) + ".html")).string();
+    r = test::run_cli("report '" + a + "' '" + (dir / bad).string() + "' -o '" + target + "'");
+    EXPECT_EQ(r.status, 3) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(target)) << bad << ": a report was left behind";
+  }
+  r = test::run_cli("report '" + a + "' -o '" + a + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(json::parse(std::ifstream(a)), doc) << "the input is untouched";
+  r = test::run_cli("report '" + a + "' -o '" + out + "' --screenshot '" + b + "'");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("not a PNG"), std::string::npos) << r.err;
+}
