@@ -163,7 +163,7 @@ void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::N
   inputs.insert(inputs.begin(), {"character file", o.file});
   std::vector<std::pair<crowdprof::NamedPath, const char*>> mine = {
       {{"--csv", o.csv}, "CSV"}, {{"--json", o.json}, "JSON"}, {{"--trace", o.trace}, "trace"},
-      {{"--screenshot", o.screenshot}, "PNG"}};
+      {{"--screenshot", o.screenshot}, "PNG"}, {{"--html", o.html}, "HTML"}};
   std::vector<crowdprof::NamedPath> all;
   for (const auto& [path, what] : mine) all.push_back(path);
   all.insert(all.end(), outputs.begin(), outputs.end());

@@ -35,6 +35,7 @@ struct BenchCliOptions {
   std::string lookups, culling, pose, parallel, skinning;
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
+  std::string html;        // the HTML report of the run (docs/report.md)
 };
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
@@ -49,7 +50,7 @@ void validate_bench_options(const BenchCliOptions& options);
 // Checks every value (UsageError with the option's name) and builds the config.
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const crowdprof::Character& character);
 
-// UsageError, before any work, when --csv, --json, --trace or --screenshot (and
+// UsageError, before any work, when --csv, --json, --trace, --screenshot or --html (and
 // the command's `outputs`) cannot be written, when one of them is the character
 // file (or one of the command's `inputs`), or when two of them share a path.
 void require_writable_outputs(const BenchCliOptions& options, std::vector<crowdprof::NamedPath> inputs = {},

@@ -8,6 +8,7 @@
 #include "asset/gltf_loader.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
+#include "cli/html_output.h"
 #include "cli/output.h"
 #include "frame/run_bench.h"
 #include "profile/trace.h"
@@ -52,6 +53,12 @@ int bench(const BenchCliOptions& options) {
     std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
     write_png(options.screenshot, rendering.renderer->width(), rendering.renderer->height(), pixels);
   }
+  if (!options.html.empty()) {
+    HtmlReportInput input;
+    add_result_document(input, to_json(report), "this run");
+    if (!options.screenshot.empty()) input.screenshot_png = read_png(options.screenshot);
+    write_html_report(options.html, std::move(input));
+  }
   return kExitOk;
 }
 
@@ -68,5 +75,8 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                   "Write a Chrome trace-event JSON (Perfetto, chrome://tracing): a span per stage per frame, and per "
                   "task on each worker thread");
   cmd->add_option("--screenshot", options->screenshot, "Write the last frame as a PNG (needs a GL backend)");
+  cmd->add_option("--html", options->html,
+                  "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
+                  "opens in any browser");
   cmd->callback([&run, options] { run = [options] { return bench(*options); }; });
 }

@@ -15,9 +15,11 @@
 #include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
+#include "cli/html_output.h"
 #include "cli/output.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"
+#include "profile/report_charts.h"
 #include "profile/svg_chart.h"
 
 namespace {
@@ -155,10 +157,13 @@ RunReport run_bench_report(const CheckCliOptions& o) {
 }
 
 void write_svg(const std::string& path, const json& baseline, const json& current, const std::string& metric) {
-  LineChart chart{"check: " + (metric == "frame_ms" ? std::string("frame") : metric) + " time per frame, baseline and current",
-                  "frame (after warm-up)", "time (ms)", {}, false};
+  LineChart chart{"check: " + (metric == "frame_ms" ? std::string("frame") : metric) +
+                      " time per frame, baseline and current: " + scene_caption(current),
+                  "frame (0 = the first measured, after " + std::to_string(current["warmup"].get<size_t>()) + " warm-up)",
+                  "time (ms)", {}, false};
+  ModeColours colours(preset_mode_order());  // baseline and current as the HTML report colours them
   for (const auto& [name, doc] : {std::pair<const char*, const json*>{"baseline", &baseline}, {"current", &current}}) {
-    LineSeries series{name, {}, doc->at("samples").at(metric).get<std::vector<double>>()};
+    LineSeries series{name, {}, doc->at("samples").at(metric).get<std::vector<double>>(), colours.colour(name)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
     chart.series.push_back(std::move(series));
   }
@@ -196,7 +201,7 @@ int check(CheckCliOptions& o) {
   auto require_safe_outputs = [&] {
     std::vector<NamedPath> inputs = {{"--result file", o.result}};
     if (!o.update) inputs.push_back({"baseline", o.baseline});
-    std::vector<NamedPath> outputs = {{"--svg", o.svg}};
+    std::vector<NamedPath> outputs = {{"--svg", o.svg}};  // --html is among the bench options
     if (o.update) outputs.push_back({"--baseline", o.baseline});
     require_writable_outputs(o.bench, inputs, outputs);
   };
@@ -251,6 +256,11 @@ int check(CheckCliOptions& o) {
     if (!o.bench.json.empty())
       write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
     write_text(o.baseline, "baseline", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+    if (!o.bench.html.empty()) {
+      HtmlReportInput input;
+      add_result_document(input, current, o.baseline);
+      write_html_report(o.bench.html, std::move(input));
+    }
     if (!o.bench.quiet)
       std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
                 << current["scene"]["characters"] << " characters, frame median "
@@ -280,6 +290,16 @@ int check(CheckCliOptions& o) {
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
   if (!o.svg.empty()) write_svg(o.svg, *baseline, current, options.metrics.front());
+  if (!o.bench.html.empty()) {
+    // Both runs side by side under the verdict.
+    HtmlReportInput input;
+    add_result_document(input, *baseline, o.baseline);
+    add_result_document(input, current, o.result.empty() ? "this run" : o.result);
+    input.runs[0].label = "baseline";
+    input.runs[1].label = "current";
+    input.check = CheckSection{result, options, o.baseline};
+    write_html_report(o.bench.html, std::move(input));
+  }
   if (!o.bench.quiet) std::cout << format_check(result, options);
   return result.regressed() ? kExitRegression : kExitOk;
 }
@@ -327,5 +347,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--csv", options->bench.csv, "Write the run's frames to this CSV file");
   cmd->add_option("--json", options->bench.json, "Write the run's result (as bench --json) to this file");
   cmd->add_option("--svg", options->svg, "Write a chart of the metric per frame, baseline against current");
+  cmd->add_option("--html", options->bench.html,
+                  "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

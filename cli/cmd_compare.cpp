@@ -156,6 +156,11 @@ int compare(const CompareCliOptions& o) {
     write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison, preset_mode_order()); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
+  if (!o.bench.html.empty()) {
+    HtmlReportInput input;
+    add_result_document(input, comparison_to_json(comparison), "this comparison");
+    write_html_report(o.bench.html, std::move(input));
+  }
   return kExitOk;
 }
 
@@ -178,6 +183,8 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
   cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
   cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, sweep");
+  cmd->add_option("--html", options->bench.html,
+                  "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
   cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
   cmd->callback([&run, options] { run = [options] { return compare(*options); }; });
 }

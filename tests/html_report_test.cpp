@@ -230,3 +230,53 @@ TEST(ReportCli, WritesOneFileFromResultsAndNoneFromBadInput) {
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("not a PNG"), std::string::npos) << r.err;
 }
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
+  auto dir = test::scratch_dir("report_html_commands");
+  std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
+  std::string small = "-n 4 --frames 6 --warmup 1 -q";
+  std::string bench = (dir / "bench.html").string(), json_path = (dir / "bench.json").string();
+  auto r = test::run_cli("bench '" + scene + "' " + small + " --mode culled --json '" + json_path + "' --html '" + bench + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string html = slurp(bench);
+  EXPECT_NE(html.find("data-name=\"culled\" data-geometry=\"line\" data-points=\"6\""), std::string::npos);
+  EXPECT_NE(html.find("humanoid x 4, backend none"), std::string::npos);
+  // The page made by bench --html is the one report makes of its JSON.
+  std::string again = (dir / "again.html").string();
+  ASSERT_EQ(test::run_cli("report '" + json_path + "' -o '" + again + "'").status, 0);
+  // The same charts, the same table (what differs is where it came from).
+  auto from_profile = [](const std::string& page) { return page.substr(page.find("<section id=\"profile\">")); };
+  EXPECT_EQ(from_profile(slurp(again)), from_profile(html));
+
+  std::string compare = (dir / "compare.html").string();
+  r = test::run_cli("compare '" + scene + "' " + small + " --modes master,threaded --sweep n=2,4 --html '" + compare + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  html = slurp(compare);
+  EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"2\""), std::string::npos);
+  EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
+
+  std::string base = (dir / "base.json").string(), check = (dir / "check.html").string();
+  ASSERT_EQ(test::run_cli("check '" + scene + "' " + small + " --baseline '" + base + "' --update-baseline").status, 0);
+  r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric frame,Animations --html '" + check + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  html = slurp(check);
+  EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"2\""), std::string::npos);
+  EXPECT_EQ(count(html, "data-verdict=\"ok\""), 2u);
+  EXPECT_NE(html.find("data-name=\"baseline\""), std::string::npos);
+  EXPECT_NE(html.find("data-name=\"current\""), std::string::npos);
+
+  // --html is an output like the others: never the input, never another output.
+  r = test::run_cli("bench '" + scene + "' " + small + " --json '" + bench + "' --html '" + bench + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --html '" + base + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+}

@@ -53,9 +53,13 @@ void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path)
   }
 }
 
-// Labels: the mode; with the crowd size when a mode comes at several sizes;
-// with the file when even that is not enough to tell two results apart.
-void label_runs(std::vector<ReportRun>& runs) {
+// Labels of runs the caller did not name: the mode; with the crowd size when
+// a mode comes at several sizes; with the file when even that is not enough to
+// tell two results apart.
+void label_runs(std::vector<ReportRun>& all) {
+  std::vector<ReportRun*> runs;
+  for (ReportRun& run : all)
+    if (run.label.empty()) runs.push_back(&run);
   auto key = [](const ReportRun& r, int level) {
     std::string mode = r.doc["mode"].get<std::string>();
     if (level == 0) return mode;
@@ -64,12 +68,12 @@ void label_runs(std::vector<ReportRun>& runs) {
   };
   for (int level = 0; level < 3; ++level) {
     std::map<std::string, int> seen;
-    for (const ReportRun& r : runs) ++seen[key(r, level)];
+    for (const ReportRun* r : runs) ++seen[key(*r, level)];
     if (std::all_of(seen.begin(), seen.end(), [](const auto& s) { return s.second == 1; }) || level == 2) {
       std::map<std::string, int> count;
-      for (ReportRun& r : runs) {
-        r.label = key(r, level);
-        if (seen[r.label] > 1) r.label += " #" + std::to_string(++count[r.label]);
+      for (ReportRun* r : runs) {
+        r->label = key(*r, level);
+        if (seen[r->label] > 1) r->label += " #" + std::to_string(++count[r->label]);
       }
       return;
     }
@@ -283,17 +287,18 @@ std::string check_section(const CheckSection& check, std::string& charts) {
   charts += "v";
   out += svg.inline_svg();
   out += "<table><tr><th class=\"name\">metric</th><th>baseline median ms</th><th>current median ms</th><th>change</th>"
-         "<th>p (Mann-Whitney U)</th><th class=\"name\">verdict</th></tr>\n";
+         "<th>p (Mann-Whitney U, Holm)</th><th>floor ms</th><th class=\"name\">verdict</th></tr>\n";
   VerdictChart rows = verdict_chart(r, check.options);
   for (size_t m = 0; m < r.metrics.size(); ++m) {
     const MetricCheck& metric = r.metrics[m];
     out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + "</td><td>" +
            report_number(metric.current.median, 3) + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + report_number(metric.test.p, 4) + "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
+           "</td><td>" + report_number(metric.p_adjusted, 4) + "</td><td>" + report_number(metric.floor_ms, 3) +
+           "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
-  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "%, significance level " +
-         report_number(check.options.alpha, 3) + ".</p>\n<p>";
+  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
+         "significance level " + report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
   if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs()) out += "Counters and digest match the baseline.";
   for (const CounterDifference& d : r.counters)
     out += "<span class=\"regression\">Counter " + h(d.name) + " changed: " + std::to_string(d.baseline) + " &#8594; " +
@@ -315,26 +320,28 @@ void require_png(const std::string& bytes, const std::string& path) {
 }
 
 void add_result_document(HtmlReportInput& input, const json& doc, const std::string& source) {
-  validate_result(doc, source);
-  input.runs.push_back({"", doc, source});
-}
-
-void add_result_file(HtmlReportInput& input, const std::string& path) {
-  json doc = read_json_document(path);
   std::string kind = "bench";
   if (doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() && doc["crowdprof"].contains("kind") &&
       doc["crowdprof"]["kind"].is_string())
     kind = doc["crowdprof"]["kind"].get<std::string>();
   if (kind == "compare") {
     if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
-      throw InputError(path, "a comparison without \"runs\": not a complete crowdprof result");
-    for (const json& run : doc["runs"]) add_result_document(input, run, path);
-    add_sweep(input, doc, path);
+      throw InputError(source, "a comparison without \"runs\": not a complete crowdprof result");
+    for (const json& run : doc["runs"]) {  // bench results only: a comparison does not nest
+      validate_result(run, source);
+      input.runs.push_back({"", run, source});
+    }
+    add_sweep(input, doc, source);
   } else if (kind == "bench") {
-    add_result_document(input, doc, path);
+    validate_result(doc, source);
+    input.runs.push_back({"", doc, source});
   } else {
-    throw InputError(path, "a '" + kind + "' result; report reads results of bench, check and compare --json");
+    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check and compare --json");
   }
+}
+
+void add_result_file(HtmlReportInput& input, const std::string& path) {
+  add_result_document(input, read_json_document(path), path);
   input.sources.push_back(path);
 }
 

@@ -25,7 +25,7 @@ struct CheckSection {
 
 struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
-  std::vector<ReportRun> runs;       // bench results (validate_result), in order; labels made by html_report
+  std::vector<ReportRun> runs;       // bench results (validate_result), in order; html_report labels those without
   std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
   std::optional<CheckSection> check;
   std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
@@ -38,8 +38,8 @@ struct HtmlReportInput {
 // when it is not crowdprof's, truncated, of another format or incomplete.
 void add_result_file(HtmlReportInput& input, const std::string& path);
 
-// Adds a result document made in this process (validated; `source` names it
-// in errors).
+// The same for a document made in this process or read by the caller
+// (`source` names it in errors).
 void add_result_document(HtmlReportInput& input, const nlohmann::json& doc, const std::string& source);
 
 // InputError naming `path` unless `bytes` are a PNG (its signature and IHDR).

@@ -145,18 +145,22 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& 
 }
 
 VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options) {
-  VerdictChart chart{"check: change of each metric's median, baseline to current", options.tolerance, {}};
+  VerdictChart chart{"check: change of each metric's median, baseline to current", {}};
   chart.id = "verdict";
   for (const MetricCheck& m : result.metrics) {
     // The words format_check uses for the same outcomes.
     std::string verdict = m.regressed                                                     ? "REGRESSION"
+                          : m.beyond_tolerance && !m.beyond_floor                        ? "slower, under the floor"
                           : m.beyond_tolerance                                            ? "slower, not significant"
-                          : m.change < -options.tolerance && m.test.p < options.alpha ? "faster"
+                          : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";
     std::string colour = m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
-    std::string detail = m.metric + ": median " + report_number(m.baseline.median, 3) + " -> " + report_number(m.current.median, 3) +
-                         " ms, p = " + report_number(m.test.p, 4);
-    chart.rows.push_back({m.metric, m.change, verdict, colour, detail});
+    std::string detail = m.metric + ": median " + report_number(m.baseline.median, 3) + " -> " +
+                         report_number(m.current.median, 3) + " ms, p = " + report_number(m.p_adjusted, 4) +
+                         " (Holm), floor " + report_number(m.floor_ms, 3) + " ms";
+    // A slowdown must pass both the tolerance and the floor: the band is the larger.
+    double allowed = std::max(options.tolerance, m.baseline.median > 0 ? m.floor_ms / m.baseline.median : 0.0);
+    chart.rows.push_back({m.metric, m.change, verdict, colour, detail, allowed});
   }
   return chart;
 }

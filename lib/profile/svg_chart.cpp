@@ -309,10 +309,12 @@ void SvgDocument::add(const StackedArea& chart) {
 
 void SvgDocument::add(const VerdictChart& chart) {
   Panel p{static_cast<double>(height_), static_cast<double>(width_)};
-  // Changes in percent, the band and every row's change in view.
-  double lo = -chart.tolerance * 100, hi = chart.tolerance * 200;
-  for (const VerdictRow& row : chart.rows)
+  // Changes in percent, every band and every row's change in view.
+  double lo = -10, hi = 20;
+  for (const VerdictRow& row : chart.rows) {
     if (std::isfinite(row.change)) lo = std::min(lo, row.change * 100), hi = std::max(hi, row.change * 100);
+    if (std::isfinite(row.allowed)) lo = std::min(lo, -row.allowed * 100), hi = std::max(hi, row.allowed * 200);
+  }
   Axis x = axis_over(lo, hi, false);
   std::string& out = body_;
   out += chart_open("verdicts", chart.id, chart.rows.size());
@@ -321,10 +323,12 @@ void SvgDocument::add(const VerdictChart& chart) {
   double row_h = std::min(40.0, p.plot_h() / std::max<double>(1.0, static_cast<double>(chart.rows.size())));
   double plot_top = p.top + kTop, plot_bottom = plot_top + row_h * static_cast<double>(chart.rows.size());
   auto at = [&](double percent) { return kLeft + 60 + x.at(percent) * (p.plot_w() - 60); };
-  out += "<rect class=\"tolerance\" x=\"" + num(at(0)) + "\" y=\"" + num(plot_top) + "\" width=\"" +
-         num(at(chart.tolerance * 100) - at(0)) + "\" height=\"" + num(plot_bottom - plot_top) +
-         "\" fill=\"#dff0d8\"><title>tolerance: up to " + label(chart.tolerance * 100) +
-         "% slower</title></rect>\n";
+  for (size_t r = 0; r < chart.rows.size(); ++r) {
+    double allowed = std::isfinite(chart.rows[r].allowed) ? chart.rows[r].allowed * 100 : 0.0;
+    out += "<rect class=\"tolerance\" x=\"" + num(at(0)) + "\" y=\"" + num(plot_top + row_h * static_cast<double>(r) + 2) +
+           "\" width=\"" + num(at(allowed) - at(0)) + "\" height=\"" + num(row_h - 4) +
+           "\" fill=\"#dff0d8\"><title>allowed: up to " + label(allowed) + "% slower</title></rect>\n";
+  }
   for (double v : x.ticks()) {
     out += "<line x1=\"" + num(at(v)) + "\" x2=\"" + num(at(v)) + "\" y1=\"" + num(plot_top) + "\" y2=\"" +
            num(plot_bottom) + "\" stroke=\"" + (v == 0 ? "#888" : "#e4e4e4") + "\"/>\n";

@@ -66,10 +66,10 @@ struct VerdictRow {
   std::string verdict;  // "ok", "REGRESSION", ...
   std::string colour;
   std::string detail;   // tooltip: medians, p-value
+  double allowed = 0.1; // the band [0, allowed] of slowdown this metric may show
 };
 struct VerdictChart {
   std::string title;
-  double tolerance = 0.1;  // the band [0, tolerance] of slowdown allowed
   std::vector<VerdictRow> rows;
   std::string id = {};
 };
