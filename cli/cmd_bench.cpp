@@ -19,10 +19,11 @@ namespace {
 using namespace crowdprof;
 
 int bench(BenchCliOptions& options) {
+  validate_bench_options(options);
+  require_writable_outputs(options);
   BenchScene scene = load_bench_scene(options);
   BenchConfig config = make_bench_config(options, scene);
   check_fits_in_memory(scene.characters, config);
-  require_writable_outputs(options);
   if (!options.screenshot.empty() && options.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
   BenchRendering rendering = open_bench_rendering(options, scene, config);

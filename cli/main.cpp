@@ -6,9 +6,12 @@
 
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "profile/environment.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
+  app.set_version_flag("--version", crowdprof::version_line(), "Print the version, commit, build type, compiler and "
+                                                              "SIMD target on one line");
   app.require_subcommand(1);
   std::function<int()> run;
   add_info_command(app, run);
