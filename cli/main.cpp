@@ -9,6 +9,7 @@
 
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "profile/environment.h"
 
 namespace {
 
@@ -26,6 +27,8 @@ int after_flushing_stdout(int status) {
 
 int run_command(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
+  app.set_version_flag("--version", crowdprof::version_line(), "Print the version, commit, build type, compiler and "
+                                                              "SIMD target on one line");
   app.require_subcommand(1);
   std::function<int()> run;
   add_info_command(app, run);

@@ -8,12 +8,31 @@ const char* crowdprof_build_commit();
 
 namespace crowdprof {
 
+std::string simd_target() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__)
+  return "AVX2";
+#elif defined(__AVX__)
+  return "AVX";
+#elif defined(__SSE4_2__)
+  return "SSE4.2";
+#elif defined(__SSE2__)
+  return "SSE2";
+#elif defined(__ARM_NEON)
+  return "NEON";
+#else
+  return "scalar";
+#endif
+}
+
 Environment current_environment() {
   Environment env;
   env.version = CROWDPROF_VERSION;
   env.commit = crowdprof_build_commit();
   env.compiler = CROWDPROF_COMPILER;
   env.build_type = CROWDPROF_BUILD_TYPE;
+  env.simd = simd_target();
   env.cores = std::thread::hardware_concurrency();
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
@@ -25,6 +44,13 @@ Environment current_environment() {
   }
   if (env.cpu.empty()) env.cpu = "unknown";
   return env;
+}
+
+std::string version_line() {
+  std::string build_type = CROWDPROF_BUILD_TYPE;
+  return std::string("crowdprof ") + CROWDPROF_VERSION + " (commit " + crowdprof_build_commit() + ", " +
+         (build_type.empty() ? "no build type" : build_type) + ", " + CROWDPROF_COMPILER + ", SIMD " + simd_target() +
+         ")";
 }
 
 }  // namespace crowdprof
