@@ -101,9 +101,10 @@ window.addEventListener('error', function (e) {
 
 // Counts what the browser drew of every chart and compares it with what the
 // chart says it holds: series, points per series (parsed by the browser from
-// the SVG), segments per bar; and every point inside its picture.
+// the SVG), segments per bar; every point inside its picture; and every image
+// decoded. It runs once the page has loaded, images included.
 const char* kSelfCheck = R"(<script>
-(function () {
+window.addEventListener('load', function () {
   var problems = [];
   var charts = document.querySelectorAll('g.chart');
   charts.forEach(function (chart) {
@@ -135,10 +136,13 @@ const char* kSelfCheck = R"(<script>
       if (String(n) !== b.getAttribute('data-segments')) problems.push(id + '/' + b.getAttribute('data-name') + ': ' + n + ' segments drawn');
     });
   });
+  var images = document.querySelectorAll('img');
+  images.forEach(function (img) { if (!img.complete || img.naturalWidth === 0) problems.push('an image that does not decode'); });
   var expected = document.body.getAttribute('data-charts');
   if (String(charts.length) !== expected) problems.push(charts.length + ' charts drawn, ' + expected + ' made');
-  document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') : 'ok ' + charts.length + ' charts');
-})();
+  document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') :
+    'ok ' + charts.length + ' charts' + (images.length ? ', ' + images.length + ' images' : ''));
+});
 </script>
 )";
 

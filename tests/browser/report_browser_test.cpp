@@ -1,0 +1,286 @@
+// The HTML report in a real browser: Debian's chromium, headless, loads each
+// kind of report (bench, several results, compare with a sweep, check, a
+// screenshot) and this test reads back the DOM after the page's scripts ran.
+// It fails on a script error, on a chart missing, and on a chart whose series
+// or points, as the browser parsed and drew them, differ from the result file.
+// Skips, saying why, when chromium is not installed (./setup.sh test installs it).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string find_chromium() {
+  if (const char* given = std::getenv("CROWDPROF_CHROMIUM")) return given;
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  for (size_t start = 0; start <= dirs.size();) {
+    size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    for (const char* name : {"chromium", "chromium-browser"}) {
+      fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
+      if (!candidate.parent_path().empty() && access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    }
+    start = end + 1;
+  }
+  return "";
+}
+
+#define REQUIRE_CHROMIUM()                                                                                \
+  do {                                                                                                    \
+    if (find_chromium().empty())                                                                          \
+      GTEST_SKIP() << "chromium not found on PATH (or CROWDPROF_CHROMIUM): the HTML report is not loaded " \
+                      "in a browser; ./setup.sh test installs it (apt-get install chromium)";               \
+  } while (0)
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The page's DOM after its scripts ran, as headless chromium serialises it.
+std::string dump_dom(const fs::path& page) {
+  fs::path dir = page.parent_path();
+  fs::path out = dir / (page.filename().string() + ".dom"), err = dir / (page.filename().string() + ".err");
+  std::string command = "timeout 120 '" + find_chromium() + "' --headless --disable-gpu --no-sandbox --no-first-run " +
+                        "--user-data-dir='" + (dir / "chromium-profile").string() + "' --dump-dom 'file://" +
+                        fs::absolute(page).string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
+  int raw = std::system(command.c_str());
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command << "\n" << slurp(err);
+  return slurp(out);
+}
+
+std::string attribute(const std::string& tag, const std::string& name) {
+  std::smatch m;
+  if (std::regex_search(tag, m, std::regex(" " + name + "=\"([^\"]*)\""))) return m[1].str();
+  return "";
+}
+
+struct DrawnChart {
+  std::string id;
+  std::string drawn_series;
+  std::vector<std::pair<std::string, std::string>> series;  // name, drawn points
+  std::vector<std::string> bar_segments;                    // drawn segments per bar
+};
+
+// Every chart of the DOM with what the page's script counted the browser drew.
+std::vector<DrawnChart> drawn_charts(const std::string& dom) {
+  std::vector<DrawnChart> charts;
+  const std::string start = "<g class=\"chart ";
+  for (size_t at = dom.find(start); at != std::string::npos;) {
+    size_t next = dom.find(start, at + 1);
+    std::string part = dom.substr(at, next == std::string::npos ? std::string::npos : next - at);
+    std::string tag = part.substr(0, part.find('>'));
+    DrawnChart chart{attribute(tag, "data-chart"), attribute(tag, "data-drawn-series"), {}, {}};
+    for (size_t s = part.find("<g class=\"series\""); s != std::string::npos; s = part.find("<g class=\"series\"", s + 1)) {
+      std::string series = part.substr(s, part.find('>', s) - s);
+      chart.series.push_back({attribute(series, "data-name"), attribute(series, "data-drawn-points")});
+    }
+    for (size_t b = part.find("<g class=\"bar\""); b != std::string::npos; b = part.find("<g class=\"bar\"", b + 1))
+      chart.bar_segments.push_back(attribute(part.substr(b, part.find('>', b) - b), "data-drawn-segments"));
+    charts.push_back(chart);
+    at = next;
+  }
+  return charts;
+}
+
+std::vector<const DrawnChart*> charts_named(const std::vector<DrawnChart>& charts, const std::string& id) {
+  std::vector<const DrawnChart*> out;
+  for (const DrawnChart& chart : charts)
+    if (chart.id == id) out.push_back(&chart);
+  return out;
+}
+
+// No script error, and the page's own check of its charts passed.
+void expect_clean_page(const std::string& dom, const std::string& what) {
+  std::smatch m;
+  EXPECT_FALSE(std::regex_search(dom, m, std::regex("data-js-errors=\"([^\"]*)\""))) << what << ": " << m[1].str();
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\""))) << what << ": the page's script never ran";
+  EXPECT_EQ(m[1].str().rfind("ok ", 0), 0u) << what << ": " << m[1].str();
+}
+
+std::vector<std::string> categories_with_time(const json& run) {
+  std::vector<std::string> out;
+  for (const char* name : {"Physics", "Logic", "Animations", "Network", "Scenegraph", "Rasterizer", "Services",
+                           "Overhead", "Outside", "GPU Latency"}) {
+    const json& samples = run["samples"][name];
+    if (std::any_of(samples.begin(), samples.end(), [](const json& v) { return v.get<double>() > 0; }))
+      out.push_back(name);
+  }
+  return out;
+}
+
+// The frame-time chart has a line per run with a point per frame, and each
+// run's categories chart a layer per category that took time, a point per frame.
+void expect_runs_drawn(const std::vector<DrawnChart>& charts, const std::vector<json>& runs, const std::string& what) {
+  auto frame_time = charts_named(charts, "frame-time");
+  ASSERT_EQ(frame_time.size(), 1u) << what;
+  EXPECT_EQ(frame_time[0]->drawn_series, std::to_string(runs.size())) << what;
+  ASSERT_EQ(frame_time[0]->series.size(), runs.size()) << what;
+  auto categories = charts_named(charts, "categories");
+  ASSERT_EQ(categories.size(), runs.size()) << what;
+  for (size_t r = 0; r < runs.size(); ++r) {
+    std::string frames = std::to_string(runs[r]["frames"].get<size_t>());
+    EXPECT_EQ(frame_time[0]->series[r].second, frames) << what << ": run " << r;
+    std::vector<std::string> layers = categories_with_time(runs[r]);
+    EXPECT_EQ(categories[r]->drawn_series, std::to_string(layers.size())) << what << ": run " << r;
+    ASSERT_EQ(categories[r]->series.size(), layers.size()) << what;
+    for (size_t l = 0; l < layers.size(); ++l) {
+      EXPECT_EQ(categories[r]->series[l].first, layers[l]) << what;
+      EXPECT_EQ(categories[r]->series[l].second, frames) << what << ": " << layers[l];
+    }
+  }
+}
+
+struct Fixture {
+  fs::path dir;
+  std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
+  std::string small = "-n 4 --frames 8 --warmup 1 -q";
+  std::string run(const std::string& args) {
+    auto r = crowdprof::test::run_cli(args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
+    return r.err;
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+}  // namespace
+
+TEST(ReportInBrowser, ABenchReport) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_bench")};
+  f.run("bench '" + f.scene + "' " + f.small + " --json '" + f.path("b.json") + "' --html '" + f.path("b.html") + "'");
+  std::string dom = dump_dom(f.path("b.html"));
+  expect_clean_page(dom, "bench");
+  auto charts = drawn_charts(dom);
+  EXPECT_EQ(charts.size(), 2u);
+  expect_runs_drawn(charts, {json::parse(std::ifstream(f.path("b.json")))}, "bench");
+}
+
+TEST(ReportInBrowser, SeveralResultsSideBySideAndTheirSweep) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_several")};
+  std::vector<json> runs;
+  std::string files;
+  for (const char* spec : {"master -n 2", "threaded -n 2", "master -n 4", "threaded -n 4"}) {
+    std::string name = f.path("r" + std::to_string(runs.size()) + ".json");
+    f.run("bench '" + f.scene + "' --frames 8 --warmup 1 -q --mode " + spec + " --json '" + name + "'");
+    runs.push_back(json::parse(std::ifstream(name)));
+    files += " '" + name + "'";
+  }
+  f.run("report" + files + " -o '" + f.path("several.html") + "'");
+  std::string dom = dump_dom(f.path("several.html"));
+  expect_clean_page(dom, "several");
+  auto charts = drawn_charts(dom);
+  expect_runs_drawn(charts, runs, "several");
+  auto modes = charts_named(charts, "modes");
+  ASSERT_EQ(modes.size(), 1u);
+  EXPECT_EQ(modes[0]->bar_segments.size(), runs.size());
+  auto sweep = charts_named(charts, "sweep");
+  ASSERT_EQ(sweep.size(), 1u);
+  EXPECT_EQ(sweep[0]->drawn_series, "2") << "master and threaded";
+  for (const auto& [name, points] : sweep[0]->series) EXPECT_EQ(points, "2") << name << ": two crowd sizes";
+}
+
+TEST(ReportInBrowser, ACompareReportWithASweep) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_compare")};
+  f.run("compare '" + f.scene + "' " + f.small + " --modes master,culled,threaded --sweep n=1,2,4 --json '" +
+        f.path("c.json") + "' --html '" + f.path("c.html") + "'");
+  json doc = json::parse(std::ifstream(f.path("c.json")));
+  // The page compare wrote and the one report makes of its JSON.
+  f.run("report '" + f.path("c.json") + "' -o '" + f.path("c2.html") + "'");
+  for (const char* page : {"c.html", "c2.html"}) {
+    std::string dom = dump_dom(f.path(page));
+    expect_clean_page(dom, page);
+    auto charts = drawn_charts(dom);
+    expect_runs_drawn(charts, doc["runs"].get<std::vector<json>>(), page);
+    auto modes = charts_named(charts, "modes");
+    ASSERT_EQ(modes.size(), 1u) << page;
+    EXPECT_EQ(modes[0]->bar_segments.size(), doc["runs"].size()) << page;
+    std::map<std::string, size_t> sizes_per_mode;
+    for (const json& row : doc["sweep"]) ++sizes_per_mode[row["mode"].get<std::string>()];
+    auto sweep = charts_named(charts, "sweep");
+    ASSERT_EQ(sweep.size(), 1u) << page;
+    EXPECT_EQ(sweep[0]->drawn_series, std::to_string(sizes_per_mode.size())) << page;
+    for (const auto& [name, points] : sweep[0]->series)
+      EXPECT_EQ(points, std::to_string(sizes_per_mode[name])) << page << ": " << name;
+  }
+}
+
+TEST(ReportInBrowser, ACheckReport) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_check")};
+  f.run("check '" + f.scene + "' " + f.small + " --baseline '" + f.path("base.json") + "' --update-baseline");
+  json planted = json::parse(std::ifstream(f.path("base.json")));
+  planted["counters"]["poses_updated"] = planted["counters"]["poses_updated"].get<uint64_t>() + 1;
+  std::ofstream(f.path("changed.json")) << planted.dump();
+  auto r = crowdprof::test::run_cli("check --result '" + f.path("changed.json") + "' --baseline '" + f.path("base.json") +
+                                    "' --metric frame,Animations,Rasterizer --html '" + f.path("check.html") + "'");
+  EXPECT_EQ(r.status, 1) << r.err << "a changed counter is a regression";
+  std::string dom = dump_dom(f.path("check.html"));
+  expect_clean_page(dom, "check");
+  auto charts = drawn_charts(dom);
+  auto verdict = charts_named(charts, "verdict");
+  ASSERT_EQ(verdict.size(), 1u);
+  EXPECT_EQ(verdict[0]->drawn_series, "3");
+  for (const auto& [name, points] : verdict[0]->series) EXPECT_EQ(points, "1") << name;
+  expect_runs_drawn(charts, {json::parse(std::ifstream(f.path("base.json"))), planted}, "check");
+  EXPECT_NE(dom.find("Counter poses_updated changed"), std::string::npos);
+}
+
+TEST(ReportInBrowser, AScreenshotIsShown) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_screenshot")};
+  auto r = crowdprof::test::run_cli("bench '" + f.scene + "' " + f.small + " --backend osmesa --resolution 320x180 "
+                                    "--screenshot '" + f.path("shot.png") + "' --html '" + f.path("s.html") + "'");
+  if (r.status == 4) GTEST_SKIP() << "no OSMesa here: " << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string dom = dump_dom(f.path("s.html"));
+  expect_clean_page(dom, "screenshot");
+  EXPECT_NE(dom.find("data-report-check=\"ok 2 charts, 1 images\""), std::string::npos) << "the PNG decoded, 320 wide";
+}
+
+// The test fails when the page is wrong: a point dropped from a chart, a
+// script error, a chart cut out.
+TEST(ReportInBrowser, ABrokenPageIsCaught) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_broken")};
+  f.run("bench '" + f.scene + "' " + f.small + " --json '" + f.path("b.json") + "' --html '" + f.path("b.html") + "'");
+  std::string page = slurp(f.path("b.html"));
+  size_t polyline = page.find("<polyline points=\"");
+  ASSERT_NE(polyline, std::string::npos);
+  size_t last = page.rfind(' ', page.find('"', polyline + 18));
+  std::string dropped = page.substr(0, last) + page.substr(page.find('"', polyline + 18));
+  std::ofstream(f.path("dropped.html")) << dropped;
+  std::string dom = dump_dom(f.path("dropped.html"));
+  EXPECT_NE(dom.find("data-report-check=\"failed: frame-time/"), std::string::npos);
+  auto charts = drawn_charts(dom);
+  auto frame_time = charts_named(charts, "frame-time");
+  ASSERT_EQ(frame_time.size(), 1u);
+  EXPECT_EQ(frame_time[0]->series[0].second, "7") << "8 frames in the file, 7 drawn";
+
+  std::string with_error = page;
+  with_error.insert(with_error.find("</body>"), "<script>undefinedFunction();</script>");
+  std::ofstream(f.path("error.html")) << with_error;
+  EXPECT_NE(dump_dom(f.path("error.html")).find("data-js-errors=\"Uncaught ReferenceError"), std::string::npos);
+
+  std::string cut = page;
+  size_t chart = cut.find("<svg", cut.find("id=\"categories\""));
+  cut.erase(chart, cut.find("</svg>", chart) + 6 - chart);
+  std::ofstream(f.path("cut.html")) << cut;
+  EXPECT_NE(dump_dom(f.path("cut.html")).find("data-report-check=\"failed: 1 charts drawn, 2 made\""), std::string::npos);
+}
