@@ -17,7 +17,7 @@ esac
 
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev)
 
 missing=()
 for package in "${packages[@]}"; do

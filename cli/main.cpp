@@ -1,15 +1,21 @@
 // crowdprof: profile skinned-crowd scenes. This file only dispatches to the
 // subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
+#include <cstdlib>
 #include <iostream>
 #include <new>
 
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "skinning/simd_target.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
   app.require_subcommand(1);
+  std::string simd;
+  app.add_option("--simd", simd,
+                 "Run skinning on this SIMD target instead of the CPU's best (EMU128, SSSE3, SSE4, AVX2, AVX3, "
+                 "AVX3_DL; also CROWDPROF_SIMD)");
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
@@ -23,6 +29,13 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // One line, like every other error (CLI11 would add a second).
     std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
+    return crowdprof::kExitUsage;
+  }
+  // --simd, else the environment variable, else the best target the CPU has.
+  if (simd.empty())
+    if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable)) simd = from_env;
+  if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) {
+    std::cerr << "crowdprof: " << why << "\n";
     return crowdprof::kExitUsage;
   }
   try {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -46,6 +47,8 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
     throw UsageError("random actions need a character with actions");
   joints_ = character.skeleton.joint_count();
   vertices_ = character.mesh.vertex_count();
+  if (std::string why = build_skinning_plan(character.mesh, joints_, &skinning_plan_); !why.empty())
+    throw std::runtime_error("skinning plan: " + why);  // the loader checked the same: a bug if reached
   crowd_ = make_crowd(character, config.crowd);
   camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect);
   frustum_ = frustum_of(camera_.view_projection());
@@ -221,7 +224,7 @@ void CrowdBench::update_copy(size_t copy, size_t slot, bool skin, uint64_t* look
 }
 
 void CrowdBench::skin_copy(size_t copy) {
-  SkinningJob{std::span<const SkinMatrix>(palettes_).subspan(copy * joints_, joints_), &character_.mesh, 0, vertices_,
+  SkinningJob{std::span<const SkinMatrix>(palettes_).subspan(copy * joints_, joints_), &skinning_plan_, 0, vertices_,
               std::span(positions_).subspan(copy * vertices_, vertices_),
               std::span(normals_).subspan(copy * vertices_, vertices_)}
       .Run();

@@ -23,6 +23,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/skinning_plan.h"
 
 namespace crowdprof {
 
@@ -123,6 +124,7 @@ class CrowdBench {
   std::vector<glm::mat4> model_;              // per pose slot x joints
   std::vector<int32_t> targets_;              // per pose slot x channels (string lookups)
   size_t max_channels_ = 0;
+  SkinningPlan skinning_plan_;                // the mesh prepared for skinning, once
   std::vector<SkinMatrix> palettes_;          // per copy x joints
   std::vector<glm::vec3> positions_, normals_;  // per copy x vertices
   // More threads than cores are given, not silently capped by TBB's default

@@ -3,6 +3,8 @@
 #include <fstream>
 #include <thread>
 
+#include "skinning/simd_target.h"
+
 // Defined in the source cmake/commit_stamp.cmake writes at every build.
 const char* crowdprof_build_commit();
 
@@ -15,6 +17,7 @@ Environment current_environment() {
   env.compiler = CROWDPROF_COMPILER;
   env.build_type = CROWDPROF_BUILD_TYPE;
   env.cores = std::thread::hardware_concurrency();
+  env.simd = active_simd_target();
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
   while (std::getline(cpuinfo, line)) {

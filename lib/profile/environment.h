@@ -10,6 +10,7 @@ struct Environment {
   std::string cpu;  // model name from /proc/cpuinfo
   unsigned cores = 0;
   std::string compiler, build_type;
+  std::string simd;  // the SIMD target skinning runs on (skinning/simd_target.h)
 };
 
 Environment current_environment();
