@@ -129,7 +129,10 @@ glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b_in, float t) {
   }
   if (cosine > kNlerpAboveDot) return glm::normalize(a * (1.0f - t) + b * t);
   const float angle = std::acos(cosine);
-  const float inv_sine = 1.0f / std::sqrt(1.0f - cosine * cosine);
+  // sin^2 as (1 - c)(1 + c): 1 - c is exact for c >= 0.5, so no cancellation
+  // whether or not the CPU fuses c * c into the subtraction (the library never
+  // does, for the same bits everywhere).
+  const float inv_sine = 1.0f / std::sqrt((1.0f - cosine) * (1.0f + cosine));
   return a * (std::sin((1.0f - t) * angle) * inv_sine) + b * (std::sin(t * angle) * inv_sine);
 }
 
