@@ -158,9 +158,18 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdpr
   return config;
 }
 
-void require_writable_outputs(const BenchCliOptions& o) {
-  for (auto [path, what] : {std::pair{&o.csv, "CSV"}, {&o.json, "JSON"}, {&o.trace, "trace"}, {&o.screenshot, "PNG"}})
-    if (!path->empty()) crowdprof::require_writable(*path, what);
+void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::NamedPath> inputs,
+                              std::vector<crowdprof::NamedPath> outputs) {
+  inputs.insert(inputs.begin(), {"character file", o.file});
+  std::vector<std::pair<crowdprof::NamedPath, const char*>> mine = {
+      {{"--csv", o.csv}, "CSV"}, {{"--json", o.json}, "JSON"}, {{"--trace", o.trace}, "trace"},
+      {{"--screenshot", o.screenshot}, "PNG"}};
+  std::vector<crowdprof::NamedPath> all;
+  for (const auto& [path, what] : mine) all.push_back(path);
+  all.insert(all.end(), outputs.begin(), outputs.end());
+  crowdprof::require_distinct_outputs(inputs, all);
+  for (const auto& [path, what] : mine)
+    if (!path.path.empty()) crowdprof::require_writable(path.path, what);
 }
 
 crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::Character& character,

@@ -8,6 +8,7 @@
 
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
+#include "output/output_file.h"
 #include "render/bench_rendering.h"
 
 #include <climits>
@@ -48,9 +49,11 @@ void validate_bench_options(const BenchCliOptions& options);
 // Checks every value (UsageError with the option's name) and builds the config.
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const crowdprof::Character& character);
 
-// UsageError when --csv, --json, --trace or --screenshot cannot be written,
-// found before a run that would otherwise be lost.
-void require_writable_outputs(const BenchCliOptions& options);
+// UsageError, before any work, when --csv, --json, --trace or --screenshot (and
+// the command's `outputs`) cannot be written, when one of them is the character
+// file (or one of the command's `inputs`), or when two of them share a path.
+void require_writable_outputs(const BenchCliOptions& options, std::vector<crowdprof::NamedPath> inputs = {},
+                              std::vector<crowdprof::NamedPath> outputs = {});
 
 // Opens --backend at --resolution for the config's crowd and points
 // config.renderer at its renderer (left null for none). When auto finds no GL,

@@ -19,10 +19,11 @@ namespace {
 using namespace crowdprof;
 
 int bench(const BenchCliOptions& options) {
+  validate_bench_options(options);
+  require_writable_outputs(options);
   Character character = load_character(options.file);
   BenchConfig config = make_bench_config(options, character);
   check_fits_in_memory(character, config.crowd.copies, config.mode);
-  require_writable_outputs(options);
   if (!options.screenshot.empty() && options.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
   BenchRendering rendering = open_bench_rendering(options, character, config);

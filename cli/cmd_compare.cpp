@@ -110,8 +110,9 @@ int compare(const CompareCliOptions& o) {
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
 
-  require_writable_outputs(o.bench);
+  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
+  if (!o.trace.empty()) require_writable(o.trace, "trace");
   Character character = load_character(o.bench.file);
   std::vector<BenchConfig> configs;
   for (const std::string& name : names) configs.push_back(config_for(o.bench, name, character));

@@ -26,6 +26,7 @@ int render(const RenderCliOptions& options) {
   if (options.frame < 0 || options.frame > 10'000'000)
     throw UsageError("--frame " + std::to_string(options.frame) + ": expected 0 to 10,000,000");
   if (options.bench.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
+  require_distinct_outputs({{"character file", options.bench.file}}, {{"-o", options.output}});
   require_writable(options.output, "PNG");
   Character character = load_character(options.bench.file);
   BenchConfig config = make_bench_config(options.bench, character);

@@ -7,15 +7,24 @@
 
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "profile/environment.h"
 #include "skinning/simd_target.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
+  // The SIMD target skinning runs on: the CPU's best, else CROWDPROF_SIMD, else
+  // --simd (applied as soon as it is parsed, so that --version after it shows it).
+  std::string simd_error;
+  if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable))
+    simd_error = crowdprof::force_simd_target(from_env);
+  app.set_version_flag("--version", [] { return crowdprof::version_line(); },
+                       "Print the version, commit, build type, compiler and SIMD target on one line");
+  app.add_option_function<std::string>(
+         "--simd", [&](const std::string& name) { simd_error = crowdprof::force_simd_target(name); },
+         "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
+         "also the environment variable CROWDPROF_SIMD)")
+      ->trigger_on_parse();
   app.require_subcommand(1);
-  std::string simd;
-  app.add_option("--simd", simd,
-                 "Run skinning on this SIMD target instead of the CPU's best (EMU128, SSSE3, SSE4, AVX2, AVX3, "
-                 "AVX3_DL; also CROWDPROF_SIMD)");
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
@@ -31,11 +40,8 @@ int main(int argc, char** argv) {
     std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
     return crowdprof::kExitUsage;
   }
-  // --simd, else the environment variable, else the best target the CPU has.
-  if (simd.empty())
-    if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable)) simd = from_env;
-  if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) {
-    std::cerr << "crowdprof: " << why << "\n";
+  if (!simd_error.empty()) {
+    std::cerr << "crowdprof: " << simd_error << "\n";
     return crowdprof::kExitUsage;
   }
   try {

@@ -110,10 +110,19 @@ TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {
   ASSERT_EQ(0, r.status) << r.err;
   EXPECT_EQ(lowest, nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);
 
+  r = test::run_cli("--simd " + lowest + " --version");
+  ASSERT_EQ(0, r.status) << r.err;
+  EXPECT_NE(std::string::npos, r.out.find(", SIMD " + lowest + ")")) << r.out;
+
   ASSERT_EQ(0, setenv(kSimdEnvironmentVariable, "SSSE3", 1));
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
   ASSERT_EQ(0, r.status) << r.err;
   EXPECT_EQ("SSSE3", nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);
+  r = test::run_cli("--version");
+  EXPECT_NE(std::string::npos, r.out.find(", SIMD SSSE3)")) << r.out;
+  r = test::run_cli("--simd SSE4 bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
+  ASSERT_EQ(0, r.status) << r.err;
+  EXPECT_EQ("SSE4", nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);  // the option wins
 
   ASSERT_EQ(0, setenv(kSimdEnvironmentVariable, "PENTIUM", 1));
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1");

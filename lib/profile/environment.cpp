@@ -10,14 +10,16 @@ const char* crowdprof_build_commit();
 
 namespace crowdprof {
 
+std::string simd_target() { return active_simd_target(); }
+
 Environment current_environment() {
   Environment env;
   env.version = CROWDPROF_VERSION;
   env.commit = crowdprof_build_commit();
   env.compiler = CROWDPROF_COMPILER;
   env.build_type = CROWDPROF_BUILD_TYPE;
+  env.simd = simd_target();
   env.cores = std::thread::hardware_concurrency();
-  env.simd = active_simd_target();
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
   while (std::getline(cpuinfo, line)) {
@@ -28,6 +30,13 @@ Environment current_environment() {
   }
   if (env.cpu.empty()) env.cpu = "unknown";
   return env;
+}
+
+std::string version_line() {
+  std::string build_type = CROWDPROF_BUILD_TYPE;
+  return std::string("crowdprof ") + CROWDPROF_VERSION + " (commit " + crowdprof_build_commit() + ", " +
+         (build_type.empty() ? "no build type" : build_type) + ", " + CROWDPROF_COMPILER + ", SIMD " + simd_target() +
+         ")";
 }
 
 }  // namespace crowdprof

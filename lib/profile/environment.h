@@ -1,4 +1,5 @@
-// What a result was measured on, so two results can be told apart.
+// What a result was measured on, so two results can be told apart, and what
+// `crowdprof --version` says.
 #pragma once
 
 #include <string>
@@ -10,9 +11,17 @@ struct Environment {
   std::string cpu;  // model name from /proc/cpuinfo
   unsigned cores = 0;
   std::string compiler, build_type;
-  std::string simd;  // the SIMD target skinning runs on (skinning/simd_target.h)
+  std::string simd;  // the SIMD target skinning runs on now (simd_target())
 };
 
 Environment current_environment();
+
+// The SIMD target the skinning kernels run on now, chosen at run time for the
+// CPU or forced lower (skinning/simd_target.h): Highway's name, "AVX3" (AVX-512),
+// "AVX2", "SSE4", "SSSE3", "SCALAR", ...
+std::string simd_target();
+
+// One line: "crowdprof 0.1.0 (commit 1a2b3c4d5e6f, Release, GNU 12.2.0, SIMD AVX2)".
+std::string version_line();
 
 }  // namespace crowdprof

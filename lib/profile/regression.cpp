@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <numeric>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -90,6 +92,18 @@ std::vector<double> samples_of(const json& doc, const std::string& key) {
   return doc.at("samples").at(key).get<std::vector<double>>();
 }
 
+// A non-negative decimal number that is all of `s` (no sign, no words, finite).
+bool parse_plain_number(const std::string& s, double& value) {
+  size_t used = 0;
+  if (s.empty() || !(std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '.')) return false;
+  try {
+    value = std::stod(s, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used == s.size() && std::isfinite(value);
+}
+
 }  // namespace
 
 double parse_tolerance(std::string_view text) {
@@ -97,16 +111,7 @@ double parse_tolerance(std::string_view text) {
   bool is_percent = !s.empty() && s.back() == '%';
   if (is_percent) s.pop_back();
   double value = 0;
-  size_t used = 0;
-  bool parsed = !s.empty() && (std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '.');
-  if (parsed) {
-    try {
-      value = std::stod(s, &used);
-    } catch (const std::exception&) {
-      parsed = false;
-    }
-  }
-  if (!parsed || used != s.size() || !std::isfinite(value))
+  if (!parse_plain_number(s, value))
     throw UsageError("--tolerance '" + std::string(text) + "': expected a percentage such as 10% or a fraction such as 0.1");
   if (!is_percent && value >= 1)
     throw UsageError("--tolerance '" + std::string(text) + "': a fraction is below 1; for percent write " +
@@ -115,6 +120,51 @@ double parse_tolerance(std::string_view text) {
   if (value > 10.0)
     throw UsageError("--tolerance '" + std::string(text) + "': at most 1000%");
   return value;
+}
+
+Floor parse_floor(std::string_view text) {
+  std::string s(text);
+  auto bad = [&](const std::string& why) {
+    return UsageError("--floor '" + std::string(text) + "': " + why);
+  };
+  double scale = 0;  // to ms; 0 for a percentage
+  bool is_percent = false;
+  for (auto [suffix, to_ms] : {std::pair<const char*, double>{"ms", 1.0}, {"us", 1e-3}, {"s", 1000.0}}) {
+    std::string_view sv(s);
+    if (sv.size() > std::strlen(suffix) && sv.ends_with(suffix)) {
+      s.resize(s.size() - std::strlen(suffix));
+      scale = to_ms;
+      break;
+    }
+  }
+  if (scale == 0 && !s.empty() && s.back() == '%') {
+    s.pop_back();
+    is_percent = true;
+  }
+  const char* expected = "expected a time such as 0.05ms or 50us, or a share of the baseline's median frame such as 2%";
+  if (scale == 0 && !is_percent) throw bad(expected);
+  double value = 0;
+  if (!parse_plain_number(s, value)) throw bad(expected);
+  Floor floor;
+  if (is_percent) {
+    if (value > 1000) throw bad("at most 1000%");
+    floor.fraction_of_frame = value / 100.0;
+  } else {
+    if (value * scale > 3.6e6) throw bad("at most an hour");
+    floor.fraction_of_frame = 0;
+    floor.ms = value * scale;
+  }
+  return floor;
+}
+
+double floor_ms(const Floor& floor, double frame_ms) {
+  return floor.fraction_of_frame > 0 ? floor.fraction_of_frame * frame_ms : floor.ms;
+}
+
+std::vector<std::string> all_metrics() {
+  std::vector<std::string> keys = {"frame_ms"};
+  for (size_t c = 0; c < kCategoryCount; ++c) keys.emplace_back(category_name(static_cast<Category>(c)));
+  return keys;
 }
 
 std::string resolve_metric(std::string_view name) {
@@ -247,8 +297,17 @@ bool CheckResult::regressed() const {
   return std::any_of(metrics.begin(), metrics.end(), [](const MetricCheck& m) { return m.regressed; });
 }
 
+namespace {
+
+void decide(MetricCheck& m, const CheckOptions& options) {
+  m.significant = m.p_adjusted < options.alpha && m.test.z > 0;
+  m.regressed = m.beyond_tolerance && m.beyond_floor && (m.significant || m.too_few_samples);
+}
+
+}  // namespace
+
 MetricCheck check_metric(std::string metric, std::span<const double> baseline, std::span<const double> current,
-                         const CheckOptions& options) {
+                         const CheckOptions& options, double floor) {
   MetricCheck m;
   m.metric = std::move(metric);
   m.baseline = summarize(baseline);
@@ -258,17 +317,36 @@ MetricCheck check_metric(std::string metric, std::span<const double> baseline, s
   double grew = m.current.median - m.baseline.median;
   m.change = m.baseline.median > 0 ? grew / m.baseline.median : (grew > 0 ? INFINITY : 0.0);
   m.test = mann_whitney(current, baseline);
+  m.p_adjusted = m.test.p;
+  m.floor_ms = floor;
   m.beyond_tolerance = m.change > options.tolerance;
+  m.beyond_floor = grew > floor;
   m.too_few_samples = std::min(baseline.size(), current.size()) < kMannWhitneyMinSamples;
-  m.significant = m.test.p < options.alpha && m.test.z > 0;
-  m.regressed = m.beyond_tolerance && (m.significant || m.too_few_samples);
+  decide(m, options);
   return m;
+}
+
+void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options) {
+  std::vector<size_t> order(metrics.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return metrics[a].test.p < metrics[b].test.p; });
+  double running = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    MetricCheck& m = metrics[order[k]];
+    running = std::max(running, std::min(1.0, static_cast<double>(order.size() - k) * m.test.p));
+    m.p_adjusted = running;
+    decide(m, options);
+  }
 }
 
 CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options) {
   CheckResult result;
+  double floor = floor_ms(options.floor, summarize(samples_of(baseline, "frame_ms")).median);
   for (const std::string& key : options.metrics)
-    result.metrics.push_back(check_metric(display_name(key), samples_of(baseline, key), samples_of(current, key), options));
+    result.metrics.push_back(
+        check_metric(display_name(key), samples_of(baseline, key), samples_of(current, key), options, floor));
+  adjust_holm(result.metrics, options);
   const json& before = baseline["counters"];
   const json& after = current["counters"];
   for (const auto& [name, value] : before.items()) {
@@ -287,12 +365,15 @@ CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& 
 std::string format_check(const CheckResult& result, const CheckOptions& options) {
   std::ostringstream out;
   std::string tolerance = fixed(options.tolerance * 100.0, options.tolerance * 100.0 == std::floor(options.tolerance * 100.0) ? 0 : 1) + "%";
+  bool corrected = result.metrics.size() > 1;
   auto metric_line = [&](const MetricCheck& m, const char* verdict) {
     out << verdict << " " << m.metric << ": median " << fixed(m.baseline.median, 3) << " ms -> "
-        << fixed(m.current.median, 3) << " ms (" << percent(m.change) << ", tolerance " << tolerance << "), IQR "
-        << fixed(m.baseline_iqr, 3) << " -> " << fixed(m.current_iqr, 3) << " ms, p = " << p_value(m.test.p)
-        << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " frames"
-        << (m.too_few_samples ? "; too few for the test, decided on the tolerance" : "") << ")\n";
+        << fixed(m.current.median, 3) << " ms (" << percent(m.change) << ", tolerance " << tolerance << ", floor "
+        << fixed(m.floor_ms, 3) << " ms), IQR " << fixed(m.baseline_iqr, 3) << " -> " << fixed(m.current_iqr, 3)
+        << " ms, p = " << p_value(m.test.p);
+    if (corrected) out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
+    out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " frames"
+        << (m.too_few_samples ? "; too few for the test, decided on the tolerance and floor" : "") << ")\n";
   };
   for (const MetricCheck& m : result.metrics)
     if (m.regressed) metric_line(m, "REGRESSION");
@@ -308,9 +389,10 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   out << "ok";
   for (const MetricCheck& m : result.metrics) {
     out << " " << m.metric << " " << fixed(m.baseline.median, 3) << " -> " << fixed(m.current.median, 3) << " ms ("
-        << percent(m.change) << ", p = " << p_value(m.test.p);
-    if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
-    else if (m.change < -options.tolerance && m.test.p < options.alpha) out << ", faster";
+        << percent(m.change) << ", p = " << p_value(m.p_adjusted);
+    if (m.beyond_tolerance && !m.beyond_floor) out << ", beyond " << tolerance << " but under the floor of " << fixed(m.floor_ms, 3) << " ms";
+    else if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
+    else if (m.change < -options.tolerance && m.p_adjusted < options.alpha) out << ", faster";
     else out << ", within " << tolerance;
     out << ");";
   }

@@ -49,10 +49,32 @@ void require_same_run(const nlohmann::json& baseline, const nlohmann::json& curr
 // build type, or crowdprof version): lines for stderr.
 std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current);
 
+// The smallest slowdown that can fail a check, however significant: a fixed
+// time, or a fraction of the baseline's median frame time. It keeps changes far
+// below anything a user would notice (a category of microseconds moving by a
+// microsecond) from failing CI.
+struct Floor {
+  double ms = 0;                    // when fraction is 0
+  double fraction_of_frame = 0.02;  // of the baseline's median frame time
+};
+
+// "0.05ms", "50us" or "2%" (of the baseline's median frame); UsageError naming
+// --floor for anything else.
+Floor parse_floor(std::string_view text);
+
+// The floor in milliseconds for a baseline whose median frame is `frame_ms`.
+double floor_ms(const Floor& floor, double frame_ms);
+
+// Default tolerance: a 10% slowdown of the frame, real work added, must fail
+// (docs/compare-and-check.md measures how often it does), so the tolerance sits
+// below it, and noise that moves a median by a few percent does not.
+inline constexpr double kDefaultTolerance = 0.07;
+
 struct CheckOptions {
   std::vector<std::string> metrics = {"frame_ms"};  // keys of "samples" (resolve_metric)
-  double tolerance = 0.10;  // a slowdown of the median beyond this fraction...
-  double alpha = 0.05;      // ...that the U test finds significant at this level
+  double tolerance = kDefaultTolerance;  // a slowdown of the median beyond this fraction...
+  double alpha = 0.05;      // ...that the U test finds significant at this level (Holm-corrected over metrics)...
+  Floor floor;              // ...and larger than this
 };
 
 struct MetricCheck {
@@ -60,9 +82,11 @@ struct MetricCheck {
   Summary baseline, current;
   double baseline_iqr = 0, current_iqr = 0;  // interquartile range, ms
   double change = 0;                         // of the median, a fraction; +0.2 is 20% slower
+  double floor_ms = 0;                       // the floor it was judged against
   MannWhitney test;                          // current against baseline
-  bool beyond_tolerance = false, significant = false;
-  bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance alone
+  double p_adjusted = 1;                     // test.p, Holm-corrected for the metrics tested together
+  bool beyond_tolerance = false, beyond_floor = false, significant = false;
+  bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance and floor alone
   bool regressed = false;
 };
 
@@ -81,12 +105,24 @@ struct CheckResult {
 };
 
 // Judges one metric's samples: regressed when the median grew by more than the
-// tolerance and the U test says the shift is significant (or, with too few
-// samples for the test, on the tolerance alone).
+// tolerance and by more than `floor` ms, and the U test says the shift is
+// significant (or, with too few samples for the test, on the tolerance and the
+// floor alone). `tested` is how many metrics are judged together, for
+// adjust_holm; alone, p_adjusted is p.
 MetricCheck check_metric(std::string metric, std::span<const double> baseline, std::span<const double> current,
-                         const CheckOptions& options);
+                         const CheckOptions& options, double floor = 0);
 
-// Both documents validated and of the same run (require_same_run).
+// Holm's step-down correction over metrics tested at once: with m metrics, the
+// k-th smallest p-value (from 0) is multiplied by m - k, made monotone, and
+// capped at 1. Sets p_adjusted, significant and regressed again.
+void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options);
+
+// Every key of "samples" (frame_ms, then the categories): --metric all.
+std::vector<std::string> all_metrics();
+
+// Both documents validated and of the same run (require_same_run). The floor
+// is resolved against the baseline's median frame, and the metrics are
+// Holm-corrected together.
 CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options);
 
 // What stdout shows: a line per regressed metric or changed counter (metric,

@@ -118,8 +118,7 @@ nlohmann::json to_json(const RunReport& report) {
   nlohmann::json j;
   j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"format", 1}};
   j["environment"] = {{"cpu", env.cpu},           {"cores", env.cores},       {"compiler", env.compiler},
-                      {"build_type", env.build_type}, {"simd", env.simd}, {"backend", run.backend},
-                      {"renderer", run.renderer}};
+                      {"build_type", env.build_type}, {"simd", env.simd}, {"backend", run.backend}, {"renderer", run.renderer}};
   j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
                 {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
                 {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},

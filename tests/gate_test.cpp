@@ -1,0 +1,128 @@
+// The gate of `check` and `diff`: a metric fails only when its slowdown is
+// significant after Holm's correction over the metrics tested together, beyond
+// the tolerance, and beyond an absolute floor; a timing failure is measured
+// again before it counts.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "asset/errors.h"
+#include "profile/regression.h"
+#include "test_support.h"
+
+using namespace crowdprof;
+using nlohmann::json;
+
+namespace {
+
+// `count` samples around `median`: median * (1 + spread * k / count) for k in
+// -count/2 .. count/2, a deterministic spread with no two equal.
+std::vector<double> spread_around(double median, size_t count, double spread = 0.02) {
+  std::vector<double> out;
+  for (size_t k = 0; k < count; ++k)
+    out.push_back(median * (1.0 + spread * (static_cast<double>(k) - static_cast<double>(count) / 2) /
+                                      static_cast<double>(count)));
+  return out;
+}
+
+}  // namespace
+
+TEST(Gate, FloorParsesTimesAndShares) {
+  Floor ms = parse_floor("0.05ms");
+  EXPECT_DOUBLE_EQ(ms.ms, 0.05);
+  EXPECT_EQ(ms.fraction_of_frame, 0.0);
+  EXPECT_DOUBLE_EQ(parse_floor("50us").ms, 0.05);
+  EXPECT_DOUBLE_EQ(parse_floor("0.001s").ms, 1.0);
+  Floor share = parse_floor("2%");
+  EXPECT_DOUBLE_EQ(share.fraction_of_frame, 0.02);
+  EXPECT_DOUBLE_EQ(floor_ms(share, 4.0), 0.08);
+  EXPECT_DOUBLE_EQ(floor_ms(ms, 4.0), 0.05);
+  EXPECT_DOUBLE_EQ(floor_ms(parse_floor("0ms"), 4.0), 0.0);
+  for (const char* bad : {"5", "ms", "-1ms", "abc%", "", "1 ms", "nanms", "2%%", "1e9s", "5000%"})
+    EXPECT_THROW(parse_floor(bad), UsageError) << bad;
+}
+
+TEST(Gate, AMicrosecondCategoryCannotFailOverTheFloor) {
+  // The report that started it: Scenegraph 0.003 -> 0.004 ms, a third slower
+  // and significant, in a frame of 1 ms.
+  std::vector<double> before = spread_around(0.003, 120), after = spread_around(0.004, 120);
+  CheckOptions options;
+  MetricCheck no_floor = check_metric("Scenegraph", before, after, options, 0.0);
+  EXPECT_TRUE(no_floor.significant);
+  EXPECT_TRUE(no_floor.regressed);
+  MetricCheck floored = check_metric("Scenegraph", before, after, options, floor_ms(options.floor, 1.0));
+  EXPECT_TRUE(floored.significant);
+  EXPECT_TRUE(floored.beyond_tolerance);
+  EXPECT_FALSE(floored.beyond_floor);
+  EXPECT_FALSE(floored.regressed);
+  // A frame 10% slower clears the default floor (2% of the frame) and tolerance.
+  MetricCheck frame = check_metric("frame", spread_around(1.0, 120), spread_around(1.1, 120), options, 0.02);
+  EXPECT_TRUE(frame.regressed);
+}
+
+TEST(Gate, HolmCorrectsForTheMetricsTestedTogether) {
+  CheckOptions options;
+  std::vector<MetricCheck> metrics(3);
+  const double p[] = {0.01, 0.04, 0.03};
+  for (size_t i = 0; i < 3; ++i) {
+    metrics[i].test.p = p[i];
+    metrics[i].test.z = 2.0;  // slower
+    metrics[i].beyond_tolerance = metrics[i].beyond_floor = true;
+  }
+  adjust_holm(metrics, options);
+  // Sorted 0.01, 0.03, 0.04 times 3, 2, 1: 0.03, 0.06, max(0.06, 0.04).
+  EXPECT_DOUBLE_EQ(metrics[0].p_adjusted, 0.03);
+  EXPECT_DOUBLE_EQ(metrics[2].p_adjusted, 0.06);
+  EXPECT_DOUBLE_EQ(metrics[1].p_adjusted, 0.06);
+  EXPECT_TRUE(metrics[0].regressed);
+  EXPECT_FALSE(metrics[1].regressed);  // p = 0.04 alone would have failed
+  EXPECT_FALSE(metrics[2].regressed);
+  // Faster is never a regression, however significant.
+  metrics[0].test.z = -2.0;
+  adjust_holm(metrics, options);
+  EXPECT_FALSE(metrics[0].regressed);
+}
+
+TEST(GateCli, ATimingRegressionIsMeasuredAgainBeforeItFails) {
+  auto dir = test::scratch_dir("gate_attempts");
+  std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
+  std::string base = (dir / "base.json").string();
+  auto r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
+                         "' --update-baseline --attempts 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("the fastest of 2 runs"), std::string::npos) << r.out;
+  // A baseline ten times faster than any machine: every attempt regresses.
+  json fast = json::parse(std::ifstream(base));
+  for (auto& [key, values] : fast["samples"].items())
+    for (auto& v : values) v = v.get<double>() / 10.0;
+  std::ofstream(dir / "fast.json") << fast.dump();
+  std::string fast_path = (dir / "fast.json").string();
+  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 3 --floor 0ms");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("attempt 1 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("attempt 2 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.rfind("REGRESSION frame", 0), 0u) << r.out;
+  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 1 --floor 0ms");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+  // A floor larger than any slowdown passes it, even ten times slower.
+  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 1 --floor 10s");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("under the floor"), std::string::npos) << r.out;
+  // A changed counter is not measured again: it cannot change by chance.
+  json planted = json::parse(std::ifstream(base));
+  planted["counters"]["poses_updated"] = 999;
+  std::ofstream(dir / "planted.json") << planted.dump();
+  r = test::run_cli("check --baseline '" + (dir / "planted.json").string() + "' --attempts 3");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+  for (const char* bad : {"--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
+    r = test::run_cli("check --baseline '" + base + "' " + bad);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+  }
+  r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric all");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("GPU Latency"), std::string::npos) << r.out;
+}
