@@ -34,6 +34,9 @@ int bench(const BenchCliOptions& options) {
     tracer = std::make_unique<Tracer>();
     tracer->name_process(1, "mode " + config.mode_name);
     config.tracer = tracer.get();
+    // Said before a long run, not after it.
+    std::string warning = trace_length_warning(static_cast<size_t>(options.frames + options.warmup), tracer->max_spans());
+    if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
   }
   CrowdBench crowd(character, config);
   RunOptions run;
@@ -48,6 +51,9 @@ int bench(const BenchCliOptions& options) {
   if (!options.json.empty())
     write_text(options.json, "JSON", [&](std::ostream& out) { out << to_json(report).dump(2) << "\n"; });
   if (tracer) write_text(options.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
+  if (tracer && tracer->dropped())
+    std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
+              << tracer->dropped() << " later ones were dropped\n";
   if (!options.screenshot.empty()) {
     std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
     write_png(options.screenshot, rendering.renderer->width(), rendering.renderer->height(), pixels);

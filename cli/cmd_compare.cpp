@@ -155,6 +155,9 @@ int compare(const CompareCliOptions& o) {
     write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
+  if (tracer && tracer->dropped())
+    std::cerr << "crowdprof: note: " << o.trace << " holds the first " << tracer->max_spans() << " spans; "
+              << tracer->dropped() << " later ones were dropped\n";
   return kExitOk;
 }
 

@@ -1,7 +1,13 @@
 // crowdprof: profile skinned-crowd scenes. This file only dispatches to the
 // subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
+<<<<<<< HEAD
 #include <cstdlib>
+=======
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+>>>>>>> main
 #include <iostream>
 #include <new>
 
@@ -10,7 +16,21 @@
 #include "profile/environment.h"
 #include "skinning/simd_target.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// What was printed must have reached stdout: a full disk (or /dev/full) fails
+// the command instead of leaving a cut output behind an exit status of 0.
+int after_flushing_stdout(int status) {
+  errno = 0;
+  std::cout.flush();
+  bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
+  if (!failed) return status;
+  int error = errno;
+  std::cerr << "crowdprof: cannot write to stdout" << (error ? std::string(": ") + std::strerror(error) : "") << "\n";
+  return crowdprof::kExitRuntime;
+}
+
+int run_command(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
   // The SIMD target skinning runs on: the CPU's best, else CROWDPROF_SIMD, else
   // --simd (applied as soon as it is parsed, so that --version after it shows it).
@@ -60,3 +80,7 @@ int main(int argc, char** argv) {
     return crowdprof::kExitRuntime;
   }
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return after_flushing_stdout(run_command(argc, argv)); }
