@@ -45,6 +45,14 @@ struct Copy {
   }
 };
 
+// Samples the first action one frame (1/60 s) after `*time`, looping.
+void sample_next_frame(Copy& copy, float* time) {
+  const Action& action = copy.c.actions[0];
+  *time += 1.0f / 60.0f;
+  if (*time > action.end) *time = action.start;
+  SamplingJob{&action, *time, copy.bindings.targets, &copy.cursor, &copy.pose}.Run();
+}
+
 void per_joint(benchmark::State& state, size_t joints) {
   state.counters["ns_per_joint"] = benchmark::Counter(static_cast<double>(joints),
                                                       benchmark::Counter::kIsIterationInvariantRate |
@@ -77,11 +85,8 @@ BENCHMARK(BM_MemoryWrite)->Threads(1)->Threads(2)->UseRealTime()->Unit(benchmark
 void BM_Sampling(benchmark::State& state) {
   Copy copy;
   float time = 0.0f;
-  const Action& action = copy.c.actions[0];
   for (auto _ : state) {
-    time += 1.0f / 60.0f;
-    if (time > action.end) time = action.start;
-    SamplingJob{&action, time, copy.bindings.targets, &copy.cursor, &copy.pose}.Run();
+    sample_next_frame(copy, &time);
     benchmark::DoNotOptimize(copy.pose.rotations.data());
   }
   per_joint(state, copy.c.skeleton.joint_count());
@@ -157,11 +162,8 @@ void BM_PoseAndSkin(benchmark::State& state) {
   const size_t n = copy.c.mesh.vertex_count();
   std::vector<glm::vec3> positions(n), normals(n);
   float time = 0.0f;
-  const Action& action = copy.c.actions[0];
   for (auto _ : state) {
-    time += 1.0f / 60.0f;
-    if (time > action.end) time = action.start;
-    SamplingJob{&action, time, copy.bindings.targets, &copy.cursor, &copy.pose}.Run();
+    sample_next_frame(copy, &time);
     LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}.Run();
     SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}.Run();
     SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();

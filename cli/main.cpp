@@ -1,13 +1,10 @@
 // crowdprof: profile skinned-crowd scenes. This file only dispatches to the
 // subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
-<<<<<<< HEAD
-#include <cstdlib>
-=======
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
->>>>>>> main
 #include <iostream>
 #include <new>
 
