@@ -2,7 +2,6 @@
 // report of results already written (bench, check or compare --json). Every
 // input is read and checked before anything is written, so a bad file leaves
 // no report behind.
-#include <filesystem>
 #include <iostream>
 
 #include "asset/errors.h"
@@ -20,11 +19,9 @@ struct ReportCliOptions {
 };
 
 int report(const ReportCliOptions& o) {
-  for (const std::string& file : o.files) {
-    std::error_code error;
-    if (file == o.output || std::filesystem::equivalent(file, o.output, error))
-      throw UsageError("-o " + o.output + " is one of the results it reports on; name another file");
-  }
+  std::vector<NamedPath> inputs = {{"--screenshot", o.screenshot}};
+  for (const std::string& file : o.files) inputs.push_back({"result file", file});
+  require_distinct_outputs(inputs, {{"-o", o.output}});  // by path, link or inode
   require_writable(o.output, "HTML");
   HtmlReportInput input;
   for (const std::string& file : o.files) add_result_file(input, file);
