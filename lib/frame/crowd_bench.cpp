@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -115,8 +116,17 @@ void CrowdBench::for_each_copy(std::string_view task, const Body& body) {
   });
 }
 
+namespace {
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+}  // namespace
+
 FrameRecord CrowdBench::step() {
   FrameRecord record;
+  double cpu_start = process_cpu_ms();
   Counters& counters = record.counters;
   clock_.begin_frame(Category::Logic);
   if (config_.tracer) frame_start_ = stage_start_ = CategoryClock::Clock::now();
@@ -139,6 +149,7 @@ FrameRecord CrowdBench::step() {
     config_.tracer->span("frame", "frame", frame_start_, stage_start_, config_.trace_pid,
                          {{"frame", static_cast<int64_t>(frame_ - 1)}});
   record.times = clock_.end_frame();
+  record.cpu_ms = process_cpu_ms() - cpu_start;
   return record;
 }
 

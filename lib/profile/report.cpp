@@ -24,8 +24,8 @@ std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t c
 }
 
 nlohmann::json summary_json(const Summary& s) {
-  return {{"min_ms", s.min},   {"median_ms", s.median}, {"mean_ms", s.mean},
-          {"p95_ms", s.p95},   {"max_ms", s.max},       {"stddev_ms", s.stddev}};
+  return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
+          {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
 }
 
 std::string fixed(double value, int decimals) {
@@ -65,6 +65,12 @@ std::string format_profile(const RunReport& report) {
                   bar.empty() ? "" : " ", bar.c_str());  // no trailing blank for diff-friendly output
     out << line;
   }
+  // The slow frames, which a median hides: a game stutters on its p99.
+  std::vector<double> totals = frame_ms(report.frames);
+  Summary s = summarize(totals);
+  std::snprintf(line, sizeof line, "Slow frames: p50 %.2f | p95 %.2f | p99 %.2f | max %.2f ms\n", s.median, s.p95, s.p99,
+                s.max);
+  out << line;
   const Counters& k = frame.counters;
   out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode "
       << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
@@ -132,6 +138,10 @@ nlohmann::json to_json(const RunReport& report) {
   std::vector<double> totals = frame_ms(report.frames);
   j["frame"] = summary_json(summarize(totals));
   nlohmann::json samples = {{"frame_ms", totals}};
+  std::vector<double> cpu;
+  for (const FrameRecord& f : report.frames) cpu.push_back(f.cpu_ms);
+  j["cpu"] = summary_json(summarize(cpu));
+  samples["cpu_ms"] = cpu;
   for (size_t c = 0; c < kCategoryCount; ++c) {
     std::string name(category_name(static_cast<Category>(c)));
     std::vector<double> values = category_ms(report.frames, c);
