@@ -49,13 +49,13 @@ std::vector<size_t> parse_sweep(const std::string& text) {
 
 // The config of one mode: the shared options, with --threads applying only to
 // the modes that run in parallel.
-BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const Character& character) {
+BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const BenchScene& scene) {
   BenchCliOptions options = shared;
   options.mode = mode;
   const ModePreset* preset = find_mode(mode);
   bool parallel = options.parallel.empty() ? preset && preset->switches.parallel : options.parallel == "on";
   if (!parallel) options.threads = kThreadsUnset;
-  return make_bench_config(options, character);
+  return make_bench_config(options, scene);
 }
 
 struct ModeRun {
@@ -65,7 +65,7 @@ struct ModeRun {
 
 // Builds one bench per mode at `copies`; modes the user did not ask for by
 // name are skipped, with a note, when they cannot run here (hwskin without GL).
-ModeRun make_benches(const Character& character, std::vector<BenchConfig> configs, size_t copies, bool named,
+ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named,
                      bool note) {
   ModeRun run;
   for (BenchConfig& config : configs) {
@@ -76,8 +76,9 @@ ModeRun make_benches(const Character& character, std::vector<BenchConfig> config
     else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
   }
   if (run.configs.empty()) throw UsageError("none of the modes can run here");
-  check_fits_in_memory(character, run.configs);  // only the modes that will run
-  for (const BenchConfig& config : run.configs) run.benches.push_back(std::make_unique<CrowdBench>(character, config));
+  check_fits_in_memory(scene.characters, run.configs);  // only the modes that will run
+  for (const BenchConfig& config : run.configs)
+    run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));
   return run;
 }
 
@@ -97,7 +98,7 @@ std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, con
   return reports;
 }
 
-int compare(const CompareCliOptions& o) {
+int compare(CompareCliOptions& o) {
   if (o.block < 1 || o.block > 1'000'000) throw UsageError("--block " + std::to_string(o.block) + ": expected 1 to 1000000");
   std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
   std::vector<std::string> names = o.modes;
@@ -113,11 +114,11 @@ int compare(const CompareCliOptions& o) {
   require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   if (!o.trace.empty()) require_writable(o.trace, "trace");
-  Character character = load_character(o.bench.file);
+  BenchScene scene = load_bench_scene(o.bench);
   std::vector<BenchConfig> configs;
-  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, character));
+  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, scene));
   // One renderer draws every mode in turn: the modes run one block at a time.
-  BenchRendering rendering = open_bench_rendering(o.bench, character, configs.front());
+  BenchRendering rendering = open_bench_rendering(o.bench, scene, configs.front());
   for (BenchConfig& config : configs) config.renderer = rendering.renderer.get();
 
   Comparison comparison;
@@ -132,7 +133,7 @@ int compare(const CompareCliOptions& o) {
   }
   size_t copies = static_cast<size_t>(o.bench.characters);
   {
-    ModeRun main = make_benches(character, configs, copies, named, true);
+    ModeRun main = make_benches(scene, configs, copies, named, true);
     for (const BenchConfig& config : main.configs)
       if (tracer) tracer->name_process(config.trace_pid, "mode " + config.mode_name);
     comparison.runs = run_modes(main, o, rendering, "frame");
@@ -143,7 +144,7 @@ int compare(const CompareCliOptions& o) {
       comparison.sweep.insert(comparison.sweep.end(), comparison.runs.begin(), comparison.runs.end());
       continue;
     }
-    ModeRun point = make_benches(character, configs, n, named, false);
+    ModeRun point = make_benches(scene, configs, n, named, false);
     std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + " frame");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
@@ -155,6 +156,9 @@ int compare(const CompareCliOptions& o) {
     write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
+  if (tracer && tracer->dropped())
+    std::cerr << "crowdprof: note: " << o.trace << " holds the first " << tracer->max_spans() << " spans; "
+              << tracer->dropped() << " later ones were dropped\n";
   return kExitOk;
 }
 

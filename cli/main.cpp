@@ -1,6 +1,9 @@
 // crowdprof: profile skinned-crowd scenes. This file only dispatches to the
 // subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <new>
 
@@ -8,7 +11,21 @@
 #include "cli/commands.h"
 #include "profile/environment.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// What was printed must have reached stdout: a full disk (or /dev/full) fails
+// the command instead of leaving a cut output behind an exit status of 0.
+int after_flushing_stdout(int status) {
+  errno = 0;
+  std::cout.flush();
+  bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
+  if (!failed) return status;
+  int error = errno;
+  std::cerr << "crowdprof: cannot write to stdout" << (error ? std::string(": ") + std::strerror(error) : "") << "\n";
+  return crowdprof::kExitRuntime;
+}
+
+int run_command(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
   app.set_version_flag("--version", crowdprof::version_line(), "Print the version, commit, build type, compiler and "
                                                               "SIMD target on one line");
@@ -44,3 +61,7 @@ int main(int argc, char** argv) {
     return crowdprof::kExitRuntime;
   }
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return after_flushing_stdout(run_command(argc, argv)); }

@@ -63,8 +63,8 @@ TEST(BadInput, TruncatedGlb) {
 TEST(BadInput, BrokenJson) {
   std::string file = path_in("broken_json", "broken.gltf");
   write_file(file, R"({"asset": {"version": "2.0"}, "nodes": [ {"name": "hip"} )");
-  expect_bad_input(file, {"broken JSON"});
-  // The same inside a GLB's JSON chunk.
+  expect_bad_input(file, {"truncated JSON"});
+  // Broken inside a GLB's JSON chunk.
   std::string glb = path_in("broken_json_glb", "broken.glb");
   std::string json = R"({"asset": {"version": "2.0"},, })";
   std::string bytes = std::string("glTF") + std::string("\2\0\0\0", 4);

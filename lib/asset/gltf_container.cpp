@@ -29,6 +29,14 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
   if (size > kMaxAssetBytes)
     throw InputError(path, "is " + std::to_string(size) + " bytes; crowdprof reads at most " +
                                std::to_string(kMaxAssetBytes) + " bytes");
+  // Judge the format on the first bytes: a large file that is not glTF at all
+  // is refused before it is read whole.
+  std::string head = read_file_head(path);
+  if (head.rfind("glTF", 0) != 0) {
+    size_t first = head.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && head[first] != '{')
+      throw InputError(path, "is not a glTF file (neither GLB nor a JSON object)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::vector<unsigned char> bytes(static_cast<size_t>(size));
@@ -38,21 +46,9 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
 }
 
 nlohmann::json parse_json(const std::string& path, const char* begin, const char* end) {
-  nlohmann::json::parser_callback_t limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > kMaxJsonDepth)
-      throw InputError(path, "broken JSON: nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
-    return true;
-  };
-  try {
-    nlohmann::json json = nlohmann::json::parse(begin, end, limit_depth);
-    if (!json.is_object()) throw InputError(path, "broken JSON: the top level is not an object");
-    return json;
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 1, ...".
-    std::string what = e.what();
-    size_t at = what.find("] ");
-    throw InputError(path, "broken JSON: " + printable(at == std::string::npos ? what : what.substr(at + 2), 200));
-  }
+  nlohmann::json json = parse_json_input(path, std::string_view(begin, static_cast<size_t>(end - begin)));
+  if (!json.is_object()) throw InputError(path, "broken JSON: the top level is not an object");
+  return json;
 }
 
 // GLB layout: 12-byte header, then chunks of (length, type, payload padded to 4).

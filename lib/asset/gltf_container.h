@@ -10,15 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "asset/input_file.h"
+
 namespace crowdprof {
 
 // Files larger than this are refused before reading: a character is megabytes.
 // The same bound holds for all of a file's buffers together.
 inline constexpr uint64_t kMaxAssetBytes = 1ull << 30;
-
-// JSON nested deeper than this is refused: glTF needs about 8 levels, and the JSON
-// walkers after the parser (dump, tiny_gltf's extras) recurse once per level.
-inline constexpr int kMaxJsonDepth = 64;
 
 // Text from the file, made safe for a one-line message: control characters become
 // '?', and anything past `limit` characters becomes "...".

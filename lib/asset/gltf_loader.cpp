@@ -200,10 +200,41 @@ int type_components(const nlohmann::json& accessor) {
   return it == components.end() ? 0 : it->second;
 }
 
+// The Draco data type a glTF component type is stored as.
+draco::DataType draco_type_of(int64_t component_type) {
+  switch (component_type) {
+    case 5120: return draco::DT_INT8;
+    case 5121: return draco::DT_UINT8;
+    case 5122: return draco::DT_INT16;
+    case 5123: return draco::DT_UINT16;
+    case 5125: return draco::DT_UINT32;
+    case 5126: return draco::DT_FLOAT32;
+    default: return draco::DT_INVALID;
+  }
+}
+
+std::string draco_type_name(draco::DataType type) {
+  switch (type) {
+    case draco::DT_INT8: return "8-bit integers";
+    case draco::DT_UINT8: return "unsigned 8-bit integers";
+    case draco::DT_INT16: return "16-bit integers";
+    case draco::DT_UINT16: return "unsigned 16-bit integers";
+    case draco::DT_INT32: return "32-bit integers";
+    case draco::DT_UINT32: return "unsigned 32-bit integers";
+    case draco::DT_INT64: return "64-bit integers";
+    case draco::DT_UINT64: return "unsigned 64-bit integers";
+    case draco::DT_FLOAT32: return "32-bit floats";
+    case draco::DT_FLOAT64: return "64-bit floats";
+    case draco::DT_BOOL: return "booleans";
+    default: return "values of Draco type " + std::to_string(static_cast<int>(type));
+  }
+}
+
 // Decodes every Draco primitive once on a model of the buffers alone and checks
 // what tiny_gltf will trust when it decodes again: that the data decodes, that
 // each attribute exists with the accessor's component count (tiny_gltf converts
-// into a 4-element array), and that the indices fit the accessor's type.
+// into a 4-element array) and component type, and that the indices fit the
+// accessor's type.
 std::vector<DracoPrimitive> trial_decode_draco(const GltfContainer& c) {
   std::vector<DracoPrimitive> found;
   if (!c.json.contains("meshes")) return found;
@@ -256,6 +287,13 @@ std::vector<DracoPrimitive> trial_decode_draco(const GltfContainer& c) {
       if (attribute->num_components() != expected || expected > 4)
         fail("Draco attribute " + printable(name) + " has " + std::to_string(attribute->num_components()) +
              " components, but its accessor " + std::to_string(accessor) + " has " + std::to_string(expected));
+      // tiny_gltf converts each value to the accessor's type without a word, so
+      // 16-bit joint indices mapped to a float WEIGHTS_0 would load as weights.
+      int64_t component_type = accessors[static_cast<size_t>(accessor)].value("componentType", int64_t(0));
+      if (attribute->data_type() != draco_type_of(component_type))
+        fail("Draco attribute " + printable(name) + " holds " + draco_type_name(attribute->data_type()) +
+             ", but its accessor " + std::to_string(accessor) + " has component type " +
+             std::to_string(component_type));
       d.accessors.push_back(accessor);
     }
   }

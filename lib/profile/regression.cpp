@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "asset/errors.h"
+#include "asset/input_file.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
 
@@ -193,20 +194,18 @@ nlohmann::json read_result(const std::string& path) {
   // 10 million frames of eleven samples fit in well under this.
   constexpr uintmax_t kMaxResultBytes = uintmax_t{2} << 30;
   if (fs::file_size(path, error) > kMaxResultBytes) throw InputError(path, "larger than 2 GiB: not a crowdprof result");
+  // A result is a JSON object: judged on the first bytes, before a large file
+  // that is something else is read whole.
+  std::string head = read_file_head(path);
+  size_t first = head.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && head[first] != '{')
+    throw InputError(path, "not a crowdprof result (not a JSON object)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot be read");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError(path, "empty file, not a crowdprof result");
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // An error at the very end (mid-string or mid-object) is a file cut short.
-    bool truncated = e.byte >= text.size() || std::string(e.what()).find("end of input") != std::string::npos;
-    throw InputError(path, truncated ? "truncated JSON (it ends after " + std::to_string(text.size()) + " bytes)"
-                                     : "not JSON (byte " + std::to_string(e.byte) + ")");
-  }
+  json doc = parse_json_input(path, text);
   validate_result(doc, path);
   return doc;
 }
@@ -294,6 +293,13 @@ std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const 
   const json& be = baseline.contains("environment") ? baseline["environment"] : json::object();
   const json& ce = current.contains("environment") ? current["environment"] : json::object();
   for (const char* key : {"cpu", "build_type", "backend"}) note(key, be.value(key, none), ce.value(key, none));
+  // A scene file edited since the baseline: the counters or digest will say
+  // whether the work changed; this says why.
+  const json& bs = baseline["scene"];
+  const json& cs = current["scene"];
+  if (bs.contains("scene_hash") && cs.contains("scene_hash") && bs["scene_hash"] != cs["scene_hash"])
+    notes.push_back("the scene file changed since the baseline: hash " + bs["scene_hash"].dump() + " then, " +
+                    cs["scene_hash"].dump() + " now");
   return notes;
 }
 

@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 
+#include "profile/category_clock.h"
+
 namespace crowdprof {
 
 namespace {
@@ -23,7 +25,15 @@ double microseconds(int64_t ns) { return static_cast<double>(ns) / 1000.0; }
 
 }  // namespace
 
-Tracer::Tracer() : serial_(next_serial.fetch_add(1)), epoch_(Clock::now()) {
+std::string trace_length_warning(size_t frames, size_t max_spans) {
+  constexpr size_t kMainSpansPerFrame = 1 + kCategoryCount;
+  if (frames <= max_spans / kMainSpansPerFrame) return "";
+  return "--trace keeps " + std::to_string(max_spans) + " spans, about the first " +
+         std::to_string(max_spans / kMainSpansPerFrame) + " of these " + std::to_string(frames) +
+         " frames; later spans are counted, not written";
+}
+
+Tracer::Tracer(size_t max_spans) : max_spans_(max_spans), serial_(next_serial.fetch_add(1)), epoch_(Clock::now()) {
   buffer_for_this_thread();  // the constructing thread is tid 1
 }
 
@@ -47,6 +57,7 @@ Tracer::ThreadBuffer& Tracer::buffer_for_this_thread() {
 
 void Tracer::span(std::string_view name, std::string_view category, Clock::time_point start, Clock::time_point end,
                   int pid, std::initializer_list<TraceArg> args) {
+  if (offered_.fetch_add(1, std::memory_order_relaxed) >= max_spans_) return;
   ThreadBuffer& buffer = buffer_for_this_thread();
   TraceSpan s;
   s.name = name;
@@ -58,6 +69,11 @@ void Tracer::span(std::string_view name, std::string_view category, Clock::time_
   for (const TraceArg& arg : args)
     if (s.arg_count < 2) s.args[s.arg_count++] = arg;
   buffer.spans.push_back(s);
+}
+
+size_t Tracer::dropped() const {
+  size_t offered = offered_.load(std::memory_order_relaxed);
+  return offered > max_spans_ ? offered - max_spans_ : 0;
 }
 
 void Tracer::name_process(int pid, std::string name) {
@@ -77,7 +93,11 @@ std::vector<TraceSpan> Tracer::spans() const {
   return all;
 }
 
-nlohmann::json Tracer::to_json() const {
+// The events of a trace: metadata naming every process and thread, then the
+// spans by start time. `emit` takes each event in turn, so write() can stream a
+// large trace without holding all of it as JSON.
+template <typename Emit>
+void Tracer::for_each_event(Emit emit) const {
   std::vector<TraceSpan> all = spans();
   std::sort(all.begin(), all.end(), [](const TraceSpan& a, const TraceSpan& b) {
     return a.start_ns != b.start_ns ? a.start_ns < b.start_ns : a.duration_ns > b.duration_ns;
@@ -93,17 +113,16 @@ nlohmann::json Tracer::to_json() const {
     std::lock_guard lock(mutex_);
     for (const auto& [pid, name] : processes_) processes[pid] = name;
   }
-  nlohmann::json events = nlohmann::json::array();
   for (const auto& [pid, name] : processes) {
-    events.push_back({{"name", "process_name"}, {"ph", "M"}, {"pid", pid}, {"tid", 0}, {"args", {{"name", name}}}});
-    events.push_back({{"name", "process_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", 0},
-                      {"args", {{"sort_index", pid}}}});
+    emit(nlohmann::json{{"name", "process_name"}, {"ph", "M"}, {"pid", pid}, {"tid", 0}, {"args", {{"name", name}}}});
+    emit(nlohmann::json{{"name", "process_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", 0},
+                        {"args", {{"sort_index", pid}}}});
   }
   for (const auto& [pid, tid] : threads) {
     std::string name = tid == 1 ? "main" : "worker " + std::to_string(tid);
-    events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", pid}, {"tid", tid}, {"args", {{"name", name}}}});
-    events.push_back({{"name", "thread_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", tid},
-                      {"args", {{"sort_index", tid}}}});
+    emit(nlohmann::json{{"name", "thread_name"}, {"ph", "M"}, {"pid", pid}, {"tid", tid}, {"args", {{"name", name}}}});
+    emit(nlohmann::json{{"name", "thread_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", tid},
+                        {"args", {{"sort_index", tid}}}});
   }
   for (const TraceSpan& s : all) {
     nlohmann::json event = {{"name", s.name},
@@ -114,18 +133,31 @@ nlohmann::json Tracer::to_json() const {
                             {"pid", s.pid},
                             {"tid", s.tid}};
     for (uint8_t i = 0; i < s.arg_count; ++i) event["args"][std::string(s.args[i].key)] = s.args[i].value;
-    events.push_back(std::move(event));
+    emit(std::move(event));
   }
-  return {{"traceEvents", std::move(events)}, {"displayTimeUnit", "ms"}};
+}
+
+nlohmann::json Tracer::to_json() const {
+  nlohmann::json events = nlohmann::json::array();
+  for_each_event([&](nlohmann::json event) { events.push_back(std::move(event)); });
+  nlohmann::json doc = {{"traceEvents", std::move(events)}, {"displayTimeUnit", "ms"}};
+  if (dropped()) doc["crowdprof"] = {{"dropped_spans", dropped()}, {"max_spans", max_spans_}};
+  return doc;
 }
 
 void Tracer::write(std::ostream& out) const {
-  // One event per line: readable, and diff-friendly, without the bulk of dump(2).
-  nlohmann::json doc = to_json();
-  out << "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[\n";
-  const auto& events = doc["traceEvents"];
-  for (size_t i = 0; i < events.size(); ++i) out << events[i].dump() << (i + 1 < events.size() ? ",\n" : "\n");
-  out << "]}\n";
+  // One event per line: readable, and diff-friendly, without the bulk of
+  // dump(2). Streamed: a million spans as one JSON value would take a gigabyte.
+  out << "{\"displayTimeUnit\":\"ms\",";
+  if (dropped())
+    out << "\"crowdprof\":" << nlohmann::json{{"dropped_spans", dropped()}, {"max_spans", max_spans_}}.dump() << ",";
+  out << "\"traceEvents\":[";
+  bool first = true;
+  for_each_event([&](const nlohmann::json& event) {
+    out << (first ? "\n" : ",\n") << event.dump();
+    first = false;
+  });
+  out << "\n]}\n";
 }
 
 }  // namespace crowdprof

@@ -4,6 +4,7 @@
 // mode can be seen. A bench without a tracer records nothing and pays nothing.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -34,29 +35,44 @@ struct TraceSpan {
   uint8_t arg_count = 0;
 };
 
+// A trace keeps at most this many spans, about 100 MB of JSON (a span is about
+// 100 bytes written): a long run would otherwise write gigabytes. Spans past it
+// are counted, not kept, and the trace says how many were dropped.
+inline constexpr size_t kMaxTraceSpans = 1'000'000;
+
+// What to say before a traced run of `frames` frames (warm-up included) that
+// will pass `max_spans`: the main thread alone records a span per frame and one
+// per stage, so the estimate is low, never high. Empty when it fits.
+std::string trace_length_warning(size_t frames, size_t max_spans);
+
 class Tracer {
  public:
   using Clock = std::chrono::steady_clock;
 
   // The constructing thread becomes tid 1, "main"; other threads get 2, 3, ...
   // in the order they first record, named "worker 2", "worker 3", ...
-  Tracer();
+  explicit Tracer(size_t max_spans = kMaxTraceSpans);
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
   // Records [start, end) on the calling thread; safe from any thread. Only the
-  // first recording of a thread takes a lock.
+  // first recording of a thread takes a lock. Past max_spans(), only counts.
   void span(std::string_view name, std::string_view category, Clock::time_point start, Clock::time_point end,
             int pid, std::initializer_list<TraceArg> args = {});
 
   // Names a process track (Perfetto shows it as the group's title).
   void name_process(int pid, std::string name);
 
+  size_t max_spans() const { return max_spans_; }
+  // Spans not kept because max_spans() were already kept.
+  size_t dropped() const;
+
   // Spans recorded so far, by thread, in the order each thread recorded them.
   std::vector<TraceSpan> spans() const;
 
   // {"traceEvents": [...], "displayTimeUnit": "ms"}: metadata naming every
-  // process and thread, then the spans with ts and dur in microseconds.
+  // process and thread, then the spans with ts and dur in microseconds; and,
+  // when spans were dropped, "crowdprof": {"dropped_spans", "max_spans"}.
   nlohmann::json to_json() const;
   void write(std::ostream& out) const;
 
@@ -67,7 +83,11 @@ class Tracer {
     std::vector<TraceSpan> spans;
   };
   ThreadBuffer& buffer_for_this_thread();
+  template <typename Emit>
+  void for_each_event(Emit emit) const;
 
+  const size_t max_spans_;
+  std::atomic<size_t> offered_{0};  // spans offered to span(), kept or not
   const uint64_t serial_;  // tells a thread's cached buffer from another tracer's
   const Clock::time_point epoch_;
   mutable std::mutex mutex_;

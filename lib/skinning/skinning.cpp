@@ -109,12 +109,15 @@ bool SkinningJob::Validate() const {
     return false;
   if (first_vertex > n || vertex_count > n - first_vertex) return false;
   if (out_positions.size() != vertex_count || out_normals.size() != vertex_count) return false;
+  // An empty range of a mesh without vertices (a skin bound to no mesh) has no
+  // joint to scan, and its data() may be null.
+  if (vertex_count == 0) return true;
   // Joint indices come from the file: one past the palette would read beyond it.
   // As one flat array of indices, so that the scan vectorises.
   const uint16_t* joints = &mesh->joints.data()[first_vertex].x;
   uint16_t largest = 0;
   for (size_t k = 0; k < 4 * vertex_count; ++k) largest = std::max(largest, joints[k]);
-  return vertex_count == 0 || largest < skinning_matrices.size();
+  return largest < skinning_matrices.size();
 }
 
 bool SkinningJob::Run() const {

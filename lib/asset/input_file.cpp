@@ -1,0 +1,44 @@
+#include "asset/input_file.h"
+
+#include <fstream>
+
+#include "asset/errors.h"
+#include "asset/gltf_container.h"
+
+namespace crowdprof {
+
+nlohmann::json parse_json_input(const std::string& path, std::string_view text) {
+  nlohmann::json::parser_callback_t limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(path, "broken JSON: nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(text.begin(), text.end(), limit_depth);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 1, ...".
+    std::string what = e.what();
+    if (e.byte >= text.size() || what.find("end of input") != std::string::npos)
+      throw InputError(path, "truncated JSON (it ends after " + std::to_string(text.size()) + " bytes)");
+    size_t at = what.find("] ");
+    throw InputError(path, "broken JSON: " + printable(at == std::string::npos ? what : what.substr(at + 2), 200));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'"
+    std::string what = e.what();
+    size_t at = what.find("] ");
+    throw InputError(path, "a number too large for a double: " +
+                               printable(at == std::string::npos ? what : what.substr(at + 2), 120));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, "broken JSON: " + printable(e.what(), 200));
+  }
+}
+
+std::string read_file_head(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kFormatProbeBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+}  // namespace crowdprof

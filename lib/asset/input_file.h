@@ -1,0 +1,35 @@
+// What every reader of a file from outside (characters, baselines, results)
+// shares, so that each refuses the same things in the same words: JSON that
+// cannot be used, and a look at a file's first bytes before it is read whole.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace crowdprof {
+
+// JSON nested deeper than this is refused: glTF needs about 8 levels and a result
+// 4, and the JSON walkers after the parser (dump, tiny_gltf's extras) recurse
+// once per level.
+inline constexpr int kMaxJsonDepth = 64;
+
+// How much of a file a reader looks at to judge its format, before reading it
+// whole: a 1 GB file that is not what it should be is refused at once.
+inline constexpr size_t kFormatProbeBytes = 4096;
+
+// Parses `text`, the contents of the file `path`, as JSON. Every failure is an
+// InputError naming the file: "truncated JSON (it ends after N bytes)" when the
+// text stops mid-value, "broken JSON: ..." for any other syntax error or nesting
+// deeper than kMaxJsonDepth, and "a number too large for a double: ..." for a
+// literal such as 1e400 (nlohmann reports that as out_of_range, not as a parse
+// error, and it used to escape as "the run failed").
+nlohmann::json parse_json_input(const std::string& path, std::string_view text);
+
+// The first min(kFormatProbeBytes, size) bytes of the file, or "" when it cannot
+// be opened (the caller's full read reports that).
+std::string read_file_head(const std::string& path);
+
+}  // namespace crowdprof

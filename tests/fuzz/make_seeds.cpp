@@ -1,0 +1,42 @@
+// Writes the glTF fuzz target's seed corpus into the folder given: the tests'
+// hand-built skinned character (GLB, .gltf with a data: URI, Draco) and the
+// procedural humanoid at its smallest (plain and Draco). Made at build time
+// from the project's own code, so no corpus is ever downloaded.
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+
+#include "../draco_fixture.h"
+#include "../gltf_fixture.h"
+#include "gen/gltf_writer.h"
+#include "gen/humanoid.h"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_seeds FOLDER\n");
+    return 2;
+  }
+  namespace fs = std::filesystem;
+  using namespace crowdprof;
+  try {
+    const fs::path out = argv[1];
+    fs::create_directories(out);
+    test::SkinnedFixture fixture;
+    fixture.write_glb(out / "fixture.glb");
+    fixture.write_gltf(out / "fixture_data_uri.gltf", /*data_uri=*/true);
+    test::DracoFixture draco;
+    draco.write_glb(out / "fixture_draco.glb");
+    HumanoidOptions small;
+    small.bones = kHumanoidMinBones;
+    small.vertices = kHumanoidMinVertices;
+    const Character humanoid = generate_humanoid(small);
+    write_gltf(humanoid, (out / "humanoid.glb").string());
+    GltfWriteOptions compressed;
+    compressed.draco = true;
+    write_gltf(humanoid, (out / "humanoid_draco.glb").string(), compressed);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "make_seeds: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+// Fuzz target: bytes as a result file (bench --json, a check baseline), through
+// what `check --result` does with it: read and validate, then compare it with
+// itself and format the verdict. The reader must refuse with an InputError or
+// give a document every later step takes; any other exception or a sanitizer
+// report is a finding.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+
+#include "asset/errors.h"
+#include "fuzz_file.h"
+#include "profile/regression.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace crowdprof;
+  const std::string path = crowdprof::fuzz::write_input(data, size, "result.json");
+  try {
+    nlohmann::json doc = read_result(path);
+    require_same_run(doc, doc, path);
+    (void)comparison_notes(doc, doc);
+    CheckOptions options;
+    options.metrics = {"frame_ms", resolve_metric("Animations")};
+    CheckResult result = check_results(doc, doc, options);
+    (void)format_check(result, options);
+    if (result.regressed()) {
+      std::fprintf(stderr, "fuzz: a result regressed against itself\n");
+      std::abort();
+    }
+  } catch (const InputError&) {
+    // Refused cleanly.
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fuzz: not an InputError: %s\n", e.what());
+    std::abort();
+  }
+  return 0;
+}
