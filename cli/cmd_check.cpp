@@ -16,6 +16,7 @@
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "frame/interrupt.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"
 #include "profile/svg_chart.h"
@@ -38,6 +39,7 @@ struct CheckCliOptions {
   std::string svg;
   CLI::App* command = nullptr;  // to tell options given from defaults
   bool action_from_baseline = false;
+  bool file_from_baseline = false;  // the scene file is the one the baseline recorded
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -97,7 +99,10 @@ void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
   }
   auto given = [&](const char* name) { return o.command->count(name) > 0; };
   BenchCliOptions& b = o.bench;
-  if (b.file.empty()) b.file = recorded.file;
+  if (b.file.empty()) {
+    b.file = recorded_scene_file(baseline, o.baseline);
+    o.file_from_baseline = true;
+  }
   if (!given("--characters")) b.characters = recorded.characters;
   if (!given("--frames")) b.frames = recorded.frames;
   if (!given("--warmup")) b.warmup = recorded.warmup;
@@ -148,7 +153,14 @@ void require_recorded_action(const CheckCliOptions& o, const Character& characte
 }
 
 RunReport run_bench_report(CheckCliOptions& o) {
-  BenchScene scene = load_bench_scene(o.bench);
+  BenchScene scene;
+  try {
+    scene = load_bench_scene(o.bench);
+  } catch (const InputError& e) {
+    if (!o.file_from_baseline) throw;
+    throw InputError(o.baseline, std::string("its scene file: ") + e.what() +
+                                     " (the path the baseline recorded, resolved from the baseline's folder)");
+  }
   require_recorded_action(o, scene.first());
   BenchConfig config = make_bench_config(o.bench, scene);
   check_fits_in_memory(scene.characters, config);
@@ -157,7 +169,9 @@ RunReport run_bench_report(CheckCliOptions& o) {
   RunOptions run;
   run.frames = static_cast<size_t>(o.bench.frames);
   run.warmup = static_cast<size_t>(o.bench.warmup);
-  run.progress = terminal_progress(o.bench.quiet);
+  run.progress = terminal_progress(o.bench.quiet, "check, mode " + config.mode_name + ",");
+  install_interrupt_handlers();
+  run.stop = &interrupt_requested();
   RunReport report = run_bench(bench, o.bench.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
@@ -245,10 +259,12 @@ int check(CheckCliOptions& o) {
     if (o.bench.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
     require_safe_outputs();  // the scene file may have come from the baseline
   }
+  bool interrupted = false;
   auto measure = [&]() {
     RunReport report = run_bench_report(o);
     write_run(report);
     current = to_json(report);
+    interrupted = report.partial;
   };
 
   if (o.update) {
@@ -256,16 +272,25 @@ int check(CheckCliOptions& o) {
       json fastest;
       for (long long attempt = 1; attempt <= o.attempts; ++attempt) {
         measure();
+        if (interrupted) break;
         auto median = [&](const json& doc) {
           return summarize(doc["samples"][options.metrics.front()].get<std::vector<double>>()).median;
         };
         if (fastest.is_null() || median(current) < median(fastest)) fastest = current;
       }
-      current = fastest;
+      current = interrupted ? current : fastest;
+    }
+    if (interrupted) {
+      if (!o.bench.json.empty())
+        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      std::cerr << "crowdprof: interrupted: the baseline is not updated from a partial run\n";
+      return kExitInterrupted;
     }
     if (!o.bench.json.empty())
-      write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
-    write_text(o.baseline, "baseline", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      write_text(o.bench.json, "JSON",
+                 [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
+    write_text(o.baseline, "baseline",
+               [&](std::ostream& out) { out << with_paths_relative_to(current, o.baseline).dump(2) << "\n"; });
     if (!o.bench.quiet)
       std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
                 << current["scene"]["characters"] << " characters, frame median "
@@ -284,9 +309,16 @@ int check(CheckCliOptions& o) {
   CheckResult result;
   for (long long attempt = 1;; ++attempt) {
     if (o.result.empty()) measure();
+    if (interrupted) {
+      if (!o.bench.json.empty())
+        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      std::cerr << "crowdprof: interrupted: a partial run is not compared\n";
+      return kExitInterrupted;
+    }
     if (!o.timings_only) require_same_run(*baseline, current, o.baseline);
     if (attempt == 1)
-      for (const std::string& note : comparison_notes(*baseline, current)) std::cerr << "crowdprof: note: " << note << "\n";
+      for (const std::string& note : comparison_notes(*baseline, current))
+        std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
     for (const std::string& key : options.metrics)
       for (const auto& [doc, path] : {std::pair{&*baseline, o.baseline}, {&current, o.result.empty() ? std::string("the run") : o.result}})
         if (!doc->at("samples").contains(key))
@@ -304,7 +336,8 @@ int check(CheckCliOptions& o) {
                 << " measured a slowdown; measuring again\n";
   }
   if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+    write_text(o.bench.json, "JSON",
+               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
   if (!o.svg.empty()) write_svg(o.svg, *baseline, current, options.metrics.front());
   if (!o.bench.quiet) std::cout << format_check(result, options);
   return result.regressed() ? kExitRegression : kExitOk;

@@ -18,7 +18,9 @@ std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::str
     if (now - start < std::chrono::seconds(1) && done < total) return;
     if (now - *last < std::chrono::milliseconds(100) && done < total) return;
     *last = now;
-    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu", what.c_str(), done, total);
+    double elapsed = std::chrono::duration<double>(now - start).count();
+    double left = done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu frames, %.0f s left\033[K", what.c_str(), done, total, left);
     if (done == total) std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
   };

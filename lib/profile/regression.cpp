@@ -184,7 +184,7 @@ std::string resolve_metric(std::string_view name) {
   throw UsageError("--metric '" + std::string(name) + "': expected one of " + choices);
 }
 
-nlohmann::json read_result(const std::string& path) {
+nlohmann::json read_json_file(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   fs::file_status status = fs::status(path, error);
@@ -205,7 +205,11 @@ nlohmann::json read_result(const std::string& path) {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError(path, "empty file, not a crowdprof result");
-  json doc = parse_json_input(path, text);
+  return parse_json_input(path, text);
+}
+
+nlohmann::json read_result(const std::string& path) {
+  json doc = read_json_file(path);
   validate_result(doc, path);
   return doc;
 }
@@ -283,6 +287,46 @@ void require_same_run(const nlohmann::json& baseline, const nlohmann::json& curr
   for (const char* key : {"frames", "warmup", "fps"}) differ(key, baseline[key], current[key]);
 }
 
+namespace {
+std::pair<std::string, std::string> split_skin(const std::string& file) {
+  size_t hash = file.rfind("#skin=");
+  return hash == std::string::npos ? std::pair{file, std::string()} : std::pair{file.substr(0, hash), file.substr(hash)};
+}
+}  // namespace
+
+nlohmann::json with_paths_relative_to(nlohmann::json result, const std::string& result_path) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(fs::path(result_path)).parent_path();
+  auto relocate = [&](json& scene) {
+    if (!scene.is_object() || !scene.contains("file") || !scene["file"].is_string()) return;
+    if (scene.value("file_from", json("")) == "result") return;
+    auto [file, skin] = split_skin(scene["file"].get<std::string>());
+    if (file.empty()) return;
+    fs::path relative = fs::absolute(file).lexically_normal().lexically_relative(folder.lexically_normal());
+    if (relative.empty()) return;
+    scene["file"] = relative.string() + skin;
+    scene["file_from"] = "result";
+  };
+  if (result.is_object() && result.contains("scene")) relocate(result["scene"]);
+  if (result.is_object() && result.contains("runs") && result["runs"].is_array())
+    for (json& run : result["runs"])
+      if (run.is_object() && run.contains("scene")) relocate(run["scene"]);
+  return result;
+}
+
+std::string recorded_scene_file(const nlohmann::json& result, const std::string& result_path) {
+  namespace fs = std::filesystem;
+  const json& scene = result["scene"];
+  auto [file, skin] = split_skin(scene["file"].get<std::string>());
+  fs::path folder = fs::path(result_path).parent_path();
+  fs::path beside = (folder / file).lexically_normal();
+  if (fs::path(file).is_absolute()) return file + skin;
+  if (scene.value("file_from", json("")) == "result") return beside.string() + skin;
+  std::error_code error;
+  if (!fs::exists(file, error) && fs::exists(beside, error)) return beside.string() + skin;
+  return file + skin;
+}
+
 std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current) {
   std::vector<std::string> notes;
   auto note = [&](const std::string& what, const json& a, const json& b) {
@@ -290,9 +334,18 @@ std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const 
   };
   note("threads", baseline["threads"], current["threads"]);
   const json none = "?";
-  const json& be = baseline.contains("environment") ? baseline["environment"] : json::object();
-  const json& ce = current.contains("environment") ? current["environment"] : json::object();
-  for (const char* key : {"cpu", "build_type", "backend"}) note(key, be.value(key, none), ce.value(key, none));
+  const json& be = baseline.contains("environment") && baseline["environment"].is_object() ? baseline["environment"] : json::object();
+  const json& ce = current.contains("environment") && current["environment"].is_object() ? current["environment"] : json::object();
+  note("backend", be.value("backend", none), ce.value("backend", none));
+  // Another machine or build: one warning line naming every difference.
+  std::string elsewhere;
+  for (const char* key : {"cpu", "cores", "build_type", "compiler", "simd"}) {
+    json a = be.value(key, none), b = ce.value(key, none);
+    if (a != b && a != none) elsewhere += (elsewhere.empty() ? "" : "; ") + std::string(key) + " " + a.dump() + " there, " + b.dump() + " here";
+  }
+  if (!elsewhere.empty())
+    notes.push_back("warning: the baseline was measured on another machine or build (" + elsewhere +
+                    "): timings may not compare");
   // A scene file edited since the baseline: the counters or digest will say
   // whether the work changed; this says why.
   const json& bs = baseline["scene"];

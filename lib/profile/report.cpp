@@ -49,7 +49,8 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
 std::string format_profile(const RunReport& report) {
   std::ostringstream out;
   const RunDescription& run = report.run;
-  if (report.frames.empty()) return "no frames measured\n";
+  if (report.frames.empty())
+    return report.partial ? "no frames measured: interrupted during the warm-up\n" : "no frames measured\n";
   const FrameRecord& frame = report.frames[median_frame(report.frames)];
   double total = frame.times.total_ms();
   char line[160];
@@ -113,6 +114,9 @@ std::string format_profile(const RunReport& report) {
   else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
+  if (report.partial)
+    out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
+        << " frames; the figures above are of those\n";
   return out.str();
 }
 
@@ -195,6 +199,10 @@ nlohmann::json to_json(const RunReport& report) {
     j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
   }
   j["digest"] = report.digest;
+  if (report.partial) {
+    j["partial"] = true;
+    j["frames_planned"] = report.frames_planned;
+  }
   j["samples"] = samples;
   return j;
 }
