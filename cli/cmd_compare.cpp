@@ -51,13 +51,42 @@ std::vector<size_t> parse_sweep(const std::string& text) {
 
 // The config of one mode: the shared options, with --threads applying only to
 // the modes that run in parallel.
+// A mode as --modes names it: a preset, then any switches set away from it,
+// PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
+// Applies the switches to `options` and returns the preset's name.
+std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
+  std::string preset = spec.substr(0, spec.find('+'));
+  if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
+  size_t at = preset.size();
+  while (at < spec.size()) {
+    size_t next = spec.find('+', at + 1);
+    std::string item = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    size_t equals = item.find('=');
+    std::string key = item.substr(0, equals);
+    std::string* target = key == "lookups" ? &options.lookups
+                          : key == "culling" ? &options.culling
+                          : key == "pose"    ? &options.pose
+                          : key == "parallel" ? &options.parallel
+                          : key == "skinning" ? &options.skinning
+                                              : nullptr;
+    if (!target || equals == std::string::npos || equals + 1 == item.size())
+      throw UsageError("--modes '" + spec + "': '" + item +
+                       "': expected SWITCH=VALUE with a switch of lookups, culling, pose, parallel, skinning");
+    *target = item.substr(equals + 1);
+    at = next == std::string::npos ? spec.size() : next;
+  }
+  return preset;
+}
+
 BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const BenchScene& scene) {
   BenchCliOptions options = shared;
-  options.mode = mode;
-  const ModePreset* preset = find_mode(mode);
+  options.mode = apply_mode_spec(mode, options);
+  const ModePreset* preset = find_mode(options.mode);
   bool parallel = options.parallel.empty() ? preset && preset->switches.parallel : options.parallel == "on";
   if (!parallel) options.threads = kThreadsUnset;
-  return make_bench_config(options, scene);
+  BenchConfig config = make_bench_config(options, scene);
+  if (mode.find('+') != std::string::npos) config.mode_name = mode;  // as the user named it
+  return config;
 }
 
 struct ModeRun {
@@ -109,7 +138,8 @@ int compare(CompareCliOptions& o) {
   if (!named)
     for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
   for (size_t i = 0; i < names.size(); ++i) {
-    if (!find_mode(names[i])) throw UsageError("--modes '" + names[i] + "': expected some of " + mode_names());
+    BenchCliOptions scratch;
+    apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
@@ -187,7 +217,8 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
   cmd->add_option("--modes", options->modes,
                   "Modes to compare, the first being the reference for speedups (default: every mode the backend "
-                  "can run: master, culled, threaded, hwskin)")
+                  "can run: master, culled, threaded, hwskin); a mode may set switches away from its preset, "
+                  "e.g. master+lookups=bundled")
       ->delimiter(',');
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--sweep", options->sweep,

@@ -201,3 +201,22 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
   EXPECT_EQ(r.status, 1) << r.out << r.err;  // they play another action: another digest
   EXPECT_NE(r.err.find("the scene file changed since the baseline"), std::string::npos) << r.err;
 }
+
+TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
+  auto r = run_cli("info '" + scenes("mixed.json") + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("characters[1]: generated/humanoid-300.glb, 40 copies"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("joints:      300"), std::string::npos) << r.out;
+  auto j = run_cli("info '" + scenes("mixed.json") + "' --json");
+  ASSERT_EQ(j.status, 0) << j.err;
+  json doc = json::parse(j.out);
+  ASSERT_EQ(doc["characters"].size(), 3u);
+  EXPECT_EQ(doc["characters"][2]["count"], 40);
+  EXPECT_EQ(doc["scene_hash"], crowdprof::fnv1a64_hex(slurp(scenes("mixed.json"))));
+  auto dir = crowdprof::test::scratch_dir("scene_info_bad");
+  auto bad = dir / "bad.json";
+  std::ofstream(bad) << "{\"characters\": [{\"file\": \"missing.glb\", \"count\": 1}]}";
+  auto refused = run_cli("info '" + bad.string() + "'");
+  EXPECT_EQ(refused.status, 3);
+  EXPECT_NE(refused.err.find("characters[0].file"), std::string::npos) << refused.err;
+}
