@@ -3,6 +3,7 @@
 #   ./setup.sh run [bench options]   run the main job on the bundled default scene
 #   ./setup.sh test                  run the whole test suite
 #   ./setup.sh build                 only build
+#   ./setup.sh bench [options]       the micro-benchmarks (Google Benchmark options)
 # The build goes to ./build (override with CROWDPROF_BUILD_DIR).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -11,13 +12,14 @@ action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
-  run | test | build) ;;
-  *) echo "usage: ./setup.sh [run|test|build] [options]" >&2; exit 2 ;;
+  run | test | build | bench) ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench] [options]" >&2; exit 2 ;;
 esac
 
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
+  libbenchmark-dev)
 
 missing=()
 for package in "${packages[@]}"; do
@@ -38,4 +40,5 @@ case "$action" in
   run) exec "$build_dir/crowdprof" bench scenes/thesis.json "$@" ;;
   test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
   build) ;;
+  bench) exec "$build_dir/crowdprof_micro" "$@" ;;
 esac
