@@ -264,7 +264,8 @@ void CrowdBench::update_poses(Counters& counters) {
       if (poses(i)) update_copy(i, slot_of(i), &lookups);
   } else {
     std::atomic<uint64_t> total{0};
-    bool skin_here = config_.mode.skinning != SkinningSite::CpuInRasterizer;
+    bool skin_here = std::any_of(kinds_.begin(), kinds_.end(),
+                                 [](const Kind& kind) { return kind.site == SkinningSite::CpuInAnimations; });
     for_each_copy(skin_here ? "pose+skin" : "pose", [&](size_t i) {
       if (!poses(i)) return;
       uint64_t mine = 0;
