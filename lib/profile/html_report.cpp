@@ -345,7 +345,7 @@ void add_result_document(HtmlReportInput& input, const json& doc, const std::str
 }
 
 void add_result_file(HtmlReportInput& input, const std::string& path) {
-  add_result_document(input, read_json_document(path), path);
+  add_result_document(input, read_json_file(path), path);
   input.sources.push_back(path);
 }
 
