@@ -49,7 +49,7 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j"$(nproc)"
 
 case "$action" in
-  run) exec "$build_dir/crowdprof" bench scenes/humanoid.glb -n 160 "$@" ;;
+  run) exec "$build_dir/crowdprof" bench scenes/thesis.json "$@" ;;
   test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
   build) ;;
 esac

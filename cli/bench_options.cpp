@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "asset/errors.h"
+#include "asset/gltf_loader.h"
 #include "output/output_file.h"
 #include "render/gl_context.h"
 #include "scene/camera.h"
@@ -13,15 +14,18 @@
 using crowdprof::UsageError;
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
-  cmd.add_option("file", o.file, "Character: .glb or .gltf, FILE#skin=N to pick a skin (see crowdprof info)")
+  o.command = &cmd;
+  cmd.add_option("file", o.file,
+                 "Character (.glb or .gltf, FILE#skin=N to pick a skin, see crowdprof info) or scene file (.json, "
+                 "see docs/scenes.md; the options below override what it sets)")
       ->required();
-  cmd.add_option("-n,--characters", o.characters, "Copies in the crowd")->capture_default_str();
+  cmd.add_option("-n,--characters", o.characters,
+                 "Copies in the crowd (default: 160, or the scene's; a mixed scene's counts are scaled to it)");
   cmd.add_option("--actions", o.actions,
                  "shared: every copy plays one action in phase (the thesis scene); random: a random action and "
-                 "phase per copy (the thesis's -random)")
-      ->capture_default_str();
+                 "phase per copy (the thesis's -random) (default: shared, or as the scene says)");
   cmd.add_option("--action", o.action, "With --actions shared: the action's name (default: the first)");
-  cmd.add_option("--seed", o.seed, "Seed for --actions random")->capture_default_str();
+  cmd.add_option("--seed", o.seed, "Seed for --actions random (default: 1, or the scene's)");
   cmd.add_option("--frames", o.frames, "Frames measured")->capture_default_str();
   cmd.add_option("--warmup", o.warmup, "Frames run before measuring")->capture_default_str();
   cmd.add_option("--fps", o.fps,
@@ -30,15 +34,17 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin (see docs/modes.md)")
       ->capture_default_str();
   cmd.add_option("--threads", o.threads, "Worker threads for parallel modes (default: all cores)");
-  cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close, or "
-                                       "EX,EY,EZ,TX,TY,TZ")
-      ->capture_default_str();
+  cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close (a few "
+                                       "copies at the front), or EX,EY,EZ,TX,TY,TZ (default: default, or the scene's)");
+  cmd.add_option("--lens", o.lens,
+                 "Focal length in mm on Blender's 32 mm sensor fitted to the larger side (default: 35, Blender's, "
+                 "49.1 degrees across; or the scene's)");
   cmd.add_option("--backend", o.backend,
                  "Where frames are drawn: egl (a GPU, else Mesa's surfaceless llvmpipe), osmesa, auto (egl, then "
                  "osmesa, then none) or none (CPU only, nothing drawn)")
       ->capture_default_str();
-  cmd.add_option("--resolution", o.resolution, "Frame size WxH in pixels (and the camera's aspect)")
-      ->capture_default_str();
+  cmd.add_option("--resolution", o.resolution,
+                 "Frame size WxH in pixels, and the camera's aspect (default: 1600x900, or the scene's)");
   cmd.add_option("--lookups", o.lookups, "Override the mode: string (every channel by path, every frame) or bundled");
   cmd.add_option("--culling", o.culling, "Override the mode: on or off (animation culling, 4.1)");
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
@@ -94,6 +100,10 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 100000)
     throw UsageError("--fps " + std::to_string(o.fps) + ": expected a rate between 0 and 100000");
   if (o.seed < 0 || o.seed > 0xffffffffLL) throw UsageError("--seed: expected 0 to 4294967295");
+  if (o.lens != 0 && !(o.lens >= 1 && o.lens <= 5000))
+    throw UsageError("--lens " + std::to_string(o.lens) + ": expected a focal length of 1 to 5000 mm");
+  if (!o.actions.empty() && o.actions != "shared" && o.actions != "random" && o.actions != "scene")
+    throw UsageError("--actions '" + o.actions + "': expected one of shared, random");
   if (!parse_backend(o.backend))
     throw UsageError("--backend '" + o.backend + "': expected auto, egl, osmesa or none");
   auto [width, height] = parse_resolution(o.resolution);
@@ -131,36 +141,86 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   config.aspect = static_cast<float>(width) / static_cast<float>(height);
   config.resolution = std::to_string(width) + "x" + std::to_string(height);
   make_camera(o.camera, Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, config.aspect);  // throws on a bad --camera
+  if (o.lens != 0) config.lens.focal_mm = static_cast<float>(o.lens);
   return config;
 }
 
 void validate_bench_options(const BenchCliOptions& options) { config_from_options(options); }
 
-crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const crowdprof::Character& character) {
+BenchScene load_bench_scene(BenchCliOptions& o) {
+  using namespace crowdprof;
+  BenchScene loaded;
+  if (!is_scene_file(o.file)) {
+    loaded.owned.push_back(std::make_unique<Character>(load_character(o.file)));
+    loaded.characters.push_back(loaded.owned.back().get());
+    loaded.files.push_back(o.file);
+    if (o.actions == "scene") throw UsageError("--actions scene: " + o.file + " is a character, not a scene file");
+    return loaded;
+  }
+  SceneFile scene = load_scene_file(o.file);
+  for (const SceneCharacter& c : scene.characters) {
+    loaded.owned.push_back(std::make_unique<Character>(load_character(c.path)));
+    loaded.characters.push_back(loaded.owned.back().get());
+    loaded.files.push_back(c.file);
+  }
+  if (!o.given("--characters")) o.characters = static_cast<long long>(scene.copies());
+  if (!o.given("--seed")) o.seed = scene.seed;
+  if (!o.given("--camera")) o.camera = scene.camera;
+  if (!o.given("--resolution")) o.resolution = scene.resolution;
+  if (!o.given("--lens")) o.lens = scene.lens.focal_mm;
+  if (!o.given("--actions") && !o.given("--action")) o.actions = "scene";
+  loaded.scene = std::move(scene);
+  return loaded;
+}
+
+crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const BenchScene& loaded) {
   using namespace crowdprof;
   BenchConfig config = config_from_options(o);
   config.crowd.copies = static_cast<size_t>(o.characters);
   config.crowd.seed = static_cast<uint32_t>(o.seed);
-  config.crowd.actions = parse_choice<ActionChoice>(o.actions, "--actions",
-                                                    {{"shared", ActionChoice::Shared}, {"random", ActionChoice::Random}});
-  if (character.actions.empty() && !o.allow_static)
-    throw UsageError(character.name + " has no actions: its crowd would stand still (pass --static to bench that)");
-  if (!o.action.empty()) {
-    int found = -1;
+  std::string actions = o.actions.empty() ? "shared" : o.actions;
+  config.actions_from_scene = actions == "scene";
+  if (!config.actions_from_scene)
+    config.crowd.actions = parse_choice<ActionChoice>(actions, "--actions",
+                                                      {{"shared", ActionChoice::Shared}, {"random", ActionChoice::Random}});
+  config.files = loaded.files;
+  for (const Character* character : loaded.characters)
+    if (character->actions.empty() && !o.allow_static)
+      throw UsageError(character->name + " has no actions: its crowd would stand still (pass --static to bench that)");
+  // --action NAME: the index of that action in each character.
+  auto action_index = [&](const Character& character, const std::string& file) {
     std::string names;
     for (size_t a = 0; a < character.actions.size(); ++a) {
-      if (character.actions[a].name == o.action && found < 0) found = static_cast<int>(a);
+      if (character.actions[a].name == o.action) return static_cast<int>(a);
       names += (names.empty() ? "" : ", ") + character.actions[a].name;
     }
-    if (found < 0) throw UsageError("--action '" + o.action + "': the character's actions are " + names);
-    config.crowd.shared_action = found;
+    throw UsageError("--action '" + o.action + "': " + (loaded.scene ? file + "'s" : std::string("the character's")) +
+                     " actions are " + (names.empty() ? std::string("none") : names));
+  };
+  if (!o.action.empty()) config.crowd.shared_action = action_index(loaded.first(), loaded.files.front());
+  if (loaded.scene) {
+    const SceneFile& scene = *loaded.scene;
+    config.scene_file = scene.path;
+    config.scene_hash = scene.hash;
+    config.crowd.layout = scene.layout;
+    config.lens = scene.lens;
+    for (size_t k = 0; k < loaded.characters.size(); ++k) {
+      CrowdGroup group = scene_group(scene, k, *loaded.characters[k]);
+      if (!config.actions_from_scene) {
+        group.actions = config.crowd.actions;
+        group.weights.clear();
+        group.shared_action = o.action.empty() ? 0 : action_index(*loaded.characters[k], loaded.files[k]);
+      }
+      config.crowd.groups.push_back(std::move(group));
+    }
   }
+  if (o.lens != 0) config.lens.focal_mm = static_cast<float>(o.lens);
   return config;
 }
 
 void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::NamedPath> inputs,
                               std::vector<crowdprof::NamedPath> outputs) {
-  inputs.insert(inputs.begin(), {"character file", o.file});
+  inputs.insert(inputs.begin(), {crowdprof::is_scene_file(o.file) ? "scene file" : "character file", o.file});
   std::vector<std::pair<crowdprof::NamedPath, const char*>> mine = {
       {{"--csv", o.csv}, "CSV"}, {{"--json", o.json}, "JSON"}, {{"--trace", o.trace}, "trace"},
       {{"--screenshot", o.screenshot}, "PNG"}};
@@ -172,13 +232,13 @@ void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::N
     if (!path.path.empty()) crowdprof::require_writable(path.path, what);
 }
 
-crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::Character& character,
+crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const BenchScene& scene,
                                                crowdprof::BenchConfig& config) {
   using namespace crowdprof;
   RendererConfig renderer;
   std::tie(renderer.width, renderer.height) = parse_resolution(o.resolution);
   std::string warning;
-  BenchRendering rendering = open_rendering(*parse_backend(o.backend), character, config.crowd.copies, renderer, &warning);
+  BenchRendering rendering = open_rendering(*parse_backend(o.backend), scene.characters, config.crowd.copies, renderer, &warning);
   if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
   config.renderer = rendering.renderer.get();
   return rendering;

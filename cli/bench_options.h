@@ -2,7 +2,10 @@
 // check): the scene, the mode and its switches, the clock.
 #pragma once
 
+#include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,15 +13,19 @@
 #include "frame/crowd_bench.h"
 #include "output/output_file.h"
 #include "render/bench_rendering.h"
+#include "scene/scene_file.h"
 
 #include <climits>
+#include <memory>
 
 inline constexpr long long kThreadsUnset = LLONG_MIN;
 
 struct BenchCliOptions {
-  std::string file;
+  std::string file;  // a character (.glb, .gltf) or a scene file (.json)
   long long characters = 160;
-  std::string actions = "shared";
+  // shared, random, or (from a baseline of a scene file) scene; empty: shared,
+  // or each character's actions as its scene file says.
+  std::string actions;
   std::string action;  // with shared: which action (default: the first)
   long long seed = 1;
   long long frames = 120;
@@ -35,7 +42,32 @@ struct BenchCliOptions {
   std::string lookups, culling, pose, parallel, skinning;
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
+  double lens = 0;  // focal length in mm; 0: the scene's, else Blender's default 35 mm
+  // To tell options given on the command line (which override a scene file)
+  // from defaults: the command they were parsed by, and those check set from
+  // a baseline as if given.
+  CLI::App* command = nullptr;
+  std::set<std::string> adopted;
+  bool given(const std::string& option) const {
+    return (command && command->count(option) > 0) || adopted.count(option) > 0;
+  }
 };
+
+// What a bench runs on: the characters loaded, and the scene file when the
+// run is of one. Characters keep their addresses (benches point at them).
+struct BenchScene {
+  std::optional<crowdprof::SceneFile> scene;
+  std::vector<std::unique_ptr<crowdprof::Character>> owned;
+  std::vector<const crowdprof::Character*> characters;
+  std::vector<std::string> files;  // per character, as the user or the scene names it
+  const crowdprof::Character& first() const { return *characters.front(); }
+};
+
+// Loads options.file: a character, or a scene file and its characters. The
+// scene's settings fill the options not given on the command line (the
+// crowd size, seed, camera, lens, resolution, actions). InputError for a bad
+// file (scene files: naming the key).
+BenchScene load_bench_scene(BenchCliOptions& options);
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 
@@ -47,7 +79,7 @@ std::pair<int, int> parse_resolution(const std::string& value);
 void validate_bench_options(const BenchCliOptions& options);
 
 // Checks every value (UsageError with the option's name) and builds the config.
-crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const crowdprof::Character& character);
+crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const BenchScene& scene);
 
 // UsageError, before any work, when --csv, --json, --trace or --screenshot (and
 // the command's `outputs`) cannot be written, when one of them is the character
@@ -58,5 +90,5 @@ void require_writable_outputs(const BenchCliOptions& options, std::vector<crowdp
 // Opens --backend at --resolution for the config's crowd and points
 // config.renderer at its renderer (left null for none). When auto finds no GL,
 // says so on stderr and goes on without.
-crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& options, const crowdprof::Character& character,
+crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& options, const BenchScene& scene,
                                                crowdprof::BenchConfig& config);

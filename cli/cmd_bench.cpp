@@ -18,15 +18,15 @@ namespace {
 
 using namespace crowdprof;
 
-int bench(const BenchCliOptions& options) {
+int bench(BenchCliOptions& options) {
   validate_bench_options(options);
   require_writable_outputs(options);
-  Character character = load_character(options.file);
-  BenchConfig config = make_bench_config(options, character);
-  check_fits_in_memory(character, config.crowd.copies, config.mode);
+  BenchScene scene = load_bench_scene(options);
+  BenchConfig config = make_bench_config(options, scene);
+  check_fits_in_memory(scene.characters, config);
   if (!options.screenshot.empty() && options.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
-  BenchRendering rendering = open_bench_rendering(options, character, config);
+  BenchRendering rendering = open_bench_rendering(options, scene, config);
   if (!options.screenshot.empty() && !rendering.renderer)
     throw GlUnavailable("--screenshot: no GL backend could be opened, so no frame would be drawn");
   std::unique_ptr<Tracer> tracer;
@@ -38,7 +38,7 @@ int bench(const BenchCliOptions& options) {
     std::string warning = trace_length_warning(static_cast<size_t>(options.frames + options.warmup), tracer->max_spans());
     if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
   }
-  CrowdBench crowd(character, config);
+  CrowdBench crowd(scene.characters, config);
   RunOptions run;
   run.frames = options.frames;
   run.warmup = options.warmup;
@@ -65,8 +65,8 @@ int bench(const BenchCliOptions& options) {
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCliOptions>();
-  auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character, play actions and print where "
-                                          "each frame's time goes (BGE-style profile)");
+  auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character (or the crowd of a scene file), "
+                                          "play actions and print where each frame's time goes (BGE-style profile)");
   add_bench_options(*cmd, *options);
   cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
   cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");

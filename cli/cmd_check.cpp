@@ -78,6 +78,9 @@ BenchCliOptions options_recorded_in(const json& baseline) {
   if (r.parallel == "on") r.threads = baseline["threads"].get<long long>();
   if (std::string backend = optional_text(baseline["environment"], "backend"); !backend.empty()) r.backend = backend;
   r.allow_static = scene["actions"].get<long long>() == 0;
+  if (scene.contains("lens") && scene["lens"].is_object() && scene["lens"].contains("focal_mm") &&
+      scene["lens"]["focal_mm"].is_number())
+    r.lens = scene["lens"]["focal_mm"].get<double>();
   return r;
 }
 
@@ -104,8 +107,14 @@ void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
   if (!given("--resolution")) b.resolution = recorded.resolution;
   if (!given("--backend")) b.backend = recorded.backend;
   if (!given("--static")) b.allow_static = recorded.allow_static;
+  if (!given("--lens") && recorded.lens != 0) b.lens = recorded.lens;
+  // What a scene file would set counts as given: the rerun is the baseline's
+  // run, overrides included, whatever the scene file says now.
+  for (const char* name : {"--characters", "--actions", "--seed", "--camera", "--resolution", "--lens"})
+    if (!given(name)) b.adopted.insert(name);
   if (!given("--action") && b.actions == "shared" && !recorded.action.empty()) {
     b.action = recorded.action;
+    b.adopted.insert("--action");
     o.action_from_baseline = true;
   }
   // A mode given on the command line brings its own switches; else the
@@ -137,13 +146,13 @@ void require_recorded_action(const CheckCliOptions& o, const Character& characte
                                    o.bench.file + "'s (" + names + ")");
 }
 
-RunReport run_bench_report(const CheckCliOptions& o) {
-  Character character = load_character(o.bench.file);
-  require_recorded_action(o, character);
-  BenchConfig config = make_bench_config(o.bench, character);
-  check_fits_in_memory(character, config.crowd.copies, config.mode);
-  BenchRendering rendering = open_bench_rendering(o.bench, character, config);
-  CrowdBench bench(character, config);
+RunReport run_bench_report(CheckCliOptions& o) {
+  BenchScene scene = load_bench_scene(o.bench);
+  require_recorded_action(o, scene.first());
+  BenchConfig config = make_bench_config(o.bench, scene);
+  check_fits_in_memory(scene.characters, config);
+  BenchRendering rendering = open_bench_rendering(o.bench, scene, config);
+  CrowdBench bench(scene.characters, config);
   RunOptions run;
   run.frames = static_cast<size_t>(o.bench.frames);
   run.warmup = static_cast<size_t>(o.bench.warmup);
@@ -296,8 +305,8 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       "Character to bench (default: the baseline's scene file); not with --result");
   // A run's options default to what the baseline recorded, not to bench's defaults.
   for (const char* name : {"--characters", "--actions", "--action", "--seed", "--frames", "--warmup", "--fps", "--mode",
-                           "--threads", "--camera", "--backend", "--resolution", "--lookups", "--culling", "--pose",
-                           "--parallel", "--skinning", "--static"}) {
+                           "--threads", "--camera", "--lens", "--backend", "--resolution", "--lookups", "--culling",
+                           "--pose", "--parallel", "--skinning", "--static"}) {
     CLI::Option* option = cmd->get_option(name);
     std::string text = option->get_description();
     text = text.substr(0, text.find(" (default:"));

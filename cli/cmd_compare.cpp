@@ -49,13 +49,42 @@ std::vector<size_t> parse_sweep(const std::string& text) {
 
 // The config of one mode: the shared options, with --threads applying only to
 // the modes that run in parallel.
-BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const Character& character) {
+// A mode as --modes names it: a preset, then any switches set away from it,
+// PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
+// Applies the switches to `options` and returns the preset's name.
+std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
+  std::string preset = spec.substr(0, spec.find('+'));
+  if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
+  size_t at = preset.size();
+  while (at < spec.size()) {
+    size_t next = spec.find('+', at + 1);
+    std::string item = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    size_t equals = item.find('=');
+    std::string key = item.substr(0, equals);
+    std::string* target = key == "lookups" ? &options.lookups
+                          : key == "culling" ? &options.culling
+                          : key == "pose"    ? &options.pose
+                          : key == "parallel" ? &options.parallel
+                          : key == "skinning" ? &options.skinning
+                                              : nullptr;
+    if (!target || equals == std::string::npos || equals + 1 == item.size())
+      throw UsageError("--modes '" + spec + "': '" + item +
+                       "': expected SWITCH=VALUE with a switch of lookups, culling, pose, parallel, skinning");
+    *target = item.substr(equals + 1);
+    at = next == std::string::npos ? spec.size() : next;
+  }
+  return preset;
+}
+
+BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const BenchScene& scene) {
   BenchCliOptions options = shared;
-  options.mode = mode;
-  const ModePreset* preset = find_mode(mode);
+  options.mode = apply_mode_spec(mode, options);
+  const ModePreset* preset = find_mode(options.mode);
   bool parallel = options.parallel.empty() ? preset && preset->switches.parallel : options.parallel == "on";
   if (!parallel) options.threads = kThreadsUnset;
-  return make_bench_config(options, character);
+  BenchConfig config = make_bench_config(options, scene);
+  if (mode.find('+') != std::string::npos) config.mode_name = mode;  // as the user named it
+  return config;
 }
 
 struct ModeRun {
@@ -65,7 +94,7 @@ struct ModeRun {
 
 // Builds one bench per mode at `copies`; modes the user did not ask for by
 // name are skipped, with a note, when they cannot run here (hwskin without GL).
-ModeRun make_benches(const Character& character, std::vector<BenchConfig> configs, size_t copies, bool named,
+ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named,
                      bool note) {
   ModeRun run;
   for (BenchConfig& config : configs) {
@@ -76,8 +105,9 @@ ModeRun make_benches(const Character& character, std::vector<BenchConfig> config
     else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
   }
   if (run.configs.empty()) throw UsageError("none of the modes can run here");
-  check_fits_in_memory(character, run.configs);  // only the modes that will run
-  for (const BenchConfig& config : run.configs) run.benches.push_back(std::make_unique<CrowdBench>(character, config));
+  check_fits_in_memory(scene.characters, run.configs);  // only the modes that will run
+  for (const BenchConfig& config : run.configs)
+    run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));
   return run;
 }
 
@@ -97,7 +127,7 @@ std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, con
   return reports;
 }
 
-int compare(const CompareCliOptions& o) {
+int compare(CompareCliOptions& o) {
   if (o.block < 1 || o.block > 1'000'000) throw UsageError("--block " + std::to_string(o.block) + ": expected 1 to 1000000");
   std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
   std::vector<std::string> names = o.modes;
@@ -105,7 +135,8 @@ int compare(const CompareCliOptions& o) {
   if (!named)
     for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
   for (size_t i = 0; i < names.size(); ++i) {
-    if (!find_mode(names[i])) throw UsageError("--modes '" + names[i] + "': expected some of " + mode_names());
+    BenchCliOptions scratch;
+    apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
@@ -113,11 +144,11 @@ int compare(const CompareCliOptions& o) {
   require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   if (!o.trace.empty()) require_writable(o.trace, "trace");
-  Character character = load_character(o.bench.file);
+  BenchScene scene = load_bench_scene(o.bench);
   std::vector<BenchConfig> configs;
-  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, character));
+  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, scene));
   // One renderer draws every mode in turn: the modes run one block at a time.
-  BenchRendering rendering = open_bench_rendering(o.bench, character, configs.front());
+  BenchRendering rendering = open_bench_rendering(o.bench, scene, configs.front());
   for (BenchConfig& config : configs) config.renderer = rendering.renderer.get();
 
   Comparison comparison;
@@ -132,7 +163,7 @@ int compare(const CompareCliOptions& o) {
   }
   size_t copies = static_cast<size_t>(o.bench.characters);
   {
-    ModeRun main = make_benches(character, configs, copies, named, true);
+    ModeRun main = make_benches(scene, configs, copies, named, true);
     for (const BenchConfig& config : main.configs)
       if (tracer) tracer->name_process(config.trace_pid, "mode " + config.mode_name);
     comparison.runs = run_modes(main, o, rendering, "frame");
@@ -143,7 +174,7 @@ int compare(const CompareCliOptions& o) {
       comparison.sweep.insert(comparison.sweep.end(), comparison.runs.begin(), comparison.runs.end());
       continue;
     }
-    ModeRun point = make_benches(character, configs, n, named, false);
+    ModeRun point = make_benches(scene, configs, n, named, false);
     std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + " frame");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
@@ -171,7 +202,8 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
   cmd->add_option("--modes", options->modes,
                   "Modes to compare, the first being the reference for speedups (default: every mode the backend "
-                  "can run: master, culled, threaded, hwskin)")
+                  "can run: master, culled, threaded, hwskin); a mode may set switches away from its preset, "
+                  "e.g. master+lookups=bundled")
       ->delimiter(',');
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--sweep", options->sweep,

@@ -22,18 +22,18 @@ struct RenderCliOptions {
   std::string output;
 };
 
-int render(const RenderCliOptions& options) {
+int render(RenderCliOptions& options) {
   if (options.frame < 0 || options.frame > 10'000'000)
     throw UsageError("--frame " + std::to_string(options.frame) + ": expected 0 to 10,000,000");
   if (options.bench.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
   require_distinct_outputs({{"character file", options.bench.file}}, {{"-o", options.output}});
   require_writable(options.output, "PNG");
-  Character character = load_character(options.bench.file);
-  BenchConfig config = make_bench_config(options.bench, character);
-  check_fits_in_memory(character, config.crowd.copies, config.mode);
-  BenchRendering rendering = open_bench_rendering(options.bench, character, config);
+  BenchScene scene = load_bench_scene(options.bench);
+  BenchConfig config = make_bench_config(options.bench, scene);
+  check_fits_in_memory(scene.characters, config);
+  BenchRendering rendering = open_bench_rendering(options.bench, scene, config);
   if (!rendering.renderer) throw GlUnavailable("no GL backend could be opened, so there is nothing to render");
-  CrowdBench crowd(character, config);
+  CrowdBench crowd(scene.characters, config);
   // Frame k shows time k / fps; earlier frames run too, so cursors and any
   // per-frame state reach frame k as they would in a bench.
   FrameRecord record;

@@ -106,7 +106,10 @@ TEST(Culling, BoxesAgainstAKnownCamera) {
   Camera camera;
   camera.eye = glm::vec3(0, 0, 0);
   camera.target = glm::vec3(0, 0, -1);
-  camera.fov_y_degrees = 90.0f;
+  // 90 degrees vertically: a sensor as tall as twice the focal length.
+  camera.lens.fit = SensorFit::Vertical;
+  camera.lens.focal_mm = 9.0f;
+  camera.lens.sensor_height_mm = 18.0f;
   camera.aspect = 1.0f;
   camera.near_plane = 0.1f;
   camera.far_plane = 100.0f;

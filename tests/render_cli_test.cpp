@@ -18,20 +18,8 @@ namespace {
 
 std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
 
-// True when this machine can make a GL context (the CLI would too).
-bool have_gl() {
-  static const bool have = [] {
-    try {
-      return crowdprof::open_backend(crowdprof::BackendChoice::Auto, nullptr) != nullptr;
-    } catch (const std::exception&) {
-      return false;
-    }
-  }();
-  return have;
-}
-
 #define REQUIRE_GL() \
-  if (!have_gl()) GTEST_SKIP() << "no GL backend on this machine"
+  if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine"
 
 // The PNG signature and the IHDR's width and height.
 bool is_png_of(const std::filesystem::path& file, uint32_t width, uint32_t height) {

@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include "render/gl_context.h"
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -32,6 +34,17 @@ CliResult run_cli(const std::string& args) {
   result.out = slurp(dir / "out");
   result.err = slurp(dir / "err");
   return result;
+}
+
+bool have_gl() {
+  static const bool have = [] {
+    try {
+      return open_backend(BackendChoice::Auto, nullptr) != nullptr;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }();
+  return have;
 }
 
 }  // namespace crowdprof::test

@@ -21,6 +21,9 @@ struct CliResult {
 // Runs the built crowdprof with `args` (shell-quoted by the caller).
 CliResult run_cli(const std::string& args);
 
+// True when this machine can make a GL context (the CLI would too).
+bool have_gl();
+
 }  // namespace crowdprof::test
 
 #define CROWDPROF_REQUIRE_SAMPLES()                                                                 \

@@ -7,8 +7,13 @@
 namespace crowdprof {
 
 void check_fits_in_memory(const Character& character, std::span<const BenchConfig> configs) {
+  const Character* one[] = {&character};
+  check_fits_in_memory(one, configs);
+}
+
+void check_fits_in_memory(std::span<const Character* const> characters, std::span<const BenchConfig> configs) {
   uint64_t needed = 0;
-  for (const BenchConfig& config : configs) needed += estimate_bench_bytes(character, config.crowd.copies, config.mode);
+  for (const BenchConfig& config : configs) needed += estimate_bench_bytes(characters, config.crowd, config.mode);
   uint64_t available = available_memory_bytes();
   if (available == 0 || needed <= available * 9 / 10) return;
   auto mib = [](uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
@@ -41,7 +46,10 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
       }
     }
   }
-  for (size_t b = 0; b < benches.size(); ++b) reports[b].digest = benches[b]->digest();
+  for (size_t b = 0; b < benches.size(); ++b) {
+    reports[b].digest = benches[b]->digest();
+    record_character_counters(*benches[b], reports[b].run);
+  }
   return reports;
 }
 

@@ -18,6 +18,7 @@ namespace crowdprof {
 // Throws UsageError, before anything is allocated, when the benches of
 // `configs`, all alive at once, would not fit in the available memory.
 void check_fits_in_memory(const Character& character, std::span<const BenchConfig> configs);
+void check_fits_in_memory(std::span<const Character* const> characters, std::span<const BenchConfig> configs);
 
 // Runs options.warmup then options.frames frames of every bench, `block` frames
 // of one before the next (warm-up included, so each mode's caches are equally

@@ -1,6 +1,7 @@
 #include "frame/crowd_bench.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -16,15 +17,39 @@
 
 namespace crowdprof {
 
-uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
-  uint64_t joints = c.skeleton.joint_count(), vertices = c.mesh.vertex_count();
+namespace {
+
+// What one copy and one pose slot of a character cost.
+uint64_t copy_bytes(const Character& c) {
   uint64_t channels = 0;
   for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  return c.skeleton.joint_count() * sizeof(SkinMatrix) + c.mesh.vertex_count() * 2 * sizeof(glm::vec3) +
+         channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
+}
+uint64_t slot_bytes(const Character& c) {
+  uint64_t channels = 0;
+  for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  return c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat) + sizeof(glm::mat4)) + channels * 4;
+}
+
+}  // namespace
+
+uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
   uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies;
-  uint64_t per_copy = joints * sizeof(SkinMatrix) + vertices * 2 * sizeof(glm::vec3) + channels * 4 + 64 +
-                      sizeof(glm::mat4) /* world */ + sizeof(Aabb);
-  uint64_t per_slot = joints * (sizeof(glm::vec3) * 2 + sizeof(glm::quat) + sizeof(glm::mat4)) + channels * 4;
-  return c.shared_bytes() + copies * per_copy + slots * per_slot;
+  return c.shared_bytes() + copies * copy_bytes(c) + slots * slot_bytes(c);
+}
+
+uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
+                              const ModeSwitches& mode) {
+  uint64_t bytes = 0;
+  std::vector<size_t> copies(characters.size(), 0);
+  for (const CrowdGroup& group : crowd_groups(crowd))
+    if (group.character < copies.size()) copies[group.character] += group.copies;
+  for (size_t k = 0; k < characters.size(); ++k) {
+    uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies[k];
+    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k]) + slots * slot_bytes(*characters[k]);
+  }
+  return bytes;
 }
 
 std::string why_cannot_run(const BenchConfig& config) {
@@ -36,47 +61,87 @@ std::string why_cannot_run(const BenchConfig& config) {
 }
 
 CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
-    : character_(character), config_(config) {
+    : CrowdBench(std::span<const Character* const>(std::array<const Character*, 1>{&character}), config) {}
+
+CrowdBench::CrowdBench(std::span<const Character* const> characters, const BenchConfig& config)
+    : characters_(characters.begin(), characters.end()), config_(config) {
   if (std::string why = why_cannot_run(config); !why.empty()) throw UsageError(why);
-  skin_site_ = config.mode.skinning;
-  // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
-  if (skin_site_ == SkinningSite::Gpu && character.skeleton.joint_count() > config.renderer->max_gpu_joints())
-    skin_site_ = SkinningSite::CpuInAnimations;
-  if (character.actions.empty() && config.crowd.actions == ActionChoice::Random)
-    throw UsageError("random actions need a character with actions");
-  joints_ = character.skeleton.joint_count();
-  vertices_ = character.mesh.vertex_count();
-  crowd_ = make_crowd(character, config.crowd);
-  camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect);
+  if (characters_.empty()) throw UsageError("a crowd needs at least one character");
+  for (const CrowdGroup& group : crowd_groups(config.crowd)) {
+    if (group.character >= characters_.size()) throw UsageError("a crowd group names a character that is not there");
+    if (characters_[group.character]->actions.empty() && group.actions != ActionChoice::Shared)
+      throw UsageError("random actions need a character with actions");
+  }
+  for (const Character* character : characters_) {
+    Kind kind;
+    kind.joints = character->skeleton.joint_count();
+    kind.vertices = character->mesh.vertex_count();
+    kind.site = config.mode.skinning;
+    // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
+    if (kind.site == SkinningSite::Gpu && kind.joints > config.renderer->max_gpu_joints())
+      kind.site = SkinningSite::CpuInAnimations;
+    for (const Action& action : character->actions) {
+      kind.bindings.push_back(bind_action(character->skeleton, action));
+      kind.max_channels = std::max(kind.max_channels, action.channels.size());
+    }
+    kinds_.push_back(std::move(kind));
+  }
+  character_counters_.resize(characters_.size());
+  crowd_ = make_crowd(characters_, config.crowd);
+  camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect, config.lens);
   frustum_ = frustum_of(camera_.view_projection());
   size_t n = crowd_.size();
 
-  for (const Action& action : character.actions) {
-    bindings_.push_back(bind_action(character.skeleton, action));
-    max_channels_ = std::max(max_channels_, action.channels.size());
-  }
   times_.assign(n, 0.0f);
   visible_.assign(n, 0);
   cursors_.resize(n);
-  for (size_t i = 0; i < n; ++i)
-    if (!character.actions.empty()) reset_cursor(character.actions[crowd_.action[i]], &cursors_[i]);
-  size_t slots = config.mode.pose == PoseStorage::SharedScratch ? 1 : n;
-  poses_.resize(slots);
-  for (LocalPose& pose : poses_) reset_to_rest(character.skeleton, &pose);
-  model_.resize(slots * joints_);
-  targets_.assign(slots * max_channels_, -1);
-  palettes_.resize(n * joints_);
-  positions_.resize(n * vertices_);
-  normals_.resize(n * vertices_);
-  // Until a pose is computed, copies show the rest pose.
-  LocalPose rest;
-  reset_to_rest(character.skeleton, &rest);
-  std::vector<glm::mat4> model(joints_);
-  LocalToModelJob{&character.skeleton, &rest, model}.Run();
+  joint_offset_.resize(n);
+  vertex_offset_.resize(n);
+  size_t joints = 0, vertices = 0;
   for (size_t i = 0; i < n; ++i) {
-    SkinningMatricesJob{&character.skeleton, model, std::span(palettes_).subspan(i * joints_, joints_)}.Run();
-    std::copy(character.mesh.positions.begin(), character.mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
-    std::copy(character.mesh.normals.begin(), character.mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(i * vertices_));
+    const Kind& kind = kinds_[crowd_.kind[i]];
+    joint_offset_[i] = joints;
+    vertex_offset_[i] = vertices;
+    joints += kind.joints;
+    vertices += kind.vertices;
+    const Character& character = character_of(i);
+    if (!character.actions.empty()) reset_cursor(character.actions[crowd_.action[i]], &cursors_[i]);
+  }
+  bool shared = config.mode.pose == PoseStorage::SharedScratch;
+  size_t slots = shared ? characters_.size() : n;
+  poses_.resize(slots);
+  slot_joints_.resize(slots);
+  slot_channels_.resize(slots);
+  size_t slot_joint_total = 0, slot_channel_total = 0;
+  for (size_t s = 0; s < slots; ++s) {
+    size_t k = shared ? s : crowd_.kind[s];
+    reset_to_rest(characters_[k]->skeleton, &poses_[s]);
+    slot_joints_[s] = slot_joint_total;
+    slot_channels_[s] = slot_channel_total;
+    slot_joint_total += kinds_[k].joints;
+    slot_channel_total += kinds_[k].max_channels;
+  }
+  model_.resize(slot_joint_total);
+  targets_.assign(slot_channel_total, -1);
+  palettes_.resize(joints);
+  positions_.resize(vertices);
+  normals_.resize(vertices);
+  // Until a pose is computed, copies show the rest pose.
+  std::vector<std::vector<SkinMatrix>> rest_palettes;
+  for (const Character* character : characters_) {
+    LocalPose rest;
+    reset_to_rest(character->skeleton, &rest);
+    std::vector<glm::mat4> model(character->skeleton.joint_count());
+    LocalToModelJob{&character->skeleton, &rest, model}.Run();
+    rest_palettes.emplace_back(model.size());
+    SkinningMatricesJob{&character->skeleton, model, rest_palettes.back()}.Run();
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const SkinnedMesh& mesh = character_of(i).mesh;
+    const std::vector<SkinMatrix>& rest = rest_palettes[crowd_.kind[i]];
+    std::copy(rest.begin(), rest.end(), palettes_.begin() + static_cast<std::ptrdiff_t>(joint_offset_[i]));
+    std::copy(mesh.positions.begin(), mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
+    std::copy(mesh.normals.begin(), mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
   }
   if (config.mode.parallel) {
     auto threads = static_cast<size_t>(std::max(1, config.threads));
@@ -87,6 +152,12 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
   // The scenegraph of "frame -1": the first frame's animation culling needs it.
   Counters unused;
   update_scenegraph(unused);
+}
+
+bool CrowdBench::gpu_skinned() const {
+  for (const Kind& kind : kinds_)
+    if (kind.site != SkinningSite::Gpu) return false;
+  return true;
 }
 
 CrowdBench::~CrowdBench() = default;
@@ -127,11 +198,12 @@ FrameRecord CrowdBench::step() {
   enter(Category::Scenegraph);
   update_scenegraph(counters);
   enter(Category::Rasterizer);
-  if (skin_site_ == SkinningSite::CpuInRasterizer) skin_copies(counters);
+  if (config_.mode.skinning == SkinningSite::CpuInRasterizer) skin_copies();
   if (config_.renderer) config_.renderer->draw(*this, counters);
   enter(Category::GpuLatency);  // without a GL backend, nothing to wait for
   if (config_.renderer) config_.renderer->finish();
   enter(Category::Overhead);
+  count_work(counters);
   ++frame_;
   // Between frames (reports, progress) is outside the engine's frame.
   enter(Category::Outside);
@@ -153,8 +225,9 @@ void CrowdBench::enter(Category category) {
 void CrowdBench::update_logic() {
   double t = static_cast<double>(frame_) / config_.fps;
   for (size_t i = 0; i < crowd_.size(); ++i) {
-    if (character_.actions.empty()) break;
-    const Action& action = character_.actions[crowd_.action[i]];
+    const Character& character = character_of(i);
+    if (character.actions.empty()) continue;
+    const Action& action = character.actions[crowd_.action[i]];
     double duration = action.duration();
     double local = duration > 0 ? std::fmod(static_cast<double>(crowd_.phase[i]) + t, duration) : 0.0;
     times_[i] = action.start + static_cast<float>(local);
@@ -171,40 +244,62 @@ void CrowdBench::update_scenegraph(Counters& counters) {
 }
 
 void CrowdBench::update_poses(Counters& counters) {
-  if (character_.actions.empty()) return;
-  bool skin_here = skin_site_ == SkinningSite::CpuInAnimations;
-  bool shared = config_.mode.pose == PoseStorage::SharedScratch;
-  uint64_t posed = 0, lookups = 0;
-  for (size_t i = 0; i < crowd_.size(); ++i) posed += animates(i);
+  uint64_t lookups = 0;
   if (!arena_) {
     for (size_t i = 0; i < crowd_.size(); ++i)
-      if (animates(i)) update_copy(i, shared ? 0 : i, skin_here, &lookups);
+      if (poses(i)) update_copy(i, slot_of(i), &lookups);
   } else {
     std::atomic<uint64_t> total{0};
+    bool skin_here = config_.mode.skinning != SkinningSite::CpuInRasterizer;
     for_each_copy(skin_here ? "pose+skin" : "pose", [&](size_t i) {
-      if (!animates(i)) return;
+      if (!poses(i)) return;
       uint64_t mine = 0;
-      update_copy(i, i, skin_here, &mine);
+      update_copy(i, i, &mine);
       total.fetch_add(mine, std::memory_order_relaxed);
     });
     lookups = total.load();
   }
-  counters.poses_updated = posed;
-  counters.copies_culled = crowd_.size() - posed;
   counters.channel_lookups = lookups;
-  if (skin_here) counters.vertices_skinned = posed * vertices_;
-  if (skin_here && config_.mode.skinning == SkinningSite::Gpu) counters.copies_fallback = posed;
 }
 
-void CrowdBench::update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups) {
-  const Skeleton& skeleton = character_.skeleton;
+void CrowdBench::count_work(Counters& counters) {
+  for (Counters& c : character_counters_) c = Counters{};
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    Counters& c = character_counters_[crowd_.kind[i]];
+    c.copies_visible += visible_[i];
+    // A character without actions stands in its rest pose: never posed, never culled.
+    bool moves = !kinds_[crowd_.kind[i]].bindings.empty();
+    c.poses_updated += poses(i);
+    c.copies_culled += moves && !animates(i);
+  }
+  uint64_t posed = 0, culled = 0, skinned = 0, fallback = 0;
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    Counters& c = character_counters_[k];
+    if (kinds_[k].site != SkinningSite::Gpu) c.vertices_skinned = c.poses_updated * kinds_[k].vertices;
+    if (kinds_[k].site != SkinningSite::Gpu && config_.mode.skinning == SkinningSite::Gpu)
+      c.copies_fallback = c.poses_updated;
+    posed += c.poses_updated;
+    culled += c.copies_culled;
+    skinned += c.vertices_skinned;
+    fallback += c.copies_fallback;
+  }
+  counters.poses_updated = posed;
+  counters.copies_culled = culled;
+  counters.vertices_skinned = skinned;
+  counters.copies_fallback = fallback;
+}
+
+void CrowdBench::update_copy(size_t copy, size_t slot, uint64_t* lookups) {
+  const Character& character = character_of(copy);
+  const Kind& kind = kinds_[crowd_.kind[copy]];
+  const Skeleton& skeleton = character.skeleton;
   size_t action_index = crowd_.action[copy];
-  const Action& action = character_.actions[action_index];
-  const ActionBindings& bindings = bindings_[action_index];
+  const Action& action = character.actions[action_index];
+  const ActionBindings& bindings = kind.bindings[action_index];
   LocalPose& pose = poses_[slot];
   std::span<const int32_t> targets = bindings.targets;
   if (config_.mode.lookups == Lookups::PerFrameString) {
-    std::span<int32_t> scratch = std::span(targets_).subspan(slot * max_channels_, action.channels.size());
+    std::span<int32_t> scratch = std::span(targets_).subspan(slot_channels_[slot], action.channels.size());
     size_t count = 0;
     ResolvePathsJob{&skeleton, &bindings, scratch, &count}.Run();
     *lookups += count;
@@ -214,36 +309,34 @@ void CrowdBench::update_copy(size_t copy, size_t slot, bool skin, uint64_t* look
   // as the BGE's pose swap copied the armature's own pose in.
   if (config_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
   SamplingJob{&action, times_[copy], targets, &cursors_[copy], &pose}.Run();
-  std::span<glm::mat4> model = std::span(model_).subspan(slot * joints_, joints_);
+  std::span<glm::mat4> model = std::span(model_).subspan(slot_joints_[slot], kind.joints);
   LocalToModelJob{&skeleton, &pose, model}.Run();
-  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(copy * joints_, joints_)}.Run();
-  if (skin) skin_copy(copy);
+  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[copy], kind.joints)}.Run();
+  if (kind.site == SkinningSite::CpuInAnimations) skin_copy(copy);
 }
 
 void CrowdBench::skin_copy(size_t copy) {
-  SkinningJob{std::span<const SkinMatrix>(palettes_).subspan(copy * joints_, joints_), &character_.mesh, 0, vertices_,
-              std::span(positions_).subspan(copy * vertices_, vertices_),
-              std::span(normals_).subspan(copy * vertices_, vertices_)}
+  const Kind& kind = kinds_[crowd_.kind[copy]];
+  SkinningJob{skinning_matrices(copy), &character_of(copy).mesh, 0, kind.vertices,
+              std::span(positions_).subspan(vertex_offset_[copy], kind.vertices),
+              std::span(normals_).subspan(vertex_offset_[copy], kind.vertices)}
       .Run();
 }
 
-void CrowdBench::skin_copies(Counters& counters) {
-  uint64_t skinned = 0;
-  for (size_t i = 0; i < crowd_.size(); ++i) skinned += animates(i);
+void CrowdBench::skin_copies() {
   for_each_copy("skin", [&](size_t i) {
-    if (animates(i)) skin_copy(i);
+    if (poses(i)) skin_copy(i);
   });
-  counters.vertices_skinned = skinned * vertices_;
 }
 
 std::span<const SkinMatrix> CrowdBench::skinning_matrices(size_t copy) const {
-  return std::span(palettes_).subspan(copy * joints_, joints_);
+  return std::span(palettes_).subspan(joint_offset_[copy], kinds_[crowd_.kind[copy]].joints);
 }
 std::span<const glm::vec3> CrowdBench::skinned_positions(size_t copy) const {
-  return std::span(positions_).subspan(copy * vertices_, vertices_);
+  return std::span(positions_).subspan(vertex_offset_[copy], kinds_[crowd_.kind[copy]].vertices);
 }
 std::span<const glm::vec3> CrowdBench::skinned_normals(size_t copy) const {
-  return std::span(normals_).subspan(copy * vertices_, vertices_);
+  return std::span(normals_).subspan(vertex_offset_[copy], kinds_[crowd_.kind[copy]].vertices);
 }
 
 namespace {
@@ -255,12 +348,11 @@ void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
 
 std::string CrowdBench::digest() const {
   uint64_t hash = 0xcbf29ce484222325ull;
-  bool cpu_skinned = skin_site_ != SkinningSite::Gpu;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     if (!visible_[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
-    if (cpu_skinned) {
+    if (!gpu_skinned_copy(i)) {
       fnv1a(hash, skinned_positions(i).data(), skinned_positions(i).size_bytes());
       fnv1a(hash, skinned_normals(i).data(), skinned_normals(i).size_bytes());
     }

@@ -1,6 +1,6 @@
-// The frame loop: a crowd of copies of one character, stepped one frame at a
-// time through the BGE's stages in the BGE's order, each charged to its
-// profile category by one clock.
+// The frame loop: a crowd of copies of one or more characters, stepped one
+// frame at a time through the BGE's stages in the BGE's order, each charged to
+// its profile category by one clock.
 #pragma once
 
 #include <cstdint>
@@ -29,12 +29,13 @@ namespace crowdprof {
 class Tracer;
 
 struct BenchConfig {
-  CrowdOptions crowd;
+  CrowdOptions crowd;  // groups index the characters the bench is made with
   std::string mode_name = "threaded";
   ModeSwitches mode;
   int threads = 1;  // worker threads when mode.parallel
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
   std::string camera = "default";
+  Lens lens;  // Blender's: 35 mm on a 32 mm sensor fitted to the larger side
   float aspect = 16.0f / 9.0f;
   std::string resolution = "1600x900";  // WxH of the frame the aspect is from, as reports show it
   // Draws each frame (Rasterizer) and waits for it (GPU Latency); null: no
@@ -44,19 +45,28 @@ struct BenchConfig {
   // span under process `trace_pid` (--trace); null records nothing, at no cost.
   Tracer* tracer = nullptr;
   int trace_pid = 1;
+  // For reports only: each character's file as the user named it, and the
+  // scene file the run came from (empty for a character given directly).
+  std::vector<std::string> files;
+  std::string scene_file, scene_hash;
+  bool actions_from_scene = false;  // each group's actions as its scene file says
 };
 
 // Empty when a bench of this config can run, else why not: switches that
 // conflict, or skinning on the GPU without a renderer.
 std::string why_cannot_run(const BenchConfig& config);
 
-// Bytes a crowd of `copies` would allocate, to refuse a scene before trying.
+// Bytes a crowd would allocate, to refuse a scene before trying.
 uint64_t estimate_bench_bytes(const Character& character, size_t copies, const ModeSwitches& mode);
+uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
+                              const ModeSwitches& mode);
 
 class CrowdBench {
  public:
   // Allocates everything the frames need; steps allocate nothing. Throws
-  // UsageError for switches that cannot run together.
+  // UsageError for switches that cannot run together. The characters outlive
+  // the bench; config.crowd's groups index them.
+  CrowdBench(std::span<const Character* const> characters, const BenchConfig& config);
   CrowdBench(const Character& character, const BenchConfig& config);
   ~CrowdBench();
   CrowdBench(const CrowdBench&) = delete;
@@ -76,13 +86,22 @@ class CrowdBench {
 
   const Crowd& crowd() const { return crowd_; }
   const Camera& camera() const { return camera_; }
-  const Character& character() const { return character_; }
+  // The first character: the only one unless the crowd is mixed.
+  const Character& character() const { return *characters_.front(); }
+  std::span<const Character* const> characters() const { return characters_; }
+  const Character& character_of(size_t copy) const { return *characters_[crowd_.kind[copy]]; }
+  // The last frame's counters of each character's copies (indexed as
+  // characters()); draw calls and bytes are only counted in all.
+  std::span<const Counters> character_counters() const { return character_counters_; }
   const BenchConfig& config() const { return config_; }
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return visible_[copy] != 0; }
-  // True when the renderer skins (mode hwskin and the character within its
-  // bone limit): skinned_positions() then stay in the rest pose.
-  bool gpu_skinned() const { return skin_site_ == SkinningSite::Gpu; }
+  // True when the renderer skins this character (mode hwskin and the character
+  // within its bone limit): its copies' skinned_positions() stay in the rest pose.
+  bool gpu_skinned_kind(size_t kind) const { return kinds_[kind].site == SkinningSite::Gpu; }
+  bool gpu_skinned_copy(size_t copy) const { return gpu_skinned_kind(crowd_.kind[copy]); }
+  // Every character skinned by the renderer.
+  bool gpu_skinned() const;
   std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
   std::span<const glm::vec3> skinned_positions(size_t copy) const;
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
@@ -93,16 +112,36 @@ class CrowdBench {
   void update_logic();
   void update_scenegraph(Counters& counters);
   void update_poses(Counters& counters);
-  void skin_copies(Counters& counters);
-  // Pose (and, when `skin`, vertices) of one copy; `slot` picks the pose storage.
-  void update_copy(size_t copy, size_t slot, bool skin, uint64_t* lookups);
+  void skin_copies();
+  // The frame's work by character and in all, from who was posed and where
+  // each character is skinned.
+  void count_work(Counters& counters);
+  // Pose (and, when its character is skinned in Animations, vertices) of one
+  // copy; `slot` picks the pose storage.
+  void update_copy(size_t copy, size_t slot, uint64_t* lookups);
   void skin_copy(size_t copy);
   bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
+  // Animated this frame: not culled, and its character has actions to play
+  // (one without stands in its rest pose).
+  bool poses(size_t copy) const { return animates(copy) && !kinds_[crowd_.kind[copy]].bindings.empty(); }
+  // The pose storage a copy is built in: its own, or its character's scratch.
+  size_t slot_of(size_t copy) const {
+    return config_.mode.pose == PoseStorage::SharedScratch ? crowd_.kind[copy] : copy;
+  }
   // `task` names the spans of its tasks in a trace.
   template <typename Body>
   void for_each_copy(std::string_view task, const Body& body);
 
-  const Character& character_;
+  // What a character's copies share: its sizes, where it is skinned (the
+  // mode's site, except that a character over the GPU's bone limit falls back
+  // to the CPU, in Animations) and its actions' bindings, resolved once.
+  struct Kind {
+    size_t joints = 0, vertices = 0, max_channels = 0;
+    SkinningSite site = SkinningSite::CpuInAnimations;
+    std::vector<ActionBindings> bindings;  // per action
+  };
+
+  std::vector<const Character*> characters_;
   BenchConfig config_;
   Crowd crowd_;
   Camera camera_;
@@ -110,21 +149,19 @@ class CrowdBench {
   CategoryClock clock_;
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer
   size_t frame_ = 0;
-  size_t joints_ = 0, vertices_ = 0;
-  // Where skinning really runs: the mode's site, except that a character over
-  // the GPU's bone limit falls back to the CPU, in Animations.
-  SkinningSite skin_site_ = SkinningSite::CpuInAnimations;
+  std::vector<Kind> kinds_;                   // per character
+  std::vector<Counters> character_counters_;  // per character, the last frame's
 
-  std::vector<ActionBindings> bindings_;      // per action, resolved once
   std::vector<float> times_;                  // per copy: where in its action
   std::vector<uint8_t> visible_;              // per copy, from the last scenegraph stage
   std::vector<SamplingCursor> cursors_;       // per copy
-  std::vector<LocalPose> poses_;              // per pose slot (1 when shared)
-  std::vector<glm::mat4> model_;              // per pose slot x joints
-  std::vector<int32_t> targets_;              // per pose slot x channels (string lookups)
-  size_t max_channels_ = 0;
-  std::vector<SkinMatrix> palettes_;          // per copy x joints
-  std::vector<glm::vec3> positions_, normals_;  // per copy x vertices
+  std::vector<size_t> joint_offset_, vertex_offset_;  // per copy, into palettes_ and positions_/normals_
+  std::vector<LocalPose> poses_;              // per pose slot (one per character when shared)
+  std::vector<size_t> slot_joints_, slot_channels_;  // per pose slot, offsets into model_ and targets_
+  std::vector<glm::mat4> model_;              // per pose slot x its joints
+  std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
+  std::vector<SkinMatrix> palettes_;          // per copy x its joints
+  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices
   // More threads than cores are given, not silently capped by TBB's default
   // worker limit (one per core): the control lifts it while the bench lives.
   std::unique_ptr<tbb::global_control> parallelism_;

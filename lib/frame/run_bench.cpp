@@ -1,5 +1,6 @@
 #include "frame/run_bench.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -16,8 +17,9 @@ uint64_t available_memory_bytes() {
   return 0;
 }
 
-void check_fits_in_memory(const Character& character, size_t copies, const ModeSwitches& mode) {
-  uint64_t needed = estimate_bench_bytes(character, copies, mode);
+namespace {
+
+void require_fit(uint64_t needed, size_t copies) {
   uint64_t available = available_memory_bytes();
   if (available == 0 || needed <= available * 9 / 10) return;
   auto mib = [](uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
@@ -25,18 +27,59 @@ void check_fits_in_memory(const Character& character, size_t copies, const ModeS
                    " of memory; this machine has " + mib(available) + " available");
 }
 
+}  // namespace
+
+void check_fits_in_memory(const Character& character, size_t copies, const ModeSwitches& mode) {
+  require_fit(estimate_bench_bytes(character, copies, mode), copies);
+}
+
+void check_fits_in_memory(std::span<const Character* const> characters, const BenchConfig& config) {
+  require_fit(estimate_bench_bytes(characters, config.crowd, config.mode), config.crowd.copies);
+}
+
+namespace {
+
+std::string_view choice_name(ActionChoice choice) {
+  switch (choice) {
+    case ActionChoice::Shared: return "shared";
+    case ActionChoice::Random: return "random";
+    case ActionChoice::Weighted: return "weighted";
+  }
+  return "?";
+}
+
+}  // namespace
+
 RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   const Character& c = bench.character();
   const BenchConfig& config = bench.config();
   RunDescription run;
   run.file = file;
-  run.character = c.name;
   run.characters = bench.crowd().size();
-  run.joints = c.skeleton.joint_count();
-  run.vertices = c.mesh.vertex_count();
-  run.actions = c.actions.size();
-  run.action_choice = config.crowd.actions == ActionChoice::Random ? "random" : "shared";
-  if (config.crowd.actions == ActionChoice::Shared && static_cast<size_t>(config.crowd.shared_action) < c.actions.size())
+  std::vector<CrowdGroup> groups = crowd_groups(config.crowd);
+  std::span<const Character* const> characters = bench.characters();
+  for (size_t k = 0; k < characters.size(); ++k) {
+    const Character& character = *characters[k];
+    run.character += (k ? " + " : "") + character.name;
+    run.joints = std::max(run.joints, character.skeleton.joint_count());
+    run.vertices = std::max(run.vertices, character.mesh.vertex_count());
+    run.actions = std::max(run.actions, character.actions.size());
+    CharacterRun entry;
+    entry.file = k < config.files.size() ? config.files[k] : file;
+    entry.character = character.name;
+    entry.joints = character.skeleton.joint_count();
+    entry.vertices = character.mesh.vertex_count();
+    entry.actions = character.actions.size();
+    for (const CrowdGroup& group : groups)
+      if (group.character == k) {
+        entry.copies += group.copies;
+        entry.action_choice = choice_name(group.actions);
+      }
+    run.crowd.push_back(entry);
+  }
+  run.action_choice = config.actions_from_scene ? "scene" : std::string(choice_name(config.crowd.actions));
+  if (!config.actions_from_scene && config.crowd.actions == ActionChoice::Shared &&
+      static_cast<size_t>(config.crowd.shared_action) < c.actions.size())
     run.action = c.actions[static_cast<size_t>(config.crowd.shared_action)].name;
   run.seed = config.crowd.seed;
   run.mode = config.mode_name;
@@ -50,7 +93,18 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.fps = config.fps;
   run.camera = config.camera;
   run.resolution = config.resolution;
+  run.lens = {{"focal_mm", config.lens.focal_mm},
+              {"sensor_width_mm", config.lens.sensor_width_mm},
+              {"sensor_height_mm", config.lens.sensor_height_mm},
+              {"sensor_fit", to_string(config.lens.fit)}};
+  run.scene_file = config.scene_file;
+  run.scene_hash = config.scene_hash;
   return run;
+}
+
+void record_character_counters(const CrowdBench& bench, RunDescription& run) {
+  std::span<const Counters> counters = bench.character_counters();
+  for (size_t k = 0; k < run.crowd.size() && k < counters.size(); ++k) run.crowd[k].counters = counters[k];
 }
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {
@@ -66,6 +120,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
     if (options.progress) options.progress(i + 1, total);
   }
   report.digest = bench.digest();
+  record_character_counters(bench, report.run);
   return report;
 }
 

@@ -27,6 +27,13 @@ void check_fits_in_memory(const Character& character, size_t copies, const ModeS
 // What a report says about a bench's scene and mode.
 RunDescription describe_run(const CrowdBench& bench, const std::string& file);
 
+// Copies the bench's last frame's per-character counters into run.crowd.
+void record_character_counters(const CrowdBench& bench, RunDescription& run);
+
+// Throws UsageError, before anything is allocated, when the config's crowd of
+// these characters would not fit in the machine's available memory.
+void check_fits_in_memory(std::span<const Character* const> characters, const BenchConfig& config);
+
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 
 }  // namespace crowdprof

@@ -288,6 +288,13 @@ std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const 
   const json& be = baseline.contains("environment") ? baseline["environment"] : json::object();
   const json& ce = current.contains("environment") ? current["environment"] : json::object();
   for (const char* key : {"cpu", "build_type", "backend"}) note(key, be.value(key, none), ce.value(key, none));
+  // A scene file edited since the baseline: the counters or digest will say
+  // whether the work changed; this says why.
+  const json& bs = baseline["scene"];
+  const json& cs = current["scene"];
+  if (bs.contains("scene_hash") && cs.contains("scene_hash") && bs["scene_hash"] != cs["scene_hash"])
+    notes.push_back("the scene file changed since the baseline: hash " + bs["scene_hash"].dump() + " then, " +
+                    cs["scene_hash"].dump() + " now");
   return notes;
 }
 

@@ -66,7 +66,12 @@ std::string format_profile(const RunReport& report) {
     out << line;
   }
   const Counters& k = frame.counters;
-  out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode "
+  if (run.crowd.size() > 1)
+    out << run.characters << " characters of " << run.crowd.size() << " kinds (up to " << run.joints << " joints, "
+        << run.vertices << " vertices) | mode ";
+  else
+    out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode ";
+  out
       << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
       << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
       << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
@@ -78,7 +83,26 @@ std::string format_profile(const RunReport& report) {
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
     out << "\n";
   }
+  if (run.crowd.size() > 1) {
+    std::snprintf(line, sizeof line, "%-28s %6s %6s %8s %9s %6s %6s %16s %9s\n", "file", "copies", "joints",
+                  "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
+    out << line;
+    for (const CharacterRun& c : run.crowd) {
+      const Counters& n = c.counters;
+      std::string label = c.file.size() > 28 ? "..." + c.file.substr(c.file.size() - 25) : c.file;
+      std::snprintf(line, sizeof line, "%-28s %6zu %6zu %8zu %9llu %6llu %6llu %16llu %9llu\n", label.c_str(), c.copies, c.joints, c.vertices,
+                    static_cast<unsigned long long>(n.copies_visible), static_cast<unsigned long long>(n.copies_culled),
+                    static_cast<unsigned long long>(n.poses_updated), static_cast<unsigned long long>(n.vertices_skinned),
+                    static_cast<unsigned long long>(n.copies_fallback));
+      out << line;
+    }
+  }
   out << "actions " << run.action_choice;
+  if (run.action_choice == "scene") {
+    out << " file (";
+    for (size_t c = 0; c < run.crowd.size(); ++c) out << (c ? ", " : "") << run.crowd[c].action_choice;
+    out << ", seed " << run.seed << ")";
+  }
   if (run.action_choice == "random") out << " (seed " << run.seed << ")";
   else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
@@ -123,6 +147,22 @@ nlohmann::json to_json(const RunReport& report) {
                 {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
                 {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},
                 {"camera", run.camera}, {"resolution", run.resolution}};
+  j["scene"]["lens"] = run.lens;
+  if (!run.scene_file.empty()) {
+    j["scene"]["scene_file"] = run.scene_file;
+    j["scene"]["scene_hash"] = run.scene_hash;
+  }
+  nlohmann::json crowd = nlohmann::json::array();
+  for (const CharacterRun& c : run.crowd) {
+    nlohmann::json counters;
+    for (const char* name : {"copies_visible", "copies_culled", "poses_updated", "vertices_skinned", "copies_fallback"})
+      for (const CounterField& field : kCounterFields)
+        if (field.name == name) counters[name] = c.counters.*field.member;
+    crowd.push_back({{"file", c.file},         {"character", c.character}, {"copies", c.copies},
+                     {"joints", c.joints},     {"vertices", c.vertices},   {"actions", c.actions},
+                     {"action_choice", c.action_choice}, {"counters", counters}});
+  }
+  j["crowd"] = crowd;
   j["mode"] = run.mode;
   j["switches"] = run.switches;
   j["threads"] = run.threads;

@@ -13,12 +13,22 @@
 
 namespace crowdprof {
 
+// One character of the crowd and the work its copies did in the last frame
+// measured (counters that only count in all, draw calls and bytes, stay 0).
+struct CharacterRun {
+  std::string file;       // as the scene names it
+  std::string character;  // its name
+  size_t copies = 0, joints = 0, vertices = 0, actions = 0;
+  std::string action_choice;  // shared, random or weighted
+  Counters counters;
+};
+
 struct RunDescription {
-  std::string file;        // the character's file (with #skin=N when chosen)
-  std::string character;   // its name
+  std::string file;        // the character's file (with #skin=N when chosen), or the scene file
+  std::string character;   // its name (of a mixed crowd: the names joined by " + ")
   size_t characters = 0;   // copies in the crowd
-  size_t joints = 0, vertices = 0, actions = 0;
-  std::string action_choice;  // "shared" or "random"
+  size_t joints = 0, vertices = 0, actions = 0;  // of a mixed crowd: the largest character's
+  std::string action_choice;  // "shared" or "random"; "scene": each character as its scene file says
   std::string action;         // with shared: the action every copy plays ("" when there is none)
   uint32_t seed = 0;
   std::string mode;            // preset name, or "custom"
@@ -29,6 +39,10 @@ struct RunDescription {
   double fps = 60.0;
   std::string camera;
   std::string resolution;  // WxH: the frame's size and so the camera's aspect
+  nlohmann::json lens;     // focal_mm, sensor_width_mm, sensor_height_mm, sensor_fit
+  // When the run is of a scene file: its path and a hash of its contents.
+  std::string scene_file, scene_hash;
+  std::vector<CharacterRun> crowd;  // per character, in the scene's order
 };
 
 struct RunReport {

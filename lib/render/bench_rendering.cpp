@@ -11,13 +11,19 @@ std::string BenchRendering::renderer_name() const {
   return context->renderer() + " (" + context->platform() + ", OpenGL " + context->version() + ")";
 }
 
-BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
+BenchRendering open_rendering(BackendChoice choice, std::span<const Character* const> characters, size_t copies,
                               const RendererConfig& config, std::string* warning) {
   BenchRendering rendering;
   rendering.context = open_backend(choice, warning);
   if (rendering.context)
-    rendering.renderer = std::make_unique<GlCrowdRenderer>(*rendering.context, character, copies, config);
+    rendering.renderer = std::make_unique<GlCrowdRenderer>(*rendering.context, characters, copies, config);
   return rendering;
+}
+
+BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
+                              const RendererConfig& config, std::string* warning) {
+  const Character* one[] = {&character};
+  return open_rendering(choice, one, copies, config, warning);
 }
 
 }  // namespace crowdprof

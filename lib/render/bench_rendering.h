@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 
 #include "asset/character.h"
@@ -24,6 +25,8 @@ struct BenchRendering {
 // *warning) and makes a renderer of `config` for `copies` copies. Throws
 // GlUnavailable for an explicit backend that fails, UsageError for a
 // resolution the GL cannot render, GlError for shaders.
+BenchRendering open_rendering(BackendChoice choice, std::span<const Character* const> characters, size_t copies,
+                              const RendererConfig& config, std::string* warning);
 BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
                               const RendererConfig& config, std::string* warning);
 

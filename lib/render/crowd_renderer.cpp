@@ -53,11 +53,12 @@ size_t gpu_joint_limit(GLint max_vertex_uniform_components, size_t cap) {
 
 GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character, size_t copies,
                                  const RendererConfig& config)
-    : context_(context), character_(character), framebuffer_(config.width, config.height) {
-  const SkinnedMesh& mesh = character.mesh;
-  vertices_ = mesh.vertex_count();
-  joints_ = character.skeleton.joint_count();
-  index_count_ = static_cast<GLsizei>(mesh.indices.size());
+    : GlCrowdRenderer(context, std::span<const Character* const>(std::array<const Character*, 1>{&character}), copies,
+                      config) {}
+
+GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* const> characters, size_t copies,
+                                 const RendererConfig& config)
+    : context_(context), framebuffer_(config.width, config.height) {
   GLint uniform_components = 0;
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_COMPONENTS, &uniform_components);
   max_joints_ = gpu_joint_limit(uniform_components, config.joint_cap);
@@ -65,12 +66,22 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character,
   cpu_program_ = GlProgram(stages("shaders/crowd.vert", ""));
   cpu_model_ = cpu_program_.uniform("model");
   cpu_colour_ = cpu_program_.uniform("base_colour");
-  indices_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.size() * sizeof(uint32_t), mesh.indices.data(),
-                         GL_STATIC_DRAW);
+  size_t max_vertices = 0, max_fitting_joints = 0;
+  for (const Character* character : characters) {
+    const SkinnedMesh& mesh = character->mesh;
+    Kind kind;
+    kind.vertices = mesh.vertex_count();
+    kind.joints = character->skeleton.joint_count();
+    kind.index_count = static_cast<GLsizei>(mesh.indices.size());
+    kind.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.size() * sizeof(uint32_t), mesh.indices.data(),
+                               GL_STATIC_DRAW);
+    max_vertices = std::max(max_vertices, kind.vertices);
+    kinds_.push_back(kind);
+  }
 
   // CPU-skinned copies: one buffer per copy drawn, as the BGE gave each mesh
   // its own, so that a copy's upload never waits on another copy's draw.
-  size_t copy_bytes = std::max<size_t>(2 * vertices_ * sizeof(glm::vec3), 1);
+  size_t copy_bytes = std::max<size_t>(2 * max_vertices * sizeof(glm::vec3), 1);
   stream_.resize(std::clamp<size_t>(kStreamBudgetBytes / copy_bytes, 1, std::max<size_t>(copies, 1)));
   for (GLuint& buffer : stream_) buffer = make_buffer(GL_ARRAY_BUFFER, copy_bytes, nullptr, GL_STREAM_DRAW);
   // Attributes 0 and 1 read bindings 0 and 1, which each draw points at its buffer.
@@ -81,27 +92,33 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character,
     glVertexAttribFormat(attribute, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexAttribBinding(attribute, attribute);
   }
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
 
-  if (joints_ <= max_joints_ && max_joints_ > 0) {
-    gpu_program_ = GlProgram(stages("shaders/hwskin.vert", "#define MAX_BONES " + std::to_string(max_joints_) + "\n"));
-    gpu_model_ = gpu_program_.uniform("model");
-    gpu_colour_ = gpu_program_.uniform("base_colour");
-    gpu_bones_ = gpu_program_.uniform("bones");
-    glGenVertexArrays(1, &gpu_vao_);
-    glBindVertexArray(gpu_vao_);
-    rest_buffers_[0] = make_buffer(GL_ARRAY_BUFFER, vertices_ * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
-    float_attribute(0, rest_buffers_[0], 3);
-    rest_buffers_[1] = make_buffer(GL_ARRAY_BUFFER, vertices_ * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
-    float_attribute(1, rest_buffers_[1], 3);
-    rest_buffers_[2] = make_buffer(GL_ARRAY_BUFFER, vertices_ * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    Kind& kind = kinds_[k];
+    if (kind.joints > max_joints_ || max_joints_ == 0) continue;
+    if (!gpu_program_.id()) {
+      gpu_program_ = GlProgram(stages("shaders/hwskin.vert", "#define MAX_BONES " + std::to_string(max_joints_) + "\n"));
+      gpu_model_ = gpu_program_.uniform("model");
+      gpu_colour_ = gpu_program_.uniform("base_colour");
+      gpu_bones_ = gpu_program_.uniform("bones");
+    }
+    const SkinnedMesh& mesh = characters[k]->mesh;
+    size_t vertices = kind.vertices;
+    glGenVertexArrays(1, &kind.gpu_vao);
+    glBindVertexArray(kind.gpu_vao);
+    kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
+    float_attribute(0, kind.rest_buffers[0], 3);
+    kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
+    float_attribute(1, kind.rest_buffers[1], 3);
+    kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
     glEnableVertexAttribArray(2);
     glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
-    rest_buffers_[3] = make_buffer(GL_ARRAY_BUFFER, vertices_ * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
-    float_attribute(3, rest_buffers_[3], 4);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
-    bone_rows_.resize(3 * joints_);
+    kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
+    float_attribute(3, kind.rest_buffers[3], 4);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+    max_fitting_joints = std::max(max_fitting_joints, kind.joints);
   }
+  bone_rows_.resize(3 * max_fitting_joints);
   glBindVertexArray(0);
 
   glEnable(GL_DEPTH_TEST);
@@ -115,16 +132,20 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character,
 
 GlCrowdRenderer::~GlCrowdRenderer() {
   glDeleteVertexArrays(1, &cpu_vao_);
-  glDeleteVertexArrays(1, &gpu_vao_);
-  glDeleteBuffers(1, &indices_);
   glDeleteBuffers(static_cast<GLsizei>(stream_.size()), stream_.data());
-  glDeleteBuffers(4, rest_buffers_);
+  for (Kind& kind : kinds_) {
+    glDeleteVertexArrays(1, &kind.gpu_vao);
+    glDeleteBuffers(1, &kind.indices);
+    glDeleteBuffers(4, kind.rest_buffers);
+  }
 }
 
-uint64_t GlCrowdRenderer::vertex_bytes_per_copy() const {
-  return vertices_ * 2 * sizeof(glm::vec3) + sizeof(glm::mat4);
+uint64_t GlCrowdRenderer::vertex_bytes_per_copy(size_t kind) const {
+  return kinds_[kind].vertices * 2 * sizeof(glm::vec3) + sizeof(glm::mat4);
 }
-uint64_t GlCrowdRenderer::bone_bytes_per_copy() const { return joints_ * 3 * sizeof(glm::vec4) + sizeof(glm::mat4); }
+uint64_t GlCrowdRenderer::bone_bytes_per_copy(size_t kind) const {
+  return kinds_[kind].joints * 3 * sizeof(glm::vec4) + sizeof(glm::mat4);
+}
 
 void GlCrowdRenderer::set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const {
   glm::mat4 view_projection = bench.camera().view_projection();
@@ -137,65 +158,70 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
   framebuffer_.bind();
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (bench.gpu_skinned())
-    draw_gpu_skinned(bench, counters);
-  else
-    draw_cpu_skinned(bench, counters);
+  const Crowd& crowd = bench.crowd();
+  // Copies skinned on the CPU first, then those the vertex shader skins: one
+  // program switch a frame, whatever the mix.
+  bool any_cpu = false, any_gpu = false;
+  for (size_t k = 0; k < kinds_.size(); ++k) (bench.gpu_skinned_kind(k) ? any_gpu : any_cpu) = true;
+  if (any_cpu) {
+    glUseProgram(cpu_program_.id());
+    set_frame_uniforms(cpu_program_, bench);
+    glBindVertexArray(cpu_vao_);
+    size_t drawn = 0;
+    for (size_t i = 0; i < crowd.size(); ++i)
+      if (bench.visible(i) && !bench.gpu_skinned_copy(i)) draw_copy_cpu_skinned(bench, i, drawn++, counters);
+  }
+  if (any_gpu) {
+    glUseProgram(gpu_program_.id());
+    set_frame_uniforms(gpu_program_, bench);
+    for (size_t i = 0; i < crowd.size(); ++i)
+      if (bench.visible(i) && bench.gpu_skinned_copy(i)) draw_copy_gpu_skinned(bench, i, counters);
+  }
   glBindVertexArray(0);
   check_gl("Rasterizer");
 }
 
-void GlCrowdRenderer::draw_cpu_skinned(const CrowdBench& bench, Counters& counters) {
-  glUseProgram(cpu_program_.id());
-  set_frame_uniforms(cpu_program_, bench);
-  glBindVertexArray(cpu_vao_);
-  const Crowd& crowd = bench.crowd();
-  auto half = static_cast<GLsizeiptr>(vertices_ * sizeof(glm::vec3));
-  size_t drawn = 0;
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!bench.visible(i)) continue;
-    GLuint buffer = stream_[drawn % stream_.size()];
-    glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    // Fresh storage (orphaning) before writing: writing into storage that a
-    // draw may still read makes the driver wait for it. llvmpipe waits even
-    // for the last frame's finished draws: 2.5x the Rasterizer time without.
-    glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
-    glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
-    glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
-    glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
-    glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
-    glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-    ++drawn;
-    counters.bytes_uploaded += vertex_bytes_per_copy();
-    ++counters.draw_calls;
-  }
+void GlCrowdRenderer::draw_copy_cpu_skinned(const CrowdBench& bench, size_t i, size_t drawn, Counters& counters) {
+  size_t k = bench.crowd().kind[i];
+  const Kind& kind = kinds_[k];
+  auto half = static_cast<GLsizeiptr>(kind.vertices * sizeof(glm::vec3));
+  GLuint buffer = stream_[drawn % stream_.size()];
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  // Fresh storage (orphaning) before writing: writing into storage that a
+  // draw may still read makes the driver wait for it. llvmpipe waits even
+  // for the last frame's finished draws: 2.5x the Rasterizer time without.
+  glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+  glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
+  glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);  // part of the VAO: the copy's character's
+  glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+  glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
+  counters.bytes_uploaded += vertex_bytes_per_copy(k);
+  ++counters.draw_calls;
 }
 
-void GlCrowdRenderer::draw_gpu_skinned(const CrowdBench& bench, Counters& counters) {
-  if (!gpu_vao_) throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
-  glUseProgram(gpu_program_.id());
-  set_frame_uniforms(gpu_program_, bench);
-  glBindVertexArray(gpu_vao_);
-  const Crowd& crowd = bench.crowd();
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!bench.visible(i)) continue;
-    // The 3x4 upper part of each column-major matrix, as rows.
-    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
-    for (size_t j = 0; j < joints_; ++j)
-      for (int r = 0; r < 3; ++r) {
-        const SkinMatrix& m = palette[j];
-        bone_rows_[3 * j + static_cast<size_t>(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
-      }
-    if (!bone_rows_.empty())
-      glUniform4fv(gpu_bones_, static_cast<GLsizei>(bone_rows_.size()), glm::value_ptr(bone_rows_[0]));
-    glUniformMatrix4fv(gpu_model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
-    glUniform3fv(gpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-    counters.bytes_uploaded += bone_bytes_per_copy();
-    ++counters.draw_calls;
-  }
+void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, Counters& counters) {
+  size_t k = bench.crowd().kind[i];
+  const Kind& kind = kinds_[k];
+  if (!kind.gpu_vao) throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
+  glBindVertexArray(kind.gpu_vao);
+  // The 3x4 upper part of each column-major matrix, as rows.
+  std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
+  for (size_t j = 0; j < kind.joints; ++j)
+    for (int r = 0; r < 3; ++r) {
+      const SkinMatrix& m = palette[j];
+      bone_rows_[3 * j + static_cast<size_t>(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+    }
+  if (kind.joints > 0)
+    glUniform4fv(gpu_bones_, static_cast<GLsizei>(3 * kind.joints), glm::value_ptr(bone_rows_[0]));
+  glUniformMatrix4fv(gpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniform3fv(gpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+  glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
+  counters.bytes_uploaded += bone_bytes_per_copy(k);
+  ++counters.draw_calls;
 }
 
 void GlCrowdRenderer::finish() {

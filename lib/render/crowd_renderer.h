@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "asset/character.h"
@@ -34,10 +35,13 @@ size_t gpu_joint_limit(GLint max_vertex_uniform_components, size_t cap);
 class GlCrowdRenderer final : public FrameRenderer {
  public:
   // Makes the framebuffer, compiles the shaders and uploads what never
-  // changes: the index buffer and, for GPU skinning, the rest mesh with its
-  // joints and weights. `context` must be current now and at every call, and
-  // outlive the renderer. `copies` sizes the per-frame vertex buffer.
+  // changes: each character's index buffer and, for GPU skinning, its rest
+  // mesh with its joints and weights. `context` must be current now and at
+  // every call, and outlive the renderer, as must the characters (a bench
+  // draws with the same list). `copies` sizes the per-frame vertex buffers.
   // Throws UsageError (resolution) or GlError.
+  GlCrowdRenderer(GlContext& context, std::span<const Character* const> characters, size_t copies,
+                  const RendererConfig& config);
   GlCrowdRenderer(GlContext& context, const Character& character, size_t copies, const RendererConfig& config);
   ~GlCrowdRenderer() override;
   GlCrowdRenderer(const GlCrowdRenderer&) = delete;
@@ -56,32 +60,37 @@ class GlCrowdRenderer final : public FrameRenderer {
   int height() const { return framebuffer_.height(); }
   const GlContext& context() const { return context_; }
 
-  // Bytes one copy costs to send each frame: its skinned positions and normals,
-  // or its skinning matrices (3 rows of 4 floats each); plus its world matrix.
-  uint64_t vertex_bytes_per_copy() const;
-  uint64_t bone_bytes_per_copy() const;
+  // Bytes one copy of character `kind` costs to send each frame: its skinned
+  // positions and normals, or its skinning matrices (3 rows of 4 floats
+  // each); plus its world matrix.
+  uint64_t vertex_bytes_per_copy(size_t kind = 0) const;
+  uint64_t bone_bytes_per_copy(size_t kind = 0) const;
 
  private:
-  void draw_cpu_skinned(const CrowdBench& bench, Counters& counters);
-  void draw_gpu_skinned(const CrowdBench& bench, Counters& counters);
+  void draw_copy_cpu_skinned(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
+  void draw_copy_gpu_skinned(const CrowdBench& bench, size_t copy, Counters& counters);
   void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
 
+  // What one character's copies are drawn with.
+  struct Kind {
+    size_t vertices = 0, joints = 0;
+    GLsizei index_count = 0;
+    GLuint indices = 0;
+    // GPU skinning: the rest mesh, uploaded once (when the character fits).
+    GLuint gpu_vao = 0, rest_buffers[4] = {0, 0, 0, 0};
+  };
+
   GlContext& context_;
-  const Character& character_;
   Framebuffer framebuffer_;
   size_t max_joints_ = 0;
-  size_t vertices_ = 0, joints_ = 0;
-  GLsizei index_count_ = 0;
+  std::vector<Kind> kinds_;  // per character
   GlProgram cpu_program_, gpu_program_;
   GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
-  GLuint indices_ = 0;
   // CPU-skinned copies: a buffer per drawn copy (positions, then normals),
   // orphaned and refilled every frame. With more copies on screen than
   // buffers, buffers serve several copies.
   GLuint cpu_vao_ = 0;
   std::vector<GLuint> stream_;
-  // GPU skinning: the rest mesh, uploaded once (when the character fits).
-  GLuint gpu_vao_ = 0, rest_buffers_[4] = {0, 0, 0, 0};
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
 };
 

@@ -13,9 +13,34 @@ namespace crowdprof {
 
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 
-glm::mat4 Camera::projection() const {
-  return glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+float Lens::fov_x(float aspect) const {
+  // Blender (BKE_camera_sensor_fit): the fitted side spans the sensor, the
+  // other follows the aspect.
+  bool horizontal = fit == SensorFit::Horizontal || (fit == SensorFit::Auto && aspect >= 1.0f);
+  if (horizontal) return 2.0f * std::atan(0.5f * sensor_width_mm / focal_mm);
+  float sensor = fit == SensorFit::Vertical ? sensor_height_mm : sensor_width_mm;
+  return 2.0f * std::atan(0.5f * sensor / focal_mm * aspect);
 }
+
+float Lens::fov_y(float aspect) const { return 2.0f * std::atan(std::tan(0.5f * fov_x(aspect)) / aspect); }
+
+std::optional<SensorFit> parse_sensor_fit(std::string_view text) {
+  if (text == "auto") return SensorFit::Auto;
+  if (text == "horizontal") return SensorFit::Horizontal;
+  if (text == "vertical") return SensorFit::Vertical;
+  return std::nullopt;
+}
+
+std::string_view to_string(SensorFit fit) {
+  switch (fit) {
+    case SensorFit::Auto: return "auto";
+    case SensorFit::Horizontal: return "horizontal";
+    case SensorFit::Vertical: return "vertical";
+  }
+  return "?";
+}
+
+glm::mat4 Camera::projection() const { return glm::perspective(fov_y(), aspect, near_plane, far_plane); }
 
 Frustum frustum_of(const glm::mat4& m) {
   // Rows of the matrix (glm is column-major: m[column][row]).
@@ -36,9 +61,10 @@ bool intersects(const Frustum& frustum, const Aabb& box) {
   return true;
 }
 
-Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect) {
+Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect, const Lens& lens) {
   Camera camera;
   camera.aspect = aspect;
+  camera.lens = lens;
   glm::vec3 size = crowd.size();
   glm::vec3 center = crowd.center();
   float extent = std::max({size.x, size.z, 1e-3f});
@@ -47,17 +73,24 @@ Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect) {
     // From the front (+Z) and above, near enough that the view's width at the
     // crowd's middle row covers about 70% of the crowd's: the corners of the
     // near rows fall outside the view, the far rows fit, as in the thesis scene.
-    float tan_half_h = std::tan(glm::radians(camera.fov_y_degrees) * 0.5f) * aspect;
+    float tan_half_h = std::tan(0.5f * lens.fov_x(aspect));
     float distance = 0.35f * std::max(size.x, 1e-3f) / tan_half_h;
     float pitch = glm::radians(25.0f);
     camera.target = glm::vec3(center.x, crowd.min.y + 0.5f * height, center.z);
     camera.eye = camera.target + distance * glm::vec3(0.0f, std::sin(pitch), std::cos(pitch));
   } else if (spec == "all") {
+    // From the front and above, far enough that the sphere around the crowd
+    // fits inside the narrower of the two angles of view.
+    float radius = 0.5f * std::max(glm::length(size), 1e-3f);
+    float half = 0.5f * std::min(lens.fov_x(aspect), lens.fov_y(aspect));
     camera.target = center;
-    camera.eye = center + glm::vec3(0.0f, 0.6f * extent, 1.4f * extent);
+    camera.eye = center + radius / std::sin(half) * glm::normalize(glm::vec3(0.0f, 0.6f, 1.4f));
   } else if (spec == "close") {
-    camera.target = glm::vec3(center.x, crowd.min.y + 0.5f * height, crowd.max.z);
-    camera.eye = camera.target + glm::vec3(0.0f, 0.3f * height, 3.0f * height);
+    // Near the front row's centre and looking down on it, so that the rows
+    // behind fall above the frame: a few copies fill the view.
+    float pitch = glm::radians(45.0f);
+    camera.target = glm::vec3(center.x, crowd.min.y + 0.4f * height, crowd.max.z - 0.3f * height);
+    camera.eye = camera.target + 2.2f * height * glm::vec3(0.0f, std::sin(pitch), std::cos(pitch));
   } else {
     std::vector<float> values;
     const char* p = spec.data();

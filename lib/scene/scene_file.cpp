@@ -1,0 +1,272 @@
+#include "scene/scene_file.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "asset/errors.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+// Reports problems as "<file>: <key>: <problem>", the key as a path such as
+// characters[1].count.
+struct Reader {
+  std::string file;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(file, key + ": " + problem);
+  }
+
+  void only_keys(const json& object, const std::string& key, std::initializer_list<const char*> allowed) const {
+    if (!object.is_object()) fail(key, "expected an object, got " + type_of(object));
+    for (const auto& [name, value] : object.items()) {
+      bool known = false;
+      std::string list;
+      for (const char* a : allowed) {
+        known = known || name == a;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+      }
+      if (!known) fail(key.empty() ? name : key + "." + name, "unknown key (expected one of " + list + ")");
+    }
+  }
+
+  static std::string type_of(const json& value) {
+    if (value.is_number_integer() || value.is_number_unsigned()) return "a whole number";
+    if (value.is_number()) return "a number";
+    return std::string("a ") + value.type_name();
+  }
+
+  std::string text(const json& value, const std::string& key) const {
+    if (!value.is_string()) fail(key, "expected a string, got " + type_of(value));
+    return value.get<std::string>();
+  }
+
+  double number(const json& value, const std::string& key, double min, double max) const {
+    if (!value.is_number()) fail(key, "expected a number, got " + type_of(value));
+    double v = value.get<double>();
+    if (!std::isfinite(v) || v < min || v > max) {
+      char range[96];
+      std::snprintf(range, sizeof range, "%g is out of range (%g to %g)", v, min, max);
+      fail(key, range);
+    }
+    return v;
+  }
+
+  long long whole(const json& value, const std::string& key, long long min, long long max) const {
+    if (!value.is_number_integer() && !value.is_number_unsigned())
+      fail(key, "expected a whole number, got " + type_of(value));
+    if (value.is_number_unsigned() && value.get<uint64_t>() > static_cast<uint64_t>(max))
+      fail(key, std::to_string(value.get<uint64_t>()) + " is more than " + std::to_string(max));
+    long long v = value.get<long long>();
+    if (v < min || v > max)
+      fail(key, std::to_string(v) + " is out of range (" + std::to_string(min) + " to " + std::to_string(max) + ")");
+    return v;
+  }
+
+  glm::vec3 point(const json& value, const std::string& key) const {
+    if (!value.is_array() || value.size() != 3) fail(key, "expected [x, y, z] in metres");
+    glm::vec3 p;
+    for (int i = 0; i < 3; ++i) p[i] = static_cast<float>(number(value[static_cast<size_t>(i)], key, -1e6, 1e6));
+    return p;
+  }
+};
+
+std::string folder_of(const std::string& path) {
+  std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? std::string() : parent.string() + "/";
+}
+
+}  // namespace
+
+size_t SceneFile::copies() const {
+  size_t n = 0;
+  for (const SceneCharacter& c : characters) n += c.count;
+  return n;
+}
+
+bool is_scene_file(const std::string& path) {
+  std::string lower = path;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower.size() > 5 && lower.ends_with(".json");
+}
+
+std::string fnv1a64_hex(std::string_view bytes) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
+SceneFile load_scene_file(const std::string& path) {
+  Reader r{path};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::filesystem::exists(path) ? "cannot be read" : "no such file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string bytes = buffer.str();
+  SceneFile scene;
+  scene.path = path;
+  scene.hash = fnv1a64_hex(bytes);
+  json doc;
+  try {
+    doc = json::parse(bytes);
+  } catch (const json::parse_error& e) {
+    throw InputError(path, std::string("not a JSON scene file: ") + e.what());
+  }
+  r.only_keys(doc, "", {"characters", "seed", "layout", "camera", "resolution"});
+
+  if (!doc.contains("characters")) r.fail("characters", "missing: a scene needs at least one character");
+  const json& characters = doc["characters"];
+  if (!characters.is_array() || characters.empty())
+    r.fail("characters", "expected a list of at least one character, got " + Reader::type_of(characters));
+  if (characters.size() > 1000) r.fail("characters", "at most 1,000 characters");
+  std::string folder = folder_of(path);
+  for (size_t i = 0; i < characters.size(); ++i) {
+    std::string key = "characters[" + std::to_string(i) + "]";
+    const json& entry = characters[i];
+    r.only_keys(entry, key, {"file", "count", "actions", "action"});
+    SceneCharacter c;
+    if (!entry.contains("file")) r.fail(key + ".file", "missing");
+    c.file = r.text(entry["file"], key + ".file");
+    std::string name = c.file.substr(0, c.file.find('#'));
+    if (name.empty()) r.fail(key + ".file", "empty");
+    c.path = std::filesystem::path(name).is_absolute() ? c.file : folder + c.file;
+    std::string on_disk = c.path.substr(0, c.path.find('#'));
+    if (!std::filesystem::is_regular_file(on_disk))
+      r.fail(key + ".file", "no such file '" + c.file + "' (looked for " + on_disk + ")");
+    if (!entry.contains("count")) r.fail(key + ".count", "missing: how many copies of this character");
+    c.count = static_cast<size_t>(r.whole(entry["count"], key + ".count", 0, 10'000'000));
+    if (entry.contains("actions")) {
+      const json& actions = entry["actions"];
+      if (actions.is_string()) {
+        std::string choice = actions.get<std::string>();
+        if (choice == "shared") c.actions = ActionChoice::Shared;
+        else if (choice == "random") c.actions = ActionChoice::Random;
+        else r.fail(key + ".actions", "'" + choice + "': expected shared, random, or an object of weights by action name");
+      } else if (actions.is_object()) {
+        c.actions = ActionChoice::Weighted;
+        double total = 0;
+        for (const auto& [action, weight] : actions.items()) {
+          double w = r.number(weight, key + ".actions." + action, 0, 1e9);
+          c.weights.emplace_back(action, w);
+          total += w;
+        }
+        if (!(total > 0)) r.fail(key + ".actions", "weights must not all be zero");
+      } else {
+        r.fail(key + ".actions", "expected shared, random, or an object of weights by action name, got " +
+                                     Reader::type_of(actions));
+      }
+    }
+    if (entry.contains("action")) {
+      if (c.actions != ActionChoice::Shared) r.fail(key + ".action", "only with \"actions\": \"shared\"");
+      c.action = r.text(entry["action"], key + ".action");
+    }
+    scene.characters.push_back(std::move(c));
+  }
+  if (scene.copies() == 0) r.fail("characters", "no copies at all: every count is 0");
+  if (scene.copies() > 10'000'000) r.fail("characters", "at most 10,000,000 copies in all");
+
+  if (doc.contains("seed")) scene.seed = static_cast<uint32_t>(r.whole(doc["seed"], "seed", 0, 0xffffffffLL));
+
+  if (doc.contains("layout")) {
+    const json& layout = doc["layout"];
+    r.only_keys(layout, "layout", {"type", "spacing", "rows", "jitter", "seed"});
+    if (layout.contains("type") && r.text(layout["type"], "layout.type") != "grid")
+      r.fail("layout.type", "'" + layout["type"].get<std::string>() + "': the only layout is grid");
+    if (layout.contains("spacing") && !(layout["spacing"].is_string() && layout["spacing"] == "auto"))
+      scene.layout.spacing = static_cast<float>(r.number(layout["spacing"], "layout.spacing", 0.001, 1e4));
+    if (layout.contains("rows") && !(layout["rows"].is_string() && layout["rows"] == "auto"))
+      scene.layout.rows = static_cast<size_t>(r.whole(layout["rows"], "layout.rows", 1, 10'000'000));
+    if (layout.contains("jitter")) scene.layout.jitter = static_cast<float>(r.number(layout["jitter"], "layout.jitter", 0, 1e4));
+    if (layout.contains("seed"))
+      scene.layout.jitter_seed = static_cast<uint32_t>(r.whole(layout["seed"], "layout.seed", 0, 0xffffffffLL));
+  }
+
+  if (doc.contains("camera")) {
+    const json& camera = doc["camera"];
+    r.only_keys(camera, "camera",
+                {"view", "eye", "target", "lens_mm", "sensor_width_mm", "sensor_height_mm", "sensor_fit"});
+    bool placed = camera.contains("eye") || camera.contains("target");
+    if (camera.contains("view")) {
+      if (placed) r.fail("camera.view", "give either a view or an eye and a target, not both");
+      scene.camera = r.text(camera["view"], "camera.view");
+      if (scene.camera != "default" && scene.camera != "all" && scene.camera != "close")
+        r.fail("camera.view", "'" + scene.camera + "': expected default, all or close");
+    }
+    if (placed) {
+      if (!camera.contains("eye") || !camera.contains("target"))
+        r.fail(camera.contains("eye") ? "camera.target" : "camera.eye", "missing: an eye needs a target and the other way round");
+      glm::vec3 eye = r.point(camera["eye"], "camera.eye"), target = r.point(camera["target"], "camera.target");
+      if (glm::length(eye - target) < 1e-6f) r.fail("camera.target", "the same point as the eye");
+      char spec[256];
+      std::snprintf(spec, sizeof spec, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", eye.x, eye.y, eye.z, target.x, target.y, target.z);
+      scene.camera = spec;
+    }
+    if (camera.contains("lens_mm")) scene.lens.focal_mm = static_cast<float>(r.number(camera["lens_mm"], "camera.lens_mm", 1, 5000));
+    if (camera.contains("sensor_width_mm"))
+      scene.lens.sensor_width_mm = static_cast<float>(r.number(camera["sensor_width_mm"], "camera.sensor_width_mm", 1, 1000));
+    if (camera.contains("sensor_height_mm"))
+      scene.lens.sensor_height_mm =
+          static_cast<float>(r.number(camera["sensor_height_mm"], "camera.sensor_height_mm", 1, 1000));
+    if (camera.contains("sensor_fit")) {
+      std::string fit = r.text(camera["sensor_fit"], "camera.sensor_fit");
+      std::optional<SensorFit> parsed = parse_sensor_fit(fit);
+      if (!parsed) r.fail("camera.sensor_fit", "'" + fit + "': expected auto, horizontal or vertical");
+      scene.lens.fit = *parsed;
+    }
+  }
+
+  if (doc.contains("resolution")) {
+    scene.resolution = r.text(doc["resolution"], "resolution");
+    size_t x = scene.resolution.find('x');
+    bool ok = x != std::string::npos && x > 0 && x + 1 < scene.resolution.size() && x <= 5 &&
+              scene.resolution.size() - x - 1 <= 5 &&
+              scene.resolution.find_first_not_of("0123456789x") == std::string::npos &&
+              scene.resolution.find('x', x + 1) == std::string::npos;
+    if (ok) {
+      int w = std::stoi(scene.resolution.substr(0, x)), h = std::stoi(scene.resolution.substr(x + 1));
+      ok = w >= 1 && h >= 1 && w <= 65536 && h <= 65536;
+    }
+    if (!ok) r.fail("resolution", "'" + scene.resolution + "': expected WIDTHxHEIGHT, each 1 to 65536, e.g. 1600x900");
+  }
+  return scene;
+}
+
+CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character) {
+  const SceneCharacter& c = scene.characters[index];
+  std::string key = "characters[" + std::to_string(index) + "]";
+  CrowdGroup group;
+  group.character = index;
+  group.copies = c.count;
+  group.actions = c.actions;
+  auto find = [&](const std::string& name, const std::string& at) {
+    std::string names;
+    for (size_t a = 0; a < character.actions.size(); ++a) {
+      if (character.actions[a].name == name) return a;
+      names += (names.empty() ? "" : ", ") + character.actions[a].name;
+    }
+    throw InputError(scene.path, at + ": " + c.file + " has no action '" + name + "' (it has " +
+                                     (names.empty() ? std::string("none") : names) + ")");
+  };
+  if (character.actions.empty() && c.actions != ActionChoice::Shared)
+    throw InputError(scene.path, key + ".actions: " + c.file + " has no actions to choose from");
+  if (c.actions == ActionChoice::Shared && !c.action.empty())
+    group.shared_action = static_cast<int>(find(c.action, key + ".action"));
+  if (c.actions == ActionChoice::Weighted) {
+    group.weights.assign(character.actions.size(), 0.0);
+    for (const auto& [name, weight] : c.weights) group.weights[find(name, key + ".actions." + name)] += weight;
+  }
+  return group;
+}
+
+}  // namespace crowdprof

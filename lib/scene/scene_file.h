@@ -1,0 +1,58 @@
+// Scene files: the crowd a user profiles, kept as a file next to the assets
+// and in CI instead of a long command line (docs/scenes.md). JSON, read with
+// nlohmann-json: already how crowdprof writes its results, so one format and
+// one parser for both; a scene is a few lines that people rarely nest.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "asset/character.h"
+#include "scene/camera.h"
+#include "scene/crowd.h"
+
+namespace crowdprof {
+
+// One entry of "characters": a file and how many copies play what.
+struct SceneCharacter {
+  std::string file;  // as the scene writes it, FILE or FILE#skin=N
+  std::string path;  // the same, relative to the scene file's folder
+  size_t count = 0;
+  ActionChoice actions = ActionChoice::Shared;
+  std::string action;  // with Shared: the action's name; empty: the first
+  std::vector<std::pair<std::string, double>> weights;  // with Weighted: by action name
+};
+
+struct SceneFile {
+  std::string path;  // the scene file as given
+  std::string hash;  // FNV-1a 64 of its bytes, 16 hex digits
+  std::vector<SceneCharacter> characters;
+  uint32_t seed = 1;  // random and weighted actions
+  CrowdLayout layout;
+  std::string camera = "default";  // a --camera spec: default, all, close or EX,EY,EZ,TX,TY,TZ
+  Lens lens;
+  std::string resolution = "1600x900";
+  size_t copies() const;  // in all
+};
+
+// True for a path that names a scene file (it ends in .json) rather than a
+// character (.gltf, .glb).
+bool is_scene_file(const std::string& path);
+
+// Reads and checks a scene file. InputError "<file>: <key>: <problem>" for
+// what cannot be read or used: not JSON, unknown keys, wrong types, counts
+// below zero or no copies at all, a character file that does not exist, a
+// layout or camera value out of range.
+SceneFile load_scene_file(const std::string& path);
+
+// The crowd group of scene character `index`, loaded as `character` (index k
+// of the bench's characters): action names resolved. InputError naming the
+// scene file and the key when the character has no such action.
+CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character);
+
+// FNV-1a 64 of `bytes` as 16 hex digits.
+std::string fnv1a64_hex(std::string_view bytes);
+
+}  // namespace crowdprof
