@@ -13,7 +13,7 @@ seconds=${1:-60}
 shift || true
 [[ $seconds =~ ^[0-9]+$ ]] || { echo "usage: ./setup.sh fuzz [SECONDS] [TARGET...]" >&2; exit 2; }
 names=("$@")
-((${#names[@]})) || names=(gltf_loader result_reader)
+((${#names[@]})) || names=(gltf_loader result_reader scene_file)
 
 targets="fuzz_seeds ${names[*]/#/fuzz_}"
 build_asan >/dev/null
