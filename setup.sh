@@ -3,6 +3,7 @@
 #   ./setup.sh run [bench options]   run the main job on the bundled default scene
 #   ./setup.sh test                  run the whole test suite
 #   ./setup.sh build                 only build
+#   ./setup.sh bench [options]       the micro-benchmarks (Google Benchmark options)
 #   ./setup.sh sanitize              ASan+UBSan and TSan builds, tests and a short fuzz (CI's second stage)
 #   ./setup.sh fuzz [SECONDS]        run each fuzz target SECONDS (default 60) on the ASan build
 #   ./setup.sh valgrind              memcheck of a short bench and of info on a Draco file
@@ -14,13 +15,14 @@ action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
-  run | test | build | sanitize | fuzz | valgrind) ;;
-  *) echo "usage: ./setup.sh [run|test|build|sanitize|fuzz|valgrind] [options]" >&2; exit 2 ;;
+  run | test | build | bench | sanitize | fuzz | valgrind) ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind] [options]" >&2; exit 2 ;;
 esac
 
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
+  libbenchmark-dev)
 # The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
 # are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.
 case "$action" in
@@ -52,4 +54,5 @@ case "$action" in
   run) exec "$build_dir/crowdprof" bench scenes/thesis.json "$@" ;;
   test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
   build) ;;
+  bench) exec "$build_dir/crowdprof_micro" "$@" ;;
 esac

@@ -3,6 +3,7 @@
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <new>
@@ -10,6 +11,7 @@
 #include "asset/errors.h"
 #include "cli/commands.h"
 #include "profile/environment.h"
+#include "skinning/simd_target.h"
 
 namespace {
 
@@ -27,8 +29,18 @@ int after_flushing_stdout(int status) {
 
 int run_command(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
-  app.set_version_flag("--version", crowdprof::version_line(), "Print the version, commit, build type, compiler and "
-                                                              "SIMD target on one line");
+  // The SIMD target skinning runs on: the CPU's best, else CROWDPROF_SIMD, else
+  // --simd (applied as soon as it is parsed, so that --version after it shows it).
+  std::string simd_error;
+  if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable))
+    simd_error = crowdprof::force_simd_target(from_env);
+  app.set_version_flag("--version", [] { return crowdprof::version_line(); },
+                       "Print the version, commit, build type, compiler and SIMD target on one line");
+  app.add_option_function<std::string>(
+         "--simd", [&](const std::string& name) { simd_error = crowdprof::force_simd_target(name); },
+         "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
+         "also the environment variable CROWDPROF_SIMD)")
+      ->trigger_on_parse();
   app.require_subcommand(1);
   std::function<int()> run;
   add_info_command(app, run);
@@ -43,6 +55,10 @@ int run_command(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // One line, like every other error (CLI11 would add a second).
     std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
+    return crowdprof::kExitUsage;
+  }
+  if (!simd_error.empty()) {
+    std::cerr << "crowdprof: " << simd_error << "\n";
     return crowdprof::kExitUsage;
   }
   try {

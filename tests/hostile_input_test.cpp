@@ -188,10 +188,13 @@ TEST(HostileInput, ASkinBoundToNoMeshSkinsNothing) {
   // empty range read the joints through a null data() (UBSan: member access
   // within null pointer).
   SkinnedMesh empty;
+  SkinningPlan plan;
+  ASSERT_EQ("", build_skinning_plan(empty, 3, &plan));
+  EXPECT_EQ(0u, plan.batch_count());
   std::vector<SkinMatrix> palette(3, SkinMatrix(1.0f));
-  EXPECT_TRUE((SkinningJob{palette, &empty, 0, 0, {}, {}}.Validate()));
-  EXPECT_TRUE((SkinningJob{palette, &empty, 0, 0, {}, {}}.Run()));
-  EXPECT_FALSE((SkinningJob{palette, &empty, 0, 1, {}, {}}.Validate()));
+  EXPECT_TRUE((SkinningJob{palette, &plan, 0, 0, {}, {}}.Validate()));
+  EXPECT_TRUE((SkinningJob{palette, &plan, 0, 0, {}, {}}.Run()));
+  EXPECT_FALSE((SkinningJob{palette, &plan, 0, 1, {}, {}}.Validate()));
   Character character = load_gltf((source_dir() / "tests/fuzz/regressions/gltf_loader/skin_without_mesh.glb").string())
                             .characters.at(0);
   EXPECT_EQ(character.mesh.vertex_count(), 0u);

@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "skinning/skinning.h"
+#include "skinning/skinning_plan.h"
 
 namespace crowdprof {
 namespace {
@@ -21,11 +22,18 @@ struct Skinned {
   std::vector<glm::vec3> positions, normals;
 };
 
+SkinningPlan plan_of(const SkinnedMesh& mesh, size_t joints) {
+  SkinningPlan plan;
+  EXPECT_EQ("", build_skinning_plan(mesh, joints, &plan));
+  return plan;
+}
+
 Skinned skin(const SkinnedMesh& mesh, const std::vector<SkinMatrix>& palette) {
   Skinned out;
   out.positions.resize(mesh.vertex_count());
   out.normals.resize(mesh.vertex_count());
-  EXPECT_TRUE((SkinningJob{palette, &mesh, 0, mesh.vertex_count(), out.positions, out.normals}.Run()));
+  const SkinningPlan plan = plan_of(mesh, palette.size());
+  EXPECT_TRUE((SkinningJob{palette, &plan, 0, mesh.vertex_count(), out.positions, out.normals}.Run()));
   return out;
 }
 
@@ -147,13 +155,14 @@ TEST(Skinning, AnySplitIntoRangesGivesTheSameBits) {
   const SkinnedMesh mesh = random_mesh(517, 30, &rng);
   const std::vector<SkinMatrix> palette = random_palette(30, &rng);
   const Skinned whole = skin(mesh, palette);
-  for (size_t chunk : {1, 3, 63, 64, 65, 100, 516}) {
+  const SkinningPlan plan = plan_of(mesh, palette.size());
+  for (size_t chunk : {1, 3, 15, 16, 17, 63, 64, 65, 100, 516}) {
     Skinned parts;
     parts.positions.assign(mesh.vertex_count(), glm::vec3(-1));
     parts.normals.assign(mesh.vertex_count(), glm::vec3(-1));
     for (size_t first = 0; first < mesh.vertex_count(); first += chunk) {
       const size_t count = std::min(chunk, mesh.vertex_count() - first);
-      ASSERT_TRUE((SkinningJob{palette, &mesh, first, count,
+      ASSERT_TRUE((SkinningJob{palette, &plan, first, count,
                                std::span(parts.positions).subspan(first, count),
                                std::span(parts.normals).subspan(first, count)}
                        .Run()));
@@ -167,26 +176,88 @@ TEST(Skinning, AnySplitIntoRangesGivesTheSameBits) {
   }
 }
 
-TEST(Skinning, ValidateRefusesBadRangesAndJointIndices) {
+TEST(Skinning, ValidateRefusesBadRanges) {
   std::mt19937 rng(9);
   SkinnedMesh mesh = random_mesh(10, 4, &rng);
   mesh.joints[0].x = 3;  // the palette's last joint is used
   const std::vector<SkinMatrix> palette = random_palette(4, &rng);
+  const SkinningPlan plan = plan_of(mesh, 4);
   std::vector<glm::vec3> p(10), n(10);
   const std::span<glm::vec3> ps(p), ns(n);
-  EXPECT_TRUE((SkinningJob{palette, &mesh, 0, 10, ps, ns}.Run()));
-  EXPECT_TRUE((SkinningJob{palette, &mesh, 4, 6, ps.subspan(4), ns.subspan(4)}.Run()));
-  EXPECT_TRUE((SkinningJob{palette, &mesh, 10, 0, {}, {}}.Run()));
-  EXPECT_FALSE((SkinningJob{palette, &mesh, 4, 7, ps.subspan(3), ns.subspan(3)}.Run()));  // past the end
-  EXPECT_FALSE((SkinningJob{palette, &mesh, 4, 6, ps, ns}.Run()));      // outputs not sized to the range
+  EXPECT_TRUE((SkinningJob{palette, &plan, 0, 10, ps, ns}.Run()));
+  EXPECT_TRUE((SkinningJob{palette, &plan, 4, 6, ps.subspan(4), ns.subspan(4)}.Run()));
+  EXPECT_TRUE((SkinningJob{palette, &plan, 10, 0, {}, {}}.Run()));
+  EXPECT_FALSE((SkinningJob{palette, &plan, 4, 7, ps.subspan(3), ns.subspan(3)}.Run()));  // past the end
+  EXPECT_FALSE((SkinningJob{palette, &plan, 4, 6, ps, ns}.Run()));      // outputs not sized to the range
   EXPECT_FALSE((SkinningJob{palette, nullptr, 0, 10, ps, ns}.Run()));
-  EXPECT_FALSE((SkinningJob{std::span(palette).first(3), &mesh, 0, 10, ps, ns}.Run()));
-  mesh.joints[7].w = 4;  // one past the palette, even with weight 0
-  EXPECT_FALSE((SkinningJob{palette, &mesh, 0, 10, ps, ns}.Run()));
-  EXPECT_TRUE((SkinningJob{palette, &mesh, 0, 7, ps.first(7), ns.first(7)}.Run()));
-  mesh.joints[7].w = 0;
+  EXPECT_FALSE((SkinningJob{std::span(palette).first(3), &plan, 0, 10, ps, ns}.Run()));  // palette too short
+}
+
+TEST(SkinningPlan, RefusesJointIndicesPastTheSkeletonAndUnevenArrays) {
+  std::mt19937 rng(9);
+  SkinnedMesh mesh = random_mesh(40, 4, &rng);
+  SkinningPlan plan;
+  EXPECT_EQ("", build_skinning_plan(mesh, 4, &plan));
+  mesh.joints[37].w = 4;  // one past the skeleton, even with weight 0
+  EXPECT_EQ("vertex 37 uses joint 4 of 4", build_skinning_plan(mesh, 4, &plan));
+  EXPECT_EQ(0u, plan.vertex_count);
+  EXPECT_EQ("", build_skinning_plan(mesh, 5, &plan));
   mesh.normals.pop_back();
-  EXPECT_FALSE((SkinningJob{palette, &mesh, 0, 9, ps.first(9), ns.first(9)}.Run()));
+  EXPECT_NE("", build_skinning_plan(mesh, 5, &plan));
+}
+
+TEST(SkinningPlan, BatchesHoldTheUnionOfTheirJointsWithNonZeroWeight) {
+  SkinnedMesh mesh;
+  for (int v = 0; v < 20; ++v)  // 16 in the first batch, 4 in the second
+    add_vertex(&mesh, glm::vec3(float(v)), {0, 0, 1}, {uint16_t(v < 16 ? 5 : 2), 7, 3, 0},
+               v == 3 ? glm::vec4(0.5f, 0.5f, 0, 0) : glm::vec4(1, 0, 0, 0));
+  const SkinningPlan plan = plan_of(mesh, 8);
+  ASSERT_EQ(2u, plan.batch_count());
+  const SkinBatch& first = plan.batches[0];
+  EXPECT_EQ(std::vector<uint16_t>({5, 7}), std::vector<uint16_t>(plan.joints.begin() + first.first_joint,
+                                                                   plan.joints.begin() + first.first_joint + first.joint_count));
+  EXPECT_EQ(0, first.single_influence);  // vertex 3 has two influences
+  const SkinBatch& second = plan.batches[1];
+  EXPECT_EQ(1, second.joint_count);
+  EXPECT_EQ(2, plan.joints[second.first_joint]);
+  EXPECT_EQ(1, second.single_influence);
+  EXPECT_EQ(std::vector<uint16_t>({2}), plan.single_joints);
+  // Rows: x, y, z, normal x, y, z, then one weight row per joint; padding lanes 0.
+  const float* rows = plan.data.data() + second.data;
+  EXPECT_EQ(19.0f, rows[3]);
+  EXPECT_EQ(0.0f, rows[4]);
+  EXPECT_EQ(1.0f, rows[6 * kSkinBatch + 3]);
+  EXPECT_EQ(0.0f, rows[6 * kSkinBatch + 4]);
+  const float* first_rows = plan.data.data() + first.data;
+  EXPECT_EQ(0.5f, first_rows[6 * kSkinBatch + 3]);
+  EXPECT_EQ(0.5f, first_rows[7 * kSkinBatch + 3]);
+  EXPECT_EQ(1.0f, first_rows[6 * kSkinBatch + 2]);
+  EXPECT_EQ(0.0f, first_rows[7 * kSkinBatch + 2]);
+}
+
+// Single-influence normals are renormalised unless every such joint is a
+// rotation: with a scaled joint they come out unit length anyway, and with a
+// rotation they come out as rotated, bit for bit the plain matrix product.
+TEST(Skinning, SingleInfluenceNormalsKeepTheirLengthOnlyUnderRotations) {
+  SkinnedMesh mesh;
+  const glm::vec3 normal = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  for (int v = 0; v < 16; ++v) add_vertex(&mesh, {1, 2, 3}, normal, {1, 0, 0, 0}, {1, 0, 0, 0});
+  const glm::mat4 rotation = glm::rotate(glm::mat4(1), 0.7f, glm::normalize(glm::vec3(1, 2, 3)));
+  ASSERT_TRUE(is_rigid(rotation));
+  Skinned out = skin(mesh, {glm::mat4(1), rotation});
+  const glm::vec3 rotated = glm::vec3(rotation * glm::vec4(normal, 0.0f));
+  EXPECT_NEAR(glm::length(out.normals[5]), 1.0f, 1.5e-5f);
+  // Exactly the rotated normal (terms added in the kernel's order), not renormalised.
+  const glm::vec3 expected = (glm::vec3(rotation[0]) * normal.x + glm::vec3(rotation[1]) * normal.y) +
+                             glm::vec3(rotation[2]) * normal.z;
+  EXPECT_EQ(expected, out.normals[5]);
+  EXPECT_NEAR(glm::distance(rotated, out.normals[5]), 0.0f, 1e-6f);
+
+  const glm::mat4 scaled = glm::scale(rotation, glm::vec3(1.5f));
+  ASSERT_FALSE(is_rigid(scaled));
+  out = skin(mesh, {glm::mat4(1), scaled});
+  EXPECT_NEAR(glm::length(out.normals[5]), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(rotated, out.normals[5]), 0.0f, 1e-6f);
 }
 
 }  // namespace

@@ -26,7 +26,9 @@ TEST(Thesis, EquationThreeWorkedExample) {
   std::vector<SkinMatrix> palette = {glm::mat4(1.0f),
                                      glm::rotate(glm::mat4(1.0f), glm::radians(45.0f), glm::vec3(0.0f, -1.0f, 0.0f))};
   std::vector<glm::vec3> position(1), normal(1);
-  ASSERT_TRUE((SkinningJob{palette, &mesh, 0, 1, position, normal}.Run()));
+  SkinningPlan plan;
+  ASSERT_EQ("", build_skinning_plan(mesh, palette.size(), &plan));
+  ASSERT_TRUE((SkinningJob{palette, &plan, 0, 1, position, normal}.Run()));
   EXPECT_NEAR(position[0].x, -0.35355f, 1e-5f);
   EXPECT_NEAR(position[0].y, -1.0f, 1e-6f);
   EXPECT_NEAR(position[0].z, 0.85355f, 1e-5f);  // the thesis prints 0.85255

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -80,6 +81,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
     if (kind.site == SkinningSite::Gpu && kind.joints > config.renderer->max_gpu_joints())
       kind.site = SkinningSite::CpuInAnimations;
+    if (std::string why = build_skinning_plan(character->mesh, kind.joints, &kind.skinning_plan); !why.empty())
+      throw std::runtime_error("skinning plan: " + why);  // the loader checked the same: a bug if reached
     for (const Action& action : character->actions) {
       kind.bindings.push_back(bind_action(character->skeleton, action));
       kind.max_channels = std::max(kind.max_channels, action.channels.size());
@@ -250,7 +253,8 @@ void CrowdBench::update_poses(Counters& counters) {
       if (poses(i)) update_copy(i, slot_of(i), &lookups);
   } else {
     std::atomic<uint64_t> total{0};
-    bool skin_here = config_.mode.skinning != SkinningSite::CpuInRasterizer;
+    bool skin_here = std::any_of(kinds_.begin(), kinds_.end(),
+                                 [](const Kind& kind) { return kind.site == SkinningSite::CpuInAnimations; });
     for_each_copy(skin_here ? "pose+skin" : "pose", [&](size_t i) {
       if (!poses(i)) return;
       uint64_t mine = 0;
@@ -317,7 +321,7 @@ void CrowdBench::update_copy(size_t copy, size_t slot, uint64_t* lookups) {
 
 void CrowdBench::skin_copy(size_t copy) {
   const Kind& kind = kinds_[crowd_.kind[copy]];
-  SkinningJob{skinning_matrices(copy), &character_of(copy).mesh, 0, kind.vertices,
+  SkinningJob{skinning_matrices(copy), &kind.skinning_plan, 0, kind.vertices,
               std::span(positions_).subspan(vertex_offset_[copy], kind.vertices),
               std::span(normals_).subspan(vertex_offset_[copy], kind.vertices)}
       .Run();

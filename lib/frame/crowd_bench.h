@@ -23,6 +23,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/skinning_plan.h"
 
 namespace crowdprof {
 
@@ -139,6 +140,7 @@ class CrowdBench {
     size_t joints = 0, vertices = 0, max_channels = 0;
     SkinningSite site = SkinningSite::CpuInAnimations;
     std::vector<ActionBindings> bindings;  // per action
+    SkinningPlan skinning_plan;            // the mesh prepared for skinning, once
   };
 
   std::vector<const Character*> characters_;

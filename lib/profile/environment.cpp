@@ -3,28 +3,14 @@
 #include <fstream>
 #include <thread>
 
+#include "skinning/simd_target.h"
+
 // Defined in the source cmake/commit_stamp.cmake writes at every build.
 const char* crowdprof_build_commit();
 
 namespace crowdprof {
 
-std::string simd_target() {
-#if defined(__AVX512F__)
-  return "AVX-512";
-#elif defined(__AVX2__)
-  return "AVX2";
-#elif defined(__AVX__)
-  return "AVX";
-#elif defined(__SSE4_2__)
-  return "SSE4.2";
-#elif defined(__SSE2__)
-  return "SSE2";
-#elif defined(__ARM_NEON)
-  return "NEON";
-#else
-  return "scalar";
-#endif
-}
+std::string simd_target() { return active_simd_target(); }
 
 Environment current_environment() {
   Environment env;

@@ -11,14 +11,14 @@ struct Environment {
   std::string cpu;  // model name from /proc/cpuinfo
   unsigned cores = 0;
   std::string compiler, build_type;
-  std::string simd;  // the vector instructions the hot loops use (simd_target())
+  std::string simd;  // the SIMD target skinning runs on now (simd_target())
 };
 
 Environment current_environment();
 
-// The widest vector instruction set this build's hot loops were compiled for
-// ("AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON", "scalar"). There is no
-// run-time dispatch yet, so it is fixed at compile time (-march).
+// The SIMD target the skinning kernels run on now, chosen at run time for the
+// CPU or forced lower (skinning/simd_target.h): Highway's name, "AVX3" (AVX-512),
+// "AVX2", "SSE4", "SSSE3", "SCALAR", ...
 std::string simd_target();
 
 // One line: "crowdprof 0.1.0 (commit 1a2b3c4d5e6f, Release, GNU 12.2.0, SIMD AVX2)".

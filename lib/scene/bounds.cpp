@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "animation/binding.h"
@@ -27,12 +29,12 @@ Aabb transform_aabb(const Aabb& aabb, const glm::mat4& transform) {
 namespace {
 
 // Skins the whole mesh in the pose `local` and grows `box` around it.
-void grow_by_pose(const Character& c, const LocalPose& local, std::vector<glm::mat4>& model,
+void grow_by_pose(const Character& c, const SkinningPlan& plan, const LocalPose& local, std::vector<glm::mat4>& model,
                   std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions,
                   std::vector<glm::vec3>& normals, Aabb& box) {
   LocalToModelJob{&c.skeleton, &local, model}.Run();
   SkinningMatricesJob{&c.skeleton, model, palette}.Run();
-  SkinningJob{palette, &c.mesh, 0, c.mesh.vertex_count(), positions, normals}.Run();
+  SkinningJob{palette, &plan, 0, c.mesh.vertex_count(), positions, normals}.Run();
   for (const glm::vec3& p : positions) {
     box.min = glm::min(box.min, p);
     box.max = glm::max(box.max, p);
@@ -44,13 +46,16 @@ void grow_by_pose(const Character& c, const LocalPose& local, std::vector<glm::m
 Aabb animated_bounds(const Character& c, int samples_per_action, float padding) {
   Aabb box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
   if (c.mesh.vertex_count() == 0) return Aabb{};
+  SkinningPlan plan;
+  if (std::string why = build_skinning_plan(c.mesh, c.skeleton.joint_count(), &plan); !why.empty())
+    throw std::runtime_error("skinning plan: " + why);  // the loader checked the same: a bug if reached
   size_t joints = c.skeleton.joint_count();
   std::vector<glm::mat4> model(joints);
   std::vector<SkinMatrix> palette(joints);
   std::vector<glm::vec3> positions(c.mesh.vertex_count()), normals(c.mesh.vertex_count());
   LocalPose local;
   reset_to_rest(c.skeleton, &local);
-  grow_by_pose(c, local, model, palette, positions, normals, box);
+  grow_by_pose(c, plan, local, model, palette, positions, normals, box);
   for (const Action& action : c.actions) {
     ActionBindings bindings = bind_action(c.skeleton, action);
     SamplingCursor cursor;
@@ -66,7 +71,7 @@ Aabb animated_bounds(const Character& c, int samples_per_action, float padding) 
     for (size_t i = 0; i < times.size(); i += step) {
       reset_to_rest(c.skeleton, &local);
       SamplingJob{&action, times[i], bindings.targets, &cursor, &local}.Run();
-      grow_by_pose(c, local, model, palette, positions, normals, box);
+      grow_by_pose(c, plan, local, model, palette, positions, normals, box);
     }
   }
   glm::vec3 pad(glm::length(box.size()) * padding);

@@ -1,4 +1,5 @@
-// Software skinning: the thesis's equations 1 and 2 over a range of a mesh.
+// Software skinning: the thesis's equations 1 and 2 over a range of a mesh
+// prepared once by build_skinning_plan.
 #pragma once
 
 #include <cstddef>
@@ -7,21 +8,31 @@
 #include <glm/glm.hpp>
 
 #include "animation/skin_matrix.h"
-#include "asset/character.h"
+#include "skinning/skinning_plan.h"
 
 namespace crowdprof {
 
 // Linear blend skinning of vertices [first_vertex, first_vertex + vertex_count)
-// of `mesh`. Each vertex's matrix is the weighted sum of its (up to 4) joints'
-// skinning matrices; positions go through the whole matrix (equation 1),
-// normals through its 3x3 part and are re-normalised (equation 2; a normal that
-// blends to zero length comes out zero). The mesh keeps weights sorted largest
-// first, so the first zero weight ends a vertex's influences and the rest are
-// skipped. Every vertex runs the same arithmetic whichever range it falls in, so
-// any split of a mesh into ranges, on any threads, gives the same bits.
+// of the mesh `plan` was built from. Each vertex's matrix is the weighted sum of
+// its joints' skinning matrices; positions go through the whole matrix
+// (equation 1), normals through its 3x3 part (equation 2).
+//
+// Normals are renormalised wherever blending can change their length: every
+// vertex with more than one influence. A batch of vertices that each have one
+// influence (weight 1, unit normal) keeps the rotated normal as it is when every
+// such joint's skinning matrix is a rotation (its 3x3 columns orthonormal within
+// kRigidTolerance, checked on each run); else it is renormalised too. A normal
+// that blends to zero length comes out zero.
+//
+// The kernels run 16 vertices at a time on the widest SIMD target the CPU has
+// (simd_target.h), multiplies and adds kept apart (no fused multiply-add) and in
+// the same order on every target: every target, and any split of a mesh into
+// ranges on any threads, gives the same bits. A vertex's batch blends every
+// joint the batch uses, with weight 0 for those the vertex does not: a NaN or
+// infinite matrix spreads to the batch's other vertices.
 struct SkinningJob {
   std::span<const SkinMatrix> skinning_matrices;  // one per joint (pose.h)
-  const SkinnedMesh* mesh = nullptr;
+  const SkinningPlan* plan = nullptr;
   size_t first_vertex = 0;
   size_t vertex_count = 0;
   // out_positions[i] and out_normals[i] receive vertex first_vertex + i; both
@@ -29,12 +40,19 @@ struct SkinningJob {
   std::span<glm::vec3> out_positions;
   std::span<glm::vec3> out_normals;
 
-  // Mesh set and its arrays sized alike, range inside it, outputs sized to the
-  // range, and every joint index of the range inside the palette (a scan of the
-  // range's joint indices, far cheaper than skinning them).
+  // Plan set, palette covering its joints, range inside the mesh, outputs sized
+  // to the range. Constant time: the joint indices were checked with the plan.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
   bool Run() const;
 };
+
+// How far a single-influence joint's 3x3 columns may be from orthonormal (each
+// entry of M^T M against the identity) for its normals to keep their length:
+// the skinned normal is then within 1.5e-5 of unit length.
+constexpr float kRigidTolerance = 1e-5f;
+
+// True when the 3x3 part of `m` is a rotation within kRigidTolerance.
+bool is_rigid(const SkinMatrix& m);
 
 }  // namespace crowdprof

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# The CPU pose + skinning measurements of docs/performance.md (issue 17): mode
+# threaded with culling off (every copy posed and skinned), 1 and 2 threads,
+# shared and random actions, 160, 1,000 and 10,000 copies of scenes/humanoid.glb;
+# each configuration run REPS times, binaries interleaved, median frame of each
+# run, then the median of those medians. About 5 minutes on the 2-core machine.
+#
+#   bench/measure_cpu.sh [NEW] [OLD]
+#     NEW  crowdprof to measure (default build/crowdprof)
+#     OLD  a crowdprof from before, run side by side (optional); e.g. one built
+#          from commit 3f0d03a (the last one before the SIMD kernels) with
+#          -DCROWDPROF_NATIVE=ON, its default then
+#   REPS=3 (runs per configuration), OUT=folder for the JSON (default a temp dir)
+#
+# Each run gets its own scheduling group (setsid): with autogroup on, `nice`
+# alone does not keep other jobs off a two-thread run. Other tenants still add
+# noise: compare the two binaries' columns, which shared it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+new=${1:-build/crowdprof}
+old=${2:-}
+reps=${REPS:-3}
+out=${OUT:-$(mktemp -d)}
+scene=scenes/humanoid.glb
+binaries=(new)
+[[ -n $old ]] && binaries+=(old)
+
+# copies:frames:warm-up, so that each run lasts about the same.
+sizes=(160:240:20 1000:60:6 10000:12:2)
+for ((rep = 1; rep <= reps; rep++)); do
+  for threads in 1 2; do
+    for actions in shared random; do
+      for size in "${sizes[@]}"; do
+        IFS=: read -r copies frames warmup <<<"$size"
+        for which in "${binaries[@]}"; do
+          bin=$new
+          [[ $which == old ]] && bin=$old
+          setsid "$bin" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
+            --actions "$actions" --seed 7 --frames "$frames" --warmup "$warmup" \
+            --json "$out/$which-$threads-$actions-$copies-$rep.json" >/dev/null
+        done
+      done
+    done
+  done
+  echo "measure_cpu: pass $rep of $reps done" >&2
+done
+
+python3 - "$out" "$reps" "${binaries[@]}" <<'EOF'
+import json, statistics, sys
+out, reps, binaries = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+def median_ms(which, threads, actions, copies):
+    runs = [json.load(open(f"{out}/{which}-{threads}-{actions}-{copies}-{r}.json")) for r in range(1, reps + 1)]
+    vertices = runs[0]["scene"]["vertices"]
+    return statistics.median(r["frame"]["median_ms"] for r in runs), vertices, runs[0]["environment"].get("simd", "?")
+head = "| threads | actions | copies |"
+for b in binaries:
+    head += f" {b} ms | {b} µs/copy | {b} GB/s |"
+if len(binaries) == 2:
+    head += " old / new |"
+print(head)
+print("|" + "---|" * (head.count("|") - 1))
+one = {}
+for threads in (1, 2):
+    for actions in ("shared", "random"):
+        for copies in (160, 1000, 10000):
+            row = f"| {threads} | {actions} | {copies:,} |"
+            ms = {}
+            for b in binaries:
+                m, vertices, simd = median_ms(b, threads, actions, copies)
+                ms[b] = m
+                # Skinned output: positions and normals, 2 x 12 bytes a vertex.
+                gbs = copies * vertices * 24 / (m * 1e-3) / 1e9
+                row += f" {m:.3f} | {m * 1000 / copies:.2f} | {gbs:.1f} |"
+            if len(binaries) == 2:
+                row += f" {ms['old'] / ms['new']:.2f}× |"
+            one[(threads, actions, copies)] = ms
+            print(row)
+print()
+for b in binaries:
+    for actions in ("shared", "random"):
+        for copies in (160, 1000, 10000):
+            s = one[(1, actions, copies)][b] / one[(2, actions, copies)][b]
+            print(f"{b}: {actions}, {copies:,} copies: 2 threads {s:.2f}× faster than 1")
+    for threads in (1, 2):
+        for actions in ("shared", "random"):
+            r = (one[(threads, actions, 10000)][b] / 10000) / (one[(threads, actions, 160)][b] / 160)
+            print(f"{b}: {threads} thread(s), {actions}: cost per copy at 10,000 copies {r:.2f}× that at 160")
+print(f"\nJSON in {out}; SIMD target: {median_ms(binaries[0], 1, 'shared', 160)[2]}")
+EOF

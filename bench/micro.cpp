@@ -1,0 +1,188 @@
+// Micro-benchmarks of one copy's frame stages on the thesis's character
+// (scenes/humanoid.glb), and the machine's memory write bandwidth to set them
+// against. Run: ./setup.sh bench [Google Benchmark options], e.g.
+//   ./setup.sh bench --benchmark_filter=Skinning --benchmark_repetitions=5
+// Per-item times are in the counters: ns_per_joint, ns_per_vertex (seconds with
+// an SI prefix: "3.1n" is 3.1 ns), and GB/s for the bandwidth probe.
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "animation/binding.h"
+#include "animation/local_pose.h"
+#include "animation/pose.h"
+#include "animation/sampling.h"
+#include "asset/gltf_loader.h"
+#include "skinning/simd_target.h"
+#include "skinning/skinning.h"
+#include "skinning/skinning_plan.h"
+
+namespace crowdprof {
+namespace {
+
+const Character& humanoid() {
+  static const Character character = load_character(CROWDPROF_SOURCE_DIR "/scenes/humanoid.glb");
+  return character;
+}
+
+// One copy's state, posed once at time 0.4 s of the first action.
+struct Copy {
+  const Character& c = humanoid();
+  ActionBindings bindings = bind_action(c.skeleton, c.actions[0]);
+  SamplingCursor cursor;
+  LocalPose pose;
+  std::vector<glm::mat4> model = std::vector<glm::mat4>(c.skeleton.joint_count());
+  std::vector<SkinMatrix> palette = std::vector<SkinMatrix>(c.skeleton.joint_count());
+  Copy() {
+    reset_cursor(c.actions[0], &cursor);
+    reset_to_rest(c.skeleton, &pose);
+    SamplingJob{&c.actions[0], 0.4f, bindings.targets, &cursor, &pose}.Run();
+    LocalToModelJob{&c.skeleton, &pose, model}.Run();
+    SkinningMatricesJob{&c.skeleton, model, palette}.Run();
+  }
+};
+
+// Samples the first action one frame (1/60 s) after `*time`, looping.
+void sample_next_frame(Copy& copy, float* time) {
+  const Action& action = copy.c.actions[0];
+  *time += 1.0f / 60.0f;
+  if (*time > action.end) *time = action.start;
+  SamplingJob{&action, *time, copy.bindings.targets, &copy.cursor, &copy.pose}.Run();
+}
+
+void per_joint(benchmark::State& state, size_t joints) {
+  state.counters["ns_per_joint"] = benchmark::Counter(static_cast<double>(joints),
+                                                      benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
+}
+
+void per_vertex(benchmark::State& state, size_t vertices) {
+  state.counters["ns_per_vertex"] = benchmark::Counter(static_cast<double>(vertices),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
+}
+
+// Write bandwidth: each thread fills its own 256 MiB, far past the caches, as
+// skinning's output to 10,000 copies would. memset is glibc's best store loop.
+void BM_MemoryWrite(benchmark::State& state) {
+  const size_t bytes = size_t{256} << 20;
+  std::unique_ptr<char[]> buffer(new char[bytes]);
+  std::memset(buffer.get(), 1, bytes);  // fault the pages in before timing
+  int value = 0;
+  for (auto _ : state) {
+    std::memset(buffer.get(), ++value, bytes);
+    benchmark::ClobberMemory();
+  }
+  state.counters["GB/s"] = benchmark::Counter(static_cast<double>(bytes) / 1e9,
+                                              benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_MemoryWrite)->Threads(1)->Threads(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Sampling every channel of the dance, the clock moving a frame at a time.
+void BM_Sampling(benchmark::State& state) {
+  Copy copy;
+  float time = 0.0f;
+  for (auto _ : state) {
+    sample_next_frame(copy, &time);
+    benchmark::DoNotOptimize(copy.pose.rotations.data());
+  }
+  per_joint(state, copy.c.skeleton.joint_count());
+}
+BENCHMARK(BM_Sampling);
+
+void BM_LocalToModel(benchmark::State& state) {
+  Copy copy;
+  for (auto _ : state) {
+    LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}.Run();
+    benchmark::DoNotOptimize(copy.model.data());
+  }
+  per_joint(state, copy.c.skeleton.joint_count());
+}
+BENCHMARK(BM_LocalToModel);
+
+void BM_SkinningMatrices(benchmark::State& state) {
+  Copy copy;
+  for (auto _ : state) {
+    SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}.Run();
+    benchmark::DoNotOptimize(copy.palette.data());
+  }
+  per_joint(state, copy.c.skeleton.joint_count());
+}
+BENCHMARK(BM_SkinningMatrices);
+
+// The humanoid's vertices with exactly `influences` influences (0: all of them),
+// in their order, as a mesh of their own.
+SkinnedMesh vertices_with(const SkinnedMesh& mesh, int influences) {
+  SkinnedMesh out;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const glm::vec4 w = mesh.weights[v];
+    const int n = (w.x != 0) + (w.y != 0) + (w.z != 0) + (w.w != 0);
+    if (influences != 0 && n != influences) continue;
+    out.positions.push_back(mesh.positions[v]);
+    out.normals.push_back(mesh.normals[v]);
+    out.joints.push_back(mesh.joints[v]);
+    out.weights.push_back(w);
+  }
+  return out;
+}
+
+// Skinning positions and normals of one copy on one SIMD target; arg 0 is the
+// influence count (0: the whole mesh).
+void BM_Skinning(benchmark::State& state, std::string target) {
+  if (std::string why = force_simd_target(target); !why.empty()) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  Copy copy;
+  const SkinnedMesh mesh = vertices_with(copy.c.mesh, static_cast<int>(state.range(0)));
+  SkinningPlan plan;
+  build_skinning_plan(mesh, copy.c.skeleton.joint_count(), &plan);
+  std::vector<glm::vec3> positions(mesh.vertex_count()), normals(mesh.vertex_count());
+  for (auto _ : state) {
+    SkinningJob{copy.palette, &plan, 0, mesh.vertex_count(), positions, normals}.Run();
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::DoNotOptimize(normals.data());
+  }
+  force_simd_target("");
+  per_vertex(state, mesh.vertex_count());
+  size_t joints = 0;
+  for (const SkinBatch& batch : plan.batches) joints += batch.joint_count;
+  state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
+  state.counters["joints_per_batch"] = plan.batches.empty() ? 0.0 : double(joints) / double(plan.batches.size());
+}
+
+// The whole pose and skinning of one copy, as the frame loop runs it.
+void BM_PoseAndSkin(benchmark::State& state) {
+  Copy copy;
+  SkinningPlan plan;
+  build_skinning_plan(copy.c.mesh, copy.c.skeleton.joint_count(), &plan);
+  const size_t n = copy.c.mesh.vertex_count();
+  std::vector<glm::vec3> positions(n), normals(n);
+  float time = 0.0f;
+  for (auto _ : state) {
+    sample_next_frame(copy, &time);
+    LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}.Run();
+    SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}.Run();
+    SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+    benchmark::DoNotOptimize(positions.data());
+  }
+  per_vertex(state, n);
+}
+BENCHMARK(BM_PoseAndSkin)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace crowdprof
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  for (const std::string& target : crowdprof::available_simd_targets())
+    benchmark::RegisterBenchmark(("BM_Skinning/" + target).c_str(), crowdprof::BM_Skinning, target)
+        ->DenseRange(0, 4)
+        ->ArgName("influences");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,27 @@
+// Which SIMD target the skinning kernels run on. They are compiled for every
+// x86-64 target Highway knows (EMU128, the baseline x86-64 with SSE2, then
+// SSSE3, SSE4, AVX2, AVX3 = AVX-512, AVX3_DL = AVX-512 with VNNI/VBMI2) and the
+// best one the CPU supports is used, unless a lower one is forced.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace crowdprof {
+
+// Highway's name of the target skinning runs on now, e.g. "AVX3_DL".
+std::string active_simd_target();
+
+// The targets compiled in that this CPU can run, best first.
+std::vector<std::string> available_simd_targets();
+
+// Runs skinning on `name` (case-insensitive, one of available_simd_targets())
+// from now on; "" goes back to the best. Returns "" or, changing nothing, why
+// not (unknown target, or one this CPU or build cannot run).
+std::string force_simd_target(std::string_view name);
+
+// The environment variable that forces a target as --simd does.
+constexpr const char* kSimdEnvironmentVariable = "CROWDPROF_SIMD";
+
+}  // namespace crowdprof

@@ -1,0 +1,24 @@
+// The SIMD kernels behind SkinningJob, compiled once per target (Highway) and
+// picked at run time for the CPU (simd_target.h).
+#pragma once
+
+#include <cstddef>
+
+#include "skinning/skinning_plan.h"
+
+namespace crowdprof {
+
+struct SkinKernelArgs {
+  const SkinningPlan* plan = nullptr;
+  const float* palette = nullptr;  // 16 floats (a column-major mat4) per joint
+  size_t first_vertex = 0, end_vertex = 0;
+  float* positions = nullptr;  // x, y, z of vertex first_vertex onwards
+  float* normals = nullptr;
+  // Single-influence batches keep their rotated normals (every such joint rigid).
+  bool keep_single_normals = false;
+};
+
+// Skins the vertices [first_vertex, end_vertex) (checked by SkinningJob).
+void run_skinning_kernel(const SkinKernelArgs& args);
+
+}  // namespace crowdprof
