@@ -9,6 +9,8 @@
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "frame/interrupt.h"
+#include "profile/regression.h"
 #include "frame/run_bench.h"
 #include "profile/trace.h"
 #include "render/gl_errors.h"
@@ -42,18 +44,26 @@ int bench(BenchCliOptions& options) {
   RunOptions run;
   run.frames = options.frames;
   run.warmup = options.warmup;
-  run.progress = terminal_progress(options.quiet);
+  run.progress = terminal_progress(options.quiet, "mode " + config.mode_name + ",");
+  install_interrupt_handlers();
+  run.stop = &interrupt_requested();
   RunReport report = run_bench(crowd, options.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
   if (!options.quiet) std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
   if (!options.json.empty())
-    write_text(options.json, "JSON", [&](std::ostream& out) { out << to_json(report).dump(2) << "\n"; });
+    write_text(options.json, "JSON",
+               [&](std::ostream& out) { out << with_paths_relative_to(to_json(report), options.json).dump(2) << "\n"; });
   if (tracer) write_text(options.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   if (tracer && tracer->dropped())
     std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
               << tracer->dropped() << " later ones were dropped\n";
+  if (report.partial) {
+    std::cerr << "crowdprof: interrupted: " << report.frames.size() << " of " << report.frames_planned
+              << " frames measured, and written as a partial result\n";
+    return kExitInterrupted;
+  }
   if (!options.screenshot.empty()) {
     std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
     write_png(options.screenshot, rendering.renderer->width(), rendering.renderer->height(), pixels);

@@ -16,6 +16,7 @@
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "frame/interrupt.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"
 #include "profile/svg_chart.h"
@@ -28,15 +29,17 @@ using nlohmann::json;
 struct CheckCliOptions {
   BenchCliOptions bench;
   std::string baseline, result;
-  std::vector<std::string> metrics = {"frame"};
+  std::vector<std::string> metrics = {"cpu"};
   std::string tolerance = "7%";
   std::string floor = "2%";
   long long attempts = 3;
   double alpha = 0.05;
   bool update = false;
+  bool timings_only = false;
   std::string svg;
   CLI::App* command = nullptr;  // to tell options given from defaults
   bool action_from_baseline = false;
+  bool file_from_baseline = false;  // the scene file is the one the baseline recorded
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -96,7 +99,10 @@ void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
   }
   auto given = [&](const char* name) { return o.command->count(name) > 0; };
   BenchCliOptions& b = o.bench;
-  if (b.file.empty()) b.file = recorded.file;
+  if (b.file.empty()) {
+    b.file = recorded_scene_file(baseline, o.baseline);
+    o.file_from_baseline = true;
+  }
   if (!given("--characters")) b.characters = recorded.characters;
   if (!given("--frames")) b.frames = recorded.frames;
   if (!given("--warmup")) b.warmup = recorded.warmup;
@@ -147,7 +153,14 @@ void require_recorded_action(const CheckCliOptions& o, const Character& characte
 }
 
 RunReport run_bench_report(CheckCliOptions& o) {
-  BenchScene scene = load_bench_scene(o.bench);
+  BenchScene scene;
+  try {
+    scene = load_bench_scene(o.bench);
+  } catch (const InputError& e) {
+    if (!o.file_from_baseline) throw;
+    throw InputError(o.baseline, std::string("its scene file: ") + e.what() +
+                                     " (the path the baseline recorded, resolved from the baseline's folder)");
+  }
   require_recorded_action(o, scene.first());
   BenchConfig config = make_bench_config(o.bench, scene);
   check_fits_in_memory(scene.characters, config);
@@ -156,7 +169,9 @@ RunReport run_bench_report(CheckCliOptions& o) {
   RunOptions run;
   run.frames = static_cast<size_t>(o.bench.frames);
   run.warmup = static_cast<size_t>(o.bench.warmup);
-  run.progress = terminal_progress(o.bench.quiet);
+  run.progress = terminal_progress(o.bench.quiet, "check, mode " + config.mode_name + ",");
+  install_interrupt_handlers();
+  run.stop = &interrupt_requested();
   RunReport report = run_bench(bench, o.bench.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
@@ -164,7 +179,8 @@ RunReport run_bench_report(CheckCliOptions& o) {
 }
 
 void write_svg(const std::string& path, const json& baseline, const json& current, const std::string& metric) {
-  LineChart chart{"check: " + (metric == "frame_ms" ? std::string("frame") : metric) + " time per frame, baseline and current",
+  std::string shown = metric == "frame_ms" ? "frame" : metric == "cpu_ms" ? "CPU" : metric;
+  LineChart chart{"check: " + shown + " time per frame, baseline and current",
                   "frame (after warm-up)", "time (ms)", {}, false};
   for (const auto& [name, doc] : {std::pair<const char*, const json*>{"baseline", &baseline}, {"current", &current}}) {
     LineSeries series{name, {}, doc->at("samples").at(metric).get<std::vector<double>>()};
@@ -183,6 +199,8 @@ int check(CheckCliOptions& o) {
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
   if (o.attempts < 1 || o.attempts > 100) throw UsageError("--attempts " + std::to_string(o.attempts) + ": expected 1 to 100");
   options.alpha = o.alpha;
+  options.compare_work = !o.timings_only;
+  if (o.timings_only && o.update) throw UsageError("--timings-only compares; it cannot record a baseline");
   options.metrics.clear();
   for (const std::string& metric : o.metrics) {
     if (metric == "all") {
@@ -241,10 +259,12 @@ int check(CheckCliOptions& o) {
     if (o.bench.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
     require_safe_outputs();  // the scene file may have come from the baseline
   }
+  bool interrupted = false;
   auto measure = [&]() {
     RunReport report = run_bench_report(o);
     write_run(report);
     current = to_json(report);
+    interrupted = report.partial;
   };
 
   if (o.update) {
@@ -252,14 +272,25 @@ int check(CheckCliOptions& o) {
       json fastest;
       for (long long attempt = 1; attempt <= o.attempts; ++attempt) {
         measure();
-        if (fastest.is_null() || current["frame"]["median_ms"].get<double>() < fastest["frame"]["median_ms"].get<double>())
-          fastest = current;
+        if (interrupted) break;
+        auto median = [&](const json& doc) {
+          return summarize(doc["samples"][options.metrics.front()].get<std::vector<double>>()).median;
+        };
+        if (fastest.is_null() || median(current) < median(fastest)) fastest = current;
       }
-      current = fastest;
+      current = interrupted ? current : fastest;
+    }
+    if (interrupted) {
+      if (!o.bench.json.empty())
+        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      std::cerr << "crowdprof: interrupted: the baseline is not updated from a partial run\n";
+      return kExitInterrupted;
     }
     if (!o.bench.json.empty())
-      write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
-    write_text(o.baseline, "baseline", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      write_text(o.bench.json, "JSON",
+                 [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
+    write_text(o.baseline, "baseline",
+               [&](std::ostream& out) { out << with_paths_relative_to(current, o.baseline).dump(2) << "\n"; });
     if (!o.bench.quiet)
       std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
                 << current["scene"]["characters"] << " characters, frame median "
@@ -268,26 +299,45 @@ int check(CheckCliOptions& o) {
                 << ", digest " << current["digest"].get<std::string>() << ")\n";
     return kExitOk;
   }
+  // A baseline from before CPU time was recorded is checked on the frame, when
+  // the metric was not asked for by name.
+  if (o.command->count("--metric") == 0 && !baseline->at("samples").contains("cpu_ms")) {
+    std::cerr << "crowdprof: note: " << o.baseline
+              << " has no CPU time per frame (an older crowdprof's): checking the frame time instead\n";
+    options.metrics = {"frame_ms"};
+  }
   CheckResult result;
   for (long long attempt = 1;; ++attempt) {
     if (o.result.empty()) measure();
-    require_same_run(*baseline, current, o.baseline);
+    if (interrupted) {
+      if (!o.bench.json.empty())
+        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      std::cerr << "crowdprof: interrupted: a partial run is not compared\n";
+      return kExitInterrupted;
+    }
+    if (!o.timings_only) require_same_run(*baseline, current, o.baseline);
     if (attempt == 1)
-      for (const std::string& note : comparison_notes(*baseline, current)) std::cerr << "crowdprof: note: " << note << "\n";
+      for (const std::string& note : comparison_notes(*baseline, current))
+        std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
+    for (const std::string& key : options.metrics)
+      for (const auto& [doc, path] : {std::pair{&*baseline, o.baseline}, {&current, o.result.empty() ? std::string("the run") : o.result}})
+        if (!doc->at("samples").contains(key))
+          throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
+                                 "check another --metric");
     result = check_results(*baseline, current, options);
     // Counters and digest are exact: measuring again cannot change them.
     bool timing_only = result.counters.empty() && result.counters_missing.empty() && !result.digest_differs();
     if (!result.regressed() || !timing_only || !o.result.empty() || attempt >= o.attempts) {
-      if (attempt > 1 && !o.bench.quiet)
+      if (attempt > 1)
         std::cerr << "crowdprof: note: attempt " << attempt << " of " << o.attempts << " decided\n";
       break;
     }
-    if (!o.bench.quiet)
-      std::cerr << "crowdprof: note: attempt " << attempt << " of " << o.attempts
+    std::cerr << "crowdprof: note: attempt " << attempt << " of " << o.attempts
                 << " measured a slowdown; measuring again\n";
   }
   if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+    write_text(o.bench.json, "JSON",
+               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
   if (!o.svg.empty()) write_svg(o.svg, *baseline, current, options.metrics.front());
   if (!o.bench.quiet) std::cout << format_check(result, options);
   return result.regressed() ? kExitRegression : kExitOk;
@@ -316,7 +366,8 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       ->required();
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");
   cmd->add_option("--metric", options->metrics,
-                  "Timed metrics that must not regress: frame, categories such as Animations, Rasterizer, or all "
+                  "Timed metrics that must not regress: cpu (CPU time of every thread in the frame), frame (wall "
+                  "clock), categories such as Animations, Rasterizer, or all: the frame and every category "
                   "(Holm-corrected together)")
       ->delimiter(',')
       ->capture_default_str();
@@ -332,6 +383,9 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "records the fastest of this many runs")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
+  cmd->add_flag("--timings-only", options->timings_only,
+                "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
+                "(tests/scripts/measure_gate.sh); counters and digest are not compared");
   cmd->add_flag("--update-baseline", options->update, "Write the result as the new baseline instead of comparing");
   cmd->add_option("--csv", options->bench.csv, "Write the run's frames to this CSV file");
   cmd->add_option("--json", options->bench.json, "Write the run's result (as bench --json) to this file");

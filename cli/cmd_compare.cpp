@@ -14,7 +14,9 @@
 #include "cli/commands.h"
 #include "cli/output.h"
 #include "frame/compare.h"
+#include "frame/interrupt.h"
 #include "profile/compare_report.h"
+#include "profile/regression.h"
 #include "profile/trace.h"
 
 namespace {
@@ -119,6 +121,7 @@ std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, con
   run.frames = static_cast<size_t>(o.bench.frames);
   run.warmup = static_cast<size_t>(o.bench.warmup);
   run.progress = terminal_progress(o.bench.quiet, what);
+  run.stop = &interrupt_requested();
   std::vector<RunReport> reports = run_interleaved(benches, o.bench.file, run, static_cast<size_t>(o.block));
   for (RunReport& report : reports) {
     report.run.backend = rendering.backend_name();
@@ -162,20 +165,24 @@ int compare(CompareCliOptions& o) {
     }
   }
   size_t copies = static_cast<size_t>(o.bench.characters);
+  std::string modes_text = "modes";
+  for (const BenchConfig& config : configs) modes_text += (modes_text == "modes" ? " " : ",") + config.mode_name;
+  install_interrupt_handlers();
   {
     ModeRun main = make_benches(scene, configs, copies, named, true);
     for (const BenchConfig& config : main.configs)
       if (tracer) tracer->name_process(config.trace_pid, "mode " + config.mode_name);
-    comparison.runs = run_modes(main, o, rendering, "frame");
+    comparison.runs = run_modes(main, o, rendering, modes_text + ",");
   }
   for (BenchConfig& config : configs) config.tracer = nullptr;  // the trace shows the main run only
-  for (size_t n : sweep) {
+  bool partial = !comparison.runs.empty() && comparison.runs.front().partial;
+  for (size_t n : partial ? std::vector<size_t>{} : sweep) {
     if (n == copies) {
       comparison.sweep.insert(comparison.sweep.end(), comparison.runs.begin(), comparison.runs.end());
       continue;
     }
     ModeRun point = make_benches(scene, configs, n, named, false);
-    std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + " frame");
+    std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + ", " + modes_text + ",");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
@@ -183,12 +190,20 @@ int compare(CompareCliOptions& o) {
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
   if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << comparison_to_json(comparison).dump(2) << "\n"; });
+    write_text(o.bench.json, "JSON", [&](std::ostream& out) {
+      out << with_paths_relative_to(comparison_to_json(comparison), o.bench.json).dump(2) << "\n";
+    });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   if (tracer && tracer->dropped())
     std::cerr << "crowdprof: note: " << o.trace << " holds the first " << tracer->max_spans() << " spans; "
               << tracer->dropped() << " later ones were dropped\n";
+  if (partial) {
+    std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frames.size() << " of "
+              << comparison.runs.front().frames_planned << " frames per mode measured, and written as a partial result"
+              << (sweep.empty() ? "" : "; the sweep was not run") << "\n";
+    return kExitInterrupted;
+  }
   return kExitOk;
 }
 

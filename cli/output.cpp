@@ -13,13 +13,22 @@ std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::str
   if (quiet || !isatty(STDERR_FILENO)) return {};
   auto start = std::chrono::steady_clock::now();
   auto last = std::make_shared<std::chrono::steady_clock::time_point>(start);
-  return [start, last, what](size_t done, size_t total) {
+  auto shown = std::make_shared<bool>(false);
+  return [start, last, shown, what](size_t done, size_t total) {
     auto now = std::chrono::steady_clock::now();
-    if (now - start < std::chrono::seconds(1) && done < total) return;
-    if (now - *last < std::chrono::milliseconds(100) && done < total) return;
+    if (done >= total) {  // the end: erase the line, if one was shown
+      if (*shown) std::fprintf(stderr, "\r\033[K");
+      *shown = false;
+      std::fflush(stderr);
+      return;
+    }
+    if (now - start < std::chrono::seconds(1)) return;  // a short run shows nothing
+    if (*shown && now - *last < std::chrono::milliseconds(100)) return;
     *last = now;
-    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu", what.c_str(), done, total);
-    if (done == total) std::fprintf(stderr, "\r\033[K");
+    *shown = true;
+    double elapsed = std::chrono::duration<double>(now - start).count();
+    double left = done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu frames, %.0f s left\033[K", what.c_str(), done, total, left);
     std::fflush(stderr);
   };
 }

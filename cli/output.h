@@ -8,7 +8,9 @@
 #include <string>
 
 // Progress on stderr once a run has taken a second, only when a person watches
-// (stderr is a terminal) and not --quiet; an empty function otherwise.
+// (stderr is a terminal) and not --quiet; an empty function otherwise. One line,
+// redrawn in place: "crowdprof: <what> 120/1130 frames, 4 s left", where `what`
+// names the mode and sweep point; erased when the run ends.
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what = "frame");
 
 // Writes `path` with `body`; UsageError naming the file when it cannot (see

@@ -103,7 +103,7 @@ TEST(GateCli, ATimingRegressionIsMeasuredAgainBeforeItFails) {
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.err.find("attempt 1 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("attempt 2 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
-  EXPECT_EQ(r.out.rfind("REGRESSION frame", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.rfind("REGRESSION cpu", 0), 0u) << r.out;
   r = test::run_cli("check --baseline '" + fast_path + "' --attempts 1 --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;

@@ -31,11 +31,17 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
     reports[b].run.warmup = options.warmup;
     reports[b].environment = environment;
     reports[b].frames.reserve(options.frames);
+    reports[b].frames_planned = options.frames;
   }
   size_t per_bench = options.warmup + options.frames;
   size_t total = per_bench * benches.size(), done = 0;
   for (size_t start = 0; start < per_bench; start += block) {
     size_t end = std::min(per_bench, start + block);
+    if (options.stop && options.stop->load()) {
+      // Stopped between rounds: every mode has the same frames so far.
+      for (RunReport& report : reports) report.partial = true;
+      break;
+    }
     for (size_t b = 0; b < benches.size(); ++b) {
       // The other benches' blocks are not this bench's time.
       benches[b]->restart_clock();

@@ -114,7 +114,12 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   report.environment = current_environment();
   size_t total = options.warmup + options.frames;
   report.frames.reserve(options.frames);
+  report.frames_planned = options.frames;
   for (size_t i = 0; i < total; ++i) {
+    if (options.stop && options.stop->load()) {
+      report.partial = true;
+      break;
+    }
     FrameRecord record = bench.step();
     if (i >= options.warmup) report.frames.push_back(record);
     if (options.progress) options.progress(i + 1, total);

@@ -1,6 +1,7 @@
 // A whole benchmark run: warm-up, measured frames, and the report.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -15,6 +16,9 @@ struct RunOptions {
   size_t warmup = 10;
   // Called after every frame with (frames done, frames in all), warm-up included.
   std::function<void(size_t, size_t)> progress;
+  // When set and true, the run stops after the frame in progress (^C): the
+  // report holds the frames measured so far and says it is partial.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // Bytes of memory the machine can still give (MemAvailable), 0 if unknown.

@@ -156,6 +156,7 @@ nlohmann::json comparison_to_json(const Comparison& comparison) {
     j["scene"] = runs[0]["scene"];
   }
   j["crowdprof"]["kind"] = "compare";
+  if (!comparison.runs.empty() && comparison.runs.front().partial) j["partial"] = true;
   j["block_frames"] = comparison.block;
   j["summary"] = summary;
   j["sweep"] = sweep;

@@ -40,6 +40,10 @@ inline constexpr std::array<CounterField, 8> kCounterFields = {{
 struct FrameRecord {
   FrameTimes times;
   Counters counters;
+  // CPU time the whole process (every thread) spent in the frame, ms: unlike
+  // the wall-clock frame it does not grow while the machine's other jobs hold
+  // the cores (check --metric cpu).
+  double cpu_ms = 0;
 };
 
 }  // namespace crowdprof

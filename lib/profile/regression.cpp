@@ -34,7 +34,9 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-std::string display_name(const std::string& key) { return key == "frame_ms" ? "frame" : key; }
+std::string display_name(const std::string& key) {
+  return key == "frame_ms" ? "frame" : key == "cpu_ms" ? "cpu" : key;
+}
 
 // "/scene/file" as users read it: "scene.file".
 std::string dotted(const std::string& pointer) {
@@ -171,7 +173,8 @@ std::vector<std::string> all_metrics() {
 std::string resolve_metric(std::string_view name) {
   std::string wanted = lower(name);
   if (wanted == "frame" || wanted == "frame_ms") return "frame_ms";
-  std::string choices = "frame";
+  if (wanted == "cpu" || wanted == "cpu_ms") return "cpu_ms";
+  std::string choices = "frame, cpu";
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
     if (wanted == lower(category_name(category)) || wanted == category_column(category))
@@ -181,7 +184,7 @@ std::string resolve_metric(std::string_view name) {
   throw UsageError("--metric '" + std::string(name) + "': expected one of " + choices);
 }
 
-nlohmann::json read_result(const std::string& path) {
+nlohmann::json read_json_file(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   fs::file_status status = fs::status(path, error);
@@ -202,7 +205,11 @@ nlohmann::json read_result(const std::string& path) {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError(path, "empty file, not a crowdprof result");
-  json doc = parse_json_input(path, text);
+  return parse_json_input(path, text);
+}
+
+nlohmann::json read_result(const std::string& path) {
+  json doc = read_json_file(path);
   validate_result(doc, path);
   return doc;
 }
@@ -239,6 +246,8 @@ void validate_result(const nlohmann::json& doc, const std::string& path) {
   const json& samples = field(doc, "/samples", path);
   require_type(samples.is_object(), "/samples", "an object", path);
   validate_samples(doc, "frame_ms", frames, path);
+  // CPU time per frame arrived within format 1: checked when present.
+  if (samples.contains("cpu_ms")) validate_samples(doc, "cpu_ms", frames, path);
   for (size_t c = 0; c < kCategoryCount; ++c)
     validate_samples(doc, std::string(category_name(static_cast<Category>(c))), frames, path);
   const json& counters = field(doc, "/counters", path);
@@ -278,6 +287,46 @@ void require_same_run(const nlohmann::json& baseline, const nlohmann::json& curr
   for (const char* key : {"frames", "warmup", "fps"}) differ(key, baseline[key], current[key]);
 }
 
+namespace {
+std::pair<std::string, std::string> split_skin(const std::string& file) {
+  size_t hash = file.rfind("#skin=");
+  return hash == std::string::npos ? std::pair{file, std::string()} : std::pair{file.substr(0, hash), file.substr(hash)};
+}
+}  // namespace
+
+nlohmann::json with_paths_relative_to(nlohmann::json result, const std::string& result_path) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(fs::path(result_path)).parent_path();
+  auto relocate = [&](json& scene) {
+    if (!scene.is_object() || !scene.contains("file") || !scene["file"].is_string()) return;
+    if (scene.value("file_from", json("")) == "result") return;
+    auto [file, skin] = split_skin(scene["file"].get<std::string>());
+    if (file.empty()) return;
+    fs::path relative = fs::absolute(file).lexically_normal().lexically_relative(folder.lexically_normal());
+    if (relative.empty()) return;
+    scene["file"] = relative.string() + skin;
+    scene["file_from"] = "result";
+  };
+  if (result.is_object() && result.contains("scene")) relocate(result["scene"]);
+  if (result.is_object() && result.contains("runs") && result["runs"].is_array())
+    for (json& run : result["runs"])
+      if (run.is_object() && run.contains("scene")) relocate(run["scene"]);
+  return result;
+}
+
+std::string recorded_scene_file(const nlohmann::json& result, const std::string& result_path) {
+  namespace fs = std::filesystem;
+  const json& scene = result["scene"];
+  auto [file, skin] = split_skin(scene["file"].get<std::string>());
+  fs::path folder = fs::path(result_path).parent_path();
+  fs::path beside = (folder / file).lexically_normal();
+  if (fs::path(file).is_absolute()) return file + skin;
+  if (scene.value("file_from", json("")) == "result") return beside.string() + skin;
+  std::error_code error;
+  if (!fs::exists(file, error) && fs::exists(beside, error)) return beside.string() + skin;
+  return file + skin;
+}
+
 std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current) {
   std::vector<std::string> notes;
   auto note = [&](const std::string& what, const json& a, const json& b) {
@@ -285,9 +334,18 @@ std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const 
   };
   note("threads", baseline["threads"], current["threads"]);
   const json none = "?";
-  const json& be = baseline.contains("environment") ? baseline["environment"] : json::object();
-  const json& ce = current.contains("environment") ? current["environment"] : json::object();
-  for (const char* key : {"cpu", "build_type", "backend"}) note(key, be.value(key, none), ce.value(key, none));
+  const json& be = baseline.contains("environment") && baseline["environment"].is_object() ? baseline["environment"] : json::object();
+  const json& ce = current.contains("environment") && current["environment"].is_object() ? current["environment"] : json::object();
+  note("backend", be.value("backend", none), ce.value("backend", none));
+  // Another machine or build: one warning line naming every difference.
+  std::string elsewhere;
+  for (const char* key : {"cpu", "cores", "build_type", "compiler", "simd"}) {
+    json a = be.value(key, none), b = ce.value(key, none);
+    if (a != b && a != none) elsewhere += (elsewhere.empty() ? "" : "; ") + std::string(key) + " " + a.dump() + " there, " + b.dump() + " here";
+  }
+  if (!elsewhere.empty())
+    notes.push_back("warning: the baseline was measured on another machine or build (" + elsewhere +
+                    "): timings may not compare");
   // A scene file edited since the baseline: the counters or digest will say
   // whether the work changed; this says why.
   const json& bs = baseline["scene"];
@@ -353,6 +411,7 @@ CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& 
     result.metrics.push_back(
         check_metric(display_name(key), samples_of(baseline, key), samples_of(current, key), options, floor));
   adjust_holm(result.metrics, options);
+  if (!options.compare_work) return result;
   const json& before = baseline["counters"];
   const json& after = current["counters"];
   for (const auto& [name, value] : before.items()) {
@@ -370,7 +429,8 @@ CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& 
 
 std::string format_check(const CheckResult& result, const CheckOptions& options) {
   std::ostringstream out;
-  std::string tolerance = fixed(options.tolerance * 100.0, options.tolerance * 100.0 == std::floor(options.tolerance * 100.0) ? 0 : 1) + "%";
+  double whole = std::round(options.tolerance * 100.0);
+  std::string tolerance = fixed(options.tolerance * 100.0, std::abs(options.tolerance * 100.0 - whole) < 1e-9 ? 0 : 1) + "%";
   bool corrected = result.metrics.size() > 1;
   auto metric_line = [&](const MetricCheck& m, const char* verdict) {
     out << verdict << " " << m.metric << ": median " << fixed(m.baseline.median, 3) << " ms -> "
@@ -402,7 +462,7 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
     else out << ", within " << tolerance;
     out << ");";
   }
-  out << " counters and digest match\n";
+  out << (options.compare_work ? " counters and digest match\n" : " counters and digest not compared\n");
   return out.str();
 }
 

@@ -28,6 +28,11 @@ double parse_tolerance(std::string_view text);
 // "GPU Latency", "gpu_latency"). UsageError listing the choices otherwise.
 std::string resolve_metric(std::string_view name);
 
+// Reads a crowdprof JSON file: InputError naming `path` when it is missing, not
+// a regular file, larger than 2 GiB, empty, truncated, not JSON or not an
+// object. What it holds is not checked (validate_result, bench_results_in).
+nlohmann::json read_json_file(const std::string& path);
+
 // Reads and validates a result written by bench --json (see validate_result).
 // InputError naming `path` when the file is unreadable, empty, not JSON or
 // truncated, or not a result this version can read.
@@ -45,8 +50,22 @@ void validate_result(const nlohmann::json& doc, const std::string& path);
 // of these, so comparing them across a difference would mean nothing.
 void require_same_run(const nlohmann::json& baseline, const nlohmann::json& current, const std::string& baseline_path);
 
-// What differs without stopping the comparison (another CPU, thread count,
-// build type, or crowdprof version): lines for stderr.
+// A result as written to `result_path`: its scene file (and those of a compare
+// result's runs) stored relative to the result's folder, marked
+// "file_from": "result", so that the result can be checked from any folder and
+// moved with its scene. A "#skin=N" suffix is kept.
+nlohmann::json with_paths_relative_to(nlohmann::json result, const std::string& result_path);
+
+// The scene file a result read from `result_path` recorded, as a path usable
+// from here: resolved from the result's folder when it was stored relative to
+// it; as recorded for older results (relative to the folder they were made in),
+// unless only the result's folder has it.
+std::string recorded_scene_file(const nlohmann::json& result, const std::string& result_path);
+
+// What differs without stopping the comparison: a note per difference of
+// thread count or GL backend, and one "warning: " line for another machine or
+// build (CPU model, cores, build type, compiler, SIMD target). Lines for stderr
+// after "crowdprof: note: ", except the warning, which has its own prefix.
 std::vector<std::string> comparison_notes(const nlohmann::json& baseline, const nlohmann::json& current);
 
 // The smallest slowdown that can fail a check, however significant: a fixed
@@ -71,10 +90,16 @@ double floor_ms(const Floor& floor, double frame_ms);
 inline constexpr double kDefaultTolerance = 0.07;
 
 struct CheckOptions {
-  std::vector<std::string> metrics = {"frame_ms"};  // keys of "samples" (resolve_metric)
+  // Keys of "samples" (resolve_metric). CPU time by default: on a machine shared
+  // with other jobs the wall-clock frame swings by half while the work does not
+  // (docs/compare-and-check.md has the measurement).
+  std::vector<std::string> metrics = {"cpu_ms"};
   double tolerance = kDefaultTolerance;  // a slowdown of the median beyond this fraction...
   double alpha = 0.05;      // ...that the U test finds significant at this level (Holm-corrected over metrics)...
   Floor floor;              // ...and larger than this
+  // False only to measure the gate itself (check --timings-only): timings of
+  // two different runs, counters and digest not compared.
+  bool compare_work = true;
 };
 
 struct MetricCheck {

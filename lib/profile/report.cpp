@@ -24,8 +24,8 @@ std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t c
 }
 
 nlohmann::json summary_json(const Summary& s) {
-  return {{"min_ms", s.min},   {"median_ms", s.median}, {"mean_ms", s.mean},
-          {"p95_ms", s.p95},   {"max_ms", s.max},       {"stddev_ms", s.stddev}};
+  return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
+          {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
 }
 
 std::string fixed(double value, int decimals) {
@@ -49,7 +49,8 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
 std::string format_profile(const RunReport& report) {
   std::ostringstream out;
   const RunDescription& run = report.run;
-  if (report.frames.empty()) return "no frames measured\n";
+  if (report.frames.empty())
+    return report.partial ? "no frames measured: interrupted during the warm-up\n" : "no frames measured\n";
   const FrameRecord& frame = report.frames[median_frame(report.frames)];
   double total = frame.times.total_ms();
   char line[160];
@@ -65,6 +66,12 @@ std::string format_profile(const RunReport& report) {
                   bar.empty() ? "" : " ", bar.c_str());  // no trailing blank for diff-friendly output
     out << line;
   }
+  // The slow frames, which a median hides: a game stutters on its p99.
+  std::vector<double> totals = frame_ms(report.frames);
+  Summary s = summarize(totals);
+  std::snprintf(line, sizeof line, "Slow frames: p50 %.2f | p95 %.2f | p99 %.2f | max %.2f ms\n", s.median, s.p95, s.p99,
+                s.max);
+  out << line;
   const Counters& k = frame.counters;
   if (run.crowd.size() > 1)
     out << run.characters << " characters of " << run.crowd.size() << " kinds (up to " << run.joints << " joints, "
@@ -107,6 +114,9 @@ std::string format_profile(const RunReport& report) {
   else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
+  if (report.partial)
+    out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
+        << " frames; the figures above are of those\n";
   return out.str();
 }
 
@@ -172,6 +182,10 @@ nlohmann::json to_json(const RunReport& report) {
   std::vector<double> totals = frame_ms(report.frames);
   j["frame"] = summary_json(summarize(totals));
   nlohmann::json samples = {{"frame_ms", totals}};
+  std::vector<double> cpu;
+  for (const FrameRecord& f : report.frames) cpu.push_back(f.cpu_ms);
+  j["cpu"] = summary_json(summarize(cpu));
+  samples["cpu_ms"] = cpu;
   for (size_t c = 0; c < kCategoryCount; ++c) {
     std::string name(category_name(static_cast<Category>(c)));
     std::vector<double> values = category_ms(report.frames, c);
@@ -185,6 +199,10 @@ nlohmann::json to_json(const RunReport& report) {
     j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
   }
   j["digest"] = report.digest;
+  if (report.partial) {
+    j["partial"] = true;
+    j["frames_planned"] = report.frames_planned;
+  }
   j["samples"] = samples;
   return j;
 }

@@ -50,6 +50,9 @@ struct RunReport {
   Environment environment;
   std::vector<FrameRecord> frames;  // after warm-up
   std::string digest;
+  // A run stopped early (^C): frames holds fewer than frames_planned.
+  bool partial = false;
+  size_t frames_planned = 0;
 };
 
 // Index of the frame whose time is the median (the lower one for an even count).

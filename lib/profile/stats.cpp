@@ -32,6 +32,7 @@ Summary summarize(std::span<const double> samples) {
   s.max = sorted.back();
   s.median = sorted_quantile(sorted, 0.5);
   s.p95 = sorted_quantile(sorted, 0.95);
+  s.p99 = sorted_quantile(sorted, 0.99);
   double sum = 0.0;
   for (double v : sorted) sum += v;
   s.mean = sum / static_cast<double>(sorted.size());

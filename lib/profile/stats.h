@@ -6,10 +6,10 @@
 namespace crowdprof {
 
 struct Summary {
-  double min = 0, median = 0, mean = 0, p95 = 0, max = 0, stddev = 0;
+  double min = 0, median = 0, mean = 0, p95 = 0, p99 = 0, max = 0, stddev = 0;
 };
 
-// Median and p95 by linear interpolation between order statistics; stddev is
+// Median (p50), p95 and p99 by linear interpolation between order statistics; stddev is
 // the sample standard deviation (n - 1). All zero for no samples.
 Summary summarize(std::span<const double> samples);
 

@@ -1,0 +1,62 @@
+// `crowdprof diff A.json B.json`: two results (bench, check or compare JSON)
+// side by side, for two builds of the same scene: exit 1 when B is slower than
+// A under check's rule, or does other work. The logic is in lib/profile/diff.h.
+#include <iostream>
+#include <memory>
+
+#include "asset/errors.h"
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "output/output_file.h"
+#include "profile/diff.h"
+
+namespace {
+
+using namespace crowdprof;
+
+struct DiffCliOptions {
+  std::string a, b;
+  std::string tolerance = "7%";
+  std::string floor = "2%";
+  double alpha = 0.05;
+  std::string json;
+  bool quiet = false;
+};
+
+int diff(const DiffCliOptions& o) {
+  CheckOptions options;
+  options.tolerance = parse_tolerance(o.tolerance);
+  options.floor = parse_floor(o.floor);
+  if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
+  options.alpha = o.alpha;
+  require_distinct_outputs({{"file A", o.a}, {"file B", o.b}}, {{"--json", o.json}});
+  if (!o.json.empty()) require_writable(o.json, "JSON");
+  std::vector<nlohmann::json> a = bench_results_in(read_json_file(o.a), o.a);
+  std::vector<nlohmann::json> b = bench_results_in(read_json_file(o.b), o.b);
+  Diff result = diff_results(a, o.a, b, o.b, options);
+  if (!o.quiet) std::cout << format_diff(result, options);
+  if (!o.json.empty())
+    write_text(o.json, "JSON", [&](std::ostream& out) { out << diff_to_json(result, options).dump(2) << "\n"; });
+  return result.regressed() ? kExitRegression : kExitOk;
+}
+
+}  // namespace
+
+void add_diff_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<DiffCliOptions>();
+  auto* cmd = app.add_subcommand("diff", "Two results (bench, check or compare JSON) side by side: per metric the "
+                                         "medians, change, p-value and verdict; exit 1 when B is slower or does other "
+                                         "work (see docs/compare-and-check.md)");
+  cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")->required();
+  cmd->add_option("b", options->b, "Result B, judged against A")->required();
+  cmd->add_option("--tolerance", options->tolerance, "Slowdown of a median allowed before a significant shift fails")
+      ->capture_default_str();
+  cmd->add_option("--floor", options->floor,
+                  "Smallest slowdown of a median that can fail: a time (0.05ms, 50us) or a share of A's median frame")
+      ->capture_default_str();
+  cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test, before Holm's correction")
+      ->capture_default_str();
+  cmd->add_option("--json", options->json, "Also write the comparison as JSON to this file");
+  cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)");
+  cmd->callback([&run, options] { run = [options] { return diff(*options); }; });
+}

@@ -1,0 +1,52 @@
+// `crowdprof diff A.json B.json`: two results side by side, as Google
+// Benchmark's compare.py does for two builds. Per metric (CPU time, the frame,
+// each category that took time) the medians, the change, the p-value and the
+// verdict under check's rule (significant after Holm's correction, beyond the
+// tolerance and beyond the floor); counters and digest compared exactly.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "profile/regression.h"
+
+namespace crowdprof {
+
+// The bench results a file holds: itself for a bench or check result, one per
+// mode (and sweep point) for a compare result. Each is validated
+// (validate_result); InputError naming `path` otherwise.
+std::vector<nlohmann::json> bench_results_in(const nlohmann::json& doc, const std::string& path);
+
+// One mode at one crowd size present in both files.
+struct DiffPair {
+  std::string mode;
+  size_t characters = 0;
+  CheckResult check;               // A as the baseline, B as the current result
+  std::vector<std::string> notes;  // scene fields that differ (timings may not compare)
+};
+
+struct Diff {
+  std::string a, b;  // the files, as named
+  std::vector<DiffPair> pairs;
+  bool regressed() const;
+};
+
+// Pairs the results of A and B by mode and crowd size and judges each pair
+// with `options` (its metrics are replaced by CPU time when both have it, the
+// frame, and every category whose median is at least 0.005 ms in either).
+// InputError when the files share no mode and crowd size.
+Diff diff_results(const std::vector<nlohmann::json>& a, const std::string& path_a,
+                  const std::vector<nlohmann::json>& b, const std::string& path_b, const CheckOptions& options);
+
+// The table for stdout: per pair a header, one row per metric (A and B
+// medians, change, p, Holm-corrected p, verdict), then counters and digest.
+std::string format_diff(const Diff& diff, const CheckOptions& options);
+
+// {"crowdprof": {"kind": "diff", ...}, "a", "b", "tolerance", "floor", "alpha",
+//  "pairs": [{"mode", "characters", "metrics": [...], "counters": [...],
+//  "digest": {...}, "notes", "regressed"}], "regressed"} (docs/formats.md).
+nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options);
+
+}  // namespace crowdprof

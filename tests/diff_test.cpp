@@ -1,0 +1,118 @@
+// `crowdprof diff`: two results side by side with check's rule, counters and
+// digest compared, compare results paired by mode, and bad files refused.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "asset/errors.h"
+#include "profile/diff.h"
+#include "test_support.h"
+
+using namespace crowdprof;
+using crowdprof::test::run_cli;
+using nlohmann::json;
+
+namespace {
+
+std::string scene() { return (test::source_dir() / "scenes" / "humanoid.glb").string(); }
+
+std::string write_json(const std::filesystem::path& path, const json& doc) {
+  std::ofstream(path) << doc.dump(1);
+  return path.string();
+}
+
+json read_json(const std::string& path) { return json::parse(std::ifstream(path)); }
+
+// A result whose every timed sample is `factor` times A's.
+json scaled(json doc, double factor) {
+  for (auto& [key, values] : doc["samples"].items())
+    for (auto& v : values) v = v.get<double>() * factor;
+  return doc;
+}
+
+}  // namespace
+
+TEST(Diff, SideBySideWithTheGateRule) {
+  auto dir = test::scratch_dir("diff_cli");
+  std::string a = (dir / "a.json").string();
+  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 6 --frames 20 --warmup 1 --mode culled -q --json '" + a + "'").status, 0);
+  // Against itself: every metric the same, counters and digest the same.
+  auto r = run_cli("diff '" + a + "' '" + a + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  for (const char* words : {"metric", "A median ms", "B median ms", "p Holm", "\ncpu ", "\nframe ", "counters: same",
+                            ", same\n", "ok: B is not slower"})
+    EXPECT_NE(r.out.find(words), std::string::npos) << words << " in\n" << r.out;
+  // Twice as slow everywhere: SLOWER, exit 1; the JSON says the same.
+  std::string b = write_json(dir / "b.json", scaled(read_json(a), 2.0));
+  std::string out = (dir / "diff.json").string();
+  r = run_cli("diff '" + a + "' '" + b + "' --json '" + out + "'");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("SLOWER"), std::string::npos) << r.out;
+  json j = read_json(out);
+  EXPECT_EQ(j["crowdprof"]["kind"], "diff");
+  EXPECT_TRUE(j["regressed"].get<bool>());
+  ASSERT_EQ(j["pairs"].size(), 1u);
+  EXPECT_EQ(j["pairs"][0]["mode"], "culled");
+  EXPECT_EQ(j["pairs"][0]["metrics"][0]["metric"], "cpu");
+  EXPECT_NEAR(j["pairs"][0]["metrics"][0]["change"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(j["pairs"][0]["metrics"][0]["verdict"], "SLOWER");
+  // B twice as fast: faster, exit 0.
+  r = run_cli("diff '" + b + "' '" + a + "'");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("faster"), std::string::npos) << r.out;
+  // A floor above any change passes the slowdown.
+  r = run_cli("diff '" + a + "' '" + b + "' --floor 10s -q");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(r.out.empty());
+  // Other work: a counter and the digest.
+  json other = read_json(a);
+  other["counters"]["poses_updated"] = 12345;
+  other["digest"] = "0000000000000000";
+  r = run_cli("diff '" + a + "' '" + write_json(dir / "other.json", other) + "'");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("counter poses_updated: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0000000000000000: CHANGED"), std::string::npos) << r.out;
+}
+
+TEST(Diff, CompareResultsArePairedByMode) {
+  auto dir = test::scratch_dir("diff_compare");
+  std::string c = (dir / "c.json").string(), t = (dir / "t.json").string();
+  ASSERT_EQ(run_cli("compare '" + scene() + "' -n 6 --frames 10 --warmup 1 --modes master,threaded -q --json '" + c + "'")
+                .status,
+            0);
+  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 6 --frames 10 --warmup 1 --mode threaded -q --json '" + t + "'").status, 0);
+  auto r = run_cli("diff '" + c + "' '" + c + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("\nmaster, 6 characters"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nthreaded, 6 characters"), std::string::npos) << r.out;
+  r = run_cli("diff '" + c + "' '" + t + "' --tolerance 900%");
+  EXPECT_NE(r.out.find("\nthreaded, 6 characters"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\nmaster"), std::string::npos) << r.out;
+  // Nothing in common.
+  std::string m = (dir / "m.json").string();
+  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'").status, 0);
+  r = run_cli("diff '" + t + "' '" + m + "'");
+  EXPECT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("no mode and crowd size in common"), std::string::npos) << r.err;
+}
+
+TEST(Diff, BadFilesAndOutputs) {
+  auto dir = test::scratch_dir("diff_bad");
+  std::string a = (dir / "a.json").string();
+  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 4 --frames 8 --warmup 0 --mode culled -q --json '" + a + "'").status, 0);
+  std::ofstream(dir / "cut.json") << read_json(a).dump().substr(0, 100);
+  auto r = run_cli("diff '" + a + "' '" + (dir / "cut.json").string() + "'");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("cut.json: truncated JSON"), std::string::npos) << r.err;
+  r = run_cli("diff '" + a + "' '" + (dir / "missing.json").string() + "'");
+  EXPECT_EQ(r.status, 3) << r.err;
+  std::string before = read_json(a).dump();
+  r = run_cli("diff '" + a + "' '" + a + "' --json '" + a + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is the file A"), std::string::npos) << r.err;
+  EXPECT_EQ(read_json(a).dump(), before);
+  r = run_cli("diff '" + a + "' '" + a + "' --tolerance ten");
+  EXPECT_EQ(r.status, 2) << r.err;
+}

@@ -1,0 +1,117 @@
+// ^C during a run: the frames measured so far are reported and written as a
+// partial result, the command exits 130, check records no baseline from it; a
+// second signal ends the process at once.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "frame/interrupt.h"
+#include "test_support.h"
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Interrupted {
+  int status = -1;  // exit status, or -signal when killed by one
+  std::string out, err;
+};
+
+// Runs crowdprof with `args`, sends `signal_number` once `wait` has passed,
+// and waits for it to end.
+Interrupted interrupt_cli(const std::vector<std::string>& args, const fs::path& dir, int signal_number,
+                          std::chrono::milliseconds wait) {
+  pid_t child = fork();
+  if (child == 0) {
+    int out = open((dir / "out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    int err = open((dir / "err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(out, 1);
+    dup2(err, 2);
+    std::vector<char*> argv = {const_cast<char*>(CROWDPROF_CLI)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(CROWDPROF_CLI, argv.data());
+    _exit(127);
+  }
+  std::this_thread::sleep_for(wait);
+  kill(child, signal_number);
+  int raw = 0;
+  waitpid(child, &raw, 0);
+  Interrupted r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -WTERMSIG(raw);
+  r.out = slurp(dir / "out");
+  r.err = slurp(dir / "err");
+  return r;
+}
+
+std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
+
+}  // namespace
+
+TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_bench");
+  std::string result = (dir / "r.json").string(), csv = (dir / "r.csv").string();
+  for (int signal_number : {SIGINT, SIGTERM}) {
+    Interrupted r = interrupt_cli({"bench", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--json",
+                                   result, "--csv", csv},
+                                  dir, signal_number, std::chrono::milliseconds(2500));
+    ASSERT_EQ(r.status, 130) << r.err;
+    EXPECT_NE(r.out.find("Frametime :"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\npartial: interrupted after "), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("crowdprof: interrupted: "), std::string::npos) << r.err;
+    json j = json::parse(std::ifstream(result));
+    EXPECT_TRUE(j["partial"].get<bool>());
+    EXPECT_EQ(j["frames_planned"], 10000000);
+    size_t frames = j["frames"].get<size_t>();
+    EXPECT_GT(frames, 0u);
+    EXPECT_LT(frames, 10000000u);
+    EXPECT_EQ(j["samples"]["frame_ms"].size(), frames);
+    std::string rows = slurp(csv);
+    EXPECT_EQ(static_cast<size_t>(std::count(rows.begin(), rows.end(), '\n')), frames + 1);  // and the header
+  }
+}
+
+TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_check");
+  std::string base = (dir / "base.json").string();
+  std::ofstream(base) << "the earlier baseline";
+  Interrupted r = interrupt_cli({"check", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
+                                 base, "--update-baseline"},
+                                dir, SIGINT, std::chrono::milliseconds(2500));
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("the baseline is not updated from a partial run"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(base), "the earlier baseline");
+}
+
+TEST(Interrupt, TheSecondSignalEndsTheProcessAtOnce) {
+  pid_t child = fork();
+  if (child == 0) {
+    install_interrupt_handlers();
+    raise(SIGINT);
+    if (!interrupt_requested().load()) _exit(3);  // the first only asks
+    raise(SIGINT);
+    _exit(0);  // not reached: the second ends the process
+  }
+  int raw = 0;
+  waitpid(child, &raw, 0);
+  ASSERT_TRUE(WIFSIGNALED(raw)) << "exited with " << WEXITSTATUS(raw);
+  EXPECT_EQ(WTERMSIG(raw), SIGINT);
+}

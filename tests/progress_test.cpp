@@ -1,0 +1,41 @@
+// Progress: one line redrawn on stderr when stderr is a terminal and the run
+// takes more than a second (frames done of all, the mode, the time left);
+// nothing with -q or when stderr is not a terminal.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "test_support.h"
+
+namespace {
+
+// What a terminal shows for `args`: run under script(1), which gives the
+// command a pseudo-terminal. Empty when script is missing.
+std::string on_a_terminal(const std::string& args) {
+  std::string command = "script -qec \"'" + std::string(CROWDPROF_CLI) + "' " + args + " >/dev/null\" /dev/null";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {};
+  std::string out;
+  char buffer[4096];
+  while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  pclose(pipe);
+  return out;
+}
+
+}  // namespace
+
+TEST(Progress, OneLineOnATerminalOnlyForARunOfMoreThanASecond) {
+  if (!std::filesystem::exists("/usr/bin/script")) GTEST_SKIP() << "script(1) (bsdutils) is not installed";
+  std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
+  // About 2 s of frames on the development machine (more when it is loaded).
+  std::string long_run = "bench '" + scene + "' -n 40 --mode master --frames 2500 --warmup 0";
+  std::string shown = on_a_terminal(long_run);
+  EXPECT_NE(shown.find("\rcrowdprof: mode master, "), std::string::npos) << shown;
+  EXPECT_NE(shown.find("/2500 frames, "), std::string::npos) << shown;
+  EXPECT_NE(shown.find(" s left"), std::string::npos) << shown;
+  EXPECT_EQ(shown.find('\n'), std::string::npos) << "progress is one line redrawn in place: " << shown;
+  EXPECT_EQ(on_a_terminal(long_run + " -q"), "");
+  // A short run shows nothing.
+  EXPECT_EQ(on_a_terminal("bench '" + scene + "' -n 2 --frames 3 --warmup 0"), "");
+}

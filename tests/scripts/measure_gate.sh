@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Measures how far `crowdprof check` can be trusted on this machine, with the
+# default gate options (not run by CI: it takes minutes and its numbers depend on
+# the machine and its load):
+#   1. false alarms: a baseline is recorded, then RUNS (50) unchanged `check`
+#      runs against it; every exit 1 is a false alarm (goal: at most 1 of 50);
+#   2. detection: DETECT (20) `check` runs of the same scene with more characters,
+#      enough that 10% more copies are animated and skinned (real work added, not a
+#      sleep; culled copies cost nothing, so the count is found from the counters),
+#      compared on timings alone (--timings-only); every exit 1 is a detection
+#      (goal: at least 19 of 20).
+# Usage: tests/scripts/measure_gate.sh CROWDPROF [N] [N_SLOWER]
+#   CROWDPROF  the crowdprof binary (e.g. build/crowdprof)
+#   N          characters in the baseline (default 160, the thesis's scene)
+#   N_SLOWER   characters of the slower variant (default: the smallest crowd whose
+#              vertices skinned per frame are at least 10% above N's)
+# Environment: SCENE (scenes/humanoid.glb), MODE (threaded), FRAMES (120),
+#   WARMUP (10), RUNS (50), DETECT (20), OUT (a new temporary folder; kept),
+#   CHECK_ARGS (extra options for every check, e.g. "--tolerance 10%").
+# Needs jq. Prints one line per phase and a summary; per-run results are in
+# $OUT/runs.csv (phase, run, exit, attempts, baseline and current frame medians).
+set -euo pipefail
+
+crowdprof=${1:?usage: measure_gate.sh CROWDPROF [N] [N_SLOWER]}
+n=${2:-160}
+n_slower=${3:-}
+scene=${SCENE:-$(cd "$(dirname "$0")/../.." && pwd)/scenes/humanoid.glb}
+mode=${MODE:-threaded}
+frames=${FRAMES:-120}
+warmup=${WARMUP:-10}
+runs=${RUNS:-50}
+detect=${DETECT:-20}
+out=${OUT:-$(mktemp -d /tmp/measure_gate.XXXXXX)}
+read -r -a extra <<<"${CHECK_ARGS:-}"
+
+command -v jq >/dev/null || { echo "measure_gate: needs jq (apt-get install jq)" >&2; exit 2; }
+[[ -x $crowdprof ]] || { echo "measure_gate: $crowdprof is not an executable" >&2; exit 2; }
+[[ -f $scene ]] || { echo "measure_gate: no scene $scene (set SCENE)" >&2; exit 2; }
+mkdir -p "$out"
+base=$out/baseline.json
+start=$(date +%s)
+
+echo "measure_gate: $("$crowdprof" --version)"
+# Work per frame of a crowd of $1: vertices skinned (animated copies x vertices).
+work_of() {
+  "$crowdprof" bench "$scene" -n "$1" --mode "$mode" --frames 1 --warmup 0 -q --json "$out/work.json"
+  jq '.counters.vertices_skinned + .counters.poses_updated' "$out/work.json"
+}
+work=$(work_of "$n")
+if [[ -z $n_slower ]]; then
+  n_slower=$n
+  while (($(work_of "$n_slower") * 10 < work * 11)); do n_slower=$((n_slower + 1)); done
+fi
+work_slower=$(work_of "$n_slower")
+echo "measure_gate: scene $scene, mode $mode, $frames frames after $warmup warm-up; baseline -n $n, slower -n $n_slower" \
+  "($(jq -n "($work_slower / $work - 1) * 1000 | round / 10")% more work per frame)"
+echo "measure_gate: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; files in $out"
+"$crowdprof" check "$scene" -n "$n" --mode "$mode" --frames "$frames" --warmup "$warmup" \
+  --baseline "$base" --update-baseline -q
+echo "phase,run,exit,attempts,baseline_frame_ms,current_frame_ms,baseline_cpu_ms,current_cpu_ms" >"$out/runs.csv"
+
+# One check; echoes its exit status and records the run.
+one_check() {
+  local phase=$1 run=$2
+  shift 2
+  local status=0
+  "$crowdprof" check --baseline "$base" --json "$out/current.json" -q "${extra[@]}" "$@" 2>"$out/stderr" || status=$?
+  if ((status > 1)); then
+    echo "measure_gate: check failed with exit $status:" >&2
+    cat "$out/stderr" >&2
+    exit 3
+  fi
+  local attempts
+  attempts=$(($(grep -c "measuring again" "$out/stderr" || true) + 1))
+  echo "$phase,$run,$status,$attempts,$(jq -r '[.frame.median_ms, .cpu.median_ms] | @csv' "$base" | cut -d, -f1),$(
+    jq -r '.frame.median_ms' "$out/current.json"),$(jq -r '.cpu.median_ms' "$base"),$(jq -r '.cpu.median_ms' "$out/current.json")" \
+    >>"$out/runs.csv"
+  echo "$status"
+}
+
+false_alarms=0
+for ((i = 1; i <= runs; ++i)); do
+  [[ $(one_check unchanged "$i") == 1 ]] && false_alarms=$((false_alarms + 1))
+done
+echo "false alarms: $false_alarms of $runs unchanged checks (goal: at most 1)"
+
+# The slower variant's real cost, measured the same way.
+"$crowdprof" bench "$scene" -n "$n_slower" --mode "$mode" --frames "$frames" --warmup "$warmup" -q \
+  --json "$out/slower.json"
+detected=0
+for ((i = 1; i <= detect; ++i)); do
+  [[ $(one_check slower "$i" -n "$n_slower" --timings-only) == 1 ]] && detected=$((detected + 1))
+done
+slowdown=$(jq -n --slurpfile a "$base" --slurpfile b "$out/slower.json" \
+  '[(($b[0].frame.median_ms / $a[0].frame.median_ms - 1) * 1000 | round) / 10,
+    (($b[0].cpu.median_ms / $a[0].cpu.median_ms - 1) * 1000 | round) / 10] | "frame \(.[0])%, cpu \(.[1])%"')
+echo "detections: $detected of $detect checks of -n $n_slower (one bench of it against the baseline: $slowdown; goal: at least 19)"
+echo "measure_gate: took $(($(date +%s) - start)) s, load average now $(cut -d' ' -f1-3 /proc/loadavg)"
