@@ -4,6 +4,9 @@
 #   ./setup.sh test                  run the whole test suite
 #   ./setup.sh build                 only build
 #   ./setup.sh bench [options]       the micro-benchmarks (Google Benchmark options)
+#   ./setup.sh sanitize              ASan+UBSan and TSan builds, tests and a short fuzz (CI's second stage)
+#   ./setup.sh fuzz [SECONDS]        run each fuzz target SECONDS (default 60) on the ASan build
+#   ./setup.sh valgrind              memcheck of a short bench and of info on a Draco file
 # The build goes to ./build (override with CROWDPROF_BUILD_DIR).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -12,14 +15,21 @@ action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
-  run | test | build | bench) ;;
-  *) echo "usage: ./setup.sh [run|test|build|bench] [options]" >&2; exit 2 ;;
+  run | test | build | bench | sanitize | fuzz | valgrind) ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind] [options]" >&2; exit 2 ;;
 esac
 
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
   libbenchmark-dev)
+# The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
+# are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.
+case "$action" in
+  sanitize) packages+=(clang libclang-rt-14-dev dpkg-dev) ;;
+  fuzz) packages+=(clang libclang-rt-14-dev) ;;
+  valgrind) packages+=(valgrind) ;;
+esac
 # The tests load the HTML report in a real browser (tests/browser/); only the
 # test action needs it, and it is large.
 [[ $action == test ]] && packages+=(chromium)
@@ -36,6 +46,10 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get -o DPkg::Lock::Timeout=900 install -y -qq --no-install-recommends \
     "${missing[@]}" >/dev/null
 fi
+
+case "$action" in
+  sanitize | fuzz | valgrind) exec tests/sanitizers/"$action".sh "$@" ;;
+esac
 
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j"$(nproc)"

@@ -177,7 +177,9 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
        "characters[0].actions"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"actions\": {\"walk\": \"x\"}}]}",
        "characters[0].actions.walk"},
-      {"{\"characters\": [" + ok_character + "]", "not a JSON scene file"},
+      {"{\"characters\": [" + ok_character + "]", "truncated JSON"},
+      {"{\"characters\": [" + ok_character + "], \"seed\": 1e400}", "a number too large for a double"},
+      {"{\"characters\": [" + ok_character + "]]}", "broken JSON"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     auto path = dir / ("bad" + std::to_string(i) + ".json");

@@ -23,7 +23,9 @@ std::string fixed(double value, int decimals) {
 
 std::string percent(double fraction) {
   if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "n/a";
-  return (fraction >= 0 ? "+" : "") + fixed(fraction * 100.0, 1) + "%";
+  std::string text = fraction >= 0 ? "+" : "";
+  text += fixed(fraction * 100.0, 1);
+  return text + "%";
 }
 
 std::string p_value(double p) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset/errors.h"
+#include "asset/input_file.h"
 
 namespace crowdprof {
 
@@ -117,12 +118,9 @@ SceneFile load_scene_file(const std::string& path) {
   SceneFile scene;
   scene.path = path;
   scene.hash = fnv1a64_hex(bytes);
-  json doc;
-  try {
-    doc = json::parse(bytes);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, std::string("not a JSON scene file: ") + e.what());
-  }
+  // The parser every input file shares: a number past a double (1e400) or
+  // absurd nesting is refused like broken JSON, naming the file.
+  json doc = parse_json_input(path, bytes);
   r.only_keys(doc, "", {"characters", "seed", "layout", "camera", "resolution"});
 
   if (!doc.contains("characters")) r.fail("characters", "missing: a scene needs at least one character");

@@ -1,7 +1,9 @@
-// Writes the glTF fuzz target's seed corpus into the folder given: the tests'
-// hand-built skinned character (GLB, .gltf with a data: URI, Draco) and the
-// procedural humanoid at its smallest (plain and Draco). Made at build time
-// from the project's own code, so no corpus is ever downloaded.
+// Writes the glTF fuzz target's seed corpus into the first folder given: the
+// tests' hand-built skinned character (GLB, .gltf with a data: URI, Draco) and
+// the procedural humanoid at its smallest (plain and Draco); and the scene
+// target's into the second: scenes of that character ("character.glb" beside
+// them in the fuzz target) using every key. Made at build time from the
+// project's own code, so no corpus is ever downloaded.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -12,8 +14,8 @@
 #include "gen/humanoid.h"
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: make_seeds FOLDER\n");
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: make_seeds GLTF_FOLDER SCENE_FOLDER\n");
     return 2;
   }
   namespace fs = std::filesystem;
@@ -34,6 +36,20 @@ int main(int argc, char** argv) {
     GltfWriteOptions compressed;
     compressed.draco = true;
     write_gltf(humanoid, (out / "humanoid_draco.glb").string(), compressed);
+
+    const fs::path scenes = argv[2];
+    fs::create_directories(scenes);
+    test::write_file(scenes / "shared.json", R"({"characters": [{"file": "character.glb", "count": 3, "actions": "shared", "action": "bend"}]})");
+    test::write_file(scenes / "everything.json", R"({
+  "characters": [
+    {"file": "character.glb", "count": 4, "actions": "random"},
+    {"file": "character.glb#skin=0", "count": 2, "actions": {"bend": 3}}
+  ],
+  "seed": 7,
+  "layout": {"type": "grid", "spacing": "auto", "rows": 2, "jitter": 0.3, "seed": 2},
+  "camera": {"view": "default", "lens_mm": 35, "sensor_width_mm": 32, "sensor_height_mm": 18, "sensor_fit": "vertical"},
+  "resolution": "640x360"
+})");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_seeds: %s\n", e.what());
     return 1;

@@ -1,0 +1,43 @@
+// Fuzz target: bytes as a scene file, through what bench does with one before
+// it runs: load and check the scene, load each character it names, and make
+// each character's crowd group (action names resolved). Beside the scene lies
+// one character, "character.glb" (the tests' small skinned fixture), so that
+// scenes that name it reach past the file checks. Refusals are InputError (or
+// UsageError for a malformed FILE#skin=N); anything else, or a sanitizer
+// report, is a finding.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+
+#include "../gltf_fixture.h"
+#include "asset/errors.h"
+#include "asset/gltf_loader.h"
+#include "fuzz_file.h"
+#include "scene/scene_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace crowdprof;
+  const std::string path = crowdprof::fuzz::write_input(data, size, "scene.json");
+  static const bool character_written = [&] {
+    test::SkinnedFixture().write_glb(std::filesystem::path(path).parent_path() / "character.glb");
+    return true;
+  }();
+  (void)character_written;
+  try {
+    SceneFile scene = load_scene_file(path);
+    for (size_t i = 0; i < scene.characters.size(); ++i) {
+      Character character = load_character(scene.characters[i].path);
+      (void)scene_group(scene, i, character);
+    }
+  } catch (const InputError&) {
+    // Refused cleanly.
+  } catch (const UsageError&) {
+    // A malformed FILE#skin=N: the command line's kind of error (exit 2).
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fuzz: neither InputError nor UsageError: %s\n", e.what());
+    std::abort();
+  }
+  return 0;
+}

@@ -1,0 +1,28 @@
+# Shared by the sanitizer scripts (sourced): the ASan+UBSan+libFuzzer build,
+# the sanitizers' options and a timer that says what each part cost.
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+asan_dir=${CROWDPROF_ASAN_DIR:-$root/build-sanitize}
+jobs=$(nproc)
+
+# Reports are failures; LeakSanitizer skips only what lsan.supp names (Mesa's).
+export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
+export LSAN_OPTIONS=suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+# timed NAME COMMAND...: runs it, then prints on stderr what it cost: wall time
+# and CPU time (user + system, children included), as docs/fuzzing-and-sanitizers.md
+# reports them.
+timed() {
+  local TIMEFORMAT="timing: $1: %0R s wall, %0U s user + %0S s system CPU"
+  shift
+  time "$@"
+}
+
+# Configures and builds the ASan+UBSan+libFuzzer tree (clang, -O1): the test
+# suite, the CLI, the fuzz targets and their seed corpora. `targets` narrows it.
+build_asan() {
+  CC=clang CXX=clang++ cmake -S "$root" -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
+    -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_SANITIZE="-O1 -gline-tables-only" \
+    -DCROWDPROF_SANITIZE=address,undefined -DCROWDPROF_FUZZ=ON >/dev/null
+  cmake --build "$asan_dir" -j"$jobs" ${targets:+--target $targets}
+}

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# ./setup.sh fuzz [SECONDS] [TARGET...]: runs each libFuzzer target of tests/fuzz
+# for SECONDS (default 60) on the ASan+UBSan build, starting from the seeds the
+# build makes and growing a corpus in build-sanitize/fuzz/corpus/TARGET. A crash,
+# leak, timeout or sanitizer report stops with the input saved in
+# build-sanitize/fuzz/artifacts/TARGET/ (minimise it with -minimize_crash=1, fix,
+# and keep it in tests/fuzz/regressions/TARGET/). Prints, per target, the
+# executions, coverage (edges) and features reached.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+
+seconds=${1:-60}
+shift || true
+[[ $seconds =~ ^[0-9]+$ ]] || { echo "usage: ./setup.sh fuzz [SECONDS] [TARGET...]" >&2; exit 2; }
+names=("$@")
+((${#names[@]})) || names=(gltf_loader result_reader scene_file)
+
+targets="fuzz_seeds ${names[*]/#/fuzz_}"
+build_asan >/dev/null
+
+status=0
+for name in "${names[@]}"; do
+  corpus=$asan_dir/fuzz/corpus/$name
+  artifacts=$asan_dir/fuzz/artifacts/$name
+  log=$asan_dir/fuzz/$name.log
+  mkdir -p "$corpus" "$artifacts"
+  # -timeout: a single input that takes this long is a hang worth fixing.
+  # -rss_limit_mb: the loader refuses files past 1 GiB; more memory is a finding.
+  if ! "$asan_dir/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 \
+      -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$asan_dir/fuzz/seeds/$name" >"$log" 2>&1; then
+    status=1
+    echo "fuzz: $name FAILED, see $log and $artifacts/" >&2
+    grep -E "ERROR|SUMMARY|fuzz: " "$log" | head -5 >&2 || true
+  fi
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  done_line=$(grep -E '^#[0-9]+' "$log" | tail -1)
+  cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$done_line")
+  ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$done_line")
+  echo "fuzz: $name: ${runs:-?} executions in $seconds s, coverage ${cov:-?} edges, ${ft:-?} features, corpus $(ls "$corpus" | wc -l) inputs"
+done
+exit $status
