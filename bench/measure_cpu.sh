@@ -21,6 +21,7 @@ new=${1:-build/crowdprof}
 old=${2:-}
 reps=${REPS:-3}
 out=${OUT:-$(mktemp -d)}
+mkdir -p "$out"
 scene=scenes/humanoid.glb
 binaries=(new)
 [[ -n $old ]] && binaries+=(old)

@@ -218,9 +218,20 @@ crowdprof::BenchConfig make_bench_config(const BenchCliOptions& o, const BenchSc
   return config;
 }
 
+std::vector<crowdprof::NamedPath> bench_input_files(const std::string& file) {
+  if (!crowdprof::is_scene_file(file)) return {{"character file", file}};
+  // The characters a scene names are inputs too: an output on one of them
+  // would overwrite a user's character (the scene is read again by the run).
+  std::vector<crowdprof::NamedPath> inputs = {{"scene file", file}};
+  for (const crowdprof::SceneCharacter& character : crowdprof::load_scene_file(file).characters)
+    inputs.push_back({"character file of the scene", character.path});
+  return inputs;
+}
+
 void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::NamedPath> inputs,
                               std::vector<crowdprof::NamedPath> outputs) {
-  inputs.insert(inputs.begin(), {crowdprof::is_scene_file(o.file) ? "scene file" : "character file", o.file});
+  std::vector<crowdprof::NamedPath> files = bench_input_files(o.file);
+  inputs.insert(inputs.begin(), files.begin(), files.end());
   std::vector<std::pair<crowdprof::NamedPath, const char*>> mine = {
       {{"--csv", o.csv}, "CSV"}, {{"--json", o.json}, "JSON"}, {{"--trace", o.trace}, "trace"},
       {{"--screenshot", o.screenshot}, "PNG"}, {{"--html", o.html}, "HTML"}};

@@ -82,9 +82,13 @@ void validate_bench_options(const BenchCliOptions& options);
 // Checks every value (UsageError with the option's name) and builds the config.
 crowdprof::BenchConfig make_bench_config(const BenchCliOptions& options, const BenchScene& scene);
 
+// The files a bench reads: the character file, or a scene file and every
+// character it names (InputError when the scene file is malformed).
+std::vector<crowdprof::NamedPath> bench_input_files(const std::string& file);
+
 // UsageError, before any work, when --csv, --json, --trace, --screenshot or --html (and
 // the command's `outputs`) cannot be written, when one of them is the character
-// file (or one of the command's `inputs`), or when two of them share a path.
+// file or a character of the scene (or one of the command's `inputs`), or when two of them share a path.
 void require_writable_outputs(const BenchCliOptions& options, std::vector<crowdprof::NamedPath> inputs = {},
                               std::vector<crowdprof::NamedPath> outputs = {});
 

@@ -6,6 +6,7 @@
 
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "cli/html_output.h"
 #include "cli/output.h"
 #include "output/output_file.h"
 #include "profile/diff.h"
@@ -19,7 +20,7 @@ struct DiffCliOptions {
   std::string tolerance = "7%";
   std::string floor = "2%";
   double alpha = 0.05;
-  std::string json;
+  std::string json, html;
   bool quiet = false;
 };
 
@@ -29,14 +30,24 @@ int diff(const DiffCliOptions& o) {
   options.floor = parse_floor(o.floor);
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
   options.alpha = o.alpha;
-  require_distinct_outputs({{"file A", o.a}, {"file B", o.b}}, {{"--json", o.json}});
+  require_distinct_outputs({{"file A", o.a}, {"file B", o.b}}, {{"--json", o.json}, {"--html", o.html}});
   if (!o.json.empty()) require_writable(o.json, "JSON");
+  if (!o.html.empty()) require_writable(o.html, "HTML");
   std::vector<nlohmann::json> a = bench_results_in(read_json_file(o.a), o.a);
   std::vector<nlohmann::json> b = bench_results_in(read_json_file(o.b), o.b);
   Diff result = diff_results(a, o.a, b, o.b, options);
   if (!o.quiet) std::cout << format_diff(result, options);
   if (!o.json.empty())
     write_text(o.json, "JSON", [&](std::ostream& out) { out << diff_to_json(result, options).dump(2) << "\n"; });
+  if (!o.html.empty()) {
+    // A and B side by side; with one mode at one crowd size, its verdict per
+    // metric too (a compare result's pairs are in the table and --json).
+    HtmlReportInput input;
+    add_result_file(input, o.a);
+    add_result_file(input, o.b);
+    if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a};
+    write_html_report(o.html, std::move(input));
+  }
   return result.regressed() ? kExitRegression : kExitOk;
 }
 
@@ -57,6 +68,7 @@ void add_diff_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test, before Holm's correction")
       ->capture_default_str();
   cmd->add_option("--json", options->json, "Also write the comparison as JSON to this file");
+  cmd->add_option("--html", options->html, "Also write an HTML report of A and B side by side (docs/report.md)");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)");
   cmd->callback([&run, options] { run = [options] { return diff(*options); }; });
 }

@@ -26,7 +26,7 @@ int render(RenderCliOptions& options) {
   if (options.frame < 0 || options.frame > 10'000'000)
     throw UsageError("--frame " + std::to_string(options.frame) + ": expected 0 to 10,000,000");
   if (options.bench.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
-  require_distinct_outputs({{"character file", options.bench.file}}, {{"-o", options.output}});
+  require_distinct_outputs(bench_input_files(options.bench.file), {{"-o", options.output}});
   require_writable(options.output, "PNG");
   BenchScene scene = load_bench_scene(options.bench);
   BenchConfig config = make_bench_config(options.bench, scene);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -74,6 +75,16 @@ TEST(Diff, SideBySideWithTheGateRule) {
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("counter poses_updated: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("0000000000000000: CHANGED"), std::string::npos) << r.out;
+  // --html: A and B side by side under the verdict; never over an input.
+  std::string html = (dir / "diff.html").string();
+  r = run_cli("diff '" + a + "' '" + b + "' -q --html '" + html + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  std::ifstream in(html);
+  std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("<section id=\"check\">"), std::string::npos);
+  EXPECT_NE(page.find("a.json"), std::string::npos);
+  EXPECT_NE(page.find("b.json"), std::string::npos);
+  EXPECT_EQ(run_cli("diff '" + a + "' '" + b + "' --html '" + b + "'").status, 2);
 }
 
 TEST(Diff, CompareResultsArePairedByMode) {

@@ -70,6 +70,20 @@ TEST(SafeOutput, AnOutputThatIsTheInputIsRefusedAndTheInputUnchanged) {
   expect_refused("bench '" + x.string() + "#skin=0' -n 2 --frames 2 --json " + q, x, "is the character file");
 }
 
+TEST(SafeOutput, AnOutputOnACharacterOfTheSceneIsRefused) {
+  auto dir = crowdprof::test::scratch_dir("safe_scene_character");
+  fs::path x = character_copy(dir);
+  fs::path scene = dir / "scene.json";
+  std::ofstream(scene) << R"({"characters": [{"file": "X.glb", "count": 2}]})";
+  std::string s = "'" + scene.string() + "'";
+  std::string q = "'" + x.string() + "'";
+  expect_refused("bench " + s + " --frames 2 --json " + q, x, "is the character file of the scene");
+  expect_refused("render " + s + " --backend osmesa -o " + q, x, "is the character file of the scene");
+  expect_refused("compare " + s + " --frames 2 --svg " + q, x, "is the character file of the scene");
+  expect_refused("check " + s + " --frames 2 --baseline " + q + " --update-baseline", x,
+                 "is the character file of the scene");
+}
+
 TEST(SafeOutput, TwoOutputsOnOnePathAreRefused) {
   auto dir = crowdprof::test::scratch_dir("safe_two_outputs");
   fs::path x = character_copy(dir);
