@@ -8,16 +8,11 @@
 #include "profile/chart_colours.h"
 #include "profile/stats.h"
 #include "profile/svg_chart.h"
+#include "profile/number_text.h"
 
 namespace crowdprof {
 
 namespace {
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
 
 // Columns two spaces apart, right-aligned except those in `left` (text).
 std::string align(const std::vector<std::vector<std::string>>& rows, const std::vector<size_t>& left) {

@@ -8,25 +8,13 @@
 #include "asset/errors.h"
 #include "profile/category_clock.h"
 #include "profile/environment.h"
+#include "profile/number_text.h"
 
 namespace crowdprof {
 
 namespace {
 
 using nlohmann::json;
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
-std::string percent(double fraction) {
-  if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "n/a";
-  std::string text = fraction >= 0 ? "+" : "";
-  text += fixed(fraction * 100.0, 1);
-  return text + "%";
-}
 
 std::string p_value(double p) {
   char text[32];

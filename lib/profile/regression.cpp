@@ -15,6 +15,7 @@
 #include "asset/input_file.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
+#include "profile/number_text.h"
 
 namespace crowdprof {
 
@@ -43,18 +44,6 @@ std::string dotted(const std::string& pointer) {
   std::string out = pointer.substr(1);
   std::replace(out.begin(), out.end(), '/', '.');
   return out;
-}
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
-std::string percent(double fraction) {
-  if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "n/a";
-  std::string text = fraction >= 0 ? "+" : "";
-  return text + fixed(fraction * 100.0, 1) + "%";
 }
 
 std::string p_value(double p) {

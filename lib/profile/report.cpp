@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "profile/stats.h"
+#include "profile/number_text.h"
 
 namespace crowdprof {
 
@@ -26,12 +27,6 @@ std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t c
 nlohmann::json summary_json(const Summary& s) {
   return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
           {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
-}
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
 }
 
 }  // namespace

@@ -242,6 +242,24 @@ TEST(ReportInBrowser, ACheckReport) {
   EXPECT_NE(dom.find("Counter poses_updated changed"), std::string::npos);
 }
 
+TEST(ReportInBrowser, ADiffReport) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_diff")};
+  f.run("bench '" + f.scene + "' " + f.small + " --mode culled --json '" + f.path("a.json") + "'");
+  f.run("bench '" + f.scene + "' " + f.small + " --mode culled --json '" + f.path("b.json") + "'");
+  auto r = crowdprof::test::run_cli("diff '" + f.path("a.json") + "' '" + f.path("b.json") + "' -q --html '" +
+                                    f.path("diff.html") + "'");
+  EXPECT_LE(r.status, 1) << r.err;  // two runs of the same scene: the verdict is the timer's
+  std::string dom = dump_dom(f.path("diff.html"));
+  expect_clean_page(dom, "diff");
+  auto charts = drawn_charts(dom);
+  json a = json::parse(std::ifstream(f.path("a.json"))), b = json::parse(std::ifstream(f.path("b.json")));
+  expect_runs_drawn(charts, {a, b}, "diff");
+  auto verdict = charts_named(charts, "verdict");
+  ASSERT_EQ(verdict.size(), 1u);
+  for (const auto& [name, points] : verdict[0]->series) EXPECT_EQ(points, "1") << name;
+}
+
 TEST(ReportInBrowser, AScreenshotIsShown) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_screenshot")};
