@@ -28,10 +28,13 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--seed", o.seed, "Seed for --actions random (default: 1, or the scene's)");
   cmd.add_option("--frames", o.frames, "Frames measured")->capture_default_str();
   cmd.add_option("--warmup", o.warmup, "Frames run before measuring")->capture_default_str();
+  cmd.add_option("--bake-rate", o.bake_rate,
+                 "Skinning baked: samples per second each action is baked at (default 30; see docs/modes.md)")
+      ->type_name("HZ");
   cmd.add_option("--fps", o.fps,
                  "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible")
       ->capture_default_str();
-  cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin (see docs/modes.md)")
+  cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin, compute, baked (see docs/modes.md)")
       ->capture_default_str();
   cmd.add_option("--threads", o.threads, "Worker threads for parallel modes (default: all cores)");
   cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close (a few "
@@ -49,7 +52,7 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--culling", o.culling, "Override the mode: on or off (animation culling, 4.1)");
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
   cmd.add_option("--parallel", o.parallel, "Override the mode: on or off (oneTBB over copies)");
-  cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there) or gpu");
+  cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there), gpu, compute or baked");
   cmd.add_flag("--static", o.allow_static, "Accept a character without actions: a crowd in its rest pose");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
 }
@@ -124,7 +127,8 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   if (!o.skinning.empty())
     config.mode.skinning = parse_choice<SkinningSite>(
         o.skinning, "--skinning",
-        {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
+        {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu},
+         {"compute", SkinningSite::Compute}, {"baked", SkinningSite::Baked}});
   // An override that repeats the preset leaves it the preset.
   if (config.mode != preset->switches) config.mode_name += "+custom";
 
@@ -137,6 +141,9 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   config.threads = config.mode.parallel ? (o.threads > 0 ? static_cast<int>(o.threads) : static_cast<int>(cores)) : 1;
 
   config.fps = o.fps;
+  if (!(o.bake_rate > 0) || !(o.bake_rate <= 10000))
+    throw UsageError("--bake-rate " + std::to_string(o.bake_rate) + ": expected 0 to 10000 samples per second");
+  config.bake_rate_hz = static_cast<float>(o.bake_rate);
   config.camera = o.camera;
   config.aspect = static_cast<float>(width) / static_cast<float>(height);
   config.resolution = std::to_string(width) + "x" + std::to_string(height);

@@ -31,6 +31,7 @@ struct BenchCliOptions {
   long long frames = 120;
   long long warmup = 10;
   double fps = 60.0;
+  double bake_rate = 30.0;  // mode baked: samples per second (animation/bake.h)
   std::string mode = "threaded";
   long long threads = kThreadsUnset;  // all cores in parallel modes
   std::string camera = "default";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include "animation/pose.h"
 #include "asset/errors.h"
 #include "profile/trace.h"
+#include "skinning/bake_deviation.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -57,8 +59,11 @@ uint64_t estimate_bench_bytes(std::span<const Character* const> characters, cons
 std::string why_cannot_run(const BenchConfig& config) {
   std::string conflict = conflicts(config.mode);
   if (!conflict.empty()) return conflict;
-  if (config.mode.skinning == SkinningSite::Gpu && !config.renderer)
-    return "skinning on the GPU (mode hwskin) needs a GL backend: --backend auto, egl or osmesa";
+  if (skins_on_gpu(config.mode.skinning) && !config.renderer)
+    return "skinning on the GPU (skinning " + std::string(to_string(config.mode.skinning)) +
+           ") needs a GL backend: --backend auto, egl or osmesa";
+  if (config.mode.skinning == SkinningSite::Baked && !(config.bake_rate_hz > 0.0f && config.bake_rate_hz <= 10000.0f))
+    return "--bake-rate " + std::to_string(config.bake_rate_hz) + ": expected 0 to 10000 samples per second";
   return {};
 }
 
@@ -153,14 +158,63 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
       parallelism_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
     arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
   }
+  if (config.mode.skinning == SkinningSite::Baked) bake_characters();
   // The scenegraph of "frame -1": the first frame's animation culling needs it.
   Counters unused;
   update_scenegraph(unused);
+  if (config.renderer) {
+    config.renderer->prepare(*this);
+    animation_gpu_bytes_ = config.renderer->animation_gpu_bytes();
+  }
+}
+
+void CrowdBench::bake_characters() {
+  bake_summary_.rate_hz = config_.bake_rate_hz;
+  for (size_t k = 0; k < characters_.size(); ++k) {
+    const Character& character = *characters_[k];
+    Kind& kind = kinds_[k];
+    std::vector<std::span<const int32_t>> targets;
+    for (const ActionBindings& b : kind.bindings) targets.emplace_back(b.targets);
+    auto start = std::chrono::steady_clock::now();
+    if (!bake_character(character, targets, config_.bake_rate_hz, &kind.baked))
+      throw std::runtime_error("baking " + character.name + " failed");  // bindings sized by the loader: a bug
+    bake_summary_.bake_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (character.actions.empty()) {
+      // Stands at rest: its rest palette twice, one interval (the shader's
+      // table has the same shape for every character).
+      kind.baked.first_sample = {0};
+      kind.baked.intervals = {1};
+      LocalPose rest;
+      reset_to_rest(character.skeleton, &rest);
+      std::vector<glm::mat4> model(kind.joints);
+      LocalToModelJob{&character.skeleton, &rest, model}.Run();
+      kind.baked.matrices.resize(2 * kind.joints);
+      SkinningMatricesJob{&character.skeleton, model, std::span(kind.baked.matrices).first(kind.joints)}.Run();
+      std::copy_n(kind.baked.matrices.begin(), kind.joints, kind.baked.matrices.begin() + static_cast<std::ptrdiff_t>(kind.joints));
+    }
+    bake_summary_.samples += kind.baked.samples();
+    BakeDeviation d = measure_bake_deviation(character, targets, kind.baked, kind.skinning_plan);
+    bake_summary_.max_deviation = std::max(bake_summary_.max_deviation, d.model_units);
+    bake_summary_.max_deviation_fraction = std::max(bake_summary_.max_deviation_fraction, d.fraction_of_height());
+  }
+}
+
+CrowdBench::BakedInstance CrowdBench::baked_instance(size_t copy) const {
+  const Kind& kind = kinds_[crowd_.kind[copy]];
+  BakedInstance instance;
+  if (!kind.baked.joints) return instance;
+  const Character& character = character_of(copy);
+  size_t a = character.actions.empty() ? 0 : crowd_.action[copy];
+  instance.first_sample = static_cast<uint32_t>(kind.baked.first_sample[a]);
+  instance.intervals = static_cast<uint32_t>(kind.baked.intervals[a]);
+  instance.position = character.actions.empty() ? 0.0f
+                                                : baked_position(character.actions[a], kind.baked.intervals[a], times_[copy]);
+  return instance;
 }
 
 bool CrowdBench::gpu_skinned() const {
   for (const Kind& kind : kinds_)
-    if (kind.site != SkinningSite::Gpu) return false;
+    if (!skins_on_gpu(kind.site)) return false;
   return true;
 }
 
@@ -290,7 +344,7 @@ void CrowdBench::count_work(Counters& counters) {
   uint64_t posed = 0, culled = 0, skinned = 0, fallback = 0;
   for (size_t k = 0; k < kinds_.size(); ++k) {
     Counters& c = character_counters_[k];
-    if (kinds_[k].site != SkinningSite::Gpu) c.vertices_skinned = c.poses_updated * kinds_[k].vertices;
+    if (!skins_on_gpu(kinds_[k].site)) c.vertices_skinned = c.poses_updated * kinds_[k].vertices;
     if (kinds_[k].site != SkinningSite::Gpu && config_.mode.skinning == SkinningSite::Gpu)
       c.copies_fallback = c.poses_updated;
     posed += c.poses_updated;
@@ -367,7 +421,11 @@ std::string CrowdBench::digest() const {
     if (!visible_[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
-    if (!gpu_skinned_copy(i)) {
+    if (kinds_[crowd_.kind[i]].site == SkinningSite::Baked) {
+      // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
+      BakedInstance instance = baked_instance(i);
+      fnv1a(hash, &instance, sizeof instance);
+    } else if (!gpu_skinned_copy(i)) {
       fnv1a(hash, skinned_positions(i).data(), skinned_positions(i).size_bytes());
       fnv1a(hash, skinned_normals(i).data(), skinned_normals(i).size_bytes());
     }

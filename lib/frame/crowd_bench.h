@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include "animation/bake.h"
 #include "animation/binding.h"
 #include "animation/local_pose.h"
 #include "animation/sampling.h"
@@ -35,6 +36,8 @@ struct BenchConfig {
   ModeSwitches mode;
   int threads = 1;  // worker threads when mode.parallel
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
+  // Mode `baked`: samples per second each action is baked at (--bake-rate).
+  float bake_rate_hz = kDefaultBakeRateHz;
   std::string camera = "default";
   Lens lens;  // Blender's: 35 mm on a 32 mm sensor fitted to the larger side
   float aspect = 16.0f / 9.0f;
@@ -54,7 +57,8 @@ struct BenchConfig {
 };
 
 // Empty when a bench of this config can run, else why not: switches that
-// conflict, or skinning on the GPU without a renderer.
+// conflict, skinning on the GPU without a renderer, a bake rate that is not a
+// positive number.
 std::string why_cannot_run(const BenchConfig& config);
 
 // Bytes a crowd would allocate, to refuse a scene before trying.
@@ -98,14 +102,43 @@ class CrowdBench {
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return visible_[copy] != 0; }
   // True when the renderer skins this character (mode hwskin and the character
-  // within its bone limit): its copies' skinned_positions() stay in the rest pose.
-  bool gpu_skinned_kind(size_t kind) const { return kinds_[kind].site == SkinningSite::Gpu; }
+  // within its bone limit, or compute, or baked): its copies' skinned_positions()
+  // stay in the rest pose.
+  bool gpu_skinned_kind(size_t kind) const { return skins_on_gpu(kinds_[kind].site); }
+  // Where this character's copies are skinned: the mode's site, or the CPU for
+  // a character over hwskin's bone limit.
+  SkinningSite site_of_kind(size_t kind) const { return kinds_[kind].site; }
   bool gpu_skinned_copy(size_t copy) const { return gpu_skinned_kind(crowd_.kind[copy]); }
   // Every character skinned by the renderer.
   bool gpu_skinned() const;
   std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
   std::span<const glm::vec3> skinned_positions(size_t copy) const;
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
+  // This frame's time of a copy on its action's clock (from the Logic stage).
+  float action_time(size_t copy) const { return times_[copy]; }
+
+  // Mode baked: each character's actions baked at load (a character without
+  // actions: its rest palette twice, one interval), null in other modes.
+  const BakedCharacter* baked(size_t kind) const { return kinds_[kind].baked.joints ? &kinds_[kind].baked : nullptr; }
+  // Where a copy reads its baked samples this frame: the action's first sample,
+  // its interval count and the position among them (baked_position).
+  struct BakedInstance {
+    uint32_t first_sample = 0, intervals = 1;
+    float position = 0.0f;
+  };
+  BakedInstance baked_instance(size_t copy) const;
+  // What baking cost and how far it strays (mode baked; zeros otherwise).
+  struct BakeSummary {
+    float rate_hz = 0.0f;
+    double bake_ms = 0.0;            // BakeJob over every action of every character
+    float max_deviation = 0.0f;      // model units, the worst character
+    float max_deviation_fraction = 0.0f;  // of that character's height, the worst character
+    uint64_t samples = 0;            // baked palettes, all characters
+  };
+  const BakeSummary& bake_summary() const { return bake_summary_; }
+  // What the renderer said it holds on the GPU for this bench's mode when it
+  // prepared for it (FrameRenderer::animation_gpu_bytes); 0 without one.
+  uint64_t animation_gpu_bytes() const { return animation_gpu_bytes_; }
 
  private:
   // The clock's switch to `category`, recording the stage it leaves when tracing.
@@ -121,10 +154,16 @@ class CrowdBench {
   // copy; `slot` picks the pose storage.
   void update_copy(size_t copy, size_t slot, uint64_t* lookups);
   void skin_copy(size_t copy);
+  // Mode baked, at load: bakes every character and measures the deviation.
+  void bake_characters();
   bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
   // Animated this frame: not culled, and its character has actions to play
   // (one without stands in its rest pose).
-  bool poses(size_t copy) const { return animates(copy) && !kinds_[crowd_.kind[copy]].bindings.empty(); }
+  // Baked copies are never posed on the CPU: the GPU reads their baked samples.
+  bool poses(size_t copy) const {
+    const Kind& kind = kinds_[crowd_.kind[copy]];
+    return animates(copy) && !kind.bindings.empty() && kind.site != SkinningSite::Baked;
+  }
   // The pose storage a copy is built in: its own, or its character's scratch.
   size_t slot_of(size_t copy) const {
     return config_.mode.pose == PoseStorage::SharedScratch ? crowd_.kind[copy] : copy;
@@ -141,6 +180,7 @@ class CrowdBench {
     SkinningSite site = SkinningSite::CpuInAnimations;
     std::vector<ActionBindings> bindings;  // per action
     SkinningPlan skinning_plan;            // the mesh prepared for skinning, once
+    BakedCharacter baked;                  // mode baked only
   };
 
   std::vector<const Character*> characters_;
@@ -153,6 +193,8 @@ class CrowdBench {
   size_t frame_ = 0;
   std::vector<Kind> kinds_;                   // per character
   std::vector<Counters> character_counters_;  // per character, the last frame's
+  BakeSummary bake_summary_;
+  uint64_t animation_gpu_bytes_ = 0;
 
   std::vector<float> times_;                  // per copy: where in its action
   std::vector<uint8_t> visible_;              // per copy, from the last scenegraph stage

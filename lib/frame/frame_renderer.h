@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "profile/counters.h"
 
@@ -17,6 +18,17 @@ class FrameRenderer {
   // Joints a character may have for the GPU to skin it (the vertex shader's
   // bone array); a character with more is skinned on the CPU instead.
   virtual size_t max_gpu_joints() const = 0;
+
+  // At load, from the bench's constructor (the bench is complete): upload what
+  // its mode needs and never changes (baked tables, per-copy placements) and
+  // make the buffers its frames fill. Throws GlUnavailable (gl_errors.h) when
+  // the context lacks a feature the mode needs, naming it.
+  virtual void prepare(const CrowdBench& bench) = 0;
+
+  // Bytes the renderer holds on the GPU for animation and skinning data: baked
+  // tables, palette, placement and instance buffers, compute output buffers
+  // (meshes and index buffers not counted).
+  virtual uint64_t animation_gpu_bytes() const = 0;
 
   // Rasterizer stage: send this frame's data and submit one draw per copy on
   // screen: skinned vertices when bench.gpu_skinned() is false, else skinning

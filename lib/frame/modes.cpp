@@ -12,14 +12,22 @@ constexpr ModeSwitches kCulled{Lookups::PerFrameString, true, PoseStorage::Share
                                SkinningSite::CpuInRasterizer};
 constexpr ModeSwitches kThreaded{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations};
 constexpr ModeSwitches kHwskin{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu};
+constexpr ModeSwitches kCompute{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Compute};
+constexpr ModeSwitches kBaked{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Baked};
 
-constexpr std::array<ModePreset, 4> kPresets = {{
+constexpr std::array<ModePreset, 6> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
+    {"compute", "threaded's poses, skinned by a compute shader into a vertex buffer, then one plain draw per copy "
+                "(as UPBGE and Unreal's GPU skin cache; no bone limit)",
+     kCompute},
+    {"baked", "actions baked into bone matrices at load; per frame each copy sends only its action and time, and the "
+              "vertex shader interpolates and skins, one instanced draw per character (no bone limit)",
+     kBaked},
 }};
 
 }  // namespace
@@ -53,6 +61,8 @@ std::string_view to_string(SkinningSite site) {
     case SkinningSite::CpuInRasterizer: return "rasterizer";
     case SkinningSite::CpuInAnimations: return "animations";
     case SkinningSite::Gpu: return "gpu";
+    case SkinningSite::Compute: return "compute";
+    case SkinningSite::Baked: return "baked";
   }
   return "?";
 }

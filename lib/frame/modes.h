@@ -26,7 +26,15 @@ enum class SkinningSite : uint8_t {
   CpuInRasterizer,  // the BGE before the thesis: deformers ran in the render stage
   CpuInAnimations,  // §4.3: skinning runs with the pose update, in parallel
   Gpu,              // §4.4: the vertex shader (needs a GL backend)
+  // Beyond the thesis (issue 12), both on the GPU, with no bone limit:
+  Compute,  // a compute pass skins every visible copy into a vertex buffer, then plain draws
+  Baked,    // actions baked at load; the vertex shader interpolates the baked matrices
 };
+
+// True for the sites where the GPU, not the CPU, skins vertices.
+constexpr bool skins_on_gpu(SkinningSite site) {
+  return site == SkinningSite::Gpu || site == SkinningSite::Compute || site == SkinningSite::Baked;
+}
 
 struct ModeSwitches {
   Lookups lookups = Lookups::Bundled;
@@ -44,11 +52,11 @@ struct ModePreset {
   ModeSwitches switches;
 };
 
-// master, culled, threaded, hwskin.
+// master, culled, threaded, hwskin, then compute and baked.
 std::span<const ModePreset> mode_presets();
 // Null when there is no such preset.
 const ModePreset* find_mode(std::string_view name);
-// "master, culled, threaded, hwskin".
+// "master, culled, threaded, hwskin, compute, baked".
 std::string mode_names();
 
 // Empty when the switches can run together, else why not (e.g. a shared scratch

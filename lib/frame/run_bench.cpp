@@ -99,6 +99,18 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
               {"sensor_fit", to_string(config.lens.fit)}};
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
+  if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {
+    run.gpu_skinning = {{"skinning", to_string(s.skinning)},
+                        {"gpu_bytes", bench.animation_gpu_bytes()}};
+    if (s.skinning == SkinningSite::Baked) {
+      const CrowdBench::BakeSummary& b = bench.bake_summary();
+      run.gpu_skinning["rate_hz"] = b.rate_hz;
+      run.gpu_skinning["samples"] = b.samples;
+      run.gpu_skinning["bake_ms"] = b.bake_ms;
+      run.gpu_skinning["max_deviation"] = b.max_deviation;
+      run.gpu_skinning["max_deviation_fraction"] = b.max_deviation_fraction;
+    }
+  }
   return run;
 }
 

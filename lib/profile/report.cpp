@@ -85,6 +85,19 @@ std::string format_profile(const RunReport& report) {
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
     out << "\n";
   }
+  if (run.gpu_skinning.is_object()) {
+    const nlohmann::json& g = run.gpu_skinning;
+    out << "skinning " << g.value("skinning", "") << " | " << g.value("gpu_bytes", uint64_t{0}) << " bytes on the GPU";
+    if (g.contains("rate_hz")) {
+      std::snprintf(line, sizeof line,
+                    " | baked at %g Hz (%llu samples) in %.1f ms | largest vertex deviation from exact sampling %.3g "
+                    "model units, %.3f%% of the character's height",
+                    g.value("rate_hz", 0.0), static_cast<unsigned long long>(g.value("samples", uint64_t{0})),
+                    g.value("bake_ms", 0.0), g.value("max_deviation", 0.0), 100.0 * g.value("max_deviation_fraction", 0.0));
+      out << line;
+    }
+    out << "\n";
+  }
   if (run.crowd.size() > 1) {
     std::snprintf(line, sizeof line, "%-28s %6s %6s %8s %9s %6s %6s %16s %9s\n", "file", "copies", "joints",
                   "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
@@ -170,6 +183,7 @@ nlohmann::json to_json(const RunReport& report) {
   j["crowd"] = crowd;
   j["mode"] = run.mode;
   j["switches"] = run.switches;
+  if (run.gpu_skinning.is_object()) j["gpu_skinning"] = run.gpu_skinning;
   j["threads"] = run.threads;
   j["frames"] = report.frames.size();
   j["warmup"] = run.warmup;

@@ -43,6 +43,11 @@ struct RunDescription {
   // When the run is of a scene file: its path and a hash of its contents.
   std::string scene_file, scene_hash;
   std::vector<CharacterRun> crowd;  // per character, in the scene's order
+  // Skinning compute or baked: what the GPU holds for it ("gpu_bytes") and, for
+  // baked, the bake (rate_hz, bake_ms, samples) and the largest vertex deviation
+  // from exact sampling (max_deviation in model units, max_deviation_fraction
+  // of the character's height). Null in other modes.
+  nlohmann::json gpu_skinning;
 };
 
 struct RunReport {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -39,12 +40,36 @@ void float_attribute(GLuint index, GLuint buffer, GLint components) {
   glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
 
-std::vector<ShaderStage> stages(const char* vertex, const std::string& defines) {
+std::vector<ShaderStage> stages(const char* vertex, const std::string& defines, const std::string& fragment_defines = "") {
   return {{GL_VERTEX_SHADER, vertex, with_defines(embedded_shader(vertex), defines)},
-          {GL_FRAGMENT_SHADER, "shaders/lit.frag", std::string(embedded_shader("shaders/lit.frag"))}};
+          {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
 }
 
+// The 3x4 upper part of a column-major matrix, as rows (the fourth row of an
+// affine matrix is always 0 0 0 1).
+void put_rows(const SkinMatrix& m, glm::vec4* rows) {
+  for (int r = 0; r < 3; ++r) rows[r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+}
+
+// The compute pass's vertex buffer holds at most this much (a batch of copies).
+constexpr size_t kComputeBudgetBytes = size_t{64} << 20;
+constexpr GLuint kComputeGroup = 64;  // skin.comp's local_size_x
+// Storage buffers each mode binds in one stage (skin.comp: rest, bones,
+// skinned; baked.vert: table, placements, instances).
+constexpr GLint kStorageBlocksNeeded = 3;
+
 }  // namespace
+
+std::string missing_gl_feature(SkinningSite site, const GlFeatureLimits& limits) {
+  if (site == SkinningSite::Compute && limits.compute_storage_blocks < kStorageBlocksNeeded)
+    return "compute shaders with " + std::to_string(kStorageBlocksNeeded) +
+           " shader storage buffers (GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS is " +
+           std::to_string(limits.compute_storage_blocks) + ")";
+  if (site == SkinningSite::Baked && limits.vertex_storage_blocks < kStorageBlocksNeeded)
+    return "shader storage buffers in the vertex shader, " + std::to_string(kStorageBlocksNeeded) +
+           " of them (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is " + std::to_string(limits.vertex_storage_blocks) + ")";
+  return {};
+}
 
 size_t gpu_joint_limit(GLint max_vertex_uniform_components, size_t cap) {
   size_t components = static_cast<size_t>(std::max(max_vertex_uniform_components, 0));
@@ -62,6 +87,12 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
   GLint uniform_components = 0;
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_COMPONENTS, &uniform_components);
   max_joints_ = gpu_joint_limit(uniform_components, config.joint_cap);
+  if (config.pretend_limits) {
+    limits_ = *config.pretend_limits;
+  } else {
+    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &limits_.compute_storage_blocks);
+    glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &limits_.vertex_storage_blocks);
+  }
 
   cpu_program_ = GlProgram(stages("shaders/crowd.vert", ""));
   cpu_model_ = cpu_program_.uniform("model");
@@ -102,20 +133,7 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
       gpu_colour_ = gpu_program_.uniform("base_colour");
       gpu_bones_ = gpu_program_.uniform("bones");
     }
-    const SkinnedMesh& mesh = characters[k]->mesh;
-    size_t vertices = kind.vertices;
-    glGenVertexArrays(1, &kind.gpu_vao);
-    glBindVertexArray(kind.gpu_vao);
-    kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
-    float_attribute(0, kind.rest_buffers[0], 3);
-    kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
-    float_attribute(1, kind.rest_buffers[1], 3);
-    kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(2);
-    glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
-    kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
-    float_attribute(3, kind.rest_buffers[3], 4);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+    make_rest_vao(k, characters[k]->mesh);
     max_fitting_joints = std::max(max_fitting_joints, kind.joints);
   }
   bone_rows_.resize(3 * max_fitting_joints);
@@ -130,14 +148,143 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
   check_gl("renderer set-up");
 }
 
+void GlCrowdRenderer::make_rest_vao(size_t k, const SkinnedMesh& mesh) {
+  Kind& kind = kinds_[k];
+  if (kind.gpu_vao) return;
+  size_t vertices = kind.vertices;
+  glGenVertexArrays(1, &kind.gpu_vao);
+  glBindVertexArray(kind.gpu_vao);
+  kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
+  float_attribute(0, kind.rest_buffers[0], 3);
+  kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
+  float_attribute(1, kind.rest_buffers[1], 3);
+  kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
+  kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
+  float_attribute(3, kind.rest_buffers[3], 4);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+  glBindVertexArray(0);
+}
+
 GlCrowdRenderer::~GlCrowdRenderer() {
   glDeleteVertexArrays(1, &cpu_vao_);
+  glDeleteVertexArrays(1, &compute_vao_);
   glDeleteBuffers(static_cast<GLsizei>(stream_.size()), stream_.data());
+  GLuint shared[] = {compute_bones_, compute_skinned_, placements_, instances_};
+  glDeleteBuffers(4, shared);
   for (Kind& kind : kinds_) {
     glDeleteVertexArrays(1, &kind.gpu_vao);
     glDeleteBuffers(1, &kind.indices);
     glDeleteBuffers(4, kind.rest_buffers);
+    glDeleteBuffers(1, &kind.rest_storage);
+    glDeleteBuffers(1, &kind.baked_table);
   }
+}
+
+void GlCrowdRenderer::prepare(const CrowdBench& bench) {
+  bool any_compute = false, any_baked = false;
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    any_compute |= bench.site_of_kind(k) == SkinningSite::Compute;
+    any_baked |= bench.site_of_kind(k) == SkinningSite::Baked;
+  }
+  for (SkinningSite site : {SkinningSite::Compute, SkinningSite::Baked})
+    if ((site == SkinningSite::Compute ? any_compute : any_baked))
+      if (std::string missing = missing_gl_feature(site, limits_); !missing.empty())
+        throw GlUnavailable("skinning " + std::string(to_string(site)) + " needs " + missing + ", which " +
+                            context_.renderer() + " lacks");
+  uint64_t bytes = 0;
+  size_t copies = bench.crowd().size();
+  if (any_compute) {
+    if (!compute_program_.id()) {
+      std::string source(embedded_shader("shaders/skin.comp"));
+      ShaderStage stage{GL_COMPUTE_SHADER, "shaders/skin.comp", source};
+      compute_program_ = GlProgram(std::span(&stage, 1));
+      compute_vertex_count_ = compute_program_.uniform("vertex_count");
+      compute_joint_count_ = compute_program_.uniform("joint_count");
+      // Positions and normals interleaved, 32 bytes a vertex: attribute 1 is 16 bytes in.
+      glGenVertexArrays(1, &compute_vao_);
+      glBindVertexArray(compute_vao_);
+      for (GLuint attribute : {0u, 1u}) {
+        glEnableVertexAttribArray(attribute);
+        glVertexAttribFormat(attribute, 3, GL_FLOAT, GL_FALSE, attribute * 16);
+        glVertexAttribBinding(attribute, 0);
+      }
+      glBindVertexArray(0);
+    }
+    size_t vertices = 1, joints = 1;
+    for (size_t k = 0; k < kinds_.size(); ++k) {
+      if (bench.site_of_kind(k) != SkinningSite::Compute) continue;
+      Kind& kind = kinds_[k];
+      vertices = std::max(vertices, kind.vertices);
+      joints = std::max(joints, kind.joints);
+      if (!kind.rest_storage) {
+        const SkinnedMesh& mesh = bench.characters()[k]->mesh;
+        std::vector<glm::vec4> rest(4 * kind.vertices);
+        for (size_t v = 0; v < kind.vertices; ++v) {
+          rest[4 * v] = glm::vec4(mesh.positions[v], 1.0f);
+          rest[4 * v + 1] = glm::vec4(mesh.normals[v], 0.0f);
+          glm::uvec4 j(mesh.joints[v]);
+          std::memcpy(&rest[4 * v + 2], &j, sizeof j);  // uvec4 in the shader: the bits, not the values
+          rest[4 * v + 3] = mesh.weights[v];
+        }
+        kind.rest_storage = make_buffer(GL_SHADER_STORAGE_BUFFER, rest.size() * sizeof(glm::vec4), rest.data(), GL_STATIC_DRAW);
+      }
+      bytes += kind.vertices * 4 * sizeof(glm::vec4);
+    }
+    size_t batch = std::clamp<size_t>(kComputeBudgetBytes / (vertices * 2 * sizeof(glm::vec4)), 1, std::max<size_t>(copies, 1));
+    batch = std::min<size_t>(batch, 65535);  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT[1] GL promises
+    if (batch != compute_batch_ || vertices != compute_vertices_ || joints != compute_joints_) {
+      glDeleteBuffers(1, &compute_bones_);
+      glDeleteBuffers(1, &compute_skinned_);
+      compute_bones_ = make_buffer(GL_SHADER_STORAGE_BUFFER, batch * joints * 3 * sizeof(glm::vec4), nullptr, GL_STREAM_DRAW);
+      compute_skinned_ = make_buffer(GL_SHADER_STORAGE_BUFFER, batch * vertices * 2 * sizeof(glm::vec4), nullptr, GL_STREAM_COPY);
+      compute_batch_ = batch;
+      compute_vertices_ = vertices;
+      compute_joints_ = joints;
+      compute_rows_.assign(batch * joints * 3, glm::vec4(0));
+    }
+    batch_copies_.reserve(copies);
+    bytes += compute_batch_ * (compute_joints_ * 3 + compute_vertices_ * 2) * sizeof(glm::vec4);
+  }
+  if (any_baked) {
+    if (!baked_program_.id()) {
+      baked_program_ = GlProgram(stages("shaders/baked.vert", "", "#define INSTANCED\n"));
+      baked_joint_count_ = baked_program_.uniform("joint_count");
+      baked_first_instance_ = baked_program_.uniform("first_instance");
+    }
+    for (size_t k = 0; k < kinds_.size(); ++k) {
+      const BakedCharacter* baked = bench.site_of_kind(k) == SkinningSite::Baked ? bench.baked(k) : nullptr;
+      if (!baked) continue;
+      Kind& kind = kinds_[k];
+      make_rest_vao(k, bench.characters()[k]->mesh);
+      std::vector<glm::vec4> rows(3 * baked->matrices.size());
+      for (size_t m = 0; m < baked->matrices.size(); ++m) put_rows(baked->matrices[m], &rows[3 * m]);
+      glDeleteBuffers(1, &kind.baked_table);
+      kind.baked_bytes = rows.size() * sizeof(glm::vec4);
+      kind.baked_table = make_buffer(GL_SHADER_STORAGE_BUFFER, kind.baked_bytes, rows.data(), GL_STATIC_DRAW);
+      bytes += kind.baked_bytes;
+    }
+    // Copies stand still: their placements go up once.
+    std::vector<glm::vec4> placements(5 * std::max<size_t>(copies, 1), glm::vec4(0));
+    for (size_t i = 0; i < copies; ++i) {
+      const glm::mat4& world = bench.crowd().world[i];
+      for (int c = 0; c < 4; ++c) placements[5 * i + static_cast<size_t>(c)] = world[c];
+      placements[5 * i + 4] = glm::vec4(kPalette[i % kPalette.size()], 1.0f);
+    }
+    glDeleteBuffers(1, &placements_);
+    placements_ = make_buffer(GL_SHADER_STORAGE_BUFFER, placements.size() * sizeof(glm::vec4), placements.data(), GL_STATIC_DRAW);
+    if (instance_capacity_ < std::max<size_t>(copies, 1)) {
+      instance_capacity_ = std::max<size_t>(copies, 1);
+      glDeleteBuffers(1, &instances_);
+      instances_ = make_buffer(GL_SHADER_STORAGE_BUFFER, instance_capacity_ * sizeof(InstanceRecord), nullptr, GL_STREAM_DRAW);
+    }
+    instance_records_.reserve(copies);
+    bytes += placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
+  }
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  animation_gpu_bytes_ = bytes;
+  check_gl("renderer set-up for skinning " + std::string(to_string(bench.config().mode.skinning)));
 }
 
 uint64_t GlCrowdRenderer::vertex_bytes_per_copy(size_t kind) const {
@@ -159,10 +306,15 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const Crowd& crowd = bench.crowd();
-  // Copies skinned on the CPU first, then those the vertex shader skins: one
-  // program switch a frame, whatever the mix.
-  bool any_cpu = false, any_gpu = false;
-  for (size_t k = 0; k < kinds_.size(); ++k) (bench.gpu_skinned_kind(k) ? any_gpu : any_cpu) = true;
+  // Copies skinned on the CPU first, then those the vertex shader skins, then
+  // the compute and baked passes: one program switch a frame (per pass), whatever the mix.
+  bool any_cpu = false, any_gpu = false, any_baked = false;
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    SkinningSite site = bench.site_of_kind(k);
+    any_cpu |= !bench.gpu_skinned_kind(k);
+    any_gpu |= site == SkinningSite::Gpu;
+    any_baked |= site == SkinningSite::Baked;
+  }
   if (any_cpu) {
     glUseProgram(cpu_program_.id());
     set_frame_uniforms(cpu_program_, bench);
@@ -175,8 +327,12 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     glUseProgram(gpu_program_.id());
     set_frame_uniforms(gpu_program_, bench);
     for (size_t i = 0; i < crowd.size(); ++i)
-      if (bench.visible(i) && bench.gpu_skinned_copy(i)) draw_copy_gpu_skinned(bench, i, counters);
+      if (bench.visible(i) && bench.site_of_kind(crowd.kind[i]) == SkinningSite::Gpu)
+        draw_copy_gpu_skinned(bench, i, counters);
   }
+  for (size_t k = 0; k < kinds_.size(); ++k)
+    if (bench.site_of_kind(k) == SkinningSite::Compute) draw_compute_skinned(bench, k, counters);
+  if (any_baked) draw_baked(bench, counters);
   glBindVertexArray(0);
   check_gl("Rasterizer");
 }
@@ -208,13 +364,8 @@ void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, C
   const Kind& kind = kinds_[k];
   if (!kind.gpu_vao) throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
   glBindVertexArray(kind.gpu_vao);
-  // The 3x4 upper part of each column-major matrix, as rows.
   std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
-  for (size_t j = 0; j < kind.joints; ++j)
-    for (int r = 0; r < 3; ++r) {
-      const SkinMatrix& m = palette[j];
-      bone_rows_[3 * j + static_cast<size_t>(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
-    }
+  for (size_t j = 0; j < kind.joints; ++j) put_rows(palette[j], &bone_rows_[3 * j]);
   if (kind.joints > 0)
     glUniform4fv(gpu_bones_, static_cast<GLsizei>(3 * kind.joints), glm::value_ptr(bone_rows_[0]));
   glUniformMatrix4fv(gpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
@@ -222,6 +373,98 @@ void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, C
   glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
   counters.bytes_uploaded += bone_bytes_per_copy(k);
   ++counters.draw_calls;
+}
+
+void GlCrowdRenderer::draw_compute_skinned(const CrowdBench& bench, size_t k, Counters& counters) {
+  const Kind& kind = kinds_[k];
+  if (!compute_program_.id() || kind.joints > compute_joints_ || kind.vertices > compute_vertices_)
+    throw GlError("compute skinning asked of a renderer not prepared for it");
+  const Crowd& crowd = bench.crowd();
+  batch_copies_.clear();
+  for (size_t i = 0; i < crowd.size(); ++i)
+    if (bench.visible(i) && crowd.kind[i] == k) batch_copies_.push_back(i);
+  auto vertices = static_cast<GLuint>(kind.vertices);
+  size_t copy_stride = kind.vertices * 2 * sizeof(glm::vec4);
+  for (size_t start = 0; start < batch_copies_.size(); start += compute_batch_) {
+    size_t count = std::min(compute_batch_, batch_copies_.size() - start);
+    for (size_t c = 0; c < count; ++c) {
+      std::span<const SkinMatrix> palette = bench.skinning_matrices(batch_copies_[start + c]);
+      for (size_t j = 0; j < kind.joints; ++j) put_rows(palette[j], &compute_rows_[3 * (c * kind.joints + j)]);
+    }
+    // Fresh storage for both buffers (orphaning): the last batch's draws may still read them.
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, compute_bones_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(compute_batch_ * compute_joints_ * 3 * sizeof(glm::vec4)),
+                 nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * kind.joints * 3 * sizeof(glm::vec4)),
+                    compute_rows_.data());
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, compute_skinned_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER,
+                 static_cast<GLsizeiptr>(compute_batch_ * compute_vertices_ * 2 * sizeof(glm::vec4)), nullptr,
+                 GL_STREAM_COPY);
+    glUseProgram(compute_program_.id());
+    glUniform1ui(compute_vertex_count_, vertices);
+    glUniform1ui(compute_joint_count_, static_cast<GLuint>(kind.joints));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kind.rest_storage);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, compute_bones_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, compute_skinned_);
+    glDispatchCompute((vertices + kComputeGroup - 1) / kComputeGroup, static_cast<GLuint>(count), 1);
+    // The draws below read what the pass wrote as vertex attributes.
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    glUseProgram(cpu_program_.id());
+    set_frame_uniforms(cpu_program_, bench);
+    glBindVertexArray(compute_vao_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+    for (size_t c = 0; c < count; ++c) {
+      size_t i = batch_copies_[start + c];
+      glBindVertexBuffer(0, compute_skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
+      glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+      glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+      glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
+      counters.bytes_uploaded += bone_bytes_per_copy(k);
+      ++counters.draw_calls;
+    }
+  }
+}
+
+void GlCrowdRenderer::draw_baked(const CrowdBench& bench, Counters& counters) {
+  if (!baked_program_.id()) throw GlError("baked skinning asked of a renderer not prepared for it");
+  const Crowd& crowd = bench.crowd();
+  // This frame's instances, grouped by character: one instanced draw each.
+  instance_records_.clear();
+  std::vector<size_t>& first = batch_copies_;  // reused: each character's first record, then the end
+  first.assign(kinds_.size() + 1, 0);
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    first[k] = instance_records_.size();
+    if (bench.site_of_kind(k) != SkinningSite::Baked) continue;
+    for (size_t i = 0; i < crowd.size(); ++i) {
+      if (!bench.visible(i) || crowd.kind[i] != k) continue;
+      CrowdBench::BakedInstance b = bench.baked_instance(i);
+      instance_records_.push_back({static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position});
+    }
+  }
+  first[kinds_.size()] = instance_records_.size();
+  if (instance_records_.empty()) return;
+  auto bytes = static_cast<GLsizeiptr>(instance_records_.size() * sizeof(InstanceRecord));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, instances_);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(instance_capacity_ * sizeof(InstanceRecord)), nullptr,
+               GL_STREAM_DRAW);  // orphaned, as the CPU path's buffers
+  glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, instance_records_.data());
+  counters.bytes_uploaded += static_cast<uint64_t>(bytes);
+  glUseProgram(baked_program_.id());
+  set_frame_uniforms(baked_program_, bench);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
+  for (size_t k = 0; k < kinds_.size(); ++k) {
+    auto count = static_cast<GLsizei>(first[k + 1] - first[k]);
+    if (count == 0) continue;
+    const Kind& kind = kinds_[k];
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, kind.baked_table);
+    glUniform1ui(baked_joint_count_, static_cast<GLuint>(kind.joints));
+    glUniform1ui(baked_first_instance_, static_cast<GLuint>(first[k]));
+    glBindVertexArray(kind.gpu_vao);
+    glDrawElementsInstanced(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr, count);
+    ++counters.draw_calls;
+  }
 }
 
 void GlCrowdRenderer::finish() {

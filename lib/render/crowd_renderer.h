@@ -5,11 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "asset/character.h"
 #include "frame/frame_renderer.h"
+#include "frame/modes.h"
 #include "render/framebuffer.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
@@ -20,11 +23,25 @@ namespace crowdprof {
 // What no copy covers, linear RGB 0..1 (the PNG holds it unchanged).
 inline constexpr float kBackground[3] = {0.09f, 0.10f, 0.12f};
 
+// What a context offers that modes compute and baked need beyond OpenGL 4.3
+// core (which requires both, but drivers have shipped with 0 vertex-stage
+// storage blocks): shader storage blocks per stage.
+struct GlFeatureLimits {
+  GLint compute_storage_blocks = 0;  // GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS (0: no compute shaders)
+  GLint vertex_storage_blocks = 0;   // GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS
+};
+
+// Empty when skinning `site` can run with `limits`, else the missing feature
+// in one phrase ("compute shaders with 3 storage buffers (this context offers 0)").
+std::string missing_gl_feature(SkinningSite site, const GlFeatureLimits& limits);
+
 struct RendererConfig {
   int width = 1600, height = 900;  // the thesis's window
   // The thesis's cap on the vertex shader's bone array. Tests lower it to make
   // a character fall back to CPU skinning.
   size_t joint_cap = 128;
+  // Tests: what the context is taken to offer, instead of asking it.
+  std::optional<GlFeatureLimits> pretend_limits;
 };
 
 // The bone limit of the thesis (4.4): half the vertex stage's uniform
@@ -48,6 +65,11 @@ class GlCrowdRenderer final : public FrameRenderer {
   GlCrowdRenderer& operator=(const GlCrowdRenderer&) = delete;
 
   size_t max_gpu_joints() const override { return max_joints_; }
+  // Modes compute and baked: checks the context (throws GlUnavailable naming
+  // the missing feature), builds their programs and buffers, and uploads the
+  // baked tables and every copy's placement.
+  void prepare(const CrowdBench& bench) override;
+  uint64_t animation_gpu_bytes() const override { return animation_gpu_bytes_; }
   // Uploads and draws every copy that bench.visible() says is on screen.
   // Throws GlError "GL error ... during Rasterizer".
   void draw(const CrowdBench& bench, Counters& counters) override;
@@ -70,6 +92,10 @@ class GlCrowdRenderer final : public FrameRenderer {
   void draw_copy_cpu_skinned(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
   void draw_copy_gpu_skinned(const CrowdBench& bench, size_t copy, Counters& counters);
   void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
+  void draw_compute_skinned(const CrowdBench& bench, size_t kind, Counters& counters);
+  void draw_baked(const CrowdBench& bench, Counters& counters);
+  // The rest mesh with joints and weights as vertex attributes (hwskin, baked).
+  void make_rest_vao(size_t kind, const SkinnedMesh& mesh);
 
   // What one character's copies are drawn with.
   struct Kind {
@@ -78,6 +104,9 @@ class GlCrowdRenderer final : public FrameRenderer {
     GLuint indices = 0;
     // GPU skinning: the rest mesh, uploaded once (when the character fits).
     GLuint gpu_vao = 0, rest_buffers[4] = {0, 0, 0, 0};
+    GLuint rest_storage = 0;  // compute: the rest mesh as a storage buffer, 64 bytes a vertex
+    GLuint baked_table = 0;   // baked: every sample's 3x4 rows, 48 bytes a joint
+    uint64_t baked_bytes = 0;
   };
 
   GlContext& context_;
@@ -92,6 +121,28 @@ class GlCrowdRenderer final : public FrameRenderer {
   GLuint cpu_vao_ = 0;
   std::vector<GLuint> stream_;
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
+
+  GlFeatureLimits limits_;
+  uint64_t animation_gpu_bytes_ = 0;  // of the last bench prepared
+  // compute: a batch of copies' palettes in, their skinned vertices out.
+  GlProgram compute_program_;
+  GLint compute_vertex_count_ = -1, compute_joint_count_ = -1;
+  GLuint compute_vao_ = 0, compute_bones_ = 0, compute_skinned_ = 0;
+  size_t compute_batch_ = 0, compute_vertices_ = 0, compute_joints_ = 0;  // sizes the buffers hold
+  std::vector<glm::vec4> compute_rows_;  // scratch: a batch's palettes
+  std::vector<size_t> batch_copies_;     // scratch: a kind's visible copies
+  // baked: placements (model, colour) of every copy, uploaded at prepare, and
+  // this frame's instances (copy, first sample, intervals, position).
+  GlProgram baked_program_;
+  GLint baked_joint_count_ = -1, baked_first_instance_ = -1;
+  GLuint placements_ = 0, instances_ = 0;
+  size_t instance_capacity_ = 0;
+  struct InstanceRecord {
+    uint32_t copy, first_sample, intervals;
+    float position;
+  };
+  static_assert(sizeof(InstanceRecord) == 16);
+  std::vector<InstanceRecord> instance_records_;  // scratch: this frame's, grouped by character
 };
 
 }  // namespace crowdprof

@@ -1,0 +1,69 @@
+#include "skinning/bake_deviation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "animation/pose.h"
+#include "skinning/skinning.h"
+
+namespace crowdprof {
+
+bool BakeDeviationJob::Validate() const {
+  if (!skeleton || !action || !plan || !cursor || !pose || !max_deviation || intervals == 0) return false;
+  size_t joints = skeleton->joint_count(), vertices = plan->vertex_count;
+  return targets.size() == action->channels.size() && baked.size() == (intervals + 1) * joints &&
+         model.size() == joints && exact.size() == joints && interpolated.size() == joints &&
+         pose->joint_count() == joints && cursor->keys.size() == action->channels.size() &&
+         exact_positions.size() == vertices && baked_positions.size() == vertices && normals.size() == vertices;
+}
+
+bool BakeDeviationJob::Run() const {
+  if (!Validate()) return false;
+  size_t joints = skeleton->joint_count(), vertices = plan->vertex_count;
+  float worst = *max_deviation;
+  for (size_t i = 0; i < intervals; ++i)
+    for (int p = 1; p <= kDeviationProbes; ++p) {
+      float position = static_cast<float>(i) + static_cast<float>(p) / (kDeviationProbes + 1);
+      float time = action->start + action->duration() * position / static_cast<float>(intervals);
+      reset_to_rest(*skeleton, pose);
+      SamplingJob{action, time, targets, cursor, pose}.Run();
+      LocalToModelJob{skeleton, pose, model}.Run();
+      SkinningMatricesJob{skeleton, model, exact}.Run();
+      BakedPaletteJob{baked, joints, position, interpolated}.Run();
+      SkinningJob{exact, plan, 0, vertices, exact_positions, normals}.Run();
+      SkinningJob{interpolated, plan, 0, vertices, baked_positions, normals}.Run();
+      for (size_t v = 0; v < vertices; ++v) worst = std::max(worst, glm::distance(exact_positions[v], baked_positions[v]));
+    }
+  *max_deviation = worst;
+  return true;
+}
+
+BakeDeviation measure_bake_deviation(const Character& character, std::span<const std::span<const int32_t>> targets,
+                                     const BakedCharacter& baked, const SkinningPlan& plan) {
+  BakeDeviation result;
+  const std::vector<glm::vec3>& rest = character.mesh.positions;
+  if (!rest.empty()) {
+    auto [low, high] = std::minmax_element(rest.begin(), rest.end(),
+                                           [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; });
+    result.height = high->y - low->y;
+  }
+  const Skeleton& skeleton = character.skeleton;
+  size_t joints = skeleton.joint_count(), vertices = plan.vertex_count;
+  LocalPose pose;
+  reset_to_rest(skeleton, &pose);
+  SamplingCursor cursor;
+  std::vector<glm::mat4> model(joints);
+  std::vector<SkinMatrix> exact(joints), interpolated(joints);
+  std::vector<glm::vec3> exact_positions(vertices), baked_positions(vertices), normals(vertices);
+  for (size_t a = 0; a < character.actions.size() && a < targets.size(); ++a) {
+    const Action& action = character.actions[a];
+    reset_cursor(action, &cursor);
+    BakeDeviationJob{&skeleton, &action, targets[a], baked.action(a), baked.intervals[a], &plan, &cursor, &pose,
+                     model, exact, interpolated, exact_positions, baked_positions, normals, &result.model_units}
+        .Run();
+  }
+  return result;
+}
+
+}  // namespace crowdprof

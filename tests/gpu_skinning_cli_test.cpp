@@ -1,0 +1,73 @@
+// Modes compute and baked from the outside (issue 12): the report's line and
+// JSON say what baking cost and how far it strays, bad rates and a missing
+// backend are refused with exit 2.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+using crowdprof::test::run_cli;
+
+namespace {
+
+std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
+
+nlohmann::json read_json(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
+  if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
+  auto json = crowdprof::test::scratch_dir("gpu_skinning_cli") / "baked.json";
+  auto r = run_cli("bench '" + scene() + "' -n 12 --mode baked --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--bake-rate 15 --json '" + json.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("skinning baked |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("baked at 15 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("largest vertex deviation from exact sampling"), std::string::npos) << r.out;
+  nlohmann::json j = read_json(json);
+  const nlohmann::json& g = j.at("gpu_skinning");
+  EXPECT_EQ(g.at("skinning"), "baked");
+  EXPECT_EQ(g.at("rate_hz"), 15.0);
+  EXPECT_GT(g.at("max_deviation").get<double>(), 0.0);
+  EXPECT_GT(g.at("max_deviation_fraction").get<double>(), 0.0);
+  EXPECT_LT(g.at("max_deviation_fraction").get<double>(), 0.05);  // a few percent would be visibly wrong
+  EXPECT_GT(g.at("gpu_bytes").get<uint64_t>(), 0u);
+  EXPECT_EQ(j.at("switches").at("skinning"), "baked");
+  const nlohmann::json& k = j.at("counters");
+  EXPECT_EQ(k.at("draw_calls"), 1);
+  EXPECT_EQ(k.at("bytes_uploaded").get<uint64_t>(), 16 * k.at("copies_visible").get<uint64_t>());
+  EXPECT_EQ(k.at("poses_updated"), 0);
+}
+
+TEST(GpuSkinningCli, ComputeReportsItsGpuMemory) {
+  if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
+  auto json = crowdprof::test::scratch_dir("gpu_skinning_cli") / "compute.json";
+  auto r = run_cli("bench '" + scene() + "' -n 6 --mode compute --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--json '" + json.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  nlohmann::json j = read_json(json);
+  EXPECT_EQ(j.at("gpu_skinning").at("skinning"), "compute");
+  EXPECT_FALSE(j.at("gpu_skinning").contains("max_deviation"));
+  EXPECT_EQ(j.at("counters").at("draw_calls"), j.at("counters").at("copies_visible"));
+}
+
+TEST(GpuSkinningCli, RefusesWhatCannotRun) {
+  for (const char* mode : {"compute", "baked"}) {
+    auto r = run_cli("bench '" + scene() + "' -n 2 --mode " + std::string(mode) + " --backend none --frames 1");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("needs a GL backend"), std::string::npos) << r.err;
+  }
+  for (const char* rate : {"0", "-3", "nan", "20000"}) {
+    auto r = run_cli("bench '" + scene() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
+    EXPECT_EQ(r.status, 2) << rate << ": " << r.err;
+    EXPECT_NE(r.err.find("--bake-rate"), std::string::npos) << r.err;
+  }
+}
