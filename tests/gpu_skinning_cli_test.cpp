@@ -3,6 +3,8 @@
 // backend are refused with exit 2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -69,5 +71,20 @@ TEST(GpuSkinningCli, RefusesWhatCannotRun) {
     auto r = run_cli("bench '" + scene() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
     EXPECT_EQ(r.status, 2) << rate << ": " << r.err;
     EXPECT_NE(r.err.find("--bake-rate"), std::string::npos) << r.err;
+  }
+}
+
+TEST(GpuSkinningCli, AGlWithoutWhatTheModeNeedsIsOneLineAndExit4) {
+  if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
+  for (auto [mode, hide, words] : {std::tuple{"compute", "compute", "needs compute shaders"},
+                                   std::tuple{"baked", "vertex-ssbo", "storage buffers in the vertex shader"}}) {
+    setenv("CROWDPROF_GL_HIDE", hide, 1);
+    auto r = run_cli("bench '" + scene() + "' -n 2 --mode " + std::string(mode) +
+                     " --backend auto --resolution 160x90 --frames 1 --warmup 0");
+    unsetenv("CROWDPROF_GL_HIDE");
+    EXPECT_EQ(r.status, 4) << mode << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "") << "nothing reported as measured";
   }
 }

@@ -12,16 +12,28 @@ constexpr ModeSwitches kCulled{Lookups::PerFrameString, true, PoseStorage::Share
                                SkinningSite::CpuInRasterizer};
 constexpr ModeSwitches kThreaded{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations};
 constexpr ModeSwitches kHwskin{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu};
-constexpr ModeSwitches kCompute{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Compute};
-constexpr ModeSwitches kBaked{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Baked};
+// Beyond the thesis: hwskin with its palettes in a shader storage buffer, then
+// also drawn instanced.
+constexpr ModeSwitches kBuffer{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
+                               PaletteStorage::Buffer, DrawMethod::PerCopy};
+constexpr ModeSwitches kInstanced{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
+                                  PaletteStorage::Buffer, DrawMethod::Instanced};
+// Skinned by a compute pass from palettes in a storage buffer, drawn per copy;
+// baked: every copy of a character in one instanced draw, reading baked tables.
+constexpr ModeSwitches kCompute{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Compute,
+                                PaletteStorage::Buffer, DrawMethod::PerCopy};
+constexpr ModeSwitches kBaked{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Baked,
+                              PaletteStorage::Buffer, DrawMethod::Instanced};
 
-constexpr std::array<ModePreset, 6> kPresets = {{
+constexpr std::array<ModePreset, 8> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
+    {"buffer", "hwskin with every copy's palette in one shader storage buffer: no 128-bone limit", kBuffer},
+    {"instanced", "buffer, drawn with one instanced draw call per character kind and material", kInstanced},
     {"compute", "threaded's poses, skinned by a compute shader into a vertex buffer, then one plain draw per copy "
                 "(as UPBGE and Unreal's GPU skin cache; no bone limit)",
      kCompute},
@@ -49,6 +61,20 @@ std::string mode_names() {
 std::string conflicts(const ModeSwitches& s) {
   if (s.parallel && s.pose == PoseStorage::SharedScratch)
     return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use --pose per-copy";
+  if (s.palettes == PaletteStorage::Buffer && !skins_on_gpu(s.skinning))
+    return "--palettes buffer holds the palettes the GPU skins with: it needs --skinning gpu, compute or baked";
+  if ((s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) && s.palettes != PaletteStorage::Buffer)
+    return "--skinning " + std::string(to_string(s.skinning)) +
+           " reads its matrices from shader storage buffers: it needs --palettes buffer";
+  if (s.skinning == SkinningSite::Compute && s.draw == DrawMethod::Instanced)
+    return "--skinning compute draws each copy from its own skinned vertices: it needs --draw per-copy";
+  if (s.skinning == SkinningSite::Baked && s.draw == DrawMethod::PerCopy)
+    return "--skinning baked draws every copy of a character in one instanced draw: it needs --draw instanced";
+  if (s.draw == DrawMethod::Instanced && s.skinning != SkinningSite::Gpu && s.skinning != SkinningSite::Baked)
+    return "--draw instanced draws copies that the GPU skins (CPU-skinned copies each have their own vertices): "
+           "it needs --skinning gpu or baked";
+  if (s.draw == DrawMethod::Instanced && s.palettes != PaletteStorage::Buffer)
+    return "--draw instanced reads each instance's palette from a buffer: it needs --palettes buffer";
   return {};
 }
 
@@ -66,5 +92,10 @@ std::string_view to_string(SkinningSite site) {
   }
   return "?";
 }
+
+std::string_view to_string(PaletteStorage palettes) {
+  return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
+}
+std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 
 }  // namespace crowdprof

@@ -40,9 +40,17 @@ void float_attribute(GLuint index, GLuint buffer, GLint components) {
   glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
 
-std::vector<ShaderStage> stages(const char* vertex, const std::string& defines, const std::string& fragment_defines = "") {
+std::vector<ShaderStage> stages(const char* vertex, const std::string& defines,
+                                const std::string& fragment_defines = {}) {
   return {{GL_VERTEX_SHADER, vertex, with_defines(embedded_shader(vertex), defines)},
           {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
+}
+
+// The buffer-palette programs: shaders/instances.glsl ahead of buffer_skin.vert.
+std::vector<ShaderStage> buffer_stages(bool instanced) {
+  std::string defines = instanced ? "#define INSTANCED\n#define COLOURS " + std::to_string(kPalette.size()) + "\n" : "";
+  defines += std::string(embedded_shader("shaders/instances.glsl"));
+  return stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
 
 // The 3x4 upper part of a column-major matrix, as rows (the fourth row of an
@@ -60,14 +68,15 @@ constexpr GLint kStorageBlocksNeeded = 3;
 
 }  // namespace
 
-std::string missing_gl_feature(SkinningSite site, const GlFeatureLimits& limits) {
-  if (site == SkinningSite::Compute && limits.compute_storage_blocks < kStorageBlocksNeeded)
+std::string missing_gl_feature(SkinningSite site, const GlFeatures& features) {
+  if (site == SkinningSite::Compute && features.compute_storage_blocks < kStorageBlocksNeeded)
     return "compute shaders with " + std::to_string(kStorageBlocksNeeded) +
            " shader storage buffers (GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS is " +
-           std::to_string(limits.compute_storage_blocks) + ")";
-  if (site == SkinningSite::Baked && limits.vertex_storage_blocks < kStorageBlocksNeeded)
+           std::to_string(features.compute_storage_blocks) + ")";
+  if (site == SkinningSite::Baked &&
+      (features.vertex_storage_blocks < kStorageBlocksNeeded || features.max_storage_block_bytes <= 0))
     return "shader storage buffers in the vertex shader, " + std::to_string(kStorageBlocksNeeded) +
-           " of them (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is " + std::to_string(limits.vertex_storage_blocks) + ")";
+           " of them (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is " + std::to_string(features.vertex_storage_blocks) + ")";
   return {};
 }
 
@@ -84,15 +93,10 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character,
 GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* const> characters, size_t copies,
                                  const RendererConfig& config)
     : context_(context), framebuffer_(config.width, config.height) {
+  features_ = read_gl_features(config.hide_features);
   GLint uniform_components = 0;
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_COMPONENTS, &uniform_components);
   max_joints_ = gpu_joint_limit(uniform_components, config.joint_cap);
-  if (config.pretend_limits) {
-    limits_ = *config.pretend_limits;
-  } else {
-    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &limits_.compute_storage_blocks);
-    glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &limits_.vertex_storage_blocks);
-  }
 
   cpu_program_ = GlProgram(stages("shaders/crowd.vert", ""));
   cpu_model_ = cpu_program_.uniform("model");
@@ -133,10 +137,22 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
       gpu_colour_ = gpu_program_.uniform("base_colour");
       gpu_bones_ = gpu_program_.uniform("bones");
     }
-    make_rest_vao(k, characters[k]->mesh);
+    make_rest_mesh(kind, characters[k]->mesh);
     max_fitting_joints = std::max(max_fitting_joints, kind.joints);
   }
   bone_rows_.resize(3 * max_fitting_joints);
+  // Buffer palettes know no bone limit: every character gets its rest mesh.
+  if (features_.storage_buffers()) {
+    buffer_program_ = GlProgram(buffer_stages(false));
+    buffer_model_ = buffer_program_.uniform("model");
+    buffer_colour_ = buffer_program_.uniform("base_colour");
+    buffer_base_ = buffer_program_.uniform("palette_base");
+    instanced_program_ = GlProgram(buffer_stages(true));
+    instanced_first_ = instanced_program_.uniform("first_instance");
+    for (size_t k = 0; k < kinds_.size(); ++k)
+      if (!kinds_[k].gpu_vao) make_rest_mesh(kinds_[k], characters[k]->mesh);
+  }
+  kind_counts_.resize(kinds_.size());
   glBindVertexArray(0);
 
   glEnable(GL_DEPTH_TEST);
@@ -148,9 +164,7 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
   check_gl("renderer set-up");
 }
 
-void GlCrowdRenderer::make_rest_vao(size_t k, const SkinnedMesh& mesh) {
-  Kind& kind = kinds_[k];
-  if (kind.gpu_vao) return;
+void GlCrowdRenderer::make_rest_mesh(Kind& kind, const SkinnedMesh& mesh) {
   size_t vertices = kind.vertices;
   glGenVertexArrays(1, &kind.gpu_vao);
   glBindVertexArray(kind.gpu_vao);
@@ -164,7 +178,23 @@ void GlCrowdRenderer::make_rest_vao(size_t k, const SkinnedMesh& mesh) {
   kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
   float_attribute(3, kind.rest_buffers[3], 4);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
-  glBindVertexArray(0);
+}
+
+size_t GlCrowdRenderer::max_gpu_joints(const ModeSwitches& mode) const {
+  if (mode.palettes == PaletteStorage::Uniforms) return max_joints_;
+  // One copy's palette must fit the storage block; the crowd's is checked when drawn.
+  return static_cast<size_t>(std::max<int64_t>(features_.max_storage_block_bytes, 0)) / (3 * sizeof(glm::vec4));
+}
+
+void GlCrowdRenderer::require(const ModeSwitches& mode) const {
+  if (std::string missing = missing_gl_feature(mode.skinning, features_); !missing.empty())
+    throw GlUnavailable("skinning " + std::string(to_string(mode.skinning)) + " needs " + missing + ", which " +
+                        context_.renderer() + " lacks");
+  if (mode.skinning != SkinningSite::Gpu || mode.palettes != PaletteStorage::Buffer) return;
+  if (!features_.storage_buffers())
+    throw GlUnavailable(context_.renderer() + " offers no shader storage buffers in the vertex stage "
+                        "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0), which --palettes buffer needs: use --palettes "
+                        "uniforms (mode hwskin)");
 }
 
 GlCrowdRenderer::~GlCrowdRenderer() {
@@ -188,11 +218,7 @@ void GlCrowdRenderer::prepare(const CrowdBench& bench) {
     any_compute |= bench.site_of_kind(k) == SkinningSite::Compute;
     any_baked |= bench.site_of_kind(k) == SkinningSite::Baked;
   }
-  for (SkinningSite site : {SkinningSite::Compute, SkinningSite::Baked})
-    if ((site == SkinningSite::Compute ? any_compute : any_baked))
-      if (std::string missing = missing_gl_feature(site, limits_); !missing.empty())
-        throw GlUnavailable("skinning " + std::string(to_string(site)) + " needs " + missing + ", which " +
-                            context_.renderer() + " lacks");
+  require(bench.config().mode);
   uint64_t bytes = 0;
   size_t copies = bench.crowd().size();
   if (any_compute) {
@@ -246,6 +272,7 @@ void GlCrowdRenderer::prepare(const CrowdBench& bench) {
     }
     batch_copies_.reserve(copies);
     bytes += compute_batch_ * (compute_joints_ * 3 + compute_vertices_ * 2) * sizeof(glm::vec4);
+    compute_gpu_bytes_ = bytes;
   }
   if (any_baked) {
     if (!baked_program_.id()) {
@@ -257,7 +284,7 @@ void GlCrowdRenderer::prepare(const CrowdBench& bench) {
       const BakedCharacter* baked = bench.site_of_kind(k) == SkinningSite::Baked ? bench.baked(k) : nullptr;
       if (!baked) continue;
       Kind& kind = kinds_[k];
-      make_rest_vao(k, bench.characters()[k]->mesh);
+      if (!kind.gpu_vao) make_rest_mesh(kind, bench.characters()[k]->mesh);
       std::vector<glm::vec4> rows(3 * baked->matrices.size());
       for (size_t m = 0; m < baked->matrices.size(); ++m) put_rows(baked->matrices[m], &rows[3 * m]);
       glDeleteBuffers(1, &kind.baked_table);
@@ -281,6 +308,7 @@ void GlCrowdRenderer::prepare(const CrowdBench& bench) {
     }
     instance_records_.reserve(copies);
     bytes += placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
+    baked_gpu_bytes_ = bytes - (any_compute ? compute_gpu_bytes_ : 0);
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   animation_gpu_bytes_ = bytes;
@@ -292,6 +320,9 @@ uint64_t GlCrowdRenderer::vertex_bytes_per_copy(size_t kind) const {
 }
 uint64_t GlCrowdRenderer::bone_bytes_per_copy(size_t kind) const {
   return kinds_[kind].joints * 3 * sizeof(glm::vec4) + sizeof(glm::mat4);
+}
+uint64_t GlCrowdRenderer::instance_bytes_per_copy(size_t kind) const {
+  return kinds_[kind].joints * 3 * sizeof(glm::vec4) + sizeof(GpuInstance);
 }
 
 void GlCrowdRenderer::set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const {
@@ -323,16 +354,26 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     for (size_t i = 0; i < crowd.size(); ++i)
       if (bench.visible(i) && !bench.gpu_skinned_copy(i)) draw_copy_cpu_skinned(bench, i, drawn++, counters);
   }
-  if (any_gpu) {
+  const ModeSwitches& mode = bench.config().mode;
+  if (any_gpu && mode.palettes == PaletteStorage::Uniforms) {
     glUseProgram(gpu_program_.id());
     set_frame_uniforms(gpu_program_, bench);
     for (size_t i = 0; i < crowd.size(); ++i)
       if (bench.visible(i) && bench.site_of_kind(crowd.kind[i]) == SkinningSite::Gpu)
         draw_copy_gpu_skinned(bench, i, counters);
+    counters.gpu_palette_bytes = 3 * sizeof(glm::vec4) * max_joints_;  // the uniform array
   }
+  if (any_gpu && mode.palettes == PaletteStorage::Buffer)
+    draw_buffer_palettes(bench, mode.draw == DrawMethod::Instanced, counters);
   for (size_t k = 0; k < kinds_.size(); ++k)
-    if (bench.site_of_kind(k) == SkinningSite::Compute) draw_compute_skinned(bench, k, counters);
-  if (any_baked) draw_baked(bench, counters);
+    if (bench.site_of_kind(k) == SkinningSite::Compute) {
+      draw_compute_skinned(bench, k, counters);
+      counters.gpu_palette_bytes = compute_gpu_bytes_;
+    }
+  if (any_baked) {
+    draw_baked(bench, counters);
+    counters.gpu_palette_bytes = baked_gpu_bytes_;
+  }
   glBindVertexArray(0);
   check_gl("Rasterizer");
 }
@@ -362,7 +403,8 @@ void GlCrowdRenderer::draw_copy_cpu_skinned(const CrowdBench& bench, size_t i, s
 void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, Counters& counters) {
   size_t k = bench.crowd().kind[i];
   const Kind& kind = kinds_[k];
-  if (!kind.gpu_vao) throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
+  if (!kind.gpu_vao || kind.joints > max_joints_)
+    throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
   glBindVertexArray(kind.gpu_vao);
   std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
   for (size_t j = 0; j < kind.joints; ++j) put_rows(palette[j], &bone_rows_[3 * j]);
@@ -465,6 +507,80 @@ void GlCrowdRenderer::draw_baked(const CrowdBench& bench, Counters& counters) {
     glDrawElementsInstanced(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr, count);
     ++counters.draw_calls;
   }
+}
+
+namespace {
+// Skinned in the vertex shader from a palette the CPU computed (hwskin, buffer,
+// instanced), not by compute or from baked samples.
+bool gpu_palette_copy(const CrowdBench& bench, size_t copy) {
+  return bench.site_of_kind(bench.crowd().kind[copy]) == SkinningSite::Gpu;
+}
+}  // namespace
+
+void GlCrowdRenderer::draw_buffer_palettes(const CrowdBench& bench, bool instanced, Counters& counters) {
+  require(bench.config().mode);
+  const Crowd& crowd = bench.crowd();
+  // Room for every copy the GPU skins, so that the frame's buffers never grow
+  // while the crowd turns on screen.
+  size_t copies = 0, rows = 0;
+  std::fill(kind_counts_.begin(), kind_counts_.end(), 0);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!gpu_palette_copy(bench, i)) continue;
+    ++copies;
+    rows += 3 * kinds_[crowd.kind[i]].joints;
+    kind_counts_[crowd.kind[i]] += bench.visible(i);
+  }
+  frame_buffers_.reserve(copies, rows, features_.max_storage_block_bytes);
+  frame_buffers_.begin(kind_counts_);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !gpu_palette_copy(bench, i)) continue;
+    size_t k = crowd.kind[i];
+    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
+    std::span<glm::vec4> out = frame_buffers_.add(k, crowd.world[i], static_cast<uint32_t>(i % kPalette.size()),
+                                                   3 * kinds_[k].joints);
+    // The 3x4 upper part of each column-major matrix, as rows (as the uniforms).
+    for (size_t j = 0; j < kinds_[k].joints; ++j)
+      for (int r = 0; r < 3; ++r) {
+        const SkinMatrix& m = palette[j];
+        out[3 * j + static_cast<size_t>(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+      }
+  }
+  uint64_t sent = frame_buffers_.upload(instanced);
+  if (instanced) {
+    glUseProgram(instanced_program_.id());
+    set_frame_uniforms(instanced_program_, bench);
+    glUniform3fv(instanced_program_.uniform("colours"), static_cast<GLsizei>(kPalette.size()),
+                 glm::value_ptr(kPalette[0]));
+    for (size_t k = 0; k < kinds_.size(); ++k) {
+      InstanceRun run = frame_buffers_.run(k);
+      if (run.count == 0) continue;
+      glBindVertexArray(kinds_[k].gpu_vao);
+      glUniform1ui(instanced_first_, run.first);
+      glDrawElementsInstanced(GL_TRIANGLES, kinds_[k].index_count, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(run.count));
+      ++counters.draw_calls;
+    }
+    counters.bytes_uploaded += sent;
+    counters.gpu_palette_bytes = frame_buffers_.gpu_bytes();
+    return;
+  }
+  glUseProgram(buffer_program_.id());
+  set_frame_uniforms(buffer_program_, bench);
+  std::vector<uint32_t>& next = kind_counts_;  // per kind, the next record to draw
+  for (size_t k = 0; k < kinds_.size(); ++k) next[k] = frame_buffers_.run(k).first;
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !gpu_palette_copy(bench, i)) continue;
+    size_t k = crowd.kind[i];
+    glBindVertexArray(kinds_[k].gpu_vao);
+    glUniform1ui(buffer_base_, frame_buffers_.palette_base(next[k]++));
+    glUniformMatrix4fv(buffer_model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+    glUniform3fv(buffer_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+    glDrawElements(GL_TRIANGLES, kinds_[k].index_count, GL_UNSIGNED_INT, nullptr);
+    counters.bytes_uploaded += sizeof(glm::mat4);  // the model matrix; the palette went in `sent`
+    ++counters.draw_calls;
+  }
+  counters.bytes_uploaded += sent;
+  counters.gpu_palette_bytes = frame_buffers_.palette_gpu_bytes();
 }
 
 void GlCrowdRenderer::finish() {

@@ -1,11 +1,14 @@
 // Draws the crowd with GL, one draw per copy on screen (the BGE drew each mesh
 // on its own too). Copies skinned on the CPU have their vertices uploaded every
 // frame; with skinning on the GPU (thesis 4.4) the rest mesh is uploaded once
-// and each frame sends only the skinning matrices, as a uniform array.
+// and each frame sends only the skinning matrices, as a uniform array, or
+// (--palettes buffer) every copy's palette in one shader storage buffer, drawn
+// per copy or (--draw instanced) with one instanced draw per character kind.
+// The mode's switches are read at every draw: one renderer draws every mode of
+// a compare in turn.
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,32 +19,26 @@
 #include "render/framebuffer.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
+#include "render/gl_features.h"
 #include "render/gl_program.h"
+#include "render/gpu_frame_buffers.h"
 
 namespace crowdprof {
 
 // What no copy covers, linear RGB 0..1 (the PNG holds it unchanged).
 inline constexpr float kBackground[3] = {0.09f, 0.10f, 0.12f};
 
-// What a context offers that modes compute and baked need beyond OpenGL 4.3
-// core (which requires both, but drivers have shipped with 0 vertex-stage
-// storage blocks): shader storage blocks per stage.
-struct GlFeatureLimits {
-  GLint compute_storage_blocks = 0;  // GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS (0: no compute shaders)
-  GLint vertex_storage_blocks = 0;   // GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS
-};
-
-// Empty when skinning `site` can run with `limits`, else the missing feature
-// in one phrase ("compute shaders with 3 storage buffers (this context offers 0)").
-std::string missing_gl_feature(SkinningSite site, const GlFeatureLimits& limits);
+// Empty when skinning `site` can run on a GL with `features`, else the missing
+// feature in one phrase ("compute shaders with 3 shader storage buffers (...)").
+std::string missing_gl_feature(SkinningSite site, const GlFeatures& features);
 
 struct RendererConfig {
   int width = 1600, height = 900;  // the thesis's window
   // The thesis's cap on the vertex shader's bone array. Tests lower it to make
   // a character fall back to CPU skinning.
   size_t joint_cap = 128;
-  // Tests: what the context is taken to offer, instead of asking it.
-  std::optional<GlFeatureLimits> pretend_limits;
+  // Features to act as if the GL lacked (gl_features.h; CROWDPROF_GL_HIDE).
+  std::string hide_features;
 };
 
 // The bone limit of the thesis (4.4): half the vertex stage's uniform
@@ -64,10 +61,12 @@ class GlCrowdRenderer final : public FrameRenderer {
   GlCrowdRenderer(const GlCrowdRenderer&) = delete;
   GlCrowdRenderer& operator=(const GlCrowdRenderer&) = delete;
 
-  size_t max_gpu_joints() const override { return max_joints_; }
-  // Modes compute and baked: checks the context (throws GlUnavailable naming
-  // the missing feature), builds their programs and buffers, and uploads the
-  // baked tables and every copy's placement.
+  size_t max_gpu_joints(const ModeSwitches& mode) const override;
+  // Throws GlUnavailable naming the feature the mode needs that the GL lacks.
+  void require(const ModeSwitches& mode) const override;
+  const GlFeatures& features() const { return features_; }
+  // Modes compute and baked: builds their programs and buffers, and uploads
+  // the baked tables and every copy's placement.
   void prepare(const CrowdBench& bench) override;
   uint64_t animation_gpu_bytes() const override { return animation_gpu_bytes_; }
   // Uploads and draws every copy that bench.visible() says is on screen.
@@ -87,15 +86,17 @@ class GlCrowdRenderer final : public FrameRenderer {
   // each); plus its world matrix.
   uint64_t vertex_bytes_per_copy(size_t kind = 0) const;
   uint64_t bone_bytes_per_copy(size_t kind = 0) const;
+  // Instanced drawing: the palette and the instance record.
+  uint64_t instance_bytes_per_copy(size_t kind = 0) const;
 
  private:
   void draw_copy_cpu_skinned(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
   void draw_copy_gpu_skinned(const CrowdBench& bench, size_t copy, Counters& counters);
+  // The GPU-skinned copies with their palettes in frame_buffers_: per copy or instanced.
+  void draw_buffer_palettes(const CrowdBench& bench, bool instanced, Counters& counters);
   void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
   void draw_compute_skinned(const CrowdBench& bench, size_t kind, Counters& counters);
   void draw_baked(const CrowdBench& bench, Counters& counters);
-  // The rest mesh with joints and weights as vertex attributes (hwskin, baked).
-  void make_rest_vao(size_t kind, const SkinnedMesh& mesh);
 
   // What one character's copies are drawn with.
   struct Kind {
@@ -109,12 +110,21 @@ class GlCrowdRenderer final : public FrameRenderer {
     uint64_t baked_bytes = 0;
   };
 
+  // The rest mesh, joints and weights of a GPU-skinned character, uploaded once.
+  void make_rest_mesh(Kind& kind, const SkinnedMesh& mesh);
+
   GlContext& context_;
   Framebuffer framebuffer_;
   size_t max_joints_ = 0;
   std::vector<Kind> kinds_;  // per character
+  GlFeatures features_;
   GlProgram cpu_program_, gpu_program_;
   GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
+  // --palettes buffer: per copy and instanced (when the GL has vertex SSBOs).
+  GlProgram buffer_program_, instanced_program_;
+  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1, instanced_first_ = -1;
+  GpuFrameBuffers frame_buffers_;
+  std::vector<uint32_t> kind_counts_;  // scratch: GPU-skinned copies on screen per kind
   // CPU-skinned copies: a buffer per drawn copy (positions, then normals),
   // orphaned and refilled every frame. With more copies on screen than
   // buffers, buffers serve several copies.
@@ -122,8 +132,8 @@ class GlCrowdRenderer final : public FrameRenderer {
   std::vector<GLuint> stream_;
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
 
-  GlFeatureLimits limits_;
   uint64_t animation_gpu_bytes_ = 0;  // of the last bench prepared
+  uint64_t compute_gpu_bytes_ = 0, baked_gpu_bytes_ = 0;  // what each of those modes holds
   // compute: a batch of copies' palettes in, their skinned vertices out.
   GlProgram compute_program_;
   GLint compute_vertex_count_ = -1, compute_joint_count_ = -1;

@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # The numbers of docs/rendering.md and docs/performance.md for the GPU skinning
-# modes of issue 12 (hwskin for reference, compute, baked): 160 and 1,000 copies
+# modes of issue 12 (threaded and hwskin for reference, buffer, instanced, compute,
+# baked): 160 and 1,000 copies
 # of scenes/humanoid.glb drawn at 1600x900 with the default backend (llvmpipe
 # without a GPU), median frame, the CPU categories, draw calls, bytes uploaded,
 # GPU memory, bake time and deviation, and the GPU timer when the result has one.
 # Not run by CI; about 2 minutes on the 2-core machine.
 #
 #   tests/scripts/measure_gpu_skinning.sh [CROWDPROF]   (default build/crowdprof)
-#   MODES="threaded hwskin compute baked" COPIES="160 1000" OUT=folder for the JSON
+#   MODES="threaded hwskin buffer instanced compute baked" COPIES="160 1000" OUT=folder for the JSON
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 bin=${1:-build/crowdprof}
-modes=${MODES:-threaded hwskin compute baked}
+modes=${MODES:-threaded hwskin buffer instanced compute baked}
 copies_list=${COPIES:-160 1000}
 out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
