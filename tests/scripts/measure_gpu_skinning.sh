@@ -33,7 +33,7 @@ for copies in copies_list:
     for mode in modes:
         r = json.load(open(f"{out}/{mode}-{copies}.json"))
         c, k, g = r["categories"], r["counters"], r.get("gpu_skinning", {})
-        gpu = r.get("gpu", {}).get("median_ms") if isinstance(r.get("gpu"), dict) else None
+        gpu = r.get("gpu_time", {}).get("median_ms") if isinstance(r.get("gpu_time"), dict) else None
         dev = (f'{g["max_deviation"]:.4g} ({100 * g["max_deviation_fraction"]:.3f}% of height)'
                if "max_deviation" in g else "")
         print(f'| {mode} | {copies} | {r["frame"]["median_ms"]:.1f} | {c["Animations"]["median_ms"]:.1f} | '
