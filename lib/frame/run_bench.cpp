@@ -88,7 +88,9 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                   {"culling", s.animation_culling},
                   {"pose", to_string(s.pose)},
                   {"parallel", s.parallel},
-                  {"skinning", to_string(s.skinning)}};
+                  {"skinning", to_string(s.skinning)},
+                  {"palettes", to_string(s.palettes)},
+                  {"draw", to_string(s.draw)}};
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;
