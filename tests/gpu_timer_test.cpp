@@ -11,6 +11,7 @@
 #include "frame/compare.h"
 #include "frame/run_bench.h"
 #include "gen/humanoid.h"
+#include "profile/compare_report.h"
 #include "profile/report.h"
 #include "render_support.h"
 #include "test_support.h"
@@ -141,4 +142,12 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
     for (const FrameRecord& f : report.frames)
       EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << report.run.mode;
   }
+  // compare's table shows it beside the categories; without a timer, no column.
+  Comparison comparison;
+  comparison.runs = reports;
+  std::string table = format_comparison(comparison);
+  EXPECT_NE(table.find("gpu_latency_ms  gpu_ms"), std::string::npos) << table;
+  for (RunReport& report : comparison.runs)
+    for (FrameRecord& f : report.frames) f.gpu_ms = std::nan("");
+  EXPECT_EQ(format_comparison(comparison).find("gpu_ms"), std::string::npos);
 }
