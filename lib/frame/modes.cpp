@@ -6,20 +6,52 @@ namespace crowdprof {
 
 namespace {
 
-constexpr ModeSwitches kMaster{Lookups::PerFrameString, false, PoseStorage::SharedScratch, false,
-                               SkinningSite::CpuInRasterizer};
-constexpr ModeSwitches kCulled{Lookups::PerFrameString, true, PoseStorage::SharedScratch, false,
-                               SkinningSite::CpuInRasterizer};
-constexpr ModeSwitches kThreaded{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations};
-constexpr ModeSwitches kHwskin{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu};
+// The thesis's switches; the rest keep their defaults (off).
+constexpr ModeSwitches thesis(Lookups lookups, bool culling, PoseStorage pose, bool parallel, SkinningSite skinning) {
+  ModeSwitches s;
+  s.lookups = lookups;
+  s.animation_culling = culling;
+  s.pose = pose;
+  s.parallel = parallel;
+  s.skinning = skinning;
+  return s;
+}
 
-constexpr std::array<ModePreset, 4> kPresets = {{
+constexpr ModeSwitches kMaster = thesis(Lookups::PerFrameString, false, PoseStorage::SharedScratch, false,
+                                        SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kCulled = thesis(Lookups::PerFrameString, true, PoseStorage::SharedScratch, false,
+                                        SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kThreaded =
+    thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations);
+constexpr ModeSwitches kHwskin = thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu);
+// threaded, and copies in the same (action, time) share one pose and one mesh.
+constexpr ModeSwitches kShared = [] {
+  ModeSwitches s = kThreaded;
+  s.share_poses = true;
+  return s;
+}();
+// shared with times snapped to 1/30 s, update-rate LOD, and 2 ms for Animations.
+constexpr ModeSwitches kBudget = [] {
+  ModeSwitches s = kShared;
+  s.share_quantum_s = 1.0 / 30.0;
+  s.update_lod = true;
+  s.anim_budget_ms = 2.0;
+  return s;
+}();
+
+constexpr std::array<ModePreset, 6> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
+    {"shared", "threaded plus animation sharing: one pose and one skinned mesh per (action, time), drawn by every "
+               "copy in that state",
+     kShared},
+    {"budget", "shared with times snapped to 1/30 s, update-rate LOD (small copies every 2nd to 8th frame, held "
+               "between) and Animations kept under 2 ms by updating the smallest copies less often",
+     kBudget},
 }};
 
 }  // namespace
@@ -41,6 +73,8 @@ std::string mode_names() {
 std::string conflicts(const ModeSwitches& s) {
   if (s.parallel && s.pose == PoseStorage::SharedScratch)
     return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use --pose per-copy";
+  if (s.share_quantum_s > 0 && !s.share_poses)
+    return "--share-quantum snaps times so that copies share poses: it needs --share on";
   return {};
 }
 
