@@ -10,6 +10,7 @@
 #include "asset/gltf_loader.h"
 #include "output/output_file.h"
 #include "render/gl_context.h"
+#include "render/gl_features.h"
 #include "scene/camera.h"
 
 using crowdprof::UsageError;
@@ -32,7 +33,9 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--fps", o.fps,
                  "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible")
       ->capture_default_str();
-  cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin (see docs/modes.md)")
+  cmd.add_option("--mode", o.mode,
+                 "Preset of switches: master, culled, threaded, hwskin (the thesis's), buffer, instanced (see "
+                 "docs/modes.md)")
       ->capture_default_str();
   cmd.add_option("--threads", o.threads, "Worker threads for parallel modes (default: all cores)");
   cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close (a few "
@@ -51,6 +54,12 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
   cmd.add_option("--parallel", o.parallel, "Override the mode: on or off (oneTBB over copies)");
   cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there) or gpu");
+  cmd.add_option("--palettes", o.palettes,
+                 "Override the mode: uniforms (a uniform array per draw, 128 bones at most) or buffer (one shader "
+                 "storage buffer, no bone limit); for skinning on the GPU");
+  cmd.add_option("--draw", o.draw,
+                 "Override the mode: per-copy (a draw call per copy) or instanced (one per character kind; needs "
+                 "--palettes buffer)");
   cmd.add_option("--share", o.share,
                  "Override the mode: on or off (animation sharing: copies in the same action and time share one pose "
                  "and one skinned mesh)");
@@ -191,6 +200,12 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
     config.mode.skinning = parse_choice<SkinningSite>(
         o.skinning, "--skinning",
         {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
+  if (!o.palettes.empty())
+    config.mode.palettes = parse_choice<PaletteStorage>(
+        o.palettes, "--palettes", {{"uniforms", PaletteStorage::Uniforms}, {"buffer", PaletteStorage::Buffer}});
+  if (!o.draw.empty())
+    config.mode.draw =
+        parse_choice<DrawMethod>(o.draw, "--draw", {{"per-copy", DrawMethod::PerCopy}, {"instanced", DrawMethod::Instanced}});
   if (!o.share.empty()) config.mode.share_poses = parse_on_off(o.share, "--share");
   if (!o.share_quantum.empty()) config.mode.share_quantum_s = parse_share_quantum(o.share_quantum);
   if (!o.update_lod.empty()) config.mode.update_lod = parse_on_off(o.update_lod, "--update-lod");
@@ -319,6 +334,7 @@ crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const B
   using namespace crowdprof;
   RendererConfig renderer;
   std::tie(renderer.width, renderer.height) = parse_resolution(o.resolution);
+  renderer.hide_features = gl_hide_from_environment();
   std::string warning;
   BenchRendering rendering = open_rendering(*parse_backend(o.backend), scene.characters, config.crowd.copies, renderer, &warning);
   if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";

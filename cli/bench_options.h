@@ -39,7 +39,7 @@ struct BenchCliOptions {
   bool allow_static = false;
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
-  std::string lookups, culling, pose, parallel, skinning;
+  std::string lookups, culling, pose, parallel, skinning, palettes, draw;
   // Issue 13's switches (docs/modes.md); empty keeps the mode's.
   std::string share, share_quantum, update_lod, lod_thresholds, anim_budget;
   std::string csv, json, trace;

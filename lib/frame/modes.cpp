@@ -24,6 +24,18 @@ constexpr ModeSwitches kCulled = thesis(Lookups::PerFrameString, true, PoseStora
 constexpr ModeSwitches kThreaded =
     thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations);
 constexpr ModeSwitches kHwskin = thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu);
+// Beyond the thesis: hwskin with its palettes in a shader storage buffer, then
+// also drawn instanced.
+constexpr ModeSwitches kBuffer = [] {
+  ModeSwitches s = kHwskin;
+  s.palettes = PaletteStorage::Buffer;
+  return s;
+}();
+constexpr ModeSwitches kInstanced = [] {
+  ModeSwitches s = kBuffer;
+  s.draw = DrawMethod::Instanced;
+  return s;
+}();
 // threaded, and copies in the same (action, time) share one pose and one mesh.
 constexpr ModeSwitches kShared = [] {
   ModeSwitches s = kThreaded;
@@ -39,13 +51,15 @@ constexpr ModeSwitches kBudget = [] {
   return s;
 }();
 
-constexpr std::array<ModePreset, 6> kPresets = {{
+constexpr std::array<ModePreset, 8> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
+    {"buffer", "hwskin with every copy's palette in one shader storage buffer: no 128-bone limit", kBuffer},
+    {"instanced", "buffer, drawn with one instanced draw call per character kind and material", kInstanced},
     {"shared", "threaded plus animation sharing: one pose and one skinned mesh per (action, time), drawn by every "
                "copy in that state",
      kShared},
@@ -73,6 +87,13 @@ std::string mode_names() {
 std::string conflicts(const ModeSwitches& s) {
   if (s.parallel && s.pose == PoseStorage::SharedScratch)
     return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use --pose per-copy";
+  if (s.palettes == PaletteStorage::Buffer && s.skinning != SkinningSite::Gpu)
+    return "--palettes buffer holds the palettes the GPU skins with: it needs --skinning gpu";
+  if (s.draw == DrawMethod::Instanced && s.skinning != SkinningSite::Gpu)
+    return "--draw instanced draws copies that the GPU skins (CPU-skinned copies each have their own vertices): "
+           "it needs --skinning gpu";
+  if (s.draw == DrawMethod::Instanced && s.palettes != PaletteStorage::Buffer)
+    return "--draw instanced reads each instance's palette from a buffer: it needs --palettes buffer";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "--share-quantum snaps times so that copies share poses: it needs --share on";
   return {};
@@ -90,5 +111,10 @@ std::string_view to_string(SkinningSite site) {
   }
   return "?";
 }
+
+std::string_view to_string(PaletteStorage palettes) {
+  return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
+}
+std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 
 }  // namespace crowdprof

@@ -28,6 +28,20 @@ enum class SkinningSite : uint8_t {
   Gpu,              // §4.4: the vertex shader (needs a GL backend)
 };
 
+// Where the skinning matrices of copies skinned on the GPU live (beyond the
+// thesis, whose own future work names buffers for more bones).
+enum class PaletteStorage : uint8_t {
+  Uniforms,  // 4.4: a uniform array per draw, at most 128 bones
+  Buffer,    // one shader storage buffer (SSBO) for every copy: no bone limit
+};
+
+// How copies skinned on the GPU are submitted.
+enum class DrawMethod : uint8_t {
+  PerCopy,    // one draw call per copy on screen, as the BGE drew
+  Instanced,  // one draw call per character kind and material; each instance
+              // reads its transform and palette offset from a buffer
+};
+
 // Update-rate LOD (issue 13): a copy whose box spans at least lod[0] of the
 // screen's height is updated every frame, at least lod[1] every 2nd frame, at
 // least lod[2] every 4th, smaller ones every 8th. Between updates a copy holds
@@ -43,6 +57,8 @@ struct ModeSwitches {
   PoseStorage pose = PoseStorage::PerCopy;
   bool parallel = false;  // pose updates (and CPU skinning in Animations) on oneTBB
   SkinningSite skinning = SkinningSite::CpuInAnimations;
+  PaletteStorage palettes = PaletteStorage::Uniforms;
+  DrawMethod draw = DrawMethod::PerCopy;
   // Animation sharing (issue 13): copies showing the same action at the same
   // time share one pose evaluation and one skinned mesh.
   bool share_poses = false;
@@ -64,11 +80,11 @@ struct ModePreset {
   ModeSwitches switches;
 };
 
-// master, culled, threaded, hwskin, shared, budget.
+// master, culled, threaded, hwskin (the thesis's), then buffer, instanced, shared, budget.
 std::span<const ModePreset> mode_presets();
 // Null when there is no such preset.
 const ModePreset* find_mode(std::string_view name);
-// "master, culled, threaded, hwskin, shared, budget".
+// "master, culled, threaded, hwskin, buffer, instanced, shared, budget".
 std::string mode_names();
 
 // Empty when the switches can run together, else why not (e.g. a shared scratch
@@ -78,5 +94,7 @@ std::string conflicts(const ModeSwitches& switches);
 std::string_view to_string(Lookups lookups);
 std::string_view to_string(PoseStorage pose);
 std::string_view to_string(SkinningSite site);
+std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
+std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
 
 }  // namespace crowdprof

@@ -96,7 +96,9 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                   {"culling", s.animation_culling},
                   {"pose", to_string(s.pose)},
                   {"parallel", s.parallel},
-                  {"skinning", to_string(s.skinning)}};
+                  {"skinning", to_string(s.skinning)},
+                  {"palettes", to_string(s.palettes)},
+                  {"draw", to_string(s.draw)}};
   // Issue 13's switches only when set away from their defaults, so that
   // results recorded before them still match the same mode.
   const ModeSwitches plain;

@@ -19,6 +19,10 @@ struct Counters {
   uint64_t bytes_uploaded = 0;    // vertex data and bone matrices sent to the GPU
   uint64_t draw_calls = 0;
   uint64_t copies_fallback = 0;   // copies skinned on the CPU although the mode skins on the GPU
+  // GPU memory the palettes of GPU-skinned copies live in: the uniform array
+  // (--palettes uniforms), or the storage buffers of every copy's palette (and
+  // with --draw instanced, their instance records); 0 when none is skinned there.
+  uint64_t gpu_palette_bytes = 0;
   // Issue 13: copies that took a new pose this frame (shared or their own),
   // copies on their update-rate LOD or budget's off frame that held their last
   // one, and the updates by the period the copy was at (every 1 to 64 frames).
@@ -33,7 +37,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 17> kCounterFields = {{
+inline constexpr std::array<CounterField, 18> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -42,6 +46,7 @@ inline constexpr std::array<CounterField, 17> kCounterFields = {{
     {"bytes_uploaded", &Counters::bytes_uploaded},
     {"draw_calls", &Counters::draw_calls},
     {"copies_fallback", &Counters::copies_fallback},
+    {"gpu_palette_bytes", &Counters::gpu_palette_bytes},
     {"copies_updated", &Counters::copies_updated},
     {"copies_held", &Counters::copies_held},
     {"updates_every_1", &Counters::updates_every_1},
