@@ -243,6 +243,8 @@ FrameRecord CrowdBench::step() {
   if (config_.renderer) config_.renderer->finish();
   enter(Category::Overhead);
   count_work(counters);
+  // Timer queries of earlier frames that have finished; never waits for one.
+  gpu_time_count_ = config_.renderer ? config_.renderer->take_gpu_times(*this, frame_, gpu_times_, false) : 0;
   ++frame_;
   // Between frames (reports, progress) is outside the engine's frame.
   enter(Category::Outside);
@@ -254,6 +256,14 @@ FrameRecord CrowdBench::step() {
   last_animations_ms_ = record.times.ms[static_cast<size_t>(Category::Animations)];
   last_updates_ = counters.copies_updated;
   return record;
+}
+
+void CrowdBench::collect_gpu_times() {
+  gpu_time_count_ = config_.renderer ? config_.renderer->take_gpu_times(*this, frame_, gpu_times_, true) : 0;
+}
+
+std::string CrowdBench::gpu_timing_missing() const {
+  return config_.renderer ? config_.renderer->gpu_timing_missing() : "no GL backend (--backend none)";
 }
 
 void CrowdBench::enter(Category category) {

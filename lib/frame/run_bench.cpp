@@ -117,6 +117,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
               {"sensor_width_mm", config.lens.sensor_width_mm},
               {"sensor_height_mm", config.lens.sensor_height_mm},
               {"sensor_fit", to_string(config.lens.fit)}};
+  run.gpu_timing_missing = bench.gpu_timing_missing();
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
   return run;
@@ -141,6 +142,11 @@ void record_animation(const CrowdBench& bench, RunReport& report) {
                       {"copies_deviating", fidelity.copies_deviating}};
 }
 
+void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
+  for (const GpuTime& t : bench.gpu_times())
+    if (t.frame >= warmup && t.frame - warmup < frames.size()) frames[t.frame - warmup].gpu_ms = t.ms;
+}
+
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {
   RunReport report;
   report.run = describe_run(bench, file);
@@ -156,8 +162,11 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
     }
     FrameRecord record = bench.step();
     if (i >= options.warmup) report.frames.push_back(record);
+    place_gpu_times(bench, options.warmup, report.frames);
     if (options.progress) options.progress(i + 1, total);
   }
+  bench.collect_gpu_times();
+  place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
   record_character_counters(bench, report.run);
   record_animation(bench, report);
