@@ -202,7 +202,8 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   if (!o.skinning.empty())
     config.mode.skinning = parse_choice<SkinningSite>(
         o.skinning, "--skinning",
-        {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
+        {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu},
+         {"compute", SkinningSite::Compute}, {"baked", SkinningSite::Baked}});
   if (!o.palettes.empty())
     config.mode.palettes = parse_choice<PaletteStorage>(
         o.palettes, "--palettes", {{"uniforms", PaletteStorage::Uniforms}, {"buffer", PaletteStorage::Buffer}});

@@ -67,6 +67,14 @@ TEST(GpuSkinningCli, RefusesWhatCannotRun) {
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find("needs a GL backend"), std::string::npos) << r.err;
   }
+  // The switch on its own, over another preset: parsed, then refused for want of GL.
+  auto r = run_cli("bench '" + scene() + "' -n 2 --mode hwskin --skinning baked --palettes buffer --draw instanced "
+                   "--backend none --frames 1");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("skinning baked) needs a GL backend"), std::string::npos) << r.err;
+  r = run_cli("bench '" + scene() + "' -n 2 --mode threaded --skinning compute --backend none --frames 1");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--skinning compute reads its matrices from shader storage buffers"), std::string::npos) << r.err;
   for (const char* rate : {"0", "-3", "nan", "20000"}) {
     auto r = run_cli("bench '" + scene() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
     EXPECT_EQ(r.status, 2) << rate << ": " << r.err;
