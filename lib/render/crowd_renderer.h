@@ -111,6 +111,7 @@ class GlCrowdRenderer final : public FrameRenderer {
     GLuint rest_storage = 0;  // compute: the rest mesh as a storage buffer, 64 bytes a vertex
     GLuint baked_table = 0;   // baked: every sample's 3x4 rows, 48 bytes a joint
     uint64_t baked_bytes = 0;
+    GLuint instanced_vao = 0;  // the same, and each instance's record (--draw instanced)
   };
 
   // The rest mesh, joints and weights of a GPU-skinned character, uploaded once.
@@ -125,7 +126,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
   // --palettes buffer: per copy and instanced (when the GL has vertex SSBOs).
   GlProgram buffer_program_, instanced_program_;
-  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1, instanced_first_ = -1;
+  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1;
   GpuFrameBuffers frame_buffers_;
   GpuTimer timer_;  // when features_.timer_queries()
   std::vector<uint32_t> kind_counts_;  // scratch: GPU-skinned copies on screen per kind
