@@ -50,6 +50,9 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
   cmd.add_option("--parallel", o.parallel, "Override the mode: on or off (oneTBB over copies)");
   cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there) or gpu");
+  cmd.add_option("--vertex-format", o.vertex_format,
+                 "What CPU skinning writes for the GPU: float (32-bit positions and normals, 24 bytes a vertex) or "
+                 "packed (16-bit positions in the character's box, 10:10:10:2 normals, 10 bytes)");
   cmd.add_flag("--static", o.allow_static, "Accept a character without actions: a crowd in its rest pose");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
 }
@@ -125,6 +128,9 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
     config.mode.skinning = parse_choice<SkinningSite>(
         o.skinning, "--skinning",
         {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu}});
+  if (!o.vertex_format.empty())
+    config.mode.vertex_format = parse_choice<VertexFormat>(
+        o.vertex_format, "--vertex-format", {{"float", VertexFormat::Float}, {"packed", VertexFormat::Packed}});
   // An override that repeats the preset leaves it the preset.
   if (config.mode != preset->switches) config.mode_name += "+custom";
 

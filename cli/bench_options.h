@@ -40,6 +40,7 @@ struct BenchCliOptions {
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
   std::string lookups, culling, pose, parallel, skinning;
+  std::string vertex_format;  // float or packed (skinning/packed_vertex.h)
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
   std::string html;        // the HTML report of the run (docs/report.md)

@@ -57,6 +57,7 @@ struct Shot {
   size_t frame = 7;
   std::string camera = "default";
   size_t joint_cap = 128;
+  VertexFormat vertex_format = VertexFormat::Float;
 };
 
 // Runs frames 0..shot.frame of a bench with a renderer and reads the last back.
@@ -69,6 +70,7 @@ Frame render(GlContext& context, const Character& character, const Shot& shot) {
   GlCrowdRenderer renderer(context, character, shot.copies, rc);
   BenchConfig config;
   config.mode = find_mode(shot.mode)->switches;
+  config.mode.vertex_format = shot.vertex_format;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;
@@ -80,7 +82,7 @@ Frame render(GlContext& context, const Character& character, const Shot& shot) {
   for (size_t k = 0; k <= shot.frame; ++k) frame.counters = bench.step().counters;
   frame.rgba = renderer.read_pixels();
   frame.gpu_skinned = bench.gpu_skinned();
-  if (!frame.gpu_skinned) {
+  if (!frame.gpu_skinned && !bench.packed_vertices()) {
     glm::mat4 to_clip = bench.camera().view_projection() * bench.crowd().world[0];
     for (const glm::vec3& p : bench.skinned_positions(0)) {
       glm::vec4 clip = to_clip * glm::vec4(p, 1.0f);
@@ -189,6 +191,34 @@ TEST(RenderImage, SoftwareAndHardwareSkinningDrawTheSameFrame) {
   EXPECT_LE(pixels_differing(software.rgba, hardware.rgba, 64), drawn / 500);
   double a = static_cast<double>(covered(software.rgba)), b = static_cast<double>(covered(hardware.rgba));
   EXPECT_NEAR(a, b, 0.005 * a);
+}
+
+// --vertex-format packed: the same frame from 16-bit positions and 10:10:10:2
+// normals, decoded by the vertex shader: shading may move by a level or two
+// where a normal rounds, but no more than 0.05% of the pixels differ by more
+// than 4 levels (an edge that moved); and the
+// counters say 10 bytes a vertex were sent instead of 24.
+TEST(RenderImage, PackedVerticesDrawTheFloatFrame) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  Frame floats = render(*context, humanoid(), shot);
+  shot.vertex_format = VertexFormat::Packed;
+  Frame packed = render(*context, humanoid(), shot);
+  size_t pixels = floats.rgba.size() / 4;
+  ASSERT_GT(covered(floats.rgba), pixels / 50);
+  std::cout << "[ info ] of " << covered(floats.rgba) << " pixels drawn, " << pixels_differing(floats.rgba, packed.rgba, 0)
+            << " differ, " << pixels_differing(floats.rgba, packed.rgba, 4) << " by more than 4\n";
+  EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 4), pixels * 5 / 10000);
+  EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 0), covered(floats.rgba) / 10);
+  EXPECT_EQ(floats.counters.draw_calls, packed.counters.draw_calls);
+  const uint64_t copies = floats.counters.draw_calls, vertices = humanoid().mesh.vertex_count();
+  EXPECT_EQ(copies * (vertices * 24 + 64), floats.counters.bytes_uploaded);
+  EXPECT_EQ(copies * (vertices * 10 + 64), packed.counters.bytes_uploaded);
+  // A pose the float path draws differently would move many pixels: the
+  // packed frame is of the same pose, not the rest pose.
+  shot.frame = 0;
+  Frame earlier = render(*context, humanoid(), shot);
+  EXPECT_GT(pixels_differing(earlier.rgba, packed.rgba, 4), pixels * 5 / 10000);
 }
 
 TEST(RenderImage, AKnownPoseCoversWhatItMustAndNothingElse) {

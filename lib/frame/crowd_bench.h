@@ -23,6 +23,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 
 namespace crowdprof {
@@ -82,7 +83,8 @@ class CrowdBench {
 
   // A hash (hex FNV-1a 64) of the last frame's skinning matrices and skinned
   // vertices of the copies inside the frustum: equal across modes and thread
-  // counts when they compute the same thing.
+  // counts when they compute the same thing. With packed vertices, the packed
+  // bytes are hashed (what the GPU reads) instead of the floats.
   std::string digest() const;
 
   const Crowd& crowd() const { return crowd_; }
@@ -106,6 +108,15 @@ class CrowdBench {
   std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
   std::span<const glm::vec3> skinned_positions(size_t copy) const;
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
+  // With --vertex-format packed (skinned_positions() and skinned_normals() are
+  // then empty): 3 position codes and one normal word per vertex
+  // (skinning/packed_vertex.h), quantised in character_quantisation(kind).
+  bool packed_vertices() const { return config_.mode.vertex_format == VertexFormat::Packed; }
+  std::span<const uint16_t> packed_positions(size_t copy) const;
+  std::span<const uint32_t> packed_normals(size_t copy) const;
+  // The box a character's positions are packed in: its animated bounds
+  // (every pose of every action, padded), the culling box.
+  const PositionQuantisation& character_quantisation(size_t kind) const { return kinds_[kind].quantisation; }
 
  private:
   // The clock's switch to `category`, recording the stage it leaves when tracing.
@@ -141,6 +152,7 @@ class CrowdBench {
     SkinningSite site = SkinningSite::CpuInAnimations;
     std::vector<ActionBindings> bindings;  // per action
     SkinningPlan skinning_plan;            // the mesh prepared for skinning, once
+    PositionQuantisation quantisation;     // packed vertices: the character's box
   };
 
   std::vector<const Character*> characters_;
@@ -163,7 +175,9 @@ class CrowdBench {
   std::vector<glm::mat4> model_;              // per pose slot x its joints
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
   std::vector<SkinMatrix> palettes_;          // per copy x its joints
-  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices
+  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices (float format)
+  std::vector<uint16_t> packed_positions_;      // per copy x its vertices x 3 (packed format)
+  std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
   // More threads than cores are given, not silently capped by TBB's default
   // worker limit (one per core): the control lifts it while the bench lives.
   std::unique_ptr<tbb::global_control> parallelism_;

@@ -57,4 +57,6 @@ std::string_view to_string(SkinningSite site) {
   return "?";
 }
 
+std::string_view to_string(VertexFormat format) { return format == VertexFormat::Packed ? "packed" : "float"; }
+
 }  // namespace crowdprof

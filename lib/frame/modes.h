@@ -28,12 +28,19 @@ enum class SkinningSite : uint8_t {
   Gpu,              // §4.4: the vertex shader (needs a GL backend)
 };
 
+// What CPU skinning writes for the GPU to read (skinning/packed_vertex.h).
+enum class VertexFormat : uint8_t {
+  Float,   // positions and normals as 32-bit floats, 24 bytes a vertex
+  Packed,  // positions quantised to 16 bits in the character's box, normals 10:10:10:2: 10 bytes
+};
+
 struct ModeSwitches {
   Lookups lookups = Lookups::Bundled;
   bool animation_culling = false;  // §4.1: no pose or skinning for copies off-screen
   PoseStorage pose = PoseStorage::PerCopy;
   bool parallel = false;  // pose updates (and CPU skinning in Animations) on oneTBB
   SkinningSite skinning = SkinningSite::CpuInAnimations;
+  VertexFormat vertex_format = VertexFormat::Float;  // no preset packs; --vertex-format
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -58,5 +65,6 @@ std::string conflicts(const ModeSwitches& switches);
 std::string_view to_string(Lookups lookups);
 std::string_view to_string(PoseStorage pose);
 std::string_view to_string(SkinningSite site);
+std::string_view to_string(VertexFormat format);
 
 }  // namespace crowdprof

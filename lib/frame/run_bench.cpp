@@ -89,6 +89,9 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                   {"pose", to_string(s.pose)},
                   {"parallel", s.parallel},
                   {"skinning", to_string(s.skinning)}};
+  // Recorded only when packed, so that results from before the switch (all
+  // float) still match a float run's switches.
+  if (s.vertex_format != VertexFormat::Float) run.switches["vertex_format"] = to_string(s.vertex_format);
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;
