@@ -9,6 +9,7 @@
 #include "asset/gltf_loader.h"
 #include "output/output_file.h"
 #include "render/gl_context.h"
+#include "render/gl_features.h"
 #include "scene/camera.h"
 
 using crowdprof::UsageError;
@@ -31,7 +32,9 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--fps", o.fps,
                  "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible")
       ->capture_default_str();
-  cmd.add_option("--mode", o.mode, "Preset of switches: master, culled, threaded, hwskin (see docs/modes.md)")
+  cmd.add_option("--mode", o.mode,
+                 "Preset of switches: master, culled, threaded, hwskin (the thesis's), buffer, instanced (see "
+                 "docs/modes.md)")
       ->capture_default_str();
   cmd.add_option("--threads", o.threads, "Worker threads for parallel modes (default: all cores)");
   cmd.add_option("--camera", o.camera, "default (thesis framing, part of the crowd off-screen), all, close (a few "
@@ -53,6 +56,12 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--vertex-format", o.vertex_format,
                  "What CPU skinning writes for the GPU: float (32-bit positions and normals, 24 bytes a vertex) or "
                  "packed (16-bit positions in the character's box, 10:10:10:2 normals, 10 bytes)");
+  cmd.add_option("--palettes", o.palettes,
+                 "Override the mode: uniforms (a uniform array per draw, 128 bones at most) or buffer (one shader "
+                 "storage buffer, no bone limit); for skinning on the GPU");
+  cmd.add_option("--draw", o.draw,
+                 "Override the mode: per-copy (a draw call per copy) or instanced (one per character kind; needs "
+                 "--palettes buffer)");
   cmd.add_flag("--static", o.allow_static, "Accept a character without actions: a crowd in its rest pose");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
 }
@@ -131,6 +140,12 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   if (!o.vertex_format.empty())
     config.mode.vertex_format = parse_choice<VertexFormat>(
         o.vertex_format, "--vertex-format", {{"float", VertexFormat::Float}, {"packed", VertexFormat::Packed}});
+  if (!o.palettes.empty())
+    config.mode.palettes = parse_choice<PaletteStorage>(
+        o.palettes, "--palettes", {{"uniforms", PaletteStorage::Uniforms}, {"buffer", PaletteStorage::Buffer}});
+  if (!o.draw.empty())
+    config.mode.draw =
+        parse_choice<DrawMethod>(o.draw, "--draw", {{"per-copy", DrawMethod::PerCopy}, {"instanced", DrawMethod::Instanced}});
   // An override that repeats the preset leaves it the preset.
   if (config.mode != preset->switches) config.mode_name += "+custom";
 
@@ -254,6 +269,7 @@ crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const B
   using namespace crowdprof;
   RendererConfig renderer;
   std::tie(renderer.width, renderer.height) = parse_resolution(o.resolution);
+  renderer.hide_features = gl_hide_from_environment();
   std::string warning;
   BenchRendering rendering = open_rendering(*parse_backend(o.backend), scene.characters, config.crowd.copies, renderer, &warning);
   if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";

@@ -39,7 +39,7 @@ struct BenchCliOptions {
   bool allow_static = false;
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
-  std::string lookups, culling, pose, parallel, skinning;
+  std::string lookups, culling, pose, parallel, skinning, palettes, draw;
   std::string vertex_format;  // float or packed (skinning/packed_vertex.h)
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG

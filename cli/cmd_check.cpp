@@ -79,7 +79,8 @@ BenchCliOptions options_recorded_in(const json& baseline) {
   if (r.mode.ends_with("+custom")) r.mode.resize(r.mode.size() - 7);
   for (auto [key, value] : {std::pair<const char*, std::string*>{"lookups", &r.lookups}, {"culling", &r.culling},
                             {"pose", &r.pose}, {"parallel", &r.parallel}, {"skinning", &r.skinning},
-                            {"vertex_format", &r.vertex_format}})
+                            {"vertex_format", &r.vertex_format},
+                            {"palettes", &r.palettes}, {"draw", &r.draw}})
     if (switches.contains(key)) *value = switch_value(switches[key]);
   if (r.parallel == "on") r.threads = baseline["threads"].get<long long>();
   if (std::string backend = optional_text(baseline["environment"], "backend"); !backend.empty()) r.backend = backend;

@@ -4,7 +4,12 @@
 
 in vec3 world_normal;
 
+#ifdef INSTANCED
+flat in vec3 instance_colour;  // instanced draws: each instance's own (buffer_skin.vert)
+#define base_colour instance_colour
+#else
 uniform vec3 base_colour;
+#endif
 uniform vec3 light_direction;  // towards the light, world space, unit length
 
 out vec4 colour;

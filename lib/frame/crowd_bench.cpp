@@ -69,6 +69,7 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
 CrowdBench::CrowdBench(std::span<const Character* const> characters, const BenchConfig& config)
     : characters_(characters.begin(), characters.end()), config_(config) {
   if (std::string why = why_cannot_run(config); !why.empty()) throw UsageError(why);
+  if (config.renderer) config.renderer->require(config.mode);
   if (characters_.empty()) throw UsageError("a crowd needs at least one character");
   for (const CrowdGroup& group : crowd_groups(config.crowd)) {
     if (group.character >= characters_.size()) throw UsageError("a crowd group names a character that is not there");
@@ -81,7 +82,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     kind.vertices = character->mesh.vertex_count();
     kind.site = config.mode.skinning;
     // Thesis 4.4: a skeleton too big for the shader's bone array is skinned in software.
-    if (kind.site == SkinningSite::Gpu && kind.joints > config.renderer->max_gpu_joints())
+    if (kind.site == SkinningSite::Gpu && kind.joints > config.renderer->max_gpu_joints(config.mode))
       kind.site = SkinningSite::CpuInAnimations;
     if (std::string why = build_skinning_plan(character->mesh, kind.joints, &kind.skinning_plan); !why.empty())
       throw std::runtime_error("skinning plan: " + why);  // the loader checked the same: a bug if reached

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "frame/modes.h"
 #include "profile/counters.h"
 
 namespace crowdprof {
@@ -14,13 +15,19 @@ class FrameRenderer {
  public:
   virtual ~FrameRenderer() = default;
 
-  // Joints a character may have for the GPU to skin it (the vertex shader's
-  // bone array); a character with more is skinned on the CPU instead.
-  virtual size_t max_gpu_joints() const = 0;
+  // Joints a character may have for the GPU to skin it in `mode` (the vertex
+  // shader's bone array with uniform palettes); a character with more is
+  // skinned on the CPU instead.
+  virtual size_t max_gpu_joints(const ModeSwitches& mode) const = 0;
+
+  // Throws (std::runtime_error: exit 4), before any frame, when `mode` needs
+  // something the GL lacks, naming it (e.g. shader storage buffers in the
+  // vertex stage for --palettes buffer).
+  virtual void require(const ModeSwitches& mode) const = 0;
 
   // Rasterizer stage: send this frame's data and submit one draw per copy on
-  // screen: skinned vertices when bench.gpu_skinned() is false, else skinning
-  // matrices. Adds to counters.bytes_uploaded and counters.draw_calls. Throws
+  // screen (or per character kind, drawn instanced): skinned vertices when
+  // bench.gpu_skinned() is false, else skinning matrices. Adds to counters.bytes_uploaded and counters.draw_calls. Throws
   // (std::runtime_error) on a GL error, naming it and the stage.
   virtual void draw(const CrowdBench& bench, Counters& counters) = 0;
 

@@ -12,14 +12,22 @@ constexpr ModeSwitches kCulled{Lookups::PerFrameString, true, PoseStorage::Share
                                SkinningSite::CpuInRasterizer};
 constexpr ModeSwitches kThreaded{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations};
 constexpr ModeSwitches kHwskin{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu};
+// Beyond the thesis: hwskin with its palettes in a shader storage buffer, then
+// also drawn instanced.
+constexpr ModeSwitches kBuffer{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
+                               PaletteStorage::Buffer, DrawMethod::PerCopy};
+constexpr ModeSwitches kInstanced{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
+                                  PaletteStorage::Buffer, DrawMethod::Instanced};
 
-constexpr std::array<ModePreset, 4> kPresets = {{
+constexpr std::array<ModePreset, 6> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
+    {"buffer", "hwskin with every copy's palette in one shader storage buffer: no 128-bone limit", kBuffer},
+    {"instanced", "buffer, drawn with one instanced draw call per character kind and material", kInstanced},
 }};
 
 }  // namespace
@@ -41,6 +49,13 @@ std::string mode_names() {
 std::string conflicts(const ModeSwitches& s) {
   if (s.parallel && s.pose == PoseStorage::SharedScratch)
     return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use --pose per-copy";
+  if (s.palettes == PaletteStorage::Buffer && s.skinning != SkinningSite::Gpu)
+    return "--palettes buffer holds the palettes the GPU skins with: it needs --skinning gpu";
+  if (s.draw == DrawMethod::Instanced && s.skinning != SkinningSite::Gpu)
+    return "--draw instanced draws copies that the GPU skins (CPU-skinned copies each have their own vertices): "
+           "it needs --skinning gpu";
+  if (s.draw == DrawMethod::Instanced && s.palettes != PaletteStorage::Buffer)
+    return "--draw instanced reads each instance's palette from a buffer: it needs --palettes buffer";
   return {};
 }
 
@@ -58,5 +73,9 @@ std::string_view to_string(SkinningSite site) {
 }
 
 std::string_view to_string(VertexFormat format) { return format == VertexFormat::Packed ? "packed" : "float"; }
+std::string_view to_string(PaletteStorage palettes) {
+  return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
+}
+std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 
 }  // namespace crowdprof

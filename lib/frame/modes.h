@@ -28,6 +28,20 @@ enum class SkinningSite : uint8_t {
   Gpu,              // §4.4: the vertex shader (needs a GL backend)
 };
 
+// Where the skinning matrices of copies skinned on the GPU live (beyond the
+// thesis, whose own future work names buffers for more bones).
+enum class PaletteStorage : uint8_t {
+  Uniforms,  // 4.4: a uniform array per draw, at most 128 bones
+  Buffer,    // one shader storage buffer (SSBO) for every copy: no bone limit
+};
+
+// How copies skinned on the GPU are submitted.
+enum class DrawMethod : uint8_t {
+  PerCopy,    // one draw call per copy on screen, as the BGE drew
+  Instanced,  // one draw call per character kind and material; each instance
+              // reads its transform and palette offset from a buffer
+};
+
 // What CPU skinning writes for the GPU to read (skinning/packed_vertex.h).
 enum class VertexFormat : uint8_t {
   Float,   // positions and normals as 32-bit floats, 24 bytes a vertex
@@ -40,6 +54,8 @@ struct ModeSwitches {
   PoseStorage pose = PoseStorage::PerCopy;
   bool parallel = false;  // pose updates (and CPU skinning in Animations) on oneTBB
   SkinningSite skinning = SkinningSite::CpuInAnimations;
+  PaletteStorage palettes = PaletteStorage::Uniforms;
+  DrawMethod draw = DrawMethod::PerCopy;
   VertexFormat vertex_format = VertexFormat::Float;  // no preset packs; --vertex-format
 
   bool operator==(const ModeSwitches&) const = default;
@@ -51,11 +67,11 @@ struct ModePreset {
   ModeSwitches switches;
 };
 
-// master, culled, threaded, hwskin.
+// master, culled, threaded, hwskin (the thesis's), then buffer, instanced.
 std::span<const ModePreset> mode_presets();
 // Null when there is no such preset.
 const ModePreset* find_mode(std::string_view name);
-// "master, culled, threaded, hwskin".
+// "master, culled, threaded, hwskin, buffer, instanced".
 std::string mode_names();
 
 // Empty when the switches can run together, else why not (e.g. a shared scratch
@@ -66,5 +82,7 @@ std::string_view to_string(Lookups lookups);
 std::string_view to_string(PoseStorage pose);
 std::string_view to_string(SkinningSite site);
 std::string_view to_string(VertexFormat format);
+std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
+std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
 
 }  // namespace crowdprof

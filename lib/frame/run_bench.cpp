@@ -88,7 +88,9 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                   {"culling", s.animation_culling},
                   {"pose", to_string(s.pose)},
                   {"parallel", s.parallel},
-                  {"skinning", to_string(s.skinning)}};
+                  {"skinning", to_string(s.skinning)},
+                  {"palettes", to_string(s.palettes)},
+                  {"draw", to_string(s.draw)}};
   // Recorded only when packed, so that results from before the switch (all
   // float) still match a float run's switches.
   if (s.vertex_format != VertexFormat::Float) run.switches["vertex_format"] = to_string(s.vertex_format);

@@ -19,6 +19,10 @@ struct Counters {
   uint64_t bytes_uploaded = 0;    // vertex data and bone matrices sent to the GPU
   uint64_t draw_calls = 0;
   uint64_t copies_fallback = 0;   // copies skinned on the CPU although the mode skins on the GPU
+  // GPU memory the palettes of GPU-skinned copies live in: the uniform array
+  // (--palettes uniforms), or the storage buffers of every copy's palette (and
+  // with --draw instanced, their instance records); 0 when none is skinned there.
+  uint64_t gpu_palette_bytes = 0;
 };
 
 struct CounterField {
@@ -26,7 +30,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 8> kCounterFields = {{
+inline constexpr std::array<CounterField, 9> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -35,6 +39,7 @@ inline constexpr std::array<CounterField, 8> kCounterFields = {{
     {"bytes_uploaded", &Counters::bytes_uploaded},
     {"draw_calls", &Counters::draw_calls},
     {"copies_fallback", &Counters::copies_fallback},
+    {"gpu_palette_bytes", &Counters::gpu_palette_bytes},
 }};
 
 struct FrameRecord {

@@ -39,9 +39,17 @@ void float_attribute(GLuint index, GLuint buffer, GLint components) {
   glVertexAttribPointer(index, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
 
-std::vector<ShaderStage> stages(const char* vertex, const std::string& defines) {
+std::vector<ShaderStage> stages(const char* vertex, const std::string& defines,
+                                const std::string& fragment_defines = {}) {
   return {{GL_VERTEX_SHADER, vertex, with_defines(embedded_shader(vertex), defines)},
-          {GL_FRAGMENT_SHADER, "shaders/lit.frag", std::string(embedded_shader("shaders/lit.frag"))}};
+          {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
+}
+
+// The buffer-palette programs: shaders/instances.glsl ahead of buffer_skin.vert.
+std::vector<ShaderStage> buffer_stages(bool instanced) {
+  std::string defines = instanced ? "#define INSTANCED\n#define COLOURS " + std::to_string(kPalette.size()) + "\n" : "";
+  defines += std::string(embedded_shader("shaders/instances.glsl"));
+  return stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
 
 }  // namespace
@@ -59,6 +67,7 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, const Character& character,
 GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* const> characters, size_t copies,
                                  const RendererConfig& config)
     : context_(context), framebuffer_(config.width, config.height) {
+  features_ = read_gl_features(config.hide_features);
   GLint uniform_components = 0;
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_COMPONENTS, &uniform_components);
   max_joints_ = gpu_joint_limit(uniform_components, config.joint_cap);
@@ -118,23 +127,22 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
       gpu_colour_ = gpu_program_.uniform("base_colour");
       gpu_bones_ = gpu_program_.uniform("bones");
     }
-    const SkinnedMesh& mesh = characters[k]->mesh;
-    size_t vertices = kind.vertices;
-    glGenVertexArrays(1, &kind.gpu_vao);
-    glBindVertexArray(kind.gpu_vao);
-    kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
-    float_attribute(0, kind.rest_buffers[0], 3);
-    kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
-    float_attribute(1, kind.rest_buffers[1], 3);
-    kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(2);
-    glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
-    kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
-    float_attribute(3, kind.rest_buffers[3], 4);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+    make_rest_mesh(kind, characters[k]->mesh);
     max_fitting_joints = std::max(max_fitting_joints, kind.joints);
   }
   bone_rows_.resize(3 * max_fitting_joints);
+  // Buffer palettes know no bone limit: every character gets its rest mesh.
+  if (features_.storage_buffers()) {
+    buffer_program_ = GlProgram(buffer_stages(false));
+    buffer_model_ = buffer_program_.uniform("model");
+    buffer_colour_ = buffer_program_.uniform("base_colour");
+    buffer_base_ = buffer_program_.uniform("palette_base");
+    instanced_program_ = GlProgram(buffer_stages(true));
+    instanced_first_ = instanced_program_.uniform("first_instance");
+    for (size_t k = 0; k < kinds_.size(); ++k)
+      if (!kinds_[k].gpu_vao) make_rest_mesh(kinds_[k], characters[k]->mesh);
+  }
+  kind_counts_.resize(kinds_.size());
   glBindVertexArray(0);
 
   glEnable(GL_DEPTH_TEST);
@@ -144,6 +152,36 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   check_gl("renderer set-up");
+}
+
+void GlCrowdRenderer::make_rest_mesh(Kind& kind, const SkinnedMesh& mesh) {
+  size_t vertices = kind.vertices;
+  glGenVertexArrays(1, &kind.gpu_vao);
+  glBindVertexArray(kind.gpu_vao);
+  kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
+  float_attribute(0, kind.rest_buffers[0], 3);
+  kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
+  float_attribute(1, kind.rest_buffers[1], 3);
+  kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
+  kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
+  float_attribute(3, kind.rest_buffers[3], 4);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+}
+
+size_t GlCrowdRenderer::max_gpu_joints(const ModeSwitches& mode) const {
+  if (mode.palettes == PaletteStorage::Uniforms) return max_joints_;
+  // One copy's palette must fit the storage block; the crowd's is checked when drawn.
+  return static_cast<size_t>(std::max<int64_t>(features_.max_storage_block_bytes, 0)) / (3 * sizeof(glm::vec4));
+}
+
+void GlCrowdRenderer::require(const ModeSwitches& mode) const {
+  if (mode.skinning != SkinningSite::Gpu || mode.palettes != PaletteStorage::Buffer) return;
+  if (!features_.storage_buffers())
+    throw GlUnavailable(context_.renderer() + " offers no shader storage buffers in the vertex stage "
+                        "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0), which --palettes buffer needs: use --palettes "
+                        "uniforms (mode hwskin)");
 }
 
 GlCrowdRenderer::~GlCrowdRenderer() {
@@ -162,6 +200,9 @@ uint64_t GlCrowdRenderer::vertex_bytes_per_copy(size_t kind) const {
 }
 uint64_t GlCrowdRenderer::bone_bytes_per_copy(size_t kind) const {
   return kinds_[kind].joints * 3 * sizeof(glm::vec4) + sizeof(glm::mat4);
+}
+uint64_t GlCrowdRenderer::instance_bytes_per_copy(size_t kind) const {
+  return kinds_[kind].joints * 3 * sizeof(glm::vec4) + sizeof(GpuInstance);
 }
 
 void GlCrowdRenderer::set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const {
@@ -195,12 +236,16 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
         draw_copy_cpu_skinned(bench, i, drawn++, counters);
     }
   }
-  if (any_gpu) {
+  const ModeSwitches& mode = bench.config().mode;
+  if (any_gpu && mode.palettes == PaletteStorage::Uniforms) {
     glUseProgram(gpu_program_.id());
     set_frame_uniforms(gpu_program_, bench);
     for (size_t i = 0; i < crowd.size(); ++i)
       if (bench.visible(i) && bench.gpu_skinned_copy(i)) draw_copy_gpu_skinned(bench, i, counters);
+    counters.gpu_palette_bytes = 3 * sizeof(glm::vec4) * max_joints_;  // the uniform array
   }
+  if (any_gpu && mode.palettes == PaletteStorage::Buffer)
+    draw_buffer_palettes(bench, mode.draw == DrawMethod::Instanced, counters);
   glBindVertexArray(0);
   check_gl("Rasterizer");
 }
@@ -255,7 +300,8 @@ void GlCrowdRenderer::draw_copy_packed(const CrowdBench& bench, size_t i, size_t
 void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, Counters& counters) {
   size_t k = bench.crowd().kind[i];
   const Kind& kind = kinds_[k];
-  if (!kind.gpu_vao) throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
+  if (!kind.gpu_vao || kind.joints > max_joints_)
+    throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
   glBindVertexArray(kind.gpu_vao);
   // The 3x4 upper part of each column-major matrix, as rows.
   std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
@@ -271,6 +317,72 @@ void GlCrowdRenderer::draw_copy_gpu_skinned(const CrowdBench& bench, size_t i, C
   glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
   counters.bytes_uploaded += bone_bytes_per_copy(k);
   ++counters.draw_calls;
+}
+
+void GlCrowdRenderer::draw_buffer_palettes(const CrowdBench& bench, bool instanced, Counters& counters) {
+  require(bench.config().mode);
+  const Crowd& crowd = bench.crowd();
+  // Room for every copy the GPU skins, so that the frame's buffers never grow
+  // while the crowd turns on screen.
+  size_t copies = 0, rows = 0;
+  std::fill(kind_counts_.begin(), kind_counts_.end(), 0);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.gpu_skinned_copy(i)) continue;
+    ++copies;
+    rows += 3 * kinds_[crowd.kind[i]].joints;
+    kind_counts_[crowd.kind[i]] += bench.visible(i);
+  }
+  frame_buffers_.reserve(copies, rows, features_.max_storage_block_bytes);
+  frame_buffers_.begin(kind_counts_);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !bench.gpu_skinned_copy(i)) continue;
+    size_t k = crowd.kind[i];
+    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
+    std::span<glm::vec4> out = frame_buffers_.add(k, crowd.world[i], static_cast<uint32_t>(i % kPalette.size()),
+                                                   3 * kinds_[k].joints);
+    // The 3x4 upper part of each column-major matrix, as rows (as the uniforms).
+    for (size_t j = 0; j < kinds_[k].joints; ++j)
+      for (int r = 0; r < 3; ++r) {
+        const SkinMatrix& m = palette[j];
+        out[3 * j + static_cast<size_t>(r)] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+      }
+  }
+  uint64_t sent = frame_buffers_.upload(instanced);
+  if (instanced) {
+    glUseProgram(instanced_program_.id());
+    set_frame_uniforms(instanced_program_, bench);
+    glUniform3fv(instanced_program_.uniform("colours"), static_cast<GLsizei>(kPalette.size()),
+                 glm::value_ptr(kPalette[0]));
+    for (size_t k = 0; k < kinds_.size(); ++k) {
+      InstanceRun run = frame_buffers_.run(k);
+      if (run.count == 0) continue;
+      glBindVertexArray(kinds_[k].gpu_vao);
+      glUniform1ui(instanced_first_, run.first);
+      glDrawElementsInstanced(GL_TRIANGLES, kinds_[k].index_count, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(run.count));
+      ++counters.draw_calls;
+    }
+    counters.bytes_uploaded += sent;
+    counters.gpu_palette_bytes = frame_buffers_.gpu_bytes();
+    return;
+  }
+  glUseProgram(buffer_program_.id());
+  set_frame_uniforms(buffer_program_, bench);
+  std::vector<uint32_t>& next = kind_counts_;  // per kind, the next record to draw
+  for (size_t k = 0; k < kinds_.size(); ++k) next[k] = frame_buffers_.run(k).first;
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !bench.gpu_skinned_copy(i)) continue;
+    size_t k = crowd.kind[i];
+    glBindVertexArray(kinds_[k].gpu_vao);
+    glUniform1ui(buffer_base_, frame_buffers_.palette_base(next[k]++));
+    glUniformMatrix4fv(buffer_model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+    glUniform3fv(buffer_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+    glDrawElements(GL_TRIANGLES, kinds_[k].index_count, GL_UNSIGNED_INT, nullptr);
+    counters.bytes_uploaded += sizeof(glm::mat4);  // the model matrix; the palette went in `sent`
+    ++counters.draw_calls;
+  }
+  counters.bytes_uploaded += sent;
+  counters.gpu_palette_bytes = frame_buffers_.palette_gpu_bytes();
 }
 
 void GlCrowdRenderer::finish() {

@@ -1,7 +1,11 @@
 // Draws the crowd with GL, one draw per copy on screen (the BGE drew each mesh
 // on its own too). Copies skinned on the CPU have their vertices uploaded every
 // frame; with skinning on the GPU (thesis 4.4) the rest mesh is uploaded once
-// and each frame sends only the skinning matrices, as a uniform array.
+// and each frame sends only the skinning matrices, as a uniform array, or
+// (--palettes buffer) every copy's palette in one shader storage buffer, drawn
+// per copy or (--draw instanced) with one instanced draw per character kind.
+// The mode's switches are read at every draw: one renderer draws every mode of
+// a compare in turn.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +17,9 @@
 #include "render/framebuffer.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
+#include "render/gl_features.h"
 #include "render/gl_program.h"
+#include "render/gpu_frame_buffers.h"
 
 namespace crowdprof {
 
@@ -25,6 +31,8 @@ struct RendererConfig {
   // The thesis's cap on the vertex shader's bone array. Tests lower it to make
   // a character fall back to CPU skinning.
   size_t joint_cap = 128;
+  // Features to act as if the GL lacked (gl_features.h; CROWDPROF_GL_HIDE).
+  std::string hide_features;
 };
 
 // The bone limit of the thesis (4.4): half the vertex stage's uniform
@@ -47,7 +55,10 @@ class GlCrowdRenderer final : public FrameRenderer {
   GlCrowdRenderer(const GlCrowdRenderer&) = delete;
   GlCrowdRenderer& operator=(const GlCrowdRenderer&) = delete;
 
-  size_t max_gpu_joints() const override { return max_joints_; }
+  size_t max_gpu_joints(const ModeSwitches& mode) const override;
+  // Throws GlUnavailable naming the feature the mode needs that the GL lacks.
+  void require(const ModeSwitches& mode) const override;
+  const GlFeatures& features() const { return features_; }
   // Uploads and draws every copy that bench.visible() says is on screen.
   // Throws GlError "GL error ... during Rasterizer".
   void draw(const CrowdBench& bench, Counters& counters) override;
@@ -65,6 +76,8 @@ class GlCrowdRenderer final : public FrameRenderer {
   // each); plus its world matrix.
   uint64_t vertex_bytes_per_copy(size_t kind = 0) const;
   uint64_t bone_bytes_per_copy(size_t kind = 0) const;
+  // Instanced drawing: the palette and the instance record.
+  uint64_t instance_bytes_per_copy(size_t kind = 0) const;
 
  private:
   void draw_copy_cpu_skinned(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
@@ -72,6 +85,8 @@ class GlCrowdRenderer final : public FrameRenderer {
   // --vertex-format packed: the same stream buffers, read as 16-bit position
   // codes and 10:10:10:2 normals by a program that decodes them.
   void draw_copy_packed(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
+  // The GPU-skinned copies with their palettes in frame_buffers_: per copy or instanced.
+  void draw_buffer_palettes(const CrowdBench& bench, bool instanced, Counters& counters);
   void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
 
   // What one character's copies are drawn with.
@@ -83,12 +98,21 @@ class GlCrowdRenderer final : public FrameRenderer {
     GLuint gpu_vao = 0, rest_buffers[4] = {0, 0, 0, 0};
   };
 
+  // The rest mesh, joints and weights of a GPU-skinned character, uploaded once.
+  void make_rest_mesh(Kind& kind, const SkinnedMesh& mesh);
+
   GlContext& context_;
   Framebuffer framebuffer_;
   size_t max_joints_ = 0;
   std::vector<Kind> kinds_;  // per character
+  GlFeatures features_;
   GlProgram cpu_program_, gpu_program_;
   GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
+  // --palettes buffer: per copy and instanced (when the GL has vertex SSBOs).
+  GlProgram buffer_program_, instanced_program_;
+  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1, instanced_first_ = -1;
+  GpuFrameBuffers frame_buffers_;
+  std::vector<uint32_t> kind_counts_;  // scratch: GPU-skinned copies on screen per kind
   // CPU-skinned copies: a buffer per drawn copy (positions, then normals),
   // orphaned and refilled every frame. With more copies on screen than
   // buffers, buffers serve several copies.

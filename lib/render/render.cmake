@@ -34,8 +34,9 @@ add_library(crowdprof_glad STATIC ${CROWDPROF_GLAD_DIR}/src/gl.c)
 target_include_directories(crowdprof_glad SYSTEM PUBLIC ${CROWDPROF_GLAD_DIR}/include)
 set_target_properties(crowdprof_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-# shaders/*.vert|frag -> one .cpp of raw string literals (render/shader_sources.h).
-file(GLOB CROWDPROF_SHADERS CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/shaders/*.vert ${CMAKE_SOURCE_DIR}/shaders/*.frag)
+# shaders/*.vert|frag|glsl -> one .cpp of raw string literals (render/shader_sources.h).
+file(GLOB CROWDPROF_SHADERS CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/shaders/*.vert ${CMAKE_SOURCE_DIR}/shaders/*.frag
+     ${CMAKE_SOURCE_DIR}/shaders/*.glsl)
 set(CROWDPROF_EMBEDDED_SHADERS ${CMAKE_CURRENT_BINARY_DIR}/embedded_shaders.cpp)
 add_custom_command(
   OUTPUT ${CROWDPROF_EMBEDDED_SHADERS}

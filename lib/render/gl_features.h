@@ -1,0 +1,36 @@
+// What the current GL context offers beyond the 4.3 core that every context
+// has: the features some modes need, read once, so that a mode that needs one
+// the context lacks is refused in one line (exit 4) before its first frame,
+// never drawn as a black image.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace crowdprof {
+
+struct GlFeatures {
+  // Shader storage blocks a vertex shader may read: 4.3 requires none in the
+  // vertex stage (only fragment and compute), so a context may offer 0.
+  int64_t vertex_storage_blocks = 0;
+  int64_t max_storage_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  // Bits of GL_TIME_ELAPSED's counter; 0 means timer queries do not work.
+  int64_t timer_bits = 0;
+
+  bool storage_buffers() const { return vertex_storage_blocks > 0 && max_storage_block_bytes > 0; }
+  bool timer_queries() const { return timer_bits > 0; }
+};
+
+// The names `hide` understands, comma-separated: "vertex-ssbo", "timer-query".
+inline constexpr std::string_view kHideableGlFeatures = "vertex-ssbo, timer-query";
+
+// Reads the current context's features, then acts as if it lacked those that
+// `hide` names (CROWDPROF_GL_HIDE: to see what crowdprof does on a GL without
+// them). Throws UsageError for a name it does not know.
+GlFeatures read_gl_features(std::string_view hide = {});
+
+// What `hide` comes from in a run: the CROWDPROF_GL_HIDE environment variable.
+std::string gl_hide_from_environment();
+
+}  // namespace crowdprof

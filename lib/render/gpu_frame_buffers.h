@@ -1,0 +1,82 @@
+// The per-frame buffers of GPU-skinned copies in the buffer and instanced
+// modes: every palette drawn this frame in one shader storage buffer, and one
+// record per instance (transform, palette offset, colour) in another, laid out
+// as shaders/instances.glsl declares them (std430).
+//
+// How another skinning source plugs in (baked animation, say): reserve the
+// frame's runs with begin(), and for each copy add() an instance whose
+// palette_rows is 0 (it sends no palette) with its own per-instance values in
+// `source` (an action and a time); upload(), then bind its own tables at a
+// further binding and draw each kind's run with one instanced draw, its vertex
+// shader reading instances[first + gl_InstanceID] from the same block.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/gl.h"
+
+namespace crowdprof {
+
+// One record of Instances (shaders/instances.glsl).
+struct GpuInstance {
+  glm::mat4 model{1.0f};
+  uint32_t palette_base = 0;  // the palette's first row in the palette buffer
+  uint32_t colour = 0;        // index into the frame's colours
+  uint32_t source[2] = {0, 0};
+};
+static_assert(sizeof(GpuInstance) == 80, "std430 layout of struct Instance");
+
+// Binding points, as shaders/instances.glsl names them.
+inline constexpr GLuint kPaletteBinding = 0, kInstanceBinding = 1;
+
+// Where one kind's instances are in this frame's records.
+struct InstanceRun {
+  uint32_t first = 0, count = 0;
+};
+
+class GpuFrameBuffers {
+ public:
+  GpuFrameBuffers() = default;
+  ~GpuFrameBuffers();
+  GpuFrameBuffers(const GpuFrameBuffers&) = delete;
+  GpuFrameBuffers& operator=(const GpuFrameBuffers&) = delete;
+
+  // Makes room (on the CPU and the GPU) for `instances` records and `rows`
+  // palette rows; growing keeps nothing. Throws GlUnavailable when the rows
+  // exceed what one storage block may hold (`max_block_bytes`).
+  void reserve(size_t instances, size_t rows, int64_t max_block_bytes);
+
+  // Starts a frame: kind k gets `counts[k]` records, one run after another,
+  // which add() fills in order. `counts` must fit the reservation.
+  void begin(std::span<const uint32_t> counts);
+  // Appends a record for `kind`; returns its 3 x joints palette rows (empty
+  // for 0) to fill, which it points palette_base at.
+  std::span<glm::vec4> add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows);
+  // The records and rows added since begin().
+  InstanceRun run(size_t kind) const { return runs_[kind]; }
+  uint32_t palette_base(uint32_t record) const { return instances_[record].palette_base; }
+
+  // Sends the palette rows (and, with `with_instances`, the records) to the GPU
+  // in fresh storage (orphaned, so no draw of the last frame is waited for) and
+  // binds them at kPaletteBinding and kInstanceBinding. Returns the bytes sent.
+  uint64_t upload(bool with_instances);
+
+  // Bytes of GPU storage the two buffers hold.
+  uint64_t gpu_bytes() const { return palette_capacity_bytes_ + instance_capacity_bytes_; }
+  uint64_t palette_gpu_bytes() const { return palette_capacity_bytes_; }
+
+ private:
+  std::vector<GpuInstance> instances_;
+  std::vector<glm::vec4> rows_;
+  std::vector<InstanceRun> runs_;
+  std::vector<uint32_t> filled_;  // per kind, records added so far
+  size_t rows_used_ = 0;
+  GLuint palette_buffer_ = 0, instance_buffer_ = 0;
+  uint64_t palette_capacity_bytes_ = 0, instance_capacity_bytes_ = 0;
+};
+
+}  // namespace crowdprof
