@@ -12,6 +12,7 @@
 #include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
+#include "cli/compare_modes.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
 #include "frame/compare.h"
@@ -20,9 +21,9 @@
 #include "profile/regression.h"
 #include "profile/trace.h"
 
-namespace {
-
 using namespace crowdprof;
+
+namespace {
 
 struct CompareCliOptions {
   BenchCliOptions bench;
@@ -50,11 +51,8 @@ std::vector<size_t> parse_sweep(const std::string& text) {
   return sizes;
 }
 
-// The config of one mode: the shared options, with --threads applying only to
-// the modes that run in parallel.
-// A mode as --modes names it: a preset, then any switches set away from it,
-// PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
-// Applies the switches to `options` and returns the preset's name.
+}  // namespace
+
 std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
   std::string preset = spec.substr(0, spec.find('+'));
   if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
@@ -90,13 +88,6 @@ BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, c
   return config;
 }
 
-struct ModeRun {
-  std::vector<BenchConfig> configs;
-  std::vector<std::unique_ptr<CrowdBench>> benches;
-};
-
-// Builds one bench per mode at `copies`; modes the user did not ask for by
-// name are skipped, with a note, when they cannot run here (hwskin without GL).
 ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named,
                      bool note) {
   ModeRun run;
@@ -114,16 +105,16 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
   return run;
 }
 
-std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, const BenchRendering& rendering,
+std::vector<RunReport> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
                                  const std::string& what) {
   std::vector<CrowdBench*> benches;
   for (auto& bench : modes.benches) benches.push_back(bench.get());
   RunOptions run;
-  run.frames = static_cast<size_t>(o.bench.frames);
-  run.warmup = static_cast<size_t>(o.bench.warmup);
-  run.progress = terminal_progress(o.bench.quiet, what);
+  run.frames = static_cast<size_t>(o.frames);
+  run.warmup = static_cast<size_t>(o.warmup);
+  run.progress = terminal_progress(o.quiet, what);
   run.stop = &interrupt_requested();
-  std::vector<RunReport> reports = run_interleaved(benches, o.bench.file, run, static_cast<size_t>(o.block));
+  std::vector<RunReport> reports = run_interleaved(benches, o.file, run, block);
   for (RunReport& report : reports) {
     report.run.backend = rendering.backend_name();
     report.run.renderer = rendering.renderer_name();
@@ -131,12 +122,9 @@ std::vector<RunReport> run_modes(ModeRun& modes, const CompareCliOptions& o, con
   return reports;
 }
 
-int compare(CompareCliOptions& o) {
-  if (o.block < 1 || o.block > 1'000'000) throw UsageError("--block " + std::to_string(o.block) + ": expected 1 to 1000000");
-  std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
-  std::vector<std::string> names = o.modes;
-  bool named = !names.empty();
-  if (!named)
+std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
+  std::vector<std::string> names = asked;
+  if (names.empty())
     for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
   for (size_t i = 0; i < names.size(); ++i) {
     BenchCliOptions scratch;
@@ -144,6 +132,20 @@ int compare(CompareCliOptions& o) {
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
+  return names;
+}
+
+void check_block(long long block) {
+  if (block < 1 || block > 1'000'000) throw UsageError("--block " + std::to_string(block) + ": expected 1 to 1000000");
+}
+
+namespace {
+
+int compare(CompareCliOptions& o) {
+  check_block(o.block);
+  std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
+  bool named = !o.modes.empty();
+  std::vector<std::string> names = modes_to_run(o.modes);
 
   require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
@@ -173,7 +175,7 @@ int compare(CompareCliOptions& o) {
     ModeRun main = make_benches(scene, configs, copies, named, true);
     for (const BenchConfig& config : main.configs)
       if (tracer) tracer->name_process(config.trace_pid, "mode " + config.mode_name);
-    comparison.runs = run_modes(main, o, rendering, modes_text + ",");
+    comparison.runs = run_modes(main, o.bench, comparison.block, rendering, modes_text + ",");
   }
   for (BenchConfig& config : configs) config.tracer = nullptr;  // the trace shows the main run only
   bool partial = !comparison.runs.empty() && comparison.runs.front().partial;
@@ -183,7 +185,7 @@ int compare(CompareCliOptions& o) {
       continue;
     }
     ModeRun point = make_benches(scene, configs, n, named, false);
-    std::vector<RunReport> reports = run_modes(point, o, rendering, "sweep n=" + std::to_string(n) + ", " + modes_text + ",");
+    std::vector<RunReport> reports = run_modes(point, o.bench, comparison.block, rendering, "sweep n=" + std::to_string(n) + ", " + modes_text + ",");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 

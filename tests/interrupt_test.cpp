@@ -115,3 +115,23 @@ TEST(Interrupt, TheSecondSignalEndsTheProcessAtOnce) {
   ASSERT_TRUE(WIFSIGNALED(raw)) << "exited with " << WEXITSTATUS(raw);
   EXPECT_EQ(WTERMSIG(raw), SIGINT);
 }
+
+TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_capacity");
+  std::string result = (dir / "c.json").string();
+  Interrupted r = interrupt_cli({"capacity", scene(), "--budget", "100000", "--modes", "master,threaded", "--start", "2",
+                                 "--frames", "10000000", "--warmup", "0", "--json", result},
+                                dir, SIGINT, std::chrono::milliseconds(2500));
+  ASSERT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("crowdprof: interrupted: round 1 was cut short"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
+  json j = json::parse(std::ifstream(result));
+  EXPECT_TRUE(j["partial"].get<bool>());
+  ASSERT_EQ(j["modes"].size(), 2u);
+  for (const json& mode : j["modes"]) {
+    ASSERT_EQ(mode["points"].size(), 1u);
+    EXPECT_TRUE(mode["points"][0]["partial"].get<bool>());
+    EXPECT_GT(mode["points"][0]["frames"].get<size_t>(), 0u);
+    EXPECT_TRUE(mode["largest_fit"].is_null());  // the cut round is left out of the search
+  }
+}

@@ -9,32 +9,11 @@
 #include "profile/stats.h"
 #include "profile/svg_chart.h"
 #include "profile/number_text.h"
+#include "profile/text_table.h"
 
 namespace crowdprof {
 
 namespace {
-
-// Columns two spaces apart, right-aligned except those in `left` (text).
-std::string align(const std::vector<std::vector<std::string>>& rows, const std::vector<size_t>& left) {
-  std::vector<size_t> width;
-  for (const auto& row : rows)
-    for (size_t c = 0; c < row.size(); ++c) {
-      if (width.size() <= c) width.push_back(0);
-      width[c] = std::max(width[c], row[c].size());
-    }
-  std::string out;
-  for (const auto& row : rows) {
-    std::string line;
-    for (size_t c = 0; c < row.size(); ++c) {
-      std::string pad(width[c] - row[c].size(), ' ');
-      bool to_left = std::find(left.begin(), left.end(), c) != left.end();
-      line += (c ? "  " : "") + (to_left ? row[c] + pad : pad + row[c]);
-    }
-    while (!line.empty() && line.back() == ' ') line.pop_back();
-    out += line + "\n";
-  }
-  return out;
-}
 
 std::vector<double> frame_ms(const RunReport& run) {
   std::vector<double> out;
@@ -106,7 +85,7 @@ std::string format_comparison(const Comparison& comparison) {
     row.push_back(run.digest);
     rows.push_back(row);
   }
-  std::string out = align(rows, {0, rows.front().size() - 1});
+  std::string out = align_columns(rows, {0, rows.front().size() - 1});
   if (!comparison.runs.empty())
     out += "median of " + std::to_string(comparison.runs.front().frames.size()) + " frames per mode, run in blocks of " +
            std::to_string(comparison.block) + " frames; speedup_x = " + comparison.runs.front().run.mode +
@@ -116,7 +95,7 @@ std::string format_comparison(const Comparison& comparison) {
   rows.push_back({"characters", "mode", "frame_ms", "speedup_x"});
   for (const ModeMedians& m : mode_medians(comparison.sweep))
     rows.push_back({std::to_string(m.characters), m.mode, fixed(m.frame_ms, 3), fixed(m.speedup, 2)});
-  return out + "\nsweep: median frame time by crowd size\n" + align(rows, {1});
+  return out + "\nsweep: median frame time by crowd size\n" + align_columns(rows, {1});
 }
 
 void write_comparison_csv(const Comparison& comparison, std::ostream& out) {

@@ -1,0 +1,167 @@
+// `crowdprof capacity`: per mode, the largest crowd whose median frame (or one
+// category) fits a budget, searched over the crowd size in rounds; each round
+// runs the modes still searching side by side, interleaved as `compare` runs
+// them (frame/capacity.h for the search, cli/compare_modes.h for the runs).
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+#include "asset/errors.h"
+#include "cli/bench_options.h"
+#include "cli/commands.h"
+#include "cli/compare_modes.h"
+#include "cli/html_output.h"
+#include "cli/output.h"
+#include "frame/capacity.h"
+#include "frame/capacity_report.h"
+#include "frame/compare.h"
+#include "frame/interrupt.h"
+#include "frame/run_bench.h"
+#include "output/output_file.h"
+#include "profile/regression.h"
+
+using namespace crowdprof;
+
+namespace {
+
+struct CapacityCliOptions {
+  BenchCliOptions bench;
+  std::vector<std::string> modes;  // empty: every mode the backend can run
+  double budget = 0;
+  std::string metric = "frame";
+  long long start = 10, max_characters = 100'000;
+  double resolution = 0.05;
+  long long block = 10;
+  std::string svg;
+};
+
+// The largest crowd, up to `cap`, whose bench fits its share of the memory
+// when `modes` benches are alive at once (check_fits_in_memory's rule).
+size_t memory_cap(const BenchScene& scene, BenchConfig config, size_t cap, size_t modes) {
+  uint64_t available = available_memory_bytes();
+  if (available == 0) return cap;
+  uint64_t share = available * 9 / 10 / std::max<size_t>(modes, 1);
+  auto fits = [&](size_t n) {
+    config.crowd.copies = n;
+    return estimate_bench_bytes(scene.characters, config.crowd, config.mode) <= share;
+  };
+  if (fits(cap)) return cap;
+  size_t lo = 0, hi = cap;  // fits(lo) (or lo = 0), !fits(hi)
+  while (hi - lo > 1) {
+    size_t mid = lo + (hi - lo) / 2;
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+int capacity(CapacityCliOptions& o) {
+  CapacityRule rule;
+  rule.budget_ms = o.budget;
+  rule.resolution = o.resolution;
+  if (o.start < 1 || o.start > 10'000'000) throw UsageError("--start " + std::to_string(o.start) + ": expected 1 to 10000000");
+  if (o.max_characters < 1 || o.max_characters > 10'000'000)
+    throw UsageError("--max-characters " + std::to_string(o.max_characters) + ": expected 1 to 10000000");
+  rule.start = static_cast<size_t>(o.start);
+  rule.cap = static_cast<size_t>(o.max_characters);
+  if (std::string why = rule.Validate(); !why.empty()) throw UsageError(why);
+  std::optional<CapacityMetric> metric = parse_capacity_metric(o.metric);
+  if (!metric)
+    throw UsageError("--metric '" + o.metric + "': expected frame or a category (Animations, Rasterizer, ...)");
+  check_block(o.block);
+  bool named = !o.modes.empty();
+  std::vector<std::string> names = modes_to_run(o.modes);
+
+  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}});
+  if (!o.svg.empty()) require_writable(o.svg, "SVG");
+  BenchScene scene = load_bench_scene(o.bench);
+  std::vector<BenchConfig> configs;
+  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, scene));
+  configs.front().crowd.copies = rule.start;
+  BenchRendering rendering = open_bench_rendering(o.bench, scene, configs.front());
+  // Only the modes that can run here; one named that cannot is an error.
+  std::vector<ModeCapacity> modes;
+  std::vector<BenchConfig> runnable;
+  for (BenchConfig& config : configs) {
+    config.renderer = rendering.renderer.get();
+    std::string why = why_cannot_run(config);
+    if (!why.empty()) {
+      if (named) throw UsageError(why);
+      std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
+      continue;
+    }
+    runnable.push_back(config);
+  }
+  if (runnable.empty()) throw UsageError("none of the modes can run here");
+  for (const BenchConfig& config : runnable) {
+    ModeCapacity mode{config.mode_name, 1, rule, {}, {}};
+    mode.rule.cap = memory_cap(scene, config, rule.cap, runnable.size());
+    if (mode.rule.cap < 1) throw UsageError("mode " + config.mode_name + ": not even one character fits in memory");
+    mode.rule.start = std::min(rule.start, mode.rule.cap);
+    modes.push_back(mode);
+  }
+
+  install_interrupt_handlers();
+  size_t rounds = 0;
+  CapacityMeasure measure = [&](std::span<const size_t> active, std::span<const size_t> ns) {
+    ModeRun run;
+    std::string what = "capacity round " + std::to_string(++rounds) + ":";
+    for (size_t k = 0; k < active.size(); ++k) {
+      run.configs.push_back(runnable[active[k]]);
+      run.configs.back().crowd.copies = ns[k];
+      what += (k ? ", " : " ") + run.configs.back().mode_name + " n=" + std::to_string(ns[k]);
+    }
+    check_fits_in_memory(scene.characters, run.configs);
+    for (const BenchConfig& config : run.configs)
+      run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));
+    return run_modes(run, o.bench, static_cast<size_t>(o.block), rendering, what + ",");
+  };
+  CapacityRun result = run_capacity(std::move(modes), *metric, measure);
+  result.block = static_cast<size_t>(o.block);
+  result.frames = static_cast<size_t>(o.bench.frames);
+  result.warmup = static_cast<size_t>(o.bench.warmup);
+
+  if (!o.bench.quiet) std::cout << format_capacity(result);
+  if (!o.bench.json.empty())
+    write_text(o.bench.json, "JSON", [&](std::ostream& out) {
+      out << with_paths_relative_to(capacity_to_json(result), o.bench.json).dump(2) << "\n";
+    });
+  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << capacity_svg(result, preset_mode_order()); });
+  if (result.partial) {
+    std::cerr << "crowdprof: interrupted: round " << rounds << " was cut short and is left out of the search; "
+              << "the results are those of the " << rounds - 1 << " round" << (rounds == 2 ? "" : "s")
+              << " before it, written as a partial result\n";
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_capacity_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<CapacityCliOptions>();
+  auto* cmd = app.add_subcommand("capacity", "Find, per mode, the largest crowd whose median frame (or one category) "
+                                             "fits a time budget, by a search over the crowd size");
+  add_bench_options(*cmd, options->bench);
+  cmd->remove_option(cmd->get_option("--mode"));        // --modes instead
+  cmd->remove_option(cmd->get_option("--characters"));  // the search picks the sizes
+  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.6 (60 fps)")->required();
+  cmd->add_option("--modes", options->modes,
+                  "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
+                  "preset, e.g. master+lookups=bundled")
+      ->delimiter(',');
+  cmd->add_option("--metric", options->metric,
+                  "What must fit the budget: frame (the median frame time) or a category's median, e.g. Animations")
+      ->capture_default_str();
+  cmd->add_option("--start", options->start, "The first crowd size tried")->capture_default_str();
+  cmd->add_option("--max-characters", options->max_characters,
+                  "The largest crowd size tried (lower when the modes' benches would not fit in memory)")
+      ->capture_default_str();
+  cmd->add_option("--precision", options->resolution,
+                  "Stop when the first size over the budget is within this fraction of the largest that fits (or 1 "
+                  "character)")
+      ->capture_default_str();
+  cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
+  cmd->add_option("--json", options->bench.json, "Write every size tried per mode, with its median and percentiles");
+  cmd->add_option("--svg", options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
+  cmd->callback([&run, options] { run = [options] { return capacity(*options); }; });
+}
