@@ -11,7 +11,12 @@
 #include "frame/compare.h"
 #include "frame/run_bench.h"
 #include "gen/humanoid.h"
+#include "profile/compare_report.h"
+#include "profile/html_report.h"
+#include "profile/report_charts.h"
 #include "profile/report.h"
+#include "render/framebuffer.h"
+#include "render/gpu_timer.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -91,6 +96,11 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   std::string row;
   std::getline(csv, row);
   EXPECT_EQ(row.find("n/a"), std::string::npos) << row;
+  HtmlReportInput page;
+  add_result_document(page, j, "gpu.json");
+  std::string html = html_report(page);
+  std::string cell = "GPU time (median)</td><td>" + report_number(j["gpu_time"]["median_ms"].get<double>(), 2) + "</td>";
+  EXPECT_NE(html.find(cell), std::string::npos) << "the HTML report's table too";
 }
 
 TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
@@ -120,6 +130,12 @@ TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
     std::getline(csv, header);
     std::getline(csv, row);
     EXPECT_TRUE(row.ends_with(",n/a")) << row;
+    HtmlReportInput page;
+    add_result_document(page, j, "none.json");
+    std::string html = html_report(page);
+    size_t at = html.find("GPU time (median)</td><td>n/a</td><td class=\"name\">");
+    ASSERT_NE(at, std::string::npos) << "the HTML report's table too";
+    EXPECT_LT(html.find(why, at), html.find("</tr>", at)) << "with the reason";
   }
 }
 
@@ -141,4 +157,32 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
     for (const FrameRecord& f : report.frames)
       EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << report.run.mode;
   }
+  // compare's table shows it beside the categories; without a timer, no column.
+  Comparison comparison;
+  comparison.runs = reports;
+  std::string table = format_comparison(comparison);
+  EXPECT_NE(table.find("gpu_latency_ms  gpu_ms"), std::string::npos) << table;
+  for (RunReport& report : comparison.runs)
+    for (FrameRecord& f : report.frames) f.gpu_ms = std::nan("");
+  EXPECT_EQ(format_comparison(comparison).find("gpu_ms"), std::string::npos);
+}
+
+TEST(GpuTimer, QueriesNobodyTakesAreDroppedOldestFirst) {
+  OPEN_GL_OR_SKIP(context);
+  context->make_current();
+  Framebuffer target(16, 16);
+  target.bind();
+  GpuTimer timer;
+  int owner = 0, other = 0;
+  // More frames than the ring holds, none taken: the oldest go, the rest stay.
+  for (uint64_t frame = 0; frame < GpuTimer::kRing + 3; ++frame) {
+    timer.begin(&owner, frame);
+    glClear(GL_COLOR_BUFFER_BIT);
+    timer.end();
+  }
+  std::array<GpuTime, GpuTimer::kRing> out{};
+  EXPECT_EQ(timer.take(&other, 100, out, true), 0u) << "another owner's frames are not its";
+  ASSERT_EQ(timer.take(&owner, 100, out, true), GpuTimer::kRing);
+  for (size_t i = 0; i < GpuTimer::kRing; ++i) EXPECT_EQ(out[i].frame, i + 3);
+  EXPECT_EQ(timer.take(&owner, 100, out, true), 0u) << "each taken once";
 }
