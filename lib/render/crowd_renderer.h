@@ -125,6 +125,11 @@ class GlCrowdRenderer final : public FrameRenderer {
   GLint packed_model_ = -1, packed_colour_ = -1, packed_min_ = -1, packed_extent_ = -1;
   GLuint packed_vao_ = 0;
   std::vector<GLuint> stream_;
+  // With animation sharing, the storage (bench.storage_of) whose mesh the last
+  // CPU-skinned draw uploaded, and the buffer holding it: copies in the same
+  // state after it draw that buffer with their own transform, uploading nothing.
+  size_t shown_storage_ = SIZE_MAX;
+  GLuint shown_buffer_ = 0;
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
 };
 
