@@ -48,8 +48,13 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
       for (size_t i = start; i < end; ++i) {
         FrameRecord record = benches[b]->step();
         if (i >= options.warmup) reports[b].frames.push_back(record);
+        place_gpu_times(*benches[b], options.warmup, reports[b].frames);
         if (options.progress) options.progress(++done, total);
       }
+      // The block's last frames: their timer queries are done before the next
+      // mode draws (with one renderer for all modes, its queries are shared).
+      benches[b]->collect_gpu_times();
+      place_gpu_times(*benches[b], options.warmup, reports[b].frames);
     }
   }
   for (size_t b = 0; b < benches.size(); ++b) {

@@ -218,6 +218,8 @@ FrameRecord CrowdBench::step() {
   if (config_.renderer) config_.renderer->finish();
   enter(Category::Overhead);
   count_work(counters);
+  // Timer queries of earlier frames that have finished; never waits for one.
+  gpu_time_count_ = config_.renderer ? config_.renderer->take_gpu_times(*this, frame_, gpu_times_, false) : 0;
   ++frame_;
   // Between frames (reports, progress) is outside the engine's frame.
   enter(Category::Outside);
@@ -227,6 +229,14 @@ FrameRecord CrowdBench::step() {
   record.cpu_ms = process_cpu_ms() - cpu_start;
   record.times = clock_.end_frame();
   return record;
+}
+
+void CrowdBench::collect_gpu_times() {
+  gpu_time_count_ = config_.renderer ? config_.renderer->take_gpu_times(*this, frame_, gpu_times_, true) : 0;
+}
+
+std::string CrowdBench::gpu_timing_missing() const {
+  return config_.renderer ? config_.renderer->gpu_timing_missing() : "no GL backend (--backend none)";
 }
 
 void CrowdBench::enter(Category category) {

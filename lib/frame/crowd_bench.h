@@ -3,6 +3,7 @@
 // its profile category by one clock.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -73,8 +74,18 @@ class CrowdBench {
   CrowdBench(const CrowdBench&) = delete;
   CrowdBench& operator=(const CrowdBench&) = delete;
 
-  // Runs one frame and returns where its time went and the work it did.
+  // Runs one frame and returns where its time went and the work it did. Its
+  // GPU time is not known yet: gpu_times() gives earlier frames' as their
+  // timer queries finish.
   FrameRecord step();
+
+  // The GPU times (frame numbers as frames_run() counted them) that the last
+  // step() read, or that collect_gpu_times() waited for.
+  std::span<const GpuTime> gpu_times() const { return std::span(gpu_times_).first(gpu_time_count_); }
+  // After the last frame: waits for the GPU times still in flight.
+  void collect_gpu_times();
+  // Empty when the renderer times frames on the GPU, else why not ("no GL backend").
+  std::string gpu_timing_missing() const;
 
   // Forgets the time since the last frame: the next frame is not charged (as
   // Outside) for what ran in between, e.g. the other modes of a compare.
@@ -153,6 +164,8 @@ class CrowdBench {
   size_t frame_ = 0;
   std::vector<Kind> kinds_;                   // per character
   std::vector<Counters> character_counters_;  // per character, the last frame's
+  std::array<GpuTime, kGpuTimesInFlight> gpu_times_{};
+  size_t gpu_time_count_ = 0;
 
   std::vector<float> times_;                  // per copy: where in its action
   std::vector<uint8_t> visible_;              // per copy, from the last scenegraph stage

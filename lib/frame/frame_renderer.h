@@ -3,6 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
 
 #include "frame/modes.h"
 #include "profile/counters.h"
@@ -10,6 +13,14 @@
 namespace crowdprof {
 
 class CrowdBench;
+
+// The GPU's time for one frame of a bench, from a timer query read later.
+struct GpuTime {
+  uint64_t frame = 0;  // the bench's frame number (CrowdBench::frames_run() when it was drawn)
+  double ms = 0;
+};
+// Frames whose GPU time may be awaited at once: a renderer keeps this many queries.
+inline constexpr size_t kGpuTimesInFlight = 8;
 
 class FrameRenderer {
  public:
@@ -33,6 +44,15 @@ class FrameRenderer {
 
   // GPU Latency stage: wait until the frame is drawn (the BGE's SwapBuffers).
   virtual void finish() = 0;
+
+  // Empty when draw() times each frame on the GPU (GL timer queries), else
+  // why not, for the report ("... has no GL_TIME_ELAPSED timer").
+  virtual std::string gpu_timing_missing() const = 0;
+  // The GPU times of `owner`'s frames before `frame` whose queries have
+  // finished (never waiting for one, so never stalling), oldest first, at most
+  // out.size(); with `wait`, every frame still in flight, waiting for them.
+  // Returns how many were written.
+  virtual size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) = 0;
 };
 
 }  // namespace crowdprof

@@ -99,6 +99,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
               {"sensor_width_mm", config.lens.sensor_width_mm},
               {"sensor_height_mm", config.lens.sensor_height_mm},
               {"sensor_fit", to_string(config.lens.fit)}};
+  run.gpu_timing_missing = bench.gpu_timing_missing();
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
   return run;
@@ -107,6 +108,11 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
 void record_character_counters(const CrowdBench& bench, RunDescription& run) {
   std::span<const Counters> counters = bench.character_counters();
   for (size_t k = 0; k < run.crowd.size() && k < counters.size(); ++k) run.crowd[k].counters = counters[k];
+}
+
+void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
+  for (const GpuTime& t : bench.gpu_times())
+    if (t.frame >= warmup && t.frame - warmup < frames.size()) frames[t.frame - warmup].gpu_ms = t.ms;
 }
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {
@@ -124,8 +130,11 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
     }
     FrameRecord record = bench.step();
     if (i >= options.warmup) report.frames.push_back(record);
+    place_gpu_times(bench, options.warmup, report.frames);
     if (options.progress) options.progress(i + 1, total);
   }
+  bench.collect_gpu_times();
+  place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
   record_character_counters(bench, report.run);
   return report;

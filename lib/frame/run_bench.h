@@ -40,4 +40,8 @@ void check_fits_in_memory(std::span<const Character* const> characters, const Be
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 
+// Puts the GPU times the bench read in its last step (or collect) into the
+// records of their frames: frame f is frames[f - warmup], when measured.
+void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames);
+
 }  // namespace crowdprof

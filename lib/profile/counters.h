@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string_view>
 
 #include "profile/category_clock.h"
@@ -49,6 +50,10 @@ struct FrameRecord {
   // the wall-clock frame it does not grow while the machine's other jobs hold
   // the cores (check --metric cpu).
   double cpu_ms = 0;
+  // The GPU's time for the frame from a GL timer query (GL_TIME_ELAPSED), ms;
+  // NaN when not measured (no GL backend, no timer, or not read back). Not a
+  // category: the GPU runs beside the CPU's frame, not in it.
+  double gpu_ms = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace crowdprof

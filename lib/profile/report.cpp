@@ -1,6 +1,7 @@
 #include "profile/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 #include <sstream>
@@ -21,6 +22,14 @@ std::vector<double> frame_ms(const std::vector<FrameRecord>& frames) {
 std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t category) {
   std::vector<double> out;
   for (const FrameRecord& f : frames) out.push_back(f.times.ms[category]);
+  return out;
+}
+
+// The frames' GPU times that were measured (NaN: not).
+std::vector<double> gpu_ms(const std::vector<FrameRecord>& frames) {
+  std::vector<double> out;
+  for (const FrameRecord& f : frames)
+    if (std::isfinite(f.gpu_ms)) out.push_back(f.gpu_ms);
   return out;
 }
 
@@ -61,6 +70,17 @@ std::string format_profile(const RunReport& report) {
                   bar.empty() ? "" : " ", bar.c_str());  // no trailing blank for diff-friendly output
     out << line;
   }
+  // The GPU's own time, from timer queries: beside the categories, not one of
+  // them (GPU Latency stays the CPU's wait in finish). Never a made-up zero.
+  std::vector<double> gpu = gpu_ms(report.frames);
+  if (!gpu.empty())
+    std::snprintf(line, sizeof line, "%-11s: %8.2fms   median of %zu frames, GL timer queries (beside the frame)\n",
+                  "GPU time", summarize(gpu).median, gpu.size());
+  else
+    std::snprintf(line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
+                  (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
+                                                   : run.gpu_timing_missing).c_str());
+  out << line;
   // The slow frames, which a median hides: a game stutters on its p99.
   std::vector<double> totals = frame_ms(report.frames);
   Summary s = summarize(totals);
@@ -81,6 +101,7 @@ std::string format_profile(const RunReport& report) {
   if (run.backend != "none" || k.copies_fallback > 0) {
     out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
         << " bytes uploaded per frame";
+    if (k.gpu_palette_bytes > 0) out << " | " << k.gpu_palette_bytes << " bytes of palettes on the GPU";
     if (k.copies_fallback > 0)
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
     out << "\n";
@@ -126,6 +147,9 @@ std::string csv_header() {
     header += ',';
     header += field.name;
   }
+  // Appended after the counters, as columns never move: GL timer queries, n/a
+  // when not measured.
+  header += ",gpu_ms";
   return header;
 }
 
@@ -137,6 +161,7 @@ void write_csv(const RunReport& report, std::ostream& out) {
         << fixed(f.times.total_ms(), 4);
     for (double ms : f.times.ms) out << "," << fixed(ms, 4);
     for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
+    out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a"));
     out << "\n";
   }
 }
@@ -187,6 +212,23 @@ nlohmann::json to_json(const RunReport& report) {
     j["categories"][name] = summary_json(summarize(values));
     samples[name] = values;
   }
+  // GPU time per frame, when measured: null where a frame's was not read back,
+  // and no numbers at all without timer queries (never zeros).
+  std::vector<double> gpu = gpu_ms(report.frames);
+  nlohmann::json gpu_time = {{"available", !gpu.empty()}};
+  if (!gpu.empty()) {
+    gpu_time["source"] = "GL_TIME_ELAPSED timer queries";
+    gpu_time.update(summary_json(summarize(gpu)));
+    nlohmann::json per_frame = nlohmann::json::array();
+    for (const FrameRecord& f : report.frames)
+      per_frame.push_back(std::isfinite(f.gpu_ms) ? nlohmann::json(f.gpu_ms) : nlohmann::json(nullptr));
+    samples["gpu_ms"] = per_frame;
+  } else {
+    gpu_time["reason"] = run.gpu_timing_missing.empty() ? "no timer query was read back" : run.gpu_timing_missing;
+    gpu_time["median_ms"] = nullptr;
+    samples["gpu_ms"] = nullptr;
+  }
+  j["gpu_time"] = gpu_time;
   // Counters per frame: the median over frames (they rarely vary at all).
   for (const CounterField& field : kCounterFields) {
     std::vector<double> values;

@@ -35,6 +35,8 @@ struct RunDescription {
   nlohmann::json switches;     // the mode's switches by name
   int threads = 1;
   std::string backend = "none", renderer = "none";
+  // Empty when frames were timed on the GPU (GL timer queries), else why not.
+  std::string gpu_timing_missing = "no GL backend (--backend none)";
   size_t warmup = 0;
   double fps = 60.0;
   std::string camera;

@@ -196,6 +196,8 @@ void GlCrowdRenderer::set_frame_uniforms(const GlProgram& program, const CrowdBe
 }
 
 void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
+  // The GPU's time for everything the frame asks of it, clear to last draw.
+  if (features_.timer_queries()) timer_.begin(&bench, bench.frames_run());
   framebuffer_.bind();
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -223,6 +225,7 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
   if (any_gpu && mode.palettes == PaletteStorage::Buffer)
     draw_buffer_palettes(bench, mode.draw == DrawMethod::Instanced, counters);
   glBindVertexArray(0);
+  if (features_.timer_queries()) timer_.end();
   check_gl("Rasterizer");
 }
 
@@ -339,6 +342,18 @@ void GlCrowdRenderer::draw_buffer_palettes(const CrowdBench& bench, bool instanc
 void GlCrowdRenderer::finish() {
   glFinish();
   check_gl("GPU Latency");
+}
+
+std::string GlCrowdRenderer::gpu_timing_missing() const {
+  if (features_.timer_queries()) return {};
+  return context_.renderer() + " has no GL_TIME_ELAPSED timer (0 counter bits)";
+}
+
+size_t GlCrowdRenderer::take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) {
+  if (!features_.timer_queries()) return 0;
+  size_t taken = timer_.take(&owner, frame, out, wait);
+  check_gl("Overhead (reading GPU timer queries)");
+  return taken;
 }
 
 }  // namespace crowdprof

@@ -20,6 +20,7 @@
 #include "render/gl_features.h"
 #include "render/gl_program.h"
 #include "render/gpu_frame_buffers.h"
+#include "render/gpu_timer.h"
 
 namespace crowdprof {
 
@@ -64,6 +65,8 @@ class GlCrowdRenderer final : public FrameRenderer {
   void draw(const CrowdBench& bench, Counters& counters) override;
   // glFinish. Throws GlError "GL error ... during GPU Latency".
   void finish() override;
+  std::string gpu_timing_missing() const override;
+  size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;
 
   // The last frame drawn, RGBA8, rows top to bottom.
   std::vector<uint8_t> read_pixels() const { return framebuffer_.read_rgba(); }
@@ -109,6 +112,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   GlProgram buffer_program_, instanced_program_;
   GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1, instanced_first_ = -1;
   GpuFrameBuffers frame_buffers_;
+  GpuTimer timer_;  // when features_.timer_queries()
   std::vector<uint32_t> kind_counts_;  // scratch: GPU-skinned copies on screen per kind
   // CPU-skinned copies: a buffer per drawn copy (positions, then normals),
   // orphaned and refilled every frame. With more copies on screen than

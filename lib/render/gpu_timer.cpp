@@ -1,0 +1,61 @@
+#include "render/gpu_timer.h"
+
+#include <algorithm>
+
+namespace crowdprof {
+
+GpuTimer::~GpuTimer() {
+  for (Slot& slot : slots_)
+    if (slot.query) glDeleteQueries(1, &slot.query);
+}
+
+void GpuTimer::begin(const void* owner, uint64_t frame) {
+  auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) { return s.state == State::Free; });
+  if (free == slots_.end()) {
+    // Queries nobody took: drop the oldest, waiting for its result so that
+    // its query object can be begun again.
+    free = std::min_element(slots_.begin(), slots_.end(), [](const Slot& a, const Slot& b) { return a.order < b.order; });
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(free->query, GL_QUERY_RESULT, &ns);
+  }
+  Slot& slot = *free;
+  if (!slot.query) glGenQueries(1, &slot.query);
+  slot.owner = owner;
+  slot.frame = frame;
+  slot.order = next_order_++;
+  slot.state = State::Pending;
+  glBeginQuery(GL_TIME_ELAPSED, slot.query);
+  active_ = &slot;
+}
+
+void GpuTimer::end() {
+  if (!active_) return;
+  glEndQuery(GL_TIME_ELAPSED);
+  active_ = nullptr;
+}
+
+size_t GpuTimer::take(const void* owner, uint64_t frame, std::span<GpuTime> out, bool wait) {
+  // Oldest first, so that a caller sees its frames in order.
+  std::array<Slot*, kRing> mine{};
+  size_t count = 0;
+  for (Slot& slot : slots_)
+    if (slot.state != State::Free && slot.owner == owner && &slot != active_ && (wait || slot.frame < frame))
+      mine[count++] = &slot;
+  std::sort(mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(count),
+            [](const Slot* a, const Slot* b) { return a->order < b->order; });
+  size_t written = 0;
+  for (size_t i = 0; i < count && written < out.size(); ++i) {
+    Slot& slot = *mine[i];
+    GLint available = 0;
+    if (!wait) glGetQueryObjectiv(slot.query, GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!wait && !available) break;  // later ones are not ready either
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(slot.query, GL_QUERY_RESULT, &ns);
+    out[written++] = {slot.frame, static_cast<double>(ns) * 1e-6};
+    slot.state = State::Free;
+    slot.owner = nullptr;
+  }
+  return written;
+}
+
+}  // namespace crowdprof

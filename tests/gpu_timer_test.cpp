@@ -1,0 +1,144 @@
+// GPU time from GL timer queries: every measured frame gets its own, read a
+// frame or more later (never the frame just drawn, so never a stall), in the
+// table and CSV/JSON beside the categories; where no timer exists the report
+// says so, with no number.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "asset/gltf_loader.h"
+#include "frame/compare.h"
+#include "frame/run_bench.h"
+#include "gen/humanoid.h"
+#include "profile/report.h"
+#include "render_support.h"
+#include "test_support.h"
+
+using namespace crowdprof;
+using namespace crowdprof::test;
+
+namespace {
+
+const Character& small_humanoid() {
+  static const Character character = generate_humanoid({30, 800, 7});
+  return character;
+}
+
+BenchConfig config_for(const std::string& mode, FrameRenderer* renderer) {
+  BenchConfig config;
+  config.mode = find_mode(mode)->switches;
+  config.mode_name = mode;
+  config.threads = 2;
+  config.crowd.copies = 6;
+  config.renderer = renderer;
+  return config;
+}
+
+RendererConfig small_frame(const std::string& hide = {}) {
+  RendererConfig rc;
+  rc.width = kWidth;
+  rc.height = kHeight;
+  rc.hide_features = hide;
+  return rc;
+}
+
+}  // namespace
+
+TEST(GpuTimer, EveryFrameGetsItsOwnTimeReadLater) {
+  OPEN_GL_OR_SKIP(context);
+  GlCrowdRenderer renderer(*context, small_humanoid(), 6, small_frame());
+  ASSERT_EQ(renderer.gpu_timing_missing(), "") << "llvmpipe has GL_TIME_ELAPSED";
+  CrowdBench bench(small_humanoid(), config_for("instanced", &renderer));
+  std::vector<uint64_t> seen;
+  for (uint64_t frame = 0; frame < 6; ++frame) {
+    bench.step();
+    for (const GpuTime& t : bench.gpu_times()) {
+      EXPECT_LT(t.frame, frame) << "the frame just drawn is never read: that could stall";
+      EXPECT_GT(t.ms, 0.0);
+      seen.push_back(t.frame);
+    }
+  }
+  bench.collect_gpu_times();
+  for (const GpuTime& t : bench.gpu_times()) seen.push_back(t.frame);
+  EXPECT_EQ(seen, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5})) << "each frame once, in order";
+}
+
+TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
+  OPEN_GL_OR_SKIP(context);
+  GlCrowdRenderer renderer(*context, small_humanoid(), 6, small_frame());
+  CrowdBench bench(small_humanoid(), config_for("hwskin", &renderer));
+  RunOptions options;
+  options.frames = 5;
+  options.warmup = 2;
+  RunReport report = run_bench(bench, "humanoid", options);
+  ASSERT_EQ(report.frames.size(), 5u);
+  for (const FrameRecord& f : report.frames) EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << f.gpu_ms;
+  std::string table = format_profile(report);
+  EXPECT_NE(table.find("\nGPU time   : "), std::string::npos) << table;
+  EXPECT_NE(table.find("median of 5 frames, GL timer queries"), std::string::npos) << table;
+  EXPECT_LT(table.find("GPU Latency:"), table.find("GPU time   :")) << "beside the categories";
+  nlohmann::json j = to_json(report);
+  EXPECT_EQ(j["gpu_time"]["available"], true);
+  EXPECT_GT(j["gpu_time"]["median_ms"].get<double>(), 0.0);
+  ASSERT_EQ(j["samples"]["gpu_ms"].size(), 5u);
+  std::stringstream csv;
+  write_csv(report, csv);
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",gpu_latency_ms,poses_updated,"), std::string::npos) << "earlier columns never move";
+  EXPECT_TRUE(header.ends_with(",gpu_palette_bytes,gpu_ms")) << header;
+  std::string row;
+  std::getline(csv, row);
+  EXPECT_EQ(row.find("n/a"), std::string::npos) << row;
+}
+
+TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
+  OPEN_GL_OR_SKIP(context);
+  GlCrowdRenderer renderer(*context, small_humanoid(), 6, small_frame("timer-query"));
+  EXPECT_NE(renderer.gpu_timing_missing().find("no GL_TIME_ELAPSED timer"), std::string::npos);
+  CrowdBench with_gl(small_humanoid(), config_for("hwskin", &renderer));
+  CrowdBench without_gl(small_humanoid(), config_for("threaded", nullptr));
+  RunOptions options;
+  options.frames = 3;
+  options.warmup = 1;
+  for (CrowdBench* bench : {&with_gl, &without_gl}) {
+    RunReport report = run_bench(*bench, "humanoid", options);
+    for (const FrameRecord& f : report.frames) EXPECT_TRUE(std::isnan(f.gpu_ms));
+    std::string why = bench == &with_gl ? "no GL_TIME_ELAPSED timer" : "no GL backend";
+    std::string table = format_profile(report);
+    EXPECT_NE(table.find("GPU time   :      n/a     "), std::string::npos) << table;
+    EXPECT_NE(table.find(why), std::string::npos) << table;
+    nlohmann::json j = to_json(report);
+    EXPECT_EQ(j["gpu_time"]["available"], false);
+    EXPECT_TRUE(j["gpu_time"]["median_ms"].is_null());
+    EXPECT_NE(j["gpu_time"]["reason"].get<std::string>().find(why), std::string::npos);
+    EXPECT_TRUE(j["samples"]["gpu_ms"].is_null());
+    std::stringstream csv;
+    write_csv(report, csv);
+    std::string header, row;
+    std::getline(csv, header);
+    std::getline(csv, row);
+    EXPECT_TRUE(row.ends_with(",n/a")) << row;
+  }
+}
+
+TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
+  OPEN_GL_OR_SKIP(context);
+  GlCrowdRenderer renderer(*context, small_humanoid(), 6, small_frame());
+  std::vector<std::unique_ptr<CrowdBench>> owned;
+  std::vector<CrowdBench*> benches;
+  for (const char* mode : {"threaded", "hwskin", "buffer", "instanced"}) {
+    owned.push_back(std::make_unique<CrowdBench>(small_humanoid(), config_for(mode, &renderer)));
+    benches.push_back(owned.back().get());
+  }
+  RunOptions options;
+  options.frames = 7;
+  options.warmup = 2;
+  std::vector<RunReport> reports = run_interleaved(benches, "humanoid", options, 3);
+  for (const RunReport& report : reports) {
+    ASSERT_EQ(report.frames.size(), 7u);
+    for (const FrameRecord& f : report.frames)
+      EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << report.run.mode;
+  }
+}
