@@ -11,6 +11,9 @@
 #include "frame/compare.h"
 #include "frame/run_bench.h"
 #include "gen/humanoid.h"
+#include "profile/compare_report.h"
+#include "profile/html_report.h"
+#include "profile/report_charts.h"
 #include "profile/report.h"
 #include "render_support.h"
 #include "test_support.h"
@@ -91,6 +94,11 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   std::string row;
   std::getline(csv, row);
   EXPECT_EQ(row.find("n/a"), std::string::npos) << row;
+  HtmlReportInput page;
+  add_result_document(page, j, "gpu.json");
+  std::string html = html_report(page);
+  std::string cell = "GPU time (median)</td><td>" + report_number(j["gpu_time"]["median_ms"].get<double>(), 2) + "</td>";
+  EXPECT_NE(html.find(cell), std::string::npos) << "the HTML report's table too";
 }
 
 TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
@@ -120,6 +128,12 @@ TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
     std::getline(csv, header);
     std::getline(csv, row);
     EXPECT_TRUE(row.ends_with(",n/a")) << row;
+    HtmlReportInput page;
+    add_result_document(page, j, "none.json");
+    std::string html = html_report(page);
+    size_t at = html.find("GPU time (median)</td><td>n/a</td><td class=\"name\">");
+    ASSERT_NE(at, std::string::npos) << "the HTML report's table too";
+    EXPECT_LT(html.find(why, at), html.find("</tr>", at)) << "with the reason";
   }
 }
 
@@ -141,4 +155,12 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
     for (const FrameRecord& f : report.frames)
       EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << report.run.mode;
   }
+  // compare's table shows it beside the categories; without a timer, no column.
+  Comparison comparison;
+  comparison.runs = reports;
+  std::string table = format_comparison(comparison);
+  EXPECT_NE(table.find("gpu_latency_ms  gpu_ms"), std::string::npos) << table;
+  for (RunReport& report : comparison.runs)
+    for (FrameRecord& f : report.frames) f.gpu_ms = std::nan("");
+  EXPECT_EQ(format_comparison(comparison).find("gpu_ms"), std::string::npos);
 }

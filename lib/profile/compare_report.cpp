@@ -1,6 +1,7 @@
 #include "profile/compare_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -71,6 +72,15 @@ std::string format_comparison(const Comparison& comparison) {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header = {"mode", "characters", "threads", "frame_ms"};
   for (Category c : shown) header.push_back(std::string(category_column(c)) + "_ms");
+  // The GPU's own time (timer queries) beside the categories, when any mode has it.
+  std::vector<std::vector<double>> gpu(comparison.runs.size());
+  bool any_gpu = false;
+  for (size_t r = 0; r < comparison.runs.size(); ++r) {
+    for (const FrameRecord& f : comparison.runs[r].frames)
+      if (std::isfinite(f.gpu_ms)) gpu[r].push_back(f.gpu_ms);
+    any_gpu = any_gpu || !gpu[r].empty();
+  }
+  if (any_gpu) header.push_back("gpu_ms");
   for (const char* tail : {"speedup_x", "copies_culled", "digest"}) header.push_back(tail);
   rows.push_back(header);
   for (size_t r = 0; r < medians.size(); ++r) {
@@ -79,6 +89,7 @@ std::string format_comparison(const Comparison& comparison) {
     std::vector<std::string> row = {m.mode, std::to_string(m.characters), std::to_string(m.threads),
                                     fixed(m.frame_ms, 3)};
     for (Category c : shown) row.push_back(fixed(m.category_ms[static_cast<size_t>(c)], 3));
+    if (any_gpu) row.push_back(gpu[r].empty() ? "n/a" : fixed(summarize(gpu[r]).median, 3));
     uint64_t culled = run.frames.empty() ? 0 : run.frames[median_frame(run.frames)].counters.copies_culled;
     row.push_back(fixed(m.speedup, 2));
     row.push_back(std::to_string(culled));

@@ -239,7 +239,18 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
     }
     out += "</tr>\n";
   }
-  out += "</table>\n";
+  // The GPU's own time (GL timer queries), beside the categories and not one of
+  // them: n/a with the reason where it was not measured, never 0.
+  out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
+  for (const ReportRun& run : runs) {
+    const json* gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? &run.doc["gpu_time"] : nullptr;
+    if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
+      out += "<td>" + report_number((*gpu)["median_ms"].get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
+    else
+      out += "<td>n/a</td><td class=\"name\">" +
+             h(gpu && (*gpu)["reason"].is_string() ? (*gpu)["reason"].get<std::string>() : "not recorded") + "</td>";
+  }
+  out += "</tr>\n</table>\n";
   for (const ReportRun& run : runs) {
     const json& scene = run.doc["scene"];
     out += "<p>" + h(run.label) + ": " + std::to_string(scene["characters"].get<size_t>()) + " characters x " +
