@@ -15,6 +15,8 @@
 #include "profile/html_report.h"
 #include "profile/report_charts.h"
 #include "profile/report.h"
+#include "render/framebuffer.h"
+#include "render/gpu_timer.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -163,4 +165,24 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
   for (RunReport& report : comparison.runs)
     for (FrameRecord& f : report.frames) f.gpu_ms = std::nan("");
   EXPECT_EQ(format_comparison(comparison).find("gpu_ms"), std::string::npos);
+}
+
+TEST(GpuTimer, QueriesNobodyTakesAreDroppedOldestFirst) {
+  OPEN_GL_OR_SKIP(context);
+  context->make_current();
+  Framebuffer target(16, 16);
+  target.bind();
+  GpuTimer timer;
+  int owner = 0, other = 0;
+  // More frames than the ring holds, none taken: the oldest go, the rest stay.
+  for (uint64_t frame = 0; frame < GpuTimer::kRing + 3; ++frame) {
+    timer.begin(&owner, frame);
+    glClear(GL_COLOR_BUFFER_BIT);
+    timer.end();
+  }
+  std::array<GpuTime, GpuTimer::kRing> out{};
+  EXPECT_EQ(timer.take(&other, 100, out, true), 0u) << "another owner's frames are not its";
+  ASSERT_EQ(timer.take(&owner, 100, out, true), GpuTimer::kRing);
+  for (size_t i = 0; i < GpuTimer::kRing; ++i) EXPECT_EQ(out[i].frame, i + 3);
+  EXPECT_EQ(timer.take(&owner, 100, out, true), 0u) << "each taken once";
 }

@@ -464,3 +464,16 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
 }
 
 }  // namespace crowdprof
+
+namespace crowdprof {
+
+json median_run(std::vector<json> runs, const std::string& key) {
+  std::vector<std::pair<double, size_t>> medians;
+  for (size_t i = 0; i < runs.size(); ++i) medians.emplace_back(summarize(samples_of(runs[i], key)).median, i);
+  std::sort(medians.begin(), medians.end());
+  return std::move(runs.at(medians.at((medians.size() - 1) / 2).second));
+}
+
+std::string metric_display_name(const std::string& key) { return display_name(key); }
+
+}  // namespace crowdprof

@@ -102,6 +102,15 @@ struct CheckOptions {
   bool compare_work = true;
 };
 
+// Of several results of one run, the one whose median of samples `key` is the
+// median (the lower middle of an even count): what --update-baseline records.
+// `runs` must not be empty and each must hold samples `key`.
+nlohmann::json median_run(std::vector<nlohmann::json> runs, const std::string& key);
+
+// How a samples key is named to users: "cpu_ms" as "cpu", "frame_ms" as
+// "frame", a category by its key ("animations_ms").
+std::string metric_display_name(const std::string& key);
+
 struct MetricCheck {
   std::string metric;  // as the user named it: "frame", "Animations"
   Summary baseline, current;

@@ -5,7 +5,9 @@
 # leak, timeout or sanitizer report stops with the input saved in
 # build-sanitize/fuzz/artifacts/TARGET/ (minimise it with -minimize_crash=1, fix,
 # and keep it in tests/fuzz/regressions/TARGET/). Prints, per target, the
-# executions, coverage (edges) and features reached.
+# executions, coverage (edges) and features reached. FUZZ_SEED fixes libFuzzer's
+# random seed (the sanitizer stage of CI sets it, so that a finding there is the
+# same on every run of the same code); unset, each run explores anew.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 
@@ -13,7 +15,7 @@ seconds=${1:-60}
 shift || true
 [[ $seconds =~ ^[0-9]+$ ]] || { echo "usage: ./setup.sh fuzz [SECONDS] [TARGET...]" >&2; exit 2; }
 names=("$@")
-((${#names[@]})) || names=(gltf_loader result_reader scene_file)
+((${#names[@]})) || names=(gltf_loader result_reader result_tools scene_file)
 
 targets="fuzz_seeds ${names[*]/#/fuzz_}"
 build_asan >/dev/null
@@ -27,7 +29,7 @@ for name in "${names[@]}"; do
   # -timeout: a single input that takes this long is a hang worth fixing.
   # -rss_limit_mb: the loader refuses files past 1 GiB; more memory is a finding.
   if ! "$asan_dir/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 \
-      -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$asan_dir/fuzz/seeds/$name" >"$log" 2>&1; then
+      -print_final_stats=1 -seed="${FUZZ_SEED:-0}" -artifact_prefix="$artifacts/" "$corpus" "$asan_dir/fuzz/seeds/$name" >"$log" 2>&1; then
     status=1
     echo "fuzz: $name FAILED, see $log and $artifacts/" >&2
     grep -E "ERROR|SUMMARY|fuzz: " "$log" | head -5 >&2 || true

@@ -1,0 +1,67 @@
+// Fuzz target: bytes as a result file given to `crowdprof diff` and
+// `crowdprof report`: bench, check or compare JSON. Both read the file with
+// read_json_file and then take it apart their own way (bench_results_in for
+// diff, add_result_document for the report), so each reader is driven to its
+// end: the file diffed against itself and the page made. Each must refuse with
+// an InputError or finish; any other exception, a regression of a file against
+// itself, or a sanitizer report is a finding.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+
+#include "asset/errors.h"
+#include "fuzz_file.h"
+#include "profile/diff.h"
+#include "profile/html_report.h"
+#include "profile/regression.h"
+
+namespace {
+
+void run_diff(const nlohmann::json& doc, const std::string& path) {
+  using namespace crowdprof;
+  std::vector<nlohmann::json> runs = bench_results_in(doc, path);
+  CheckOptions options;
+  Diff diff = diff_results(runs, path, runs, path, options);
+  (void)format_diff(diff, options);
+  (void)diff_to_json(diff, options).dump();
+  if (diff.regressed()) {
+    std::fprintf(stderr, "fuzz: a result regressed against itself in diff\n");
+    std::abort();
+  }
+}
+
+void run_report(const nlohmann::json& doc, const std::string& path) {
+  using namespace crowdprof;
+  HtmlReportInput input;
+  input.sources = {path};
+  add_result_document(input, doc, path);
+  (void)html_report(input);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace crowdprof;
+  const std::string path = crowdprof::fuzz::write_input(data, size, "result.json");
+  nlohmann::json doc;
+  try {
+    doc = read_json_file(path);
+  } catch (const InputError&) {
+    return 0;  // Refused cleanly.
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fuzz: read_json_file, not an InputError: %s\n", e.what());
+    std::abort();
+  }
+  // The two readers are independent: one refusing says nothing about the other.
+  for (auto* reader : {&run_diff, &run_report}) {
+    try {
+      reader(doc, path);
+    } catch (const InputError&) {
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "fuzz: %s, not an InputError: %s\n", reader == &run_diff ? "diff" : "report", e.what());
+      std::abort();
+    }
+  }
+  return 0;
+}
