@@ -454,3 +454,25 @@ TEST(CrowdScaleCli, BadValuesAreUsageErrors) {
     EXPECT_NE(r.err.find(bad.words), std::string::npos) << bad.args << ": " << r.err;
   }
 }
+
+TEST(CrowdScaleCli, WithAGlBackendOneSharedMeshIsUploadedOnce) {
+  if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL here";
+  auto dir = crowdprof::test::scratch_dir("crowd_scale_gl");
+  nlohmann::json runs[2];
+  const char* modes[2] = {"threaded", "shared"};
+  for (int m = 0; m < 2; ++m) {
+    auto json_path = (dir / (std::string(modes[m]) + ".json")).string();
+    auto r = crowdprof::test::run_cli("bench '" + humanoid_glb() + "' -n 12 --mode " + modes[m] +
+                                      " --backend auto --resolution 320x180 --frames 2 --warmup 0 -q --json '" +
+                                      json_path + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(json_path);
+    runs[m] = nlohmann::json::parse(in);
+  }
+  const nlohmann::json &threaded = runs[0]["counters"], &shared = runs[1]["counters"];
+  ASSERT_GT(threaded["copies_visible"].get<uint64_t>(), 1u);
+  EXPECT_EQ(shared["draw_calls"], threaded["draw_calls"]);  // every copy drawn, with its own transform
+  EXPECT_EQ(shared["bytes_uploaded"].get<uint64_t>() * threaded["copies_visible"].get<uint64_t>(),
+            threaded["bytes_uploaded"].get<uint64_t>());  // one mesh uploaded, not one per copy
+  EXPECT_EQ(runs[0]["digest"], runs[1]["digest"]);
+}

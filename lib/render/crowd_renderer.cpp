@@ -211,6 +211,7 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     set_frame_uniforms(cpu_program_, bench);
     glBindVertexArray(cpu_vao_);
     size_t drawn = 0;
+    shown_storage_ = SIZE_MAX;
     for (size_t i = 0; i < crowd.size(); ++i)
       if (bench.visible(i) && !bench.gpu_skinned_copy(i)) draw_copy_cpu_skinned(bench, i, drawn++, counters);
   }
@@ -233,21 +234,28 @@ void GlCrowdRenderer::draw_copy_cpu_skinned(const CrowdBench& bench, size_t i, s
   size_t k = bench.crowd().kind[i];
   const Kind& kind = kinds_[k];
   auto half = static_cast<GLsizeiptr>(kind.vertices * sizeof(glm::vec3));
-  GLuint buffer = stream_[drawn % stream_.size()];
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
-  // Fresh storage (orphaning) before writing: writing into storage that a
-  // draw may still read makes the driver wait for it. llvmpipe waits even
-  // for the last frame's finished draws: 2.5x the Rasterizer time without.
-  glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
-  glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+  // Animation sharing: a copy in the state the last draw uploaded draws that
+  // mesh again with its own transform (the thesis scene: one upload a frame).
+  bool same_mesh = bench.config().mode.share_poses && bench.storage_of(i) == shown_storage_;
+  GLuint buffer = same_mesh ? shown_buffer_ : stream_[drawn % stream_.size()];
+  if (!same_mesh) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    // Fresh storage (orphaning) before writing: writing into storage that a
+    // draw may still read makes the driver wait for it. llvmpipe waits even
+    // for the last frame's finished draws: 2.5x the Rasterizer time without.
+    glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
+    glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+    counters.bytes_uploaded += vertex_bytes_per_copy(k);
+    shown_storage_ = bench.storage_of(i);
+    shown_buffer_ = buffer;
+  }
   glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
   glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);  // part of the VAO: the copy's character's
   glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
   glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
   glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
-  counters.bytes_uploaded += vertex_bytes_per_copy(k);
   ++counters.draw_calls;
 }
 

@@ -119,6 +119,11 @@ class GlCrowdRenderer final : public FrameRenderer {
   // buffers, buffers serve several copies.
   GLuint cpu_vao_ = 0;
   std::vector<GLuint> stream_;
+  // With animation sharing, the storage (bench.storage_of) whose mesh the last
+  // CPU-skinned draw uploaded, and the buffer holding it: copies in the same
+  // state after it draw that buffer with their own transform, uploading nothing.
+  size_t shown_storage_ = SIZE_MAX;
+  GLuint shown_buffer_ = 0;
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
 };
 
