@@ -1,6 +1,7 @@
 #include "cli/bench_options.h"
 
 #include <cmath>
+#include <optional>
 #include <iostream>
 #include <tuple>
 #include <thread>
@@ -59,6 +60,21 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--draw", o.draw,
                  "Override the mode: per-copy (a draw call per copy) or instanced (one per character kind; needs "
                  "--palettes buffer)");
+  cmd.add_option("--share", o.share,
+                 "Override the mode: on or off (animation sharing: copies in the same action and time share one pose "
+                 "and one skinned mesh)");
+  cmd.add_option("--share-quantum", o.share_quantum,
+                 "With --share on: snap each copy's time to a multiple of this many seconds (e.g. 1/30 or 0.05) so "
+                 "copies fall into shared states; 0: exact times");
+  cmd.add_option("--update-lod", o.update_lod,
+                 "Override the mode: on or off (update-rate LOD: copies updated every 1, 2, 4 or 8 frames by size on "
+                 "screen, holding their pose between)");
+  cmd.add_option("--lod-thresholds", o.lod_thresholds,
+                 "A,B,C: shares of the screen's height at which a copy is updated every frame (>= A), every 2nd "
+                 "(>= B), every 4th (>= C), else every 8th (default: 0.25,0.125,0.0625)");
+  cmd.add_option("--anim-budget", o.anim_budget,
+                 "Milliseconds: keep the Animations category's p95 at or under this by updating the copies smallest "
+                 "on screen less often (at least every 64 frames); 0: no budget");
   cmd.add_flag("--static", o.allow_static, "Accept a character without actions: a crowd in its rest pose");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
 }
@@ -80,6 +96,56 @@ Enum parse_choice(const std::string& value, const char* option,
     names += names.empty() ? name : std::string(", ") + name;
   }
   throw UsageError(std::string(option) + " '" + value + "': expected one of " + names);
+}
+
+// A number as the whole text (no trailing junk), or nullopt.
+std::optional<double> parse_number(const std::string& text) {
+  if (text.empty() || text.size() > 32) return std::nullopt;
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// Seconds, as a decimal or a fraction 1/N.
+double parse_share_quantum(const std::string& text) {
+  std::optional<double> value;
+  size_t slash = text.find('/');
+  if (slash == std::string::npos) {
+    value = parse_number(text);
+  } else {
+    std::optional<double> top = parse_number(text.substr(0, slash)), bottom = parse_number(text.substr(slash + 1));
+    if (top && bottom && *bottom > 0) value = *top / *bottom;
+  }
+  if (!value || *value < 0 || *value > 10)
+    throw UsageError("--share-quantum '" + text + "': expected seconds from 0 to 10, e.g. 1/30 or 0.05");
+  return *value;
+}
+
+crowdprof::LodThresholds parse_lod_thresholds(const std::string& text) {
+  std::optional<double> v[3];
+  size_t first = text.find(','), second = first == std::string::npos ? first : text.find(',', first + 1);
+  if (second != std::string::npos && text.find(',', second + 1) == std::string::npos) {
+    v[0] = parse_number(text.substr(0, first));
+    v[1] = parse_number(text.substr(first + 1, second - first - 1));
+    v[2] = parse_number(text.substr(second + 1));
+  }
+  if (!v[0] || !v[1] || !v[2] || !(*v[0] <= 1 && *v[0] >= *v[1] && *v[1] >= *v[2] && *v[2] >= 0))
+    throw UsageError("--lod-thresholds '" + text +
+                     "': expected three shares of the screen's height A,B,C with 1 >= A >= B >= C >= 0");
+  return {static_cast<float>(*v[0]), static_cast<float>(*v[1]), static_cast<float>(*v[2])};
+}
+
+double parse_anim_budget(const std::string& text) {
+  std::optional<double> value = parse_number(text);
+  if (!value || *value < 0 || *value > 10000)
+    throw UsageError("--anim-budget '" + text + "': expected milliseconds from 0 (no budget) to 10000");
+  return *value;
 }
 
 }  // namespace
@@ -140,6 +206,11 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
   if (!o.draw.empty())
     config.mode.draw =
         parse_choice<DrawMethod>(o.draw, "--draw", {{"per-copy", DrawMethod::PerCopy}, {"instanced", DrawMethod::Instanced}});
+  if (!o.share.empty()) config.mode.share_poses = parse_on_off(o.share, "--share");
+  if (!o.share_quantum.empty()) config.mode.share_quantum_s = parse_share_quantum(o.share_quantum);
+  if (!o.update_lod.empty()) config.mode.update_lod = parse_on_off(o.update_lod, "--update-lod");
+  if (!o.lod_thresholds.empty()) config.mode.lod = parse_lod_thresholds(o.lod_thresholds);
+  if (!o.anim_budget.empty()) config.mode.anim_budget_ms = parse_anim_budget(o.anim_budget);
   // An override that repeats the preset leaves it the preset.
   if (config.mode != preset->switches) config.mode_name += "+custom";
 

@@ -40,6 +40,8 @@ struct BenchCliOptions {
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
   std::string lookups, culling, pose, parallel, skinning, palettes, draw;
+  // Issue 13's switches (docs/modes.md); empty keeps the mode's.
+  std::string share, share_quantum, update_lod, lod_thresholds, anim_budget;
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
   std::string html;        // the HTML report of the run (docs/report.md)

@@ -79,7 +79,9 @@ BenchCliOptions options_recorded_in(const json& baseline) {
   if (r.mode.ends_with("+custom")) r.mode.resize(r.mode.size() - 7);
   for (auto [key, value] : {std::pair<const char*, std::string*>{"lookups", &r.lookups}, {"culling", &r.culling},
                             {"pose", &r.pose}, {"parallel", &r.parallel}, {"skinning", &r.skinning},
-                            {"palettes", &r.palettes}, {"draw", &r.draw}})
+                            {"palettes", &r.palettes}, {"draw", &r.draw},
+                            {"share", &r.share}, {"share_quantum", &r.share_quantum}, {"update_lod", &r.update_lod},
+                            {"lod_thresholds", &r.lod_thresholds}, {"anim_budget", &r.anim_budget}})
     if (switches.contains(key)) *value = switch_value(switches[key]);
   if (r.parallel == "on") r.threads = baseline["threads"].get<long long>();
   if (std::string backend = optional_text(baseline["environment"], "backend"); !backend.empty()) r.backend = backend;

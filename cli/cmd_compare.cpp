@@ -67,10 +67,16 @@ std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
                           : key == "pose"    ? &options.pose
                           : key == "parallel" ? &options.parallel
                           : key == "skinning" ? &options.skinning
+                          : key == "share" ? &options.share
+                          : key == "share-quantum" ? &options.share_quantum
+                          : key == "update-lod" ? &options.update_lod
+                          : key == "lod-thresholds" ? &options.lod_thresholds
+                          : key == "anim-budget" ? &options.anim_budget
                                               : nullptr;
     if (!target || equals == std::string::npos || equals + 1 == item.size())
       throw UsageError("--modes '" + spec + "': '" + item +
-                       "': expected SWITCH=VALUE with a switch of lookups, culling, pose, parallel, skinning");
+                       "': expected SWITCH=VALUE with a switch of lookups, culling, pose, parallel, skinning, share, "
+                       "share-quantum, update-lod, lod-thresholds, anim-budget");
     *target = item.substr(equals + 1);
     at = next == std::string::npos ? spec.size() : next;
   }

@@ -3,7 +3,9 @@
 // storage buffer (shaders/instances.glsl, inserted ahead of this file) instead
 // of a uniform array: no 128-bone limit. Without INSTANCED (mode buffer) a draw
 // is one copy, named by uniforms; with INSTANCED (mode instanced) a draw is
-// every copy of a character, and instance i reads instances[first_instance + i].
+// every copy of a character, and each instance's record of instances.glsl
+// arrives as per-instance attributes (fetched once per instance, where reading
+// the storage block would gather it for every vertex).
 
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -11,7 +13,8 @@ layout(location = 2) in uvec4 joints;
 layout(location = 3) in vec4 weights;
 
 #ifdef INSTANCED
-uniform uint first_instance;  // the character's first record in instances[]
+layout(location = 4) in mat4 instance_model;  // Instance.model, locations 4-7
+layout(location = 8) in uvec4 instance_data;  // palette_base, colour, source0, source1
 uniform vec3 colours[COLOURS];
 flat out vec3 instance_colour;
 #else
@@ -24,10 +27,9 @@ out vec3 world_normal;
 
 void main() {
 #ifdef INSTANCED
-  Instance instance = instances[first_instance + uint(gl_InstanceID)];
-  mat4 model = instance.model;
-  uint base = instance.palette_base;
-  instance_colour = colours[instance.colour];
+  mat4 model = instance_model;
+  uint base = instance_data.x;
+  instance_colour = colours[instance_data.y];
 #else
   uint base = palette_base;
 #endif

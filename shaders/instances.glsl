@@ -10,7 +10,8 @@ layout(std430, binding = 0) readonly buffer Palettes {
 
 // One record per instance of an instanced draw, a character kind's instances
 // one after another. `source` is free for another skinning source (a baked
-// animation's action and time, say); buffer palettes leave it zero.
+// animation's action and time, say); buffer palettes leave it zero. The same
+// buffer is also bound as per-instance vertex attributes (buffer_skin.vert).
 struct Instance {
   mat4 model;         // the copy's place in the crowd
   uint palette_base;  // its palette's first row in bone_rows

@@ -179,7 +179,9 @@ TEST(GpuModes, CountersAreExact) {
     Frame buffer = render(*context, c, shot);
     uint64_t visible = buffer.counters.copies_visible;
     EXPECT_GT(visible, 0u);
-    if (copies == 40) EXPECT_LT(visible, copies) << "the default camera leaves some copies out";
+    if (copies == 40) {
+      EXPECT_LT(visible, copies) << "the default camera leaves some copies out";
+    }
     EXPECT_EQ(buffer.counters.draw_calls, visible);
     EXPECT_EQ(buffer.counters.bytes_uploaded, visible * (palette + 64));
     EXPECT_EQ(buffer.counters.gpu_palette_bytes, copies * palette) << "room for every copy's palette";

@@ -60,6 +60,7 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
   for (size_t b = 0; b < benches.size(); ++b) {
     reports[b].digest = benches[b]->digest();
     record_character_counters(*benches[b], reports[b].run);
+    record_animation(*benches[b], reports[b]);
   }
   return reports;
 }

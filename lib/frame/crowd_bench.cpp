@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <limits>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -15,6 +16,7 @@
 #include "animation/pose.h"
 #include "asset/errors.h"
 #include "profile/trace.h"
+#include "scene/screen_size.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -148,6 +150,23 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     std::copy(mesh.positions.begin(), mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
     std::copy(mesh.normals.begin(), mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
   }
+  // Issue 13: who is updated how often, and the storage each copy draws.
+  storage_time_.assign(n, std::numeric_limits<float>::quiet_NaN());
+  jobs_.reserve(n);
+  updated_.assign(n, 0);
+  last_update_.assign(n, -1);
+  screen_fraction_.resize(n);
+  shift_.assign(n, 0);
+  glm::mat4 view_projection = camera_.view_projection();
+  const LodThresholds& lod = config.mode.lod;
+  for (size_t i = 0; i < n; ++i) {
+    screen_fraction_[i] = screen_height_fraction(view_projection, crowd_.world_boxes[i]);
+    if (config.mode.update_lod) shift_[i] = lod_shift(screen_fraction_[i], lod.every_1, lod.every_2, lod.every_4);
+  }
+  if (config.mode.share_poses) {
+    sharing_.reset(crowd_.kind, characters_.size());
+    changing_.reserve(n);
+  }
   if (config.mode.parallel) {
     auto threads = static_cast<size_t>(std::max(1, config.threads));
     if (threads > tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))
@@ -157,6 +176,13 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   // The scenegraph of "frame -1": the first frame's animation culling needs it.
   Counters unused;
   update_scenegraph(unused);
+  if (config.mode.anim_budget_ms > 0) {
+    // Copies stand still and the camera too: who is posed, and how big, is
+    // known now and for good.
+    std::vector<uint8_t> eligible(n);
+    for (size_t i = 0; i < n; ++i) eligible[i] = poses(i);
+    budget_plan_ = make_budget_plan(screen_fraction_, shift_, eligible);
+  }
 }
 
 bool CrowdBench::gpu_skinned() const {
@@ -168,8 +194,7 @@ bool CrowdBench::gpu_skinned() const {
 CrowdBench::~CrowdBench() = default;
 
 template <typename Body>
-void CrowdBench::for_each_copy(std::string_view task, const Body& body) {
-  size_t n = crowd_.size();
+void CrowdBench::for_each_index(std::string_view task, size_t n, const Body& body) {
   if (!arena_) {
     for (size_t i = 0; i < n; ++i) body(i);
     return;
@@ -228,6 +253,8 @@ FrameRecord CrowdBench::step() {
                          {{"frame", static_cast<int64_t>(frame_ - 1)}});
   record.cpu_ms = process_cpu_ms() - cpu_start;
   record.times = clock_.end_frame();
+  last_animations_ms_ = record.times.ms[static_cast<size_t>(Category::Animations)];
+  last_updates_ = counters.copies_updated;
   return record;
 }
 
@@ -268,19 +295,79 @@ void CrowdBench::update_scenegraph(Counters& counters) {
   counters.copies_visible = visible;
 }
 
+void CrowdBench::run_budget() {
+  if (config_.mode.anim_budget_ms <= 0 || frame_ == 0) return;
+  const std::vector<double>& replay = config_.replay_animations_ms;
+  double measured = replay.empty() ? last_animations_ms_ : replay[(frame_ - 1) % replay.size()];
+  AnimBudgetJob{&budget_plan_, config_.mode.anim_budget_ms, measured, last_updates_, &schedule_.demotions}.Run();
+  for (size_t r = 0; r < budget_plan_.size(); ++r)
+    shift_[budget_plan_.order[r]] = budget_plan_.demoted_shift(r, schedule_.demotions);
+}
+
+void CrowdBench::plan_updates(Counters& counters) {
+  run_budget();
+  jobs_.clear();
+  changing_.clear();
+  const bool share = config_.mode.share_poses;
+  const double quantum = config_.mode.share_quantum_s;
+  const auto frame = static_cast<int64_t>(frame_);
+  schedule_.copies_by_rate.fill(0);
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    updated_[i] = 0;
+    if (!poses(i)) continue;
+    ++schedule_.copies_by_rate[shift_[i]];
+    // Copy i takes its turn at offset i: neighbours of one period alternate.
+    if (!update_due(frame_, last_update_[i], shift_[i], i)) {
+      ++counters.copies_held;
+      continue;
+    }
+    if (last_update_[i] >= 0) schedule_.longest_gap = std::max<uint64_t>(schedule_.longest_gap, frame - last_update_[i]);
+    last_update_[i] = frame;
+    updated_[i] = 1;
+    ++counters.copies_updated;
+    ++(counters.*kUpdatesByShift[shift_[i]]);
+    float time = times_[i];
+    if (quantum > 0) {
+      // The nearest multiple of the quantum from the action's start, never past its end.
+      const Action& action = character_of(i).actions[crowd_.action[i]];
+      double steps = std::nearbyint(static_cast<double>(time - action.start) / quantum);
+      time = std::min(action.end, action.start + static_cast<float>(steps * quantum));
+    }
+    if (!share) {
+      jobs_.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(i), time});
+      continue;
+    }
+    uint32_t bits;
+    std::memcpy(&bits, &time, sizeof bits);
+    uint64_t key = state_key(crowd_.kind[i], crowd_.action[i], bits);
+    if (sharing_.key_of(sharing_.shown(i)) == key) continue;  // still in the state it shows
+    sharing_.release(i);
+    changing_.push_back({static_cast<uint32_t>(i), key});
+  }
+  // Every release before any take: a state that one copy leaves and another
+  // enters this frame keeps its storage, and there is always room.
+  for (const auto& [copy, key] : changing_) {
+    bool evaluate = false;
+    uint32_t storage = sharing_.take(copy, key, &evaluate);
+    float time;
+    auto bits = static_cast<uint32_t>(key);
+    std::memcpy(&time, &bits, sizeof time);
+    if (evaluate) jobs_.push_back({copy, storage, time});
+  }
+}
+
 void CrowdBench::update_poses(Counters& counters) {
+  plan_updates(counters);
   uint64_t lookups = 0;
   if (!arena_) {
-    for (size_t i = 0; i < crowd_.size(); ++i)
-      if (poses(i)) update_copy(i, slot_of(i), &lookups);
+    for (const StateJob& job : jobs_) update_state(job, slot_of(job.leader), &lookups);
   } else {
     std::atomic<uint64_t> total{0};
     bool skin_here = std::any_of(kinds_.begin(), kinds_.end(),
                                  [](const Kind& kind) { return kind.site == SkinningSite::CpuInAnimations; });
-    for_each_copy(skin_here ? "pose+skin" : "pose", [&](size_t i) {
-      if (!poses(i)) return;
+    for_each_index(skin_here ? "pose+skin" : "pose", jobs_.size(), [&](size_t j) {
       uint64_t mine = 0;
-      update_copy(i, i, &mine);
+      update_state(jobs_[j], jobs_[j].leader, &mine);
       total.fetch_add(mine, std::memory_order_relaxed);
     });
     lookups = total.load();
@@ -295,9 +382,13 @@ void CrowdBench::count_work(Counters& counters) {
     c.copies_visible += visible_[i];
     // A character without actions stands in its rest pose: never posed, never culled.
     bool moves = !kinds_[crowd_.kind[i]].bindings.empty();
-    c.poses_updated += poses(i);
     c.copies_culled += moves && !animates(i);
+    c.copies_updated += updated_[i];
+    c.copies_held += poses(i) && !updated_[i];
+    if (updated_[i]) ++(c.*kUpdatesByShift[shift_[i]]);
   }
+  // An evaluation is one pose sampled and rebuilt, and one mesh skinned on the CPU.
+  for (const StateJob& job : jobs_) ++character_counters_[crowd_.kind[job.leader]].poses_updated;
   uint64_t posed = 0, culled = 0, skinned = 0, fallback = 0;
   for (size_t k = 0; k < kinds_.size(); ++k) {
     Counters& c = character_counters_[k];
@@ -315,7 +406,8 @@ void CrowdBench::count_work(Counters& counters) {
   counters.copies_fallback = fallback;
 }
 
-void CrowdBench::update_copy(size_t copy, size_t slot, uint64_t* lookups) {
+void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookups) {
+  const size_t copy = job.leader;
   const Character& character = character_of(copy);
   const Kind& kind = kinds_[crowd_.kind[copy]];
   const Skeleton& skeleton = character.skeleton;
@@ -334,35 +426,83 @@ void CrowdBench::update_copy(size_t copy, size_t slot, uint64_t* lookups) {
   // A shared scratch pose still holds the previous copy's joints: start from rest,
   // as the BGE's pose swap copied the armature's own pose in.
   if (config_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
-  SamplingJob{&action, times_[copy], targets, &cursors_[copy], &pose}.Run();
+  // The leader's own cursor: its action, and its time moving forward.
+  SamplingJob{&action, job.time, targets, &cursors_[copy], &pose}.Run();
   std::span<glm::mat4> model = std::span(model_).subspan(slot_joints_[slot], kind.joints);
   LocalToModelJob{&skeleton, &pose, model}.Run();
-  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[copy], kind.joints)}.Run();
-  if (kind.site == SkinningSite::CpuInAnimations) skin_copy(copy);
+  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[job.storage], kind.joints)}.Run();
+  storage_time_[job.storage] = job.time;
+  if (kind.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
 }
 
-void CrowdBench::skin_copy(size_t copy) {
-  const Kind& kind = kinds_[crowd_.kind[copy]];
-  SkinningJob{skinning_matrices(copy), &kind.skinning_plan, 0, kind.vertices,
-              std::span(positions_).subspan(vertex_offset_[copy], kind.vertices),
-              std::span(normals_).subspan(vertex_offset_[copy], kind.vertices)}
+void CrowdBench::skin_storage(size_t storage) {
+  const Kind& kind = kinds_[crowd_.kind[storage]];
+  SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, 0,
+              kind.vertices, std::span(positions_).subspan(vertex_offset_[storage], kind.vertices),
+              std::span(normals_).subspan(vertex_offset_[storage], kind.vertices)}
       .Run();
 }
 
 void CrowdBench::skin_copies() {
-  for_each_copy("skin", [&](size_t i) {
-    if (poses(i)) skin_copy(i);
-  });
+  for_each_index("skin", jobs_.size(), [&](size_t j) { skin_storage(jobs_[j].storage); });
 }
 
+// A copy draws its storage (its own, or its shared state's: the same character).
 std::span<const SkinMatrix> CrowdBench::skinning_matrices(size_t copy) const {
-  return std::span(palettes_).subspan(joint_offset_[copy], kinds_[crowd_.kind[copy]].joints);
+  return std::span(palettes_).subspan(joint_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].joints);
 }
 std::span<const glm::vec3> CrowdBench::skinned_positions(size_t copy) const {
-  return std::span(positions_).subspan(vertex_offset_[copy], kinds_[crowd_.kind[copy]].vertices);
+  return std::span(positions_).subspan(vertex_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].vertices);
 }
 std::span<const glm::vec3> CrowdBench::skinned_normals(size_t copy) const {
-  return std::span(normals_).subspan(vertex_offset_[copy], kinds_[crowd_.kind[copy]].vertices);
+  return std::span(normals_).subspan(vertex_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].vertices);
+}
+
+AnimationFidelity CrowdBench::measure_fidelity() const {
+  AnimationFidelity fidelity;
+  std::vector<float> heights;
+  for (const Character* character : characters_) {
+    float low = 0, high = 0;
+    for (size_t v = 0; v < character->mesh.positions.size(); ++v) {
+      float y = character->mesh.positions[v].y;
+      low = v ? std::min(low, y) : y;
+      high = v ? std::max(high, y) : y;
+    }
+    heights.push_back(high - low);
+  }
+  LocalPose pose;
+  SamplingCursor cursor;
+  std::vector<glm::mat4> model;
+  std::vector<SkinMatrix> palette;
+  std::vector<glm::vec3> drawn, drawn_normals, exact, exact_normals;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!visible_[i] || !poses(i)) continue;
+    ++fidelity.copies_checked;
+    // Drawn at its exact time (same action: a copy's storage holds its own action).
+    if (storage_time_[storage_of(i)] == times_[i]) continue;
+    ++fidelity.copies_deviating;
+    const Character& character = character_of(i);
+    const Kind& kind = kinds_[crowd_.kind[i]];
+    const Action& action = character.actions[crowd_.action[i]];
+    reset_to_rest(character.skeleton, &pose);
+    reset_cursor(action, &cursor);
+    model.resize(kind.joints);
+    palette.resize(kind.joints);
+    SamplingJob{&action, times_[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}.Run();
+    LocalToModelJob{&character.skeleton, &pose, model}.Run();
+    SkinningMatricesJob{&character.skeleton, model, palette}.Run();
+    for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
+    // Both skinned here, so that a copy skinned on the GPU is measured too.
+    SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals}.Run();
+    SkinningJob{palette, &kind.skinning_plan, 0, kind.vertices, exact, exact_normals}.Run();
+    double worst = 0;
+    for (size_t v = 0; v < kind.vertices; ++v)
+      worst = std::max(worst, static_cast<double>(glm::distance(drawn[v], exact[v])));
+    fidelity.max_deviation = std::max(fidelity.max_deviation, worst);
+    double height = heights[crowd_.kind[i]];
+    if (height > 0) fidelity.deviation_fraction = std::max(fidelity.deviation_fraction, worst / height);
+  }
+  return fidelity;
 }
 
 namespace {

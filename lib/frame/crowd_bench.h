@@ -15,6 +15,8 @@
 
 #include "animation/binding.h"
 #include "animation/local_pose.h"
+#include "animation/pose_sharing.h"
+#include "animation/update_rates.h"
 #include "animation/sampling.h"
 #include "animation/skin_matrix.h"
 #include "asset/character.h"
@@ -52,6 +54,28 @@ struct BenchConfig {
   std::vector<std::string> files;
   std::string scene_file, scene_hash;
   bool actions_from_scene = false;  // each group's actions as its scene file says
+  // For tests of the animation budget: when not empty, the budget's controller
+  // reads frame f's Animations time as replay_animations_ms[(f - 1) % size]
+  // instead of the clock's, so its choices (and the digest) are reproducible.
+  std::vector<double> replay_animations_ms;
+};
+
+// How faithfully a run's copies followed their exact times (issue 13): the
+// largest distance between a vertex as drawn and where the copy's exact time
+// would put it, over every copy on screen in the last frame.
+struct AnimationFidelity {
+  double max_deviation = 0;        // model units (the character's own space)
+  double deviation_fraction = 0;   // of that copy's character's height
+  size_t copies_checked = 0;       // copies on screen that were compared
+  size_t copies_deviating = 0;     // of those, copies whose time drawn was not their exact time
+};
+
+// How the run scheduled pose updates (issue 13), over every frame run.
+struct UpdateSchedule {
+  uint64_t longest_gap = 0;  // most frames between two updates of one copy (0: none updated twice)
+  // Copies posed in the last frame, by period: copies[s] are updated every 2^s frames.
+  std::array<uint64_t, kRateCount> copies_by_rate{};
+  uint64_t demotions = 0;  // the budget's doublings in the last frame
 };
 
 // Empty when a bench of this config can run, else why not: switches that
@@ -106,6 +130,15 @@ class CrowdBench {
   // characters()); draw calls and bytes are only counted in all.
   std::span<const Counters> character_counters() const { return character_counters_; }
   const BenchConfig& config() const { return config_; }
+  // The pose storage copy `copy` draws: its own, or with animation sharing
+  // that of the state it shows (copies in one state draw one storage).
+  size_t storage_of(size_t copy) const { return config_.mode.share_poses ? sharing_.shown(copy) : copy; }
+  // Share of the screen's height the copy's box spans (screen_size.h).
+  float screen_fraction(size_t copy) const { return screen_fraction_[copy]; }
+  // Exact times against what the last frame drew; skins every copy on screen
+  // twice, so it is for the end of a run (allocates, takes time).
+  AnimationFidelity measure_fidelity() const;
+  const UpdateSchedule& schedule() const { return schedule_; }
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return visible_[copy] != 0; }
   // True when the renderer skins this character (mode hwskin and the character
@@ -124,14 +157,25 @@ class CrowdBench {
   void update_logic();
   void update_scenegraph(Counters& counters);
   void update_poses(Counters& counters);
+  // Who takes a new pose this frame (LOD, budget), at which time (quantum), and
+  // which states must be evaluated into which storage: jobs_. Sequential.
+  void plan_updates(Counters& counters);
+  // The budget's doublings for this frame, from the last frame's time.
+  void run_budget();
   void skin_copies();
   // The frame's work by character and in all, from who was posed and where
   // each character is skinned.
   void count_work(Counters& counters);
   // Pose (and, when its character is skinned in Animations, vertices) of one
   // copy; `slot` picks the pose storage.
-  void update_copy(size_t copy, size_t slot, uint64_t* lookups);
-  void skin_copy(size_t copy);
+  // One evaluation: the pose of job.leader's action at job.time, built in pose
+  // slot `slot`, written to the job's storage.
+  struct StateJob {
+    uint32_t leader = 0, storage = 0;
+    float time = 0;
+  };
+  void update_state(const StateJob& job, size_t slot, uint64_t* lookups);
+  void skin_storage(size_t storage);
   bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
   // Animated this frame: not culled, and its character has actions to play
   // (one without stands in its rest pose).
@@ -142,7 +186,9 @@ class CrowdBench {
   }
   // `task` names the spans of its tasks in a trace.
   template <typename Body>
-  void for_each_copy(std::string_view task, const Body& body);
+  void for_each_copy(std::string_view task, const Body& body) { for_each_index(task, crowd_.size(), body); }
+  template <typename Body>
+  void for_each_index(std::string_view task, size_t count, const Body& body);
 
   // What a character's copies share: its sizes, where it is skinned (the
   // mode's site, except that a character over the GPU's bone limit falls back
@@ -177,6 +223,19 @@ class CrowdBench {
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
   std::vector<SkinMatrix> palettes_;          // per copy x its joints
   std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices
+  // Issue 13: sharing, update rates, the budget.
+  std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
+  std::vector<std::pair<uint32_t, uint64_t>> changing_;  // sharing: copies taking a new state, and its key
+  PoseSharing sharing_;
+  std::vector<float> storage_time_;           // per storage: the time it was evaluated at (NaN: rest)
+  std::vector<float> screen_fraction_;        // per copy
+  std::vector<uint8_t> shift_;                // per copy: updated every 2^shift frames
+  std::vector<uint8_t> updated_;              // per copy: took a new pose this frame
+  std::vector<int64_t> last_update_;          // per copy: the frame it last took a pose (-1: never)
+  BudgetPlan budget_plan_;
+  uint64_t last_updates_ = 0;                 // copy updates of the last frame, for the budget
+  double last_animations_ms_ = 0;
+  UpdateSchedule schedule_;
   // More threads than cores are given, not silently capped by TBB's default
   // worker limit (one per core): the control lifts it while the bench lives.
   std::unique_ptr<tbb::global_control> parallelism_;

@@ -6,20 +6,53 @@ namespace crowdprof {
 
 namespace {
 
-constexpr ModeSwitches kMaster{Lookups::PerFrameString, false, PoseStorage::SharedScratch, false,
-                               SkinningSite::CpuInRasterizer};
-constexpr ModeSwitches kCulled{Lookups::PerFrameString, true, PoseStorage::SharedScratch, false,
-                               SkinningSite::CpuInRasterizer};
-constexpr ModeSwitches kThreaded{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations};
-constexpr ModeSwitches kHwskin{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu};
+// The thesis's switches; the rest keep their defaults (off).
+constexpr ModeSwitches thesis(Lookups lookups, bool culling, PoseStorage pose, bool parallel, SkinningSite skinning) {
+  ModeSwitches s;
+  s.lookups = lookups;
+  s.animation_culling = culling;
+  s.pose = pose;
+  s.parallel = parallel;
+  s.skinning = skinning;
+  return s;
+}
+
+constexpr ModeSwitches kMaster = thesis(Lookups::PerFrameString, false, PoseStorage::SharedScratch, false,
+                                        SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kCulled = thesis(Lookups::PerFrameString, true, PoseStorage::SharedScratch, false,
+                                        SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kThreaded =
+    thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations);
+constexpr ModeSwitches kHwskin = thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu);
 // Beyond the thesis: hwskin with its palettes in a shader storage buffer, then
 // also drawn instanced.
-constexpr ModeSwitches kBuffer{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
-                               PaletteStorage::Buffer, DrawMethod::PerCopy};
-constexpr ModeSwitches kInstanced{Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu,
-                                  PaletteStorage::Buffer, DrawMethod::Instanced};
+constexpr ModeSwitches kBuffer = [] {
+  ModeSwitches s = kHwskin;
+  s.palettes = PaletteStorage::Buffer;
+  return s;
+}();
+constexpr ModeSwitches kInstanced = [] {
+  ModeSwitches s = kBuffer;
+  s.draw = DrawMethod::Instanced;
+  return s;
+}();
+// threaded, and copies in the same (action, time) share one pose and one mesh.
+constexpr ModeSwitches kShared = [] {
+  ModeSwitches s = kThreaded;
+  s.share_poses = true;
+  return s;
+}();
+// shared with times snapped to 1/30 s and 2 ms for Animations. No fixed LOD:
+// the budget slows the smallest copies only when the time needs it, so copies
+// keep every frame's pose while it fits (--update-lod on adds the LOD's floor).
+constexpr ModeSwitches kBudget = [] {
+  ModeSwitches s = kShared;
+  s.share_quantum_s = 1.0 / 30.0;
+  s.anim_budget_ms = 2.0;
+  return s;
+}();
 
-constexpr std::array<ModePreset, 6> kPresets = {{
+constexpr std::array<ModePreset, 8> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
                "skinning in the render stage",
      kMaster},
@@ -28,6 +61,12 @@ constexpr std::array<ModePreset, 6> kPresets = {{
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
     {"buffer", "hwskin with every copy's palette in one shader storage buffer: no 128-bone limit", kBuffer},
     {"instanced", "buffer, drawn with one instanced draw call per character kind and material", kInstanced},
+    {"shared", "threaded plus animation sharing: one pose and one skinned mesh per (action, time), drawn by every "
+               "copy in that state",
+     kShared},
+    {"budget", "shared with times snapped to 1/30 s, and Animations kept under 2 ms by updating the copies "
+               "smallest on screen less often (every 2nd to 64th frame, held between) when it needs to",
+     kBudget},
 }};
 
 }  // namespace
@@ -56,6 +95,8 @@ std::string conflicts(const ModeSwitches& s) {
            "it needs --skinning gpu";
   if (s.draw == DrawMethod::Instanced && s.palettes != PaletteStorage::Buffer)
     return "--draw instanced reads each instance's palette from a buffer: it needs --palettes buffer";
+  if (s.share_quantum_s > 0 && !s.share_poses)
+    return "--share-quantum snaps times so that copies share poses: it needs --share on";
   return {};
 }
 

@@ -42,6 +42,15 @@ enum class DrawMethod : uint8_t {
               // reads its transform and palette offset from a buffer
 };
 
+// Update-rate LOD (issue 13): a copy whose box spans at least lod[0] of the
+// screen's height is updated every frame, at least lod[1] every 2nd frame, at
+// least lod[2] every 4th, smaller ones every 8th. Between updates a copy holds
+// its last pose (it is not interpolated).
+struct LodThresholds {
+  float every_1 = 0.25f, every_2 = 0.125f, every_4 = 0.0625f;
+  bool operator==(const LodThresholds&) const = default;
+};
+
 struct ModeSwitches {
   Lookups lookups = Lookups::Bundled;
   bool animation_culling = false;  // §4.1: no pose or skinning for copies off-screen
@@ -50,6 +59,17 @@ struct ModeSwitches {
   SkinningSite skinning = SkinningSite::CpuInAnimations;
   PaletteStorage palettes = PaletteStorage::Uniforms;
   DrawMethod draw = DrawMethod::PerCopy;
+  // Animation sharing (issue 13): copies showing the same action at the same
+  // time share one pose evaluation and one skinned mesh.
+  bool share_poses = false;
+  // Seconds; > 0 snaps each copy's time to the nearest multiple of it (from its
+  // action's start) so that copies fall into shared states. 0: exact times.
+  double share_quantum_s = 0.0;
+  bool update_lod = false;  // copies updated every 1, 2, 4 or 8 frames by size on screen
+  LodThresholds lod;
+  // > 0: the Animations category is held at or under this many ms (its p95) by
+  // updating the copies smallest on screen less often (lib/animation/update_rates.h).
+  double anim_budget_ms = 0.0;
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -60,11 +80,11 @@ struct ModePreset {
   ModeSwitches switches;
 };
 
-// master, culled, threaded, hwskin (the thesis's), then buffer, instanced.
+// master, culled, threaded, hwskin (the thesis's), then buffer, instanced, shared, budget.
 std::span<const ModePreset> mode_presets();
 // Null when there is no such preset.
 const ModePreset* find_mode(std::string_view name);
-// "master, culled, threaded, hwskin, buffer, instanced".
+// "master, culled, threaded, hwskin, buffer, instanced, shared, budget".
 std::string mode_names();
 
 // Empty when the switches can run together, else why not (e.g. a shared scratch

@@ -1,6 +1,7 @@
 #include "frame/run_bench.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -48,6 +49,13 @@ std::string_view choice_name(ActionChoice choice) {
   return "?";
 }
 
+// A threshold as few digits as give it back exactly.
+std::string shortest(float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+  return text;
+}
+
 }  // namespace
 
 RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
@@ -91,6 +99,16 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                   {"skinning", to_string(s.skinning)},
                   {"palettes", to_string(s.palettes)},
                   {"draw", to_string(s.draw)}};
+  // Issue 13's switches only when set away from their defaults, so that
+  // results recorded before them still match the same mode.
+  const ModeSwitches plain;
+  if (s.share_poses) run.switches["share"] = true;
+  if (s.share_quantum_s > 0) run.switches["share_quantum"] = s.share_quantum_s;
+  if (s.update_lod) run.switches["update_lod"] = true;
+  if (s.lod != plain.lod)
+    run.switches["lod_thresholds"] = shortest(s.lod.every_1) + "," + shortest(s.lod.every_2) + "," +
+                                     shortest(s.lod.every_4);
+  if (s.anim_budget_ms > 0) run.switches["anim_budget"] = s.anim_budget_ms;
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;
@@ -108,6 +126,20 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
 void record_character_counters(const CrowdBench& bench, RunDescription& run) {
   std::span<const Counters> counters = bench.character_counters();
   for (size_t k = 0; k < run.crowd.size() && k < counters.size(); ++k) run.crowd[k].counters = counters[k];
+}
+
+void record_animation(const CrowdBench& bench, RunReport& report) {
+  const ModeSwitches& s = bench.config().mode;
+  if (!s.share_poses && !s.update_lod && s.anim_budget_ms <= 0) return;
+  AnimationFidelity fidelity = bench.measure_fidelity();
+  const UpdateSchedule& schedule = bench.schedule();
+  report.animation = {{"copies_by_rate", schedule.copies_by_rate},
+                      {"longest_gap_frames", schedule.longest_gap},
+                      {"budget_demotions", schedule.demotions},
+                      {"max_deviation", fidelity.max_deviation},
+                      {"deviation_fraction_of_height", fidelity.deviation_fraction},
+                      {"copies_checked", fidelity.copies_checked},
+                      {"copies_deviating", fidelity.copies_deviating}};
 }
 
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
@@ -137,6 +169,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
   record_character_counters(bench, report.run);
+  record_animation(bench, report);
   return report;
 }
 

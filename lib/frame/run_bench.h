@@ -38,6 +38,10 @@ void record_character_counters(const CrowdBench& bench, RunDescription& run);
 // these characters would not fit in the machine's available memory.
 void check_fits_in_memory(std::span<const Character* const> characters, const BenchConfig& config);
 
+// With sharing, update-rate LOD or a budget: report.animation from the
+// bench's schedule and its fidelity measured on the last frame (docs/formats.md).
+void record_animation(const CrowdBench& bench, RunReport& report);
+
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 
 // Puts the GPU times the bench read in its last step (or collect) into the

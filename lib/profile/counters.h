@@ -12,7 +12,7 @@
 namespace crowdprof {
 
 struct Counters {
-  uint64_t poses_updated = 0;     // copies whose pose was sampled and rebuilt
+  uint64_t poses_updated = 0;     // poses sampled and rebuilt: one per copy posed, or per shared state
   uint64_t copies_culled = 0;     // copies skipped by animation culling
   uint64_t copies_visible = 0;    // copies inside the camera's frustum (drawn)
   uint64_t vertices_skinned = 0;  // vertices skinned on the CPU
@@ -24,6 +24,13 @@ struct Counters {
   // (--palettes uniforms), or the storage buffers of every copy's palette (and
   // with --draw instanced, their instance records); 0 when none is skinned there.
   uint64_t gpu_palette_bytes = 0;
+  // Issue 13: copies that took a new pose this frame (shared or their own),
+  // copies on their update-rate LOD or budget's off frame that held their last
+  // one, and the updates by the period the copy was at (every 1 to 64 frames).
+  uint64_t copies_updated = 0;
+  uint64_t copies_held = 0;
+  uint64_t updates_every_1 = 0, updates_every_2 = 0, updates_every_4 = 0, updates_every_8 = 0;
+  uint64_t updates_every_16 = 0, updates_every_32 = 0, updates_every_64 = 0;
 };
 
 struct CounterField {
@@ -31,7 +38,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 9> kCounterFields = {{
+inline constexpr std::array<CounterField, 18> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -41,7 +48,20 @@ inline constexpr std::array<CounterField, 9> kCounterFields = {{
     {"draw_calls", &Counters::draw_calls},
     {"copies_fallback", &Counters::copies_fallback},
     {"gpu_palette_bytes", &Counters::gpu_palette_bytes},
+    {"copies_updated", &Counters::copies_updated},
+    {"copies_held", &Counters::copies_held},
+    {"updates_every_1", &Counters::updates_every_1},
+    {"updates_every_2", &Counters::updates_every_2},
+    {"updates_every_4", &Counters::updates_every_4},
+    {"updates_every_8", &Counters::updates_every_8},
+    {"updates_every_16", &Counters::updates_every_16},
+    {"updates_every_32", &Counters::updates_every_32},
+    {"updates_every_64", &Counters::updates_every_64},
 }};
+// The updates_every_* counter of period 2^shift.
+inline constexpr uint64_t Counters::*kUpdatesByShift[7] = {
+    &Counters::updates_every_1,  &Counters::updates_every_2,  &Counters::updates_every_4, &Counters::updates_every_8,
+    &Counters::updates_every_16, &Counters::updates_every_32, &Counters::updates_every_64};
 
 struct FrameRecord {
   FrameTimes times;

@@ -130,6 +130,15 @@ std::string format_profile(const RunReport& report) {
   else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
+  if (report.animation.is_object()) {
+    const nlohmann::json& a = report.animation;
+    out << "animation: " << k.poses_updated << " poses evaluated for " << k.copies_updated << " copies updated, "
+        << k.copies_held << " held | rates (copies every 1/2/4/8/16/32/64 frames):";
+    for (const auto& count : a["copies_by_rate"]) out << " " << count.get<uint64_t>();
+    out << " | longest gap " << a["longest_gap_frames"].get<uint64_t>() << " frames | deviation "
+        << fixed(a["max_deviation"].get<double>(), 4) << " ("
+        << fixed(a["deviation_fraction_of_height"].get<double>() * 100.0, 2) << "% of height) over " << a["copies_checked"].get<uint64_t>() << " copies on screen\n";
+  }
   if (report.partial)
     out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
         << " frames; the figures above are of those\n";
@@ -236,6 +245,7 @@ nlohmann::json to_json(const RunReport& report) {
     j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
   }
   j["digest"] = report.digest;
+  if (report.animation.is_object()) j["animation"] = report.animation;
   if (report.partial) {
     j["partial"] = true;
     j["frames_planned"] = report.frames_planned;

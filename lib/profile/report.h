@@ -55,6 +55,9 @@ struct RunReport {
   // A run stopped early (^C): frames holds fewer than frames_planned.
   bool partial = false;
   size_t frames_planned = 0;
+  // With animation sharing, update-rate LOD or a budget (issue 13): how updates
+  // were scheduled and what it cost in fidelity (docs/formats.md); null otherwise.
+  nlohmann::json animation;
 };
 
 // Index of the frame whose time is the median (the lower one for an even count).

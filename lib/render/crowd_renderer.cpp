@@ -122,7 +122,7 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
     buffer_colour_ = buffer_program_.uniform("base_colour");
     buffer_base_ = buffer_program_.uniform("palette_base");
     instanced_program_ = GlProgram(buffer_stages(true));
-    instanced_first_ = instanced_program_.uniform("first_instance");
+
     for (size_t k = 0; k < kinds_.size(); ++k)
       if (!kinds_[k].gpu_vao) make_rest_mesh(kinds_[k], characters[k]->mesh);
   }
@@ -140,18 +140,36 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
 
 void GlCrowdRenderer::make_rest_mesh(Kind& kind, const SkinnedMesh& mesh) {
   size_t vertices = kind.vertices;
-  glGenVertexArrays(1, &kind.gpu_vao);
-  glBindVertexArray(kind.gpu_vao);
   kind.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
-  float_attribute(0, kind.rest_buffers[0], 3);
   kind.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
-  float_attribute(1, kind.rest_buffers[1], 3);
   kind.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(2);
-  glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
   kind.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
-  float_attribute(3, kind.rest_buffers[3], 4);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+  // Two VAOs on the same buffers: one per copy, and one for instanced draws
+  // that also reads each instance's record.
+  for (GLuint* vao : {&kind.gpu_vao, &kind.instanced_vao}) {
+    glGenVertexArrays(1, vao);
+    glBindVertexArray(*vao);
+    float_attribute(0, kind.rest_buffers[0], 3);
+    float_attribute(1, kind.rest_buffers[1], 3);
+    glBindBuffer(GL_ARRAY_BUFFER, kind.rest_buffers[2]);
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
+    float_attribute(3, kind.rest_buffers[3], 4);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+  }
+  // The records of shaders/instances.glsl as per-instance attributes 4-8 (the
+  // model's columns, then palette offset, colour and the source words): llvmpipe
+  // fetches them once per instance, where reading them from the storage buffer
+  // costs a gather per vertex (1.2x the CPU time, docs/rendering.md).
+  for (GLuint column = 0; column < 4; ++column) {
+    glEnableVertexAttribArray(4 + column);
+    glVertexAttribFormat(4 + column, 4, GL_FLOAT, GL_FALSE, column * static_cast<GLuint>(sizeof(glm::vec4)));
+    glVertexAttribBinding(4 + column, kInstanceStream);
+  }
+  glEnableVertexAttribArray(8);
+  glVertexAttribIFormat(8, 4, GL_UNSIGNED_INT, static_cast<GLuint>(sizeof(glm::mat4)));
+  glVertexAttribBinding(8, kInstanceStream);
+  glVertexBindingDivisor(kInstanceStream, 1);
 }
 
 size_t GlCrowdRenderer::max_gpu_joints(const ModeSwitches& mode) const {
@@ -173,6 +191,7 @@ GlCrowdRenderer::~GlCrowdRenderer() {
   glDeleteBuffers(static_cast<GLsizei>(stream_.size()), stream_.data());
   for (Kind& kind : kinds_) {
     glDeleteVertexArrays(1, &kind.gpu_vao);
+    glDeleteVertexArrays(1, &kind.instanced_vao);
     glDeleteBuffers(1, &kind.indices);
     glDeleteBuffers(4, kind.rest_buffers);
   }
@@ -211,6 +230,7 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     set_frame_uniforms(cpu_program_, bench);
     glBindVertexArray(cpu_vao_);
     size_t drawn = 0;
+    shown_storage_ = SIZE_MAX;
     for (size_t i = 0; i < crowd.size(); ++i)
       if (bench.visible(i) && !bench.gpu_skinned_copy(i)) draw_copy_cpu_skinned(bench, i, drawn++, counters);
   }
@@ -233,21 +253,28 @@ void GlCrowdRenderer::draw_copy_cpu_skinned(const CrowdBench& bench, size_t i, s
   size_t k = bench.crowd().kind[i];
   const Kind& kind = kinds_[k];
   auto half = static_cast<GLsizeiptr>(kind.vertices * sizeof(glm::vec3));
-  GLuint buffer = stream_[drawn % stream_.size()];
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
-  // Fresh storage (orphaning) before writing: writing into storage that a
-  // draw may still read makes the driver wait for it. llvmpipe waits even
-  // for the last frame's finished draws: 2.5x the Rasterizer time without.
-  glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
-  glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+  // Animation sharing: a copy in the state the last draw uploaded draws that
+  // mesh again with its own transform (the thesis scene: one upload a frame).
+  bool same_mesh = bench.config().mode.share_poses && bench.storage_of(i) == shown_storage_;
+  GLuint buffer = same_mesh ? shown_buffer_ : stream_[drawn % stream_.size()];
+  if (!same_mesh) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    // Fresh storage (orphaning) before writing: writing into storage that a
+    // draw may still read makes the driver wait for it. llvmpipe waits even
+    // for the last frame's finished draws: 2.5x the Rasterizer time without.
+    glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
+    glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+    counters.bytes_uploaded += vertex_bytes_per_copy(k);
+    shown_storage_ = bench.storage_of(i);
+    shown_buffer_ = buffer;
+  }
   glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
   glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);  // part of the VAO: the copy's character's
   glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
   glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
   glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
-  counters.bytes_uploaded += vertex_bytes_per_copy(k);
   ++counters.draw_calls;
 }
 
@@ -310,8 +337,9 @@ void GlCrowdRenderer::draw_buffer_palettes(const CrowdBench& bench, bool instanc
     for (size_t k = 0; k < kinds_.size(); ++k) {
       InstanceRun run = frame_buffers_.run(k);
       if (run.count == 0) continue;
-      glBindVertexArray(kinds_[k].gpu_vao);
-      glUniform1ui(instanced_first_, run.first);
+      glBindVertexArray(kinds_[k].instanced_vao);
+      glBindVertexBuffer(kInstanceStream, frame_buffers_.instance_buffer(),
+                         static_cast<GLintptr>(run.first) * static_cast<GLintptr>(sizeof(GpuInstance)), sizeof(GpuInstance));
       glDrawElementsInstanced(GL_TRIANGLES, kinds_[k].index_count, GL_UNSIGNED_INT, nullptr,
                               static_cast<GLsizei>(run.count));
       ++counters.draw_calls;

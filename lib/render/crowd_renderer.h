@@ -96,6 +96,7 @@ class GlCrowdRenderer final : public FrameRenderer {
     GLuint indices = 0;
     // GPU skinning: the rest mesh, uploaded once (when the character fits).
     GLuint gpu_vao = 0, rest_buffers[4] = {0, 0, 0, 0};
+    GLuint instanced_vao = 0;  // the same, and each instance's record (--draw instanced)
   };
 
   // The rest mesh, joints and weights of a GPU-skinned character, uploaded once.
@@ -110,7 +111,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   GLint cpu_model_ = -1, cpu_colour_ = -1, gpu_model_ = -1, gpu_colour_ = -1, gpu_bones_ = -1;
   // --palettes buffer: per copy and instanced (when the GL has vertex SSBOs).
   GlProgram buffer_program_, instanced_program_;
-  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1, instanced_first_ = -1;
+  GLint buffer_model_ = -1, buffer_colour_ = -1, buffer_base_ = -1;
   GpuFrameBuffers frame_buffers_;
   GpuTimer timer_;  // when features_.timer_queries()
   std::vector<uint32_t> kind_counts_;  // scratch: GPU-skinned copies on screen per kind
@@ -119,6 +120,11 @@ class GlCrowdRenderer final : public FrameRenderer {
   // buffers, buffers serve several copies.
   GLuint cpu_vao_ = 0;
   std::vector<GLuint> stream_;
+  // With animation sharing, the storage (bench.storage_of) whose mesh the last
+  // CPU-skinned draw uploaded, and the buffer holding it: copies in the same
+  // state after it draw that buffer with their own transform, uploading nothing.
+  size_t shown_storage_ = SIZE_MAX;
+  GLuint shown_buffer_ = 0;
   std::vector<glm::vec4> bone_rows_;  // scratch: one copy's 3 x joints rows
 };
 

@@ -7,8 +7,13 @@
 // frame's runs with begin(), and for each copy add() an instance whose
 // palette_rows is 0 (it sends no palette) with its own per-instance values in
 // `source` (an action and a time); upload(), then bind its own tables at a
-// further binding and draw each kind's run with one instanced draw, its vertex
-// shader reading instances[first + gl_InstanceID] from the same block.
+// further binding and draw each kind's run with one instanced draw. Its vertex
+// shader reads the records either from the storage block
+// (instances[first + gl_InstanceID]) or, faster on llvmpipe, as per-instance
+// attributes: instance_buffer() bound at vertex binding kInstanceStream with
+// offset first x 80 and divisor 1, the model's columns at locations 4-7 and
+// (palette_base, colour, source0, source1) as a uvec4 at location 8, as the
+// renderer's own instanced VAOs do (render/crowd_renderer.cpp).
 #pragma once
 
 #include <cstdint>
@@ -32,6 +37,8 @@ static_assert(sizeof(GpuInstance) == 80, "std430 layout of struct Instance");
 
 // Binding points, as shaders/instances.glsl names them.
 inline constexpr GLuint kPaletteBinding = 0, kInstanceBinding = 1;
+// The vertex buffer binding an instanced draw reads the records from.
+inline constexpr GLuint kInstanceStream = 4;
 
 // Where one kind's instances are in this frame's records.
 struct InstanceRun {
@@ -68,6 +75,8 @@ class GpuFrameBuffers {
   // Bytes of GPU storage the two buffers hold.
   uint64_t gpu_bytes() const { return palette_capacity_bytes_ + instance_capacity_bytes_; }
   uint64_t palette_gpu_bytes() const { return palette_capacity_bytes_; }
+  // The records' buffer, for binding as per-instance vertex attributes.
+  GLuint instance_buffer() const { return instance_buffer_; }
 
  private:
   std::vector<GpuInstance> instances_;

@@ -1,0 +1,21 @@
+#include "scene/screen_size.h"
+
+#include <algorithm>
+
+namespace crowdprof {
+
+float screen_height_fraction(const glm::mat4& view_projection, const Aabb& box) {
+  float low = 0.0f, high = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec4 p(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                corner & 4 ? box.max.z : box.min.z, 1.0f);
+    glm::vec4 clip = view_projection * p;
+    if (clip.w <= 1e-6f) return 1.0f;
+    float y = clip.y / clip.w;
+    low = corner == 0 ? y : std::min(low, y);
+    high = corner == 0 ? y : std::max(high, y);
+  }
+  return std::min(1.0f, 0.5f * (high - low));
+}
+
+}  // namespace crowdprof
