@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The CPU pose + skinning measurements of docs/performance.md (issue 17): mode
 # threaded with culling off (every copy posed and skinned), 1 and 2 threads,
-# shared and random actions, 160, 1,000 and 10,000 copies of scenes/humanoid.glb;
+# shared and random actions, 160, 1,000 and 10,000 copies of scenes/humanoid.glb
+# (and, shared, with --vertex-format packed);
 # each configuration run REPS times, binaries interleaved, median frame of each
 # run, then the median of those medians. About 5 minutes on the 2-core machine.
 #
@@ -40,6 +41,12 @@ for ((rep = 1; rep <= reps; rep++)); do
             --actions "$actions" --seed 7 --frames "$frames" --warmup "$warmup" \
             --json "$out/$which-$threads-$actions-$copies-$rep.json" >/dev/null
         done
+        # --vertex-format packed (10 bytes a vertex instead of 24), new binary, shared actions.
+        if [[ $actions == shared ]]; then
+          setsid "$new" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
+            --actions "$actions" --seed 7 --frames "$frames" --warmup "$warmup" --vertex-format packed \
+            --json "$out/packed-$threads-$actions-$copies-$rep.json" >/dev/null
+        fi
       done
     done
   done
@@ -86,5 +93,13 @@ for b in binaries:
         for actions in ("shared", "random"):
             r = (one[(threads, actions, 10000)][b] / 10000) / (one[(threads, actions, 160)][b] / 160)
             print(f"{b}: {threads} thread(s), {actions}: cost per copy at 10,000 copies {r:.2f}× that at 160")
+print("\n| threads | copies | float ms | packed ms | packed GB/s (10 B a vertex) | float / packed |")
+print("|---|---|---|---|---|---|")
+for threads in (1, 2):
+    for copies in (160, 1000, 10000):
+        f = one[(threads, "shared", copies)]["new"]
+        p, vertices, _ = median_ms("packed", threads, "shared", copies)
+        gbs = copies * vertices * 10 / (p * 1e-3) / 1e9
+        print(f"| {threads} | {copies:,} | {f:.3f} | {p:.3f} | {gbs:.1f} | {f / p:.2f}× |")
 print(f"\nJSON in {out}; SIMD target: {median_ms(binaries[0], 1, 'shared', 160)[2]}")
 EOF

@@ -154,6 +154,41 @@ void BM_Skinning(benchmark::State& state, std::string target) {
   state.counters["joints_per_batch"] = plan.batches.empty() ? 0.0 : double(joints) / double(plan.batches.size());
 }
 
+// Skinning into the packed format (--vertex-format packed, 10 bytes a vertex)
+// against the float one (24 bytes) on the best target: the whole mesh, quantised
+// in a box around it. bytes_per_second: skinned output written.
+void BM_SkinningFormat(benchmark::State& state) {
+  Copy copy;
+  const SkinnedMesh& mesh = copy.c.mesh;
+  const size_t n = mesh.vertex_count();
+  SkinningPlan plan;
+  build_skinning_plan(mesh, copy.c.skeleton.joint_count(), &plan);
+  std::vector<glm::vec3> positions(n), normals(n);
+  SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+  glm::vec3 lo(1e9f), hi(-1e9f);
+  for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const PositionQuantisation q = position_quantisation(lo - 0.1f, hi + 0.1f);
+  std::vector<uint16_t> codes(3 * n);
+  std::vector<uint32_t> words(n);
+  const bool packed = state.range(0) != 0;
+  for (auto _ : state) {
+    if (packed) {
+      PackedSkinningJob{copy.palette, &plan, &q, 0, n, codes, words}.Run();
+      benchmark::DoNotOptimize(codes.data());
+      benchmark::DoNotOptimize(words.data());
+    } else {
+      SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+      benchmark::DoNotOptimize(positions.data());
+      benchmark::DoNotOptimize(normals.data());
+    }
+  }
+  per_vertex(state, n);
+  const size_t bytes = packed ? kPackedVertexBytes : kFloatVertexBytes;
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * n * bytes));
+  state.counters["bytes_per_vertex"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_SkinningFormat)->Arg(0)->Arg(1)->ArgName("packed");
+
 // The whole pose and skinning of one copy, as the frame loop runs it.
 void BM_PoseAndSkin(benchmark::State& state) {
   Copy copy;

@@ -57,6 +57,9 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   cmd.add_option("--pose", o.pose, "Override the mode: shared (one scratch pose, the BGE's) or per-copy");
   cmd.add_option("--parallel", o.parallel, "Override the mode: on or off (oneTBB over copies)");
   cmd.add_option("--skinning", o.skinning, "Override the mode: rasterizer, animations (CPU, counted there), gpu, compute or baked");
+  cmd.add_option("--vertex-format", o.vertex_format,
+                 "What CPU skinning writes for the GPU: float (32-bit positions and normals, 24 bytes a vertex) or "
+                 "packed (16-bit positions in the character's box, 10:10:10:2 normals, 10 bytes)");
   cmd.add_option("--palettes", o.palettes,
                  "Override the mode: uniforms (a uniform array per draw, 128 bones at most) or buffer (one shader "
                  "storage buffer, no bone limit); for skinning on the GPU");
@@ -204,6 +207,9 @@ static crowdprof::BenchConfig config_from_options(const BenchCliOptions& o) {
         o.skinning, "--skinning",
         {{"rasterizer", SkinningSite::CpuInRasterizer}, {"animations", SkinningSite::CpuInAnimations}, {"gpu", SkinningSite::Gpu},
          {"compute", SkinningSite::Compute}, {"baked", SkinningSite::Baked}});
+  if (!o.vertex_format.empty())
+    config.mode.vertex_format = parse_choice<VertexFormat>(
+        o.vertex_format, "--vertex-format", {{"float", VertexFormat::Float}, {"packed", VertexFormat::Packed}});
   if (!o.palettes.empty())
     config.mode.palettes = parse_choice<PaletteStorage>(
         o.palettes, "--palettes", {{"uniforms", PaletteStorage::Uniforms}, {"buffer", PaletteStorage::Buffer}});

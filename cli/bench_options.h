@@ -41,6 +41,7 @@ struct BenchCliOptions {
   bool quiet = false;
   // Switch overrides; empty keeps the mode's.
   std::string lookups, culling, pose, parallel, skinning, palettes, draw;
+  std::string vertex_format;  // float or packed (skinning/packed_vertex.h)
   // Issue 13's switches (docs/modes.md); empty keeps the mode's.
   std::string share, share_quantum, update_lod, lod_thresholds, anim_budget;
   std::string csv, json, trace;

@@ -93,7 +93,9 @@ int capacity(CapacityCliOptions& o) {
   }
   if (runnable.empty()) throw UsageError("none of the modes can run here");
   for (const BenchConfig& config : runnable) {
-    ModeCapacity mode{config.mode_name, 1, rule, {}, {}};
+    ModeCapacity mode;
+    mode.mode = config.mode_name;
+    mode.rule = rule;
     mode.rule.cap = memory_cap(scene, config, rule.cap, runnable.size());
     if (mode.rule.cap < 1) throw UsageError("mode " + config.mode_name + ": not even one character fits in memory");
     mode.rule.start = std::min(rule.start, mode.rule.cap);
@@ -126,6 +128,16 @@ int capacity(CapacityCliOptions& o) {
       out << with_paths_relative_to(capacity_to_json(result), o.bench.json).dump(2) << "\n";
     });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << capacity_svg(result, preset_mode_order()); });
+  if (!o.bench.html.empty()) {
+    nlohmann::json document = capacity_to_json(result);
+    if (document["runs"].empty()) {
+      std::cerr << "crowdprof: note: no crowd size was measured whole: no HTML report written to " << o.bench.html << "\n";
+    } else {
+      HtmlReportInput input;
+      add_result_document(input, document, "this capacity search");
+      write_html_report(o.bench.html, std::move(input));
+    }
+  }
   if (result.partial) {
     std::cerr << "crowdprof: interrupted: round " << rounds << " was cut short and is left out of the search; "
               << "the results are those of the " << rounds - 1 << " round" << (rounds == 2 ? "" : "s")
@@ -163,5 +175,7 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--json", options->bench.json, "Write every size tried per mode, with its median and percentiles");
   cmd->add_option("--svg", options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
+  cmd->add_option("--html", options->bench.html,
+                  "Write an HTML report: each mode's run at its capacity, and the median frame against the crowd size");
   cmd->callback([&run, options] { run = [options] { return capacity(*options); }; });
 }

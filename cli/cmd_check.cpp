@@ -79,6 +79,7 @@ BenchCliOptions options_recorded_in(const json& baseline) {
   if (r.mode.ends_with("+custom")) r.mode.resize(r.mode.size() - 7);
   for (auto [key, value] : {std::pair<const char*, std::string*>{"lookups", &r.lookups}, {"culling", &r.culling},
                             {"pose", &r.pose}, {"parallel", &r.parallel}, {"skinning", &r.skinning},
+                            {"vertex_format", &r.vertex_format},
                             {"palettes", &r.palettes}, {"draw", &r.draw},
                             {"share", &r.share}, {"share_quantum", &r.share_quantum}, {"update_lod", &r.update_lod},
                             {"lod_thresholds", &r.lod_thresholds}, {"anim_budget", &r.anim_budget}})
@@ -136,7 +137,8 @@ void adopt_baseline_options(CheckCliOptions& o, const json& baseline) {
                                         {"--culling", &b.culling, &recorded.culling},
                                         {"--pose", &b.pose, &recorded.pose},
                                         {"--parallel", &b.parallel, &recorded.parallel},
-                                        {"--skinning", &b.skinning, &recorded.skinning}})
+                                        {"--skinning", &b.skinning, &recorded.skinning},
+                                        {"--vertex-format", &b.vertex_format, &recorded.vertex_format}})
       if (!given(option)) *mine = *theirs;
   }
   const ModePreset* preset = find_mode(b.mode);
@@ -377,7 +379,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   // A run's options default to what the baseline recorded, not to bench's defaults.
   for (const char* name : {"--characters", "--actions", "--action", "--seed", "--frames", "--warmup", "--fps", "--mode",
                            "--threads", "--camera", "--lens", "--backend", "--resolution", "--lookups", "--culling",
-                           "--pose", "--parallel", "--skinning", "--static"}) {
+                           "--pose", "--parallel", "--skinning", "--vertex-format", "--static"}) {
     CLI::Option* option = cmd->get_option(name);
     std::string text = option->get_description();
     text = text.substr(0, text.find(" (default:"));

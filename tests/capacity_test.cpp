@@ -219,6 +219,10 @@ TEST(CapacityRun, RoundsMeasureEveryModeStillSearchingSideBySide) {
   EXPECT_EQ(rounds.back().size(), 1u);
   EXPECT_EQ(run.modes[0].tried.front().round, 1u);
   EXPECT_EQ(run.modes[1].tried.back().round, rounds.size());
+  // The reports at the bracket's ends are kept, for the JSON's runs and the page.
+  ASSERT_TRUE(run.modes[1].fit_run && run.modes[1].fail_run);
+  EXPECT_EQ(run.modes[1].fit_run->run.characters, 40u);
+  EXPECT_EQ(run.modes[1].fail_run->run.characters, 41u);
 
   // A round cut short ends the run: its points are kept, marked, and left out.
   size_t calls = 0;
@@ -246,12 +250,18 @@ TEST(CapacityReport, TableJsonAndChart) {
   run.warmup = 1;
   run.first = test::fake_run("master", 4, {1.0});
   run.first->run.character = "humanoid";
-  ModeCapacity a{"master", 1, rule_of(20.0, 10, 1000, 0.0), {}, {}};
+  ModeCapacity a;
+  a.mode = "master";
+  a.rule = rule_of(20.0, 10, 1000, 0.0);
   std::vector<CapacityPoint> tried;
   search(a.rule, [](size_t n) { return 0.125 * static_cast<double>(n); }, tried);
   a.tried = tried;
   a.result = capacity_result(a.rule, a.tried);
-  ModeCapacity b{"threaded", 2, rule_of(20.0, 10, 40, 0.0), {point(10, 1.0), point(20, 2.0), point(40, 4.0)}, {}};
+  ModeCapacity b;
+  b.mode = "threaded";
+  b.threads = 2;
+  b.rule = rule_of(20.0, 10, 40, 0.0);
+  b.tried = {point(10, 1.0), point(20, 2.0), point(40, 4.0)};
   b.result = capacity_result(b.rule, b.tried);
   run.modes = {a, b};
 
@@ -286,10 +296,11 @@ TEST(CapacityReport, TableJsonAndChart) {
 
 TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   auto dir = test::scratch_dir("capacity_cli");
-  std::string js = (dir / "c.json").string(), svg = (dir / "c.svg").string();
+  std::string js = (dir / "c.json").string(), svg = (dir / "c.svg").string(), html = (dir / "c.html").string();
   // A budget nothing reaches: every mode is capped at 16 (4, 8, 16).
   auto r = test::run_cli("capacity '" + scene() + "' --budget 100000 --modes master,threaded --threads 2 --start 4 "
-                         "--max-characters 16 --frames 2 --warmup 0 --block 1 --json '" + js + "' --svg '" + svg + "'");
+                         "--max-characters 16 --frames 2 --warmup 0 --block 1 --json '" + js + "' --svg '" + svg +
+                         "' --html '" + html + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.rfind("mode ", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
@@ -314,6 +325,22 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   std::string chart = slurp(svg);
   EXPECT_EQ(count(chart, "<g class=\"series\""), 2u);
   EXPECT_EQ(count(chart, "<g class=\"budget\""), 1u);
+  // The bench result at each mode's capacity, and every size as compare's sweep.
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][0]["mode"], "master");
+  EXPECT_EQ(j["runs"][1]["scene"]["characters"], 16);
+  EXPECT_EQ(j["sweep"].size(), 6u);
+
+  // The page: the runs at capacity, and the sizes tried with the budget; the
+  // JSON makes the same page with `report`.
+  std::string page = slurp(html);
+  EXPECT_NE(page.find("data-chart=\"sweep\""), std::string::npos);
+  EXPECT_EQ(count(page, "<g class=\"budget\" data-value=\"100000"), 1u);
+  EXPECT_NE(page.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"3\""), std::string::npos);
+  std::string again = (dir / "again.html").string();
+  r = test::run_cli("report '" + js + "' -o '" + again + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(slurp(again).find("data-chart=\"sweep\""), std::string::npos);
 
   // A budget nothing fits: bisection down to one character, then no fit.
   r = test::run_cli("capacity '" + scene() + "' --budget 0.000001 --modes threaded --start 4 --frames 1 --warmup 0 "

@@ -106,6 +106,34 @@ TEST(RenderImage, SoftwareAndHardwareSkinningDrawTheSameFrame) {
   EXPECT_NEAR(a, b, 0.005 * a);
 }
 
+// --vertex-format packed: the same frame from 16-bit positions and 10:10:10:2
+// normals, decoded by the vertex shader: shading may move by a level or two
+// where a normal rounds, but no more than 0.05% of the pixels differ by more
+// than 4 levels (an edge that moved); and the
+// counters say 10 bytes a vertex were sent instead of 24.
+TEST(RenderImage, PackedVerticesDrawTheFloatFrame) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  Frame floats = render(*context, humanoid(), shot);
+  shot.vertex_format = VertexFormat::Packed;
+  Frame packed = render(*context, humanoid(), shot);
+  size_t pixels = floats.rgba.size() / 4;
+  ASSERT_GT(covered(floats.rgba), pixels / 50);
+  std::cout << "[ info ] of " << covered(floats.rgba) << " pixels drawn, " << pixels_differing(floats.rgba, packed.rgba, 0)
+            << " differ, " << pixels_differing(floats.rgba, packed.rgba, 4) << " by more than 4\n";
+  EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 4), pixels * 5 / 10000);
+  EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 0), covered(floats.rgba) / 10);
+  EXPECT_EQ(floats.counters.draw_calls, packed.counters.draw_calls);
+  const uint64_t copies = floats.counters.draw_calls, vertices = humanoid().mesh.vertex_count();
+  EXPECT_EQ(copies * (vertices * 24 + 64), floats.counters.bytes_uploaded);
+  EXPECT_EQ(copies * (vertices * 10 + 64), packed.counters.bytes_uploaded);
+  // A pose the float path draws differently would move many pixels: the
+  // packed frame is of the same pose, not the rest pose.
+  shot.frame = 0;
+  Frame earlier = render(*context, humanoid(), shot);
+  EXPECT_GT(pixels_differing(earlier.rgba, packed.rgba, 4), pixels * 5 / 10000);
+}
+
 TEST(RenderImage, AKnownPoseCoversWhatItMustAndNothingElse) {
   OPEN_GL_OR_SKIP(context);
   std::vector<std::pair<std::string, std::string>> characters = {

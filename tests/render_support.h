@@ -60,6 +60,7 @@ struct Shot {
   ActionChoice actions = ActionChoice::Shared;
   std::string hide_features;  // gl_features.h
   float bake_rate = kDefaultBakeRateHz;  // skinning baked
+  VertexFormat vertex_format = VertexFormat::Float;
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -74,6 +75,7 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   GlCrowdRenderer renderer(context, characters, shot.copies, rc);
   BenchConfig config;
   config.mode = find_mode(shot.mode)->switches;
+  config.mode.vertex_format = shot.vertex_format;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;
@@ -96,7 +98,7 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   frame.rgba = renderer.read_pixels();
   frame.gpu_skinned = bench.gpu_skinned();
   frame.digest = bench.digest();
-  if (!bench.gpu_skinned_copy(0)) {
+  if (!bench.gpu_skinned_copy(0) && !bench.packed_vertices()) {
     glm::mat4 to_clip = bench.camera().view_projection() * bench.crowd().world[0];
     for (const glm::vec3& p : bench.skinned_positions(0)) {
       glm::vec4 clip = to_clip * glm::vec4(p, 1.0f);

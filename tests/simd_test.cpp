@@ -42,9 +42,11 @@ const Character& uneven_humanoid() {
   return character;
 }
 
-std::string digest_of(const Character& character, int threads, ActionChoice actions) {
+std::string digest_of(const Character& character, int threads, ActionChoice actions,
+                      VertexFormat format = VertexFormat::Float) {
   BenchConfig config;
   config.mode = find_mode("threaded")->switches;
+  config.mode.vertex_format = format;
   config.mode.animation_culling = false;
   config.threads = threads;
   config.crowd.copies = 12;
@@ -72,18 +74,24 @@ TEST_F(SimdTargetTest, EveryTargetAndThreadCountGivesTheSameDigest) {
   EXPECT_TRUE(targets.back() == "SCALAR" || targets.back() == "EMU128") << targets.back();
   const std::string best = active_simd_target();
   EXPECT_EQ(best, targets.front());
-  std::string expected_shared, expected_random;
-  for (const std::string& target : targets) {
-    ASSERT_EQ("", force_simd_target(target));
-    ASSERT_EQ(target, active_simd_target());
-    for (int threads : {1, 2, 3}) {
-      const std::string shared = digest_of(small_humanoid(), threads, ActionChoice::Shared);
-      const std::string random = digest_of(uneven_humanoid(), threads, ActionChoice::Random);
-      if (expected_shared.empty()) expected_shared = shared, expected_random = random;
-      EXPECT_EQ(expected_shared, shared) << target << ", " << threads << " threads";
-      EXPECT_EQ(expected_random, random) << target << ", " << threads << " threads";
+  // Packed vertices (their bytes are hashed then) too: the codes are rounded
+  // from the same floats the same way on every target.
+  for (VertexFormat format : {VertexFormat::Float, VertexFormat::Packed}) {
+    std::string expected_shared, expected_random;
+    for (const std::string& target : targets) {
+      ASSERT_EQ("", force_simd_target(target));
+      ASSERT_EQ(target, active_simd_target());
+      for (int threads : {1, 2, 3}) {
+        const std::string shared = digest_of(small_humanoid(), threads, ActionChoice::Shared, format);
+        const std::string random = digest_of(uneven_humanoid(), threads, ActionChoice::Random, format);
+        if (expected_shared.empty()) expected_shared = shared, expected_random = random;
+        EXPECT_EQ(expected_shared, shared) << target << ", " << threads << " threads, " << to_string(format);
+        EXPECT_EQ(expected_random, random) << target << ", " << threads << " threads, " << to_string(format);
+      }
     }
   }
+  EXPECT_NE(digest_of(small_humanoid(), 1, ActionChoice::Shared, VertexFormat::Float),
+            digest_of(small_humanoid(), 1, ActionChoice::Shared, VertexFormat::Packed));
 }
 
 TEST_F(SimdTargetTest, ForcingAnUnknownTargetChangesNothing) {

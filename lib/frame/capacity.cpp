@@ -129,9 +129,14 @@ CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& 
     std::vector<RunReport> reports = measure(active, ns);
     bool partial = false;
     for (size_t k = 0; k < active.size() && k < reports.size(); ++k) {
-      modes[active[k]].tried.push_back(capacity_point(reports[k], metric, ns[k], round));
-      modes[active[k]].threads = reports[k].run.threads;
+      ModeCapacity& mode = modes[active[k]];
+      mode.tried.push_back(capacity_point(reports[k], metric, ns[k], round));
+      mode.threads = reports[k].run.threads;
       partial = partial || reports[k].partial;
+      // Only the reports at the bracket's ends are kept: a run may try many sizes.
+      CapacityResult now = capacity_result(mode.rule, mode.tried);
+      if (now.fit && now.fit->n == ns[k] && !reports[k].partial) mode.fit_run = reports[k];
+      if (now.fail && now.fail->n == ns[k] && !reports[k].partial) mode.fail_run = reports[k];
     }
     if (!run.first && !reports.empty()) run.first = reports.front();
     if (reports.size() != active.size()) throw std::logic_error("capacity: a round measured the wrong number of modes");
@@ -140,7 +145,12 @@ CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& 
       break;
     }
   }
-  for (ModeCapacity& mode : modes) mode.result = capacity_result(mode.rule, mode.tried);
+  for (ModeCapacity& mode : modes) {
+    mode.result = capacity_result(mode.rule, mode.tried);
+    // Bisection never moves a bracket's end outside it, so these are the ends' reports.
+    if (!mode.result.fit || !mode.fit_run || mode.fit_run->run.characters != mode.result.fit->n) mode.fit_run.reset();
+    if (!mode.result.fail || !mode.fail_run || mode.fail_run->run.characters != mode.result.fail->n) mode.fail_run.reset();
+  }
   run.modes = std::move(modes);
   return run;
 }

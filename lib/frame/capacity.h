@@ -69,6 +69,9 @@ struct ModeCapacity {
   CapacityRule rule;  // its cap may be lower than the user's: the memory
   std::vector<CapacityPoint> tried;  // in the order measured
   CapacityResult result;
+  // What was measured at result.fit and at result.fail (the reports, for the
+  // HTML page and the JSON's "runs").
+  std::optional<RunReport> fit_run, fail_run;
 };
 
 // Measures a round: every mode still searching, `ns[m]` copies for mode

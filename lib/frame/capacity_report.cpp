@@ -91,9 +91,17 @@ nlohmann::json capacity_to_json(const CapacityRun& run) {
     m["largest_fit"] = mode.result.fit ? point_json(*mode.result.fit, mode.rule) : nlohmann::json();
     m["first_over"] = mode.result.fail ? point_json(*mode.result.fail, mode.rule) : nlohmann::json();
     m["points"] = nlohmann::json::array();
-    for (const CapacityPoint& p : mode.tried) m["points"].push_back(point_json(p, mode.rule));
+    for (const CapacityPoint& p : mode.tried) {
+      m["points"].push_back(point_json(p, mode.rule));
+      if (!p.partial) j["sweep"].push_back({{"mode", mode.mode}, {"characters", p.n}, {"frame_median_ms", p.frame_median_ms}});
+    }
     j["modes"].push_back(m);
+    // The bench result at the mode's capacity (at the first size over when none fit).
+    const std::optional<RunReport>& run_at = mode.fit_run ? mode.fit_run : mode.fail_run;
+    if (run_at) j["runs"].push_back(to_json(*run_at));
   }
+  if (!j.contains("sweep")) j["sweep"] = nlohmann::json::array();
+  if (!j.contains("runs")) j["runs"] = nlohmann::json::array();
   return j;
 }
 

@@ -21,7 +21,10 @@ std::string format_capacity(const CapacityRun& run);
 // {"crowdprof": {..., "kind": "capacity"}, "environment", "scene", "budget_ms",
 //  "metric", "search", "block_frames", "frames_per_point", "warmup_frames",
 //  "partial", "modes": [{"mode", "threads", "cap", "largest_fit", "first_over",
-//  "capped", "non_monotonic", "points": [...]}]}.
+//  "capped", "non_monotonic", "points": [...]}], "sweep": [{"mode",
+//  "characters", "frame_median_ms"} per point, as compare's], "runs": [the bench
+//  result at each mode's largest fit, else at its first size over]}: `report`
+//  reads it as it reads a comparison.
 nlohmann::json capacity_to_json(const CapacityRun& run);
 
 // The metric's median against the crowd size (log scale), one line per mode

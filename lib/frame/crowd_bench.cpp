@@ -26,10 +26,11 @@ namespace crowdprof {
 namespace {
 
 // What one copy and one pose slot of a character cost.
-uint64_t copy_bytes(const Character& c) {
+uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
   uint64_t channels = 0;
   for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
-  return c.skeleton.joint_count() * sizeof(SkinMatrix) + c.mesh.vertex_count() * 2 * sizeof(glm::vec3) +
+  const uint64_t vertex_bytes = mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes : kFloatVertexBytes;
+  return c.skeleton.joint_count() * sizeof(SkinMatrix) + c.mesh.vertex_count() * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
 }
 uint64_t slot_bytes(const Character& c) {
@@ -42,7 +43,7 @@ uint64_t slot_bytes(const Character& c) {
 
 uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
   uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies;
-  return c.shared_bytes() + copies * copy_bytes(c) + slots * slot_bytes(c);
+  return c.shared_bytes() + copies * copy_bytes(c, mode) + slots * slot_bytes(c);
 }
 
 uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
@@ -53,7 +54,7 @@ uint64_t estimate_bench_bytes(std::span<const Character* const> characters, cons
     if (group.character < copies.size()) copies[group.character] += group.copies;
   for (size_t k = 0; k < characters.size(); ++k) {
     uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies[k];
-    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k]) + slots * slot_bytes(*characters[k]);
+    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode) + slots * slot_bytes(*characters[k]);
   }
   return bytes;
 }
@@ -100,6 +101,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   }
   character_counters_.resize(characters_.size());
   crowd_ = make_crowd(characters_, config.crowd);
+  for (size_t k = 0; k < kinds_.size(); ++k)
+    kinds_[k].quantisation = position_quantisation(crowd_.character_boxes[k].min, crowd_.character_boxes[k].max);
   camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect, config.lens);
   frustum_ = frustum_of(camera_.view_projection());
   size_t n = crowd_.size();
@@ -136,8 +139,11 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   model_.resize(slot_joint_total);
   targets_.assign(slot_channel_total, -1);
   palettes_.resize(joints);
-  positions_.resize(vertices);
-  normals_.resize(vertices);
+  const bool packed = packed_vertices();
+  positions_.resize(packed ? 0 : vertices);
+  normals_.resize(packed ? 0 : vertices);
+  packed_positions_.resize(packed ? 3 * vertices : 0);
+  packed_normals_.resize(packed ? vertices : 0);
   // Until a pose is computed, copies show the rest pose.
   std::vector<std::vector<SkinMatrix>> rest_palettes;
   for (const Character* character : characters_) {
@@ -152,6 +158,14 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     const SkinnedMesh& mesh = character_of(i).mesh;
     const std::vector<SkinMatrix>& rest = rest_palettes[crowd_.kind[i]];
     std::copy(rest.begin(), rest.end(), palettes_.begin() + static_cast<std::ptrdiff_t>(joint_offset_[i]));
+    if (packed) {
+      const PositionQuantisation& q = kinds_[crowd_.kind[i]].quantisation;
+      for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        quantise_position(q, mesh.positions[v], &packed_positions_[3 * (vertex_offset_[i] + v)]);
+        packed_normals_[vertex_offset_[i] + v] = pack_normal(mesh.normals[v]);
+      }
+      continue;
+    }
     std::copy(mesh.positions.begin(), mesh.positions.end(), positions_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
     std::copy(mesh.normals.begin(), mesh.normals.end(), normals_.begin() + static_cast<std::ptrdiff_t>(vertex_offset_[i]));
   }
@@ -491,6 +505,14 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
 
 void CrowdBench::skin_storage(size_t storage) {
   const Kind& kind = kinds_[crowd_.kind[storage]];
+  if (packed_vertices()) {
+    PackedSkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan,
+                      &kind.quantisation, 0, kind.vertices,
+                      std::span(packed_positions_).subspan(3 * vertex_offset_[storage], 3 * kind.vertices),
+                      std::span(packed_normals_).subspan(vertex_offset_[storage], kind.vertices)}
+        .Run();
+    return;
+  }
   SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, 0,
               kind.vertices, std::span(positions_).subspan(vertex_offset_[storage], kind.vertices),
               std::span(normals_).subspan(vertex_offset_[storage], kind.vertices)}
@@ -505,10 +527,20 @@ void CrowdBench::skin_copies() {
 std::span<const SkinMatrix> CrowdBench::skinning_matrices(size_t copy) const {
   return std::span(palettes_).subspan(joint_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].joints);
 }
+std::span<const uint16_t> CrowdBench::packed_positions(size_t copy) const {
+  if (!packed_vertices()) return {};
+  return std::span(packed_positions_).subspan(3 * vertex_offset_[storage_of(copy)], 3 * kinds_[crowd_.kind[copy]].vertices);
+}
+std::span<const uint32_t> CrowdBench::packed_normals(size_t copy) const {
+  if (!packed_vertices()) return {};
+  return std::span(packed_normals_).subspan(vertex_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].vertices);
+}
 std::span<const glm::vec3> CrowdBench::skinned_positions(size_t copy) const {
+  if (packed_vertices()) return {};
   return std::span(positions_).subspan(vertex_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].vertices);
 }
 std::span<const glm::vec3> CrowdBench::skinned_normals(size_t copy) const {
+  if (packed_vertices()) return {};
   return std::span(normals_).subspan(vertex_offset_[storage_of(copy)], kinds_[crowd_.kind[copy]].vertices);
 }
 
@@ -576,6 +608,9 @@ std::string CrowdBench::digest() const {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
       BakedInstance instance = baked_instance(i);
       fnv1a(hash, &instance, sizeof instance);
+    } else if (!gpu_skinned_copy(i) && packed_vertices()) {
+      fnv1a(hash, packed_positions(i).data(), packed_positions(i).size_bytes());
+      fnv1a(hash, packed_normals(i).data(), packed_normals(i).size_bytes());
     } else if (!gpu_skinned_copy(i)) {
       fnv1a(hash, skinned_positions(i).data(), skinned_positions(i).size_bytes());
       fnv1a(hash, skinned_normals(i).data(), skinned_normals(i).size_bytes());

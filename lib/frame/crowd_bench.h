@@ -27,6 +27,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 
 namespace crowdprof {
@@ -121,7 +122,8 @@ class CrowdBench {
 
   // A hash (hex FNV-1a 64) of the last frame's skinning matrices and skinned
   // vertices of the copies inside the frustum: equal across modes and thread
-  // counts when they compute the same thing.
+  // counts when they compute the same thing. With packed vertices, the packed
+  // bytes are hashed (what the GPU reads) instead of the floats.
   std::string digest() const;
 
   const Crowd& crowd() const { return crowd_; }
@@ -183,6 +185,15 @@ class CrowdBench {
   // What the renderer said it holds on the GPU for this bench's mode when it
   // prepared for it (FrameRenderer::animation_gpu_bytes); 0 without one.
   uint64_t animation_gpu_bytes() const { return animation_gpu_bytes_; }
+  // With --vertex-format packed (skinned_positions() and skinned_normals() are
+  // then empty): 3 position codes and one normal word per vertex
+  // (skinning/packed_vertex.h), quantised in character_quantisation(kind).
+  bool packed_vertices() const { return config_.mode.vertex_format == VertexFormat::Packed; }
+  std::span<const uint16_t> packed_positions(size_t copy) const;
+  std::span<const uint32_t> packed_normals(size_t copy) const;
+  // The box a character's positions are packed in: its animated bounds
+  // (every pose of every action, padded), the culling box.
+  const PositionQuantisation& character_quantisation(size_t kind) const { return kinds_[kind].quantisation; }
 
  private:
   // The clock's switch to `category`, recording the stage it leaves when tracing.
@@ -238,6 +249,7 @@ class CrowdBench {
     std::vector<ActionBindings> bindings;  // per action
     SkinningPlan skinning_plan;            // the mesh prepared for skinning, once
     BakedCharacter baked;                  // mode baked only
+    PositionQuantisation quantisation;     // packed vertices: the character's box
   };
 
   std::vector<const Character*> characters_;
@@ -264,7 +276,9 @@ class CrowdBench {
   std::vector<glm::mat4> model_;              // per pose slot x its joints
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
   std::vector<SkinMatrix> palettes_;          // per copy x its joints
-  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices
+  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices (float format)
+  std::vector<uint16_t> packed_positions_;      // per copy x its vertices x 3 (packed format)
+  std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
   // Issue 13: sharing, update rates, the budget.
   std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
   std::vector<std::pair<uint32_t, uint64_t>> changing_;  // sharing: copies taking a new state, and its key

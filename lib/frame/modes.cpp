@@ -143,6 +143,7 @@ std::string_view to_string(SkinningSite site) {
   return "?";
 }
 
+std::string_view to_string(VertexFormat format) { return format == VertexFormat::Packed ? "packed" : "float"; }
 std::string_view to_string(PaletteStorage palettes) {
   return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
 }

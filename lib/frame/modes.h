@@ -50,6 +50,12 @@ enum class DrawMethod : uint8_t {
               // reads its transform and palette offset from a buffer
 };
 
+// What CPU skinning writes for the GPU to read (skinning/packed_vertex.h).
+enum class VertexFormat : uint8_t {
+  Float,   // positions and normals as 32-bit floats, 24 bytes a vertex
+  Packed,  // positions quantised to 16 bits in the character's box, normals 10:10:10:2: 10 bytes
+};
+
 // Update-rate LOD (issue 13): a copy whose box spans at least lod[0] of the
 // screen's height is updated every frame, at least lod[1] every 2nd frame, at
 // least lod[2] every 4th, smaller ones every 8th. Between updates a copy holds
@@ -78,6 +84,7 @@ struct ModeSwitches {
   // > 0: the Animations category is held at or under this many ms (its p95) by
   // updating the copies smallest on screen less often (lib/animation/update_rates.h).
   double anim_budget_ms = 0.0;
+  VertexFormat vertex_format = VertexFormat::Float;  // no preset packs; --vertex-format
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -103,6 +110,7 @@ std::string conflicts(const ModeSwitches& switches);
 std::string_view to_string(Lookups lookups);
 std::string_view to_string(PoseStorage pose);
 std::string_view to_string(SkinningSite site);
+std::string_view to_string(VertexFormat format);
 std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
 std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
 

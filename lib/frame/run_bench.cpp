@@ -109,6 +109,9 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
     run.switches["lod_thresholds"] = shortest(s.lod.every_1) + "," + shortest(s.lod.every_2) + "," +
                                      shortest(s.lod.every_4);
   if (s.anim_budget_ms > 0) run.switches["anim_budget"] = s.anim_budget_ms;
+  // Recorded only when packed, so that results from before the switch (all
+  // float) still match a float run's switches.
+  if (s.vertex_format != VertexFormat::Float) run.switches["vertex_format"] = to_string(s.vertex_format);
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;

@@ -339,7 +339,9 @@ void add_result_document(HtmlReportInput& input, const json& doc, const std::str
   if (doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() && doc["crowdprof"].contains("kind") &&
       doc["crowdprof"]["kind"].is_string())
     kind = doc["crowdprof"]["kind"].get<std::string>();
-  if (kind == "compare") {
+  // A capacity search holds a comparison's runs (one per mode, at its
+  // capacity) and sweep (every size it tried).
+  if (kind == "compare" || kind == "capacity") {
     if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
       throw InputError(source, "a comparison without \"runs\": not a complete crowdprof result");
     for (const json& run : doc["runs"]) {  // bench results only: a comparison does not nest
@@ -347,11 +349,14 @@ void add_result_document(HtmlReportInput& input, const json& doc, const std::str
       input.runs.push_back({"", run, source});
     }
     add_sweep(input, doc, source);
+    if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
+        doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
+      input.sweep_budget_ms = doc["budget_ms"].get<double>();
   } else if (kind == "bench") {
     validate_result(doc, source);
     input.runs.push_back({"", doc, source});
   } else {
-    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check and compare --json");
+    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check, compare and capacity --json");
   }
 }
 
@@ -415,7 +420,7 @@ std::string html_report(const HtmlReportInput& given) {
   if (!sweep.empty()) {
     SvgDocument svg;
     std::string character = first["scene"]["character"].get<std::string>();
-    svg.add(sweep_chart(sweep, character, colours));
+    svg.add(sweep_chart(sweep, character, colours, input.sweep_budget_ms));
     charts += "s";
     body += "<section id=\"sweep\"><h2>Crowd size sweep</h2>\n" + svg.inline_svg() + "</section>\n";
   }

@@ -27,6 +27,7 @@ struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
   std::vector<ReportRun> runs;       // bench results (validate_result), in order; html_report labels those without
   std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
+  std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
   std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
   // Modes whose colour is fixed, in order (the presets): ModeColours.

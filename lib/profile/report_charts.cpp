@@ -120,7 +120,8 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs) {
   return chart;
 }
 
-LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours) {
+LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours,
+                      std::optional<double> budget_ms) {
   LineChart chart{"Median frame time against crowd size: " + caption, "characters (log scale)",
                   "median frame time (ms)", {}, true};
   chart.log_x = true;
@@ -141,6 +142,9 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& 
     for (size_t i : order) sorted.x.push_back(series.x[i]), sorted.y.push_back(series.y[i]);
     series = std::move(sorted);
   }
+  if (budget_ms)
+    chart.guides.push_back({*budget_ms, report_number(*budget_ms, 1) + " ms budget (" + report_number(1000.0 / *budget_ms, 0) + " fps)",
+                            "#B00020", "8,4", "budget", true, false});
   return chart;
 }
 

@@ -4,6 +4,7 @@
 // the first measured one, and names the character and backend in its title.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,10 @@ StackedArea categories_chart(const ReportRun& run);
 // Median time per category, a bar per run (categories of at least 0.005 ms).
 StackedBars modes_chart(const std::vector<ReportRun>& runs);
 
-// Median frame time against crowd size on a log axis, a line per mode.
-LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours);
+// Median frame time against crowd size on a log axis, a line per mode; with a
+// budget (capacity's), the budget as a line.
+LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours,
+                      std::optional<double> budget_ms = std::nullopt);
 
 // check's verdict per metric against the tolerance band.
 VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options);

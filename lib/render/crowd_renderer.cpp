@@ -128,6 +128,22 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
     glVertexAttribBinding(attribute, attribute);
   }
 
+  // Packed vertices: positions as 3 normalised 16-bit codes, normals as one
+  // signed normalised 10:10:10:2 word (its 2-bit w unused by the shader).
+  packed_program_ = GlProgram(stages("shaders/crowd.vert", "#define PACKED_POSITIONS 1\n"));
+  packed_model_ = packed_program_.uniform("model");
+  packed_colour_ = packed_program_.uniform("base_colour");
+  packed_min_ = packed_program_.uniform("position_min");
+  packed_extent_ = packed_program_.uniform("position_extent");
+  glGenVertexArrays(1, &packed_vao_);
+  glBindVertexArray(packed_vao_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribFormat(0, 3, GL_UNSIGNED_SHORT, GL_TRUE, 0);
+  glVertexAttribBinding(0, 0);
+  glEnableVertexAttribArray(1);
+  glVertexAttribFormat(1, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 0);
+  glVertexAttribBinding(1, 1);
+
   for (size_t k = 0; k < kinds_.size(); ++k) {
     Kind& kind = kinds_[k];
     if (kind.joints > max_joints_ || max_joints_ == 0) continue;
@@ -218,6 +234,7 @@ void GlCrowdRenderer::require(const ModeSwitches& mode) const {
 GlCrowdRenderer::~GlCrowdRenderer() {
   glDeleteVertexArrays(1, &cpu_vao_);
   glDeleteVertexArrays(1, &compute_vao_);
+  glDeleteVertexArrays(1, &packed_vao_);
   glDeleteBuffers(static_cast<GLsizei>(stream_.size()), stream_.data());
   GLuint shared[] = {compute_bones_, compute_skinned_, placements_, instances_};
   glDeleteBuffers(4, shared);
@@ -368,13 +385,20 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     any_baked |= site == SkinningSite::Baked;
   }
   if (any_cpu) {
-    glUseProgram(cpu_program_.id());
-    set_frame_uniforms(cpu_program_, bench);
-    glBindVertexArray(cpu_vao_);
+    const bool packed = bench.packed_vertices();
+    const GlProgram& program = packed ? packed_program_ : cpu_program_;
+    glUseProgram(program.id());
+    set_frame_uniforms(program, bench);
+    glBindVertexArray(packed ? packed_vao_ : cpu_vao_);
     size_t drawn = 0;
     shown_storage_ = SIZE_MAX;
-    for (size_t i = 0; i < crowd.size(); ++i)
-      if (bench.visible(i) && !bench.gpu_skinned_copy(i)) draw_copy_cpu_skinned(bench, i, drawn++, counters);
+    for (size_t i = 0; i < crowd.size(); ++i) {
+      if (!bench.visible(i) || bench.gpu_skinned_copy(i)) continue;
+      if (packed)
+        draw_copy_packed(bench, i, drawn++, counters);
+      else
+        draw_copy_cpu_skinned(bench, i, drawn++, counters);
+    }
   }
   const ModeSwitches& mode = bench.config().mode;
   if (any_gpu && mode.palettes == PaletteStorage::Uniforms) {
@@ -427,6 +451,31 @@ void GlCrowdRenderer::draw_copy_cpu_skinned(const CrowdBench& bench, size_t i, s
   glUniformMatrix4fv(cpu_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
   glUniform3fv(cpu_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
   glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
+  ++counters.draw_calls;
+}
+
+void GlCrowdRenderer::draw_copy_packed(const CrowdBench& bench, size_t i, size_t drawn, Counters& counters) {
+  size_t k = bench.crowd().kind[i];
+  const Kind& kind = kinds_[k];
+  auto positions = static_cast<GLsizeiptr>(kind.vertices * kPackedPositionBytes);
+  auto normals = static_cast<GLsizeiptr>(kind.vertices * kPackedNormalBytes);
+  GLuint buffer = stream_[drawn % stream_.size()];
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  // Normals start on a 4-byte boundary: the words are read whole.
+  GLintptr normals_at = (positions + 3) / 4 * 4;
+  glBufferData(GL_ARRAY_BUFFER, normals_at + normals, nullptr, GL_STREAM_DRAW);  // orphaned, as above
+  glBufferSubData(GL_ARRAY_BUFFER, 0, positions, bench.packed_positions(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, bench.packed_normals(i).data());
+  glBindVertexBuffer(0, buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
+  glBindVertexBuffer(1, buffer, normals_at, static_cast<GLsizei>(kPackedNormalBytes));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, kind.indices);
+  const PositionQuantisation& q = bench.character_quantisation(k);
+  glUniform3fv(packed_min_, 1, glm::value_ptr(q.min));
+  glUniform3fv(packed_extent_, 1, glm::value_ptr(q.extent));
+  glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniform3fv(packed_colour_, 1, glm::value_ptr(kPalette[i % kPalette.size()]));
+  glDrawElements(GL_TRIANGLES, kind.index_count, GL_UNSIGNED_INT, nullptr);
+  counters.bytes_uploaded += kind.vertices * kPackedVertexBytes + sizeof(glm::mat4);
   ++counters.draw_calls;
 }
 

@@ -95,6 +95,9 @@ class GlCrowdRenderer final : public FrameRenderer {
  private:
   void draw_copy_cpu_skinned(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
   void draw_copy_gpu_skinned(const CrowdBench& bench, size_t copy, Counters& counters);
+  // --vertex-format packed: the same stream buffers, read as 16-bit position
+  // codes and 10:10:10:2 normals by a program that decodes them.
+  void draw_copy_packed(const CrowdBench& bench, size_t copy, size_t drawn, Counters& counters);
   // The GPU-skinned copies with their palettes in frame_buffers_: per copy or instanced.
   void draw_buffer_palettes(const CrowdBench& bench, bool instanced, Counters& counters);
   void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench) const;
@@ -134,6 +137,9 @@ class GlCrowdRenderer final : public FrameRenderer {
   // orphaned and refilled every frame. With more copies on screen than
   // buffers, buffers serve several copies.
   GLuint cpu_vao_ = 0;
+  GlProgram packed_program_;
+  GLint packed_model_ = -1, packed_colour_ = -1, packed_min_ = -1, packed_extent_ = -1;
+  GLuint packed_vao_ = 0;
   std::vector<GLuint> stream_;
   // With animation sharing, the storage (bench.storage_of) whose mesh the last
   // CPU-skinned draw uploaded, and the buffer holding it: copies in the same

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "animation/skin_matrix.h"
+#include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 
 namespace crowdprof {
@@ -42,6 +43,27 @@ struct SkinningJob {
 
   // Plan set, palette covering its joints, range inside the mesh, outputs sized
   // to the range. Constant time: the joint indices were checked with the plan.
+  bool Validate() const;
+  // False (and no output) when !Validate(). Allocates nothing.
+  bool Run() const;
+};
+
+// SkinningJob with its output in the packed format (packed_vertex.h): the same
+// arithmetic, then each vertex's float position and normal encoded, exactly
+// as quantise_position and pack_normal would, on every SIMD target.
+struct PackedSkinningJob {
+  std::span<const SkinMatrix> skinning_matrices;
+  const SkinningPlan* plan = nullptr;
+  // The box positions are quantised in; those outside it are clamped to it.
+  const PositionQuantisation* quantisation = nullptr;
+  size_t first_vertex = 0;
+  size_t vertex_count = 0;
+  // Vertex first_vertex + i's codes at out_positions[3 i, 3 i + 3) and its
+  // normal's word at out_normals[i]: 3 x vertex_count and vertex_count long.
+  std::span<uint16_t> out_positions;
+  std::span<uint32_t> out_normals;
+
+  // As SkinningJob's, with the quantisation set.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
   bool Run() const;

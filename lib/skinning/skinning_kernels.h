@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "skinning/skinning_plan.h"
 
@@ -16,6 +17,12 @@ struct SkinKernelArgs {
   float* normals = nullptr;
   // Single-influence batches keep their rotated normals (every such joint rigid).
   bool keep_single_normals = false;
+  // The packed format (packed_vertex.h) instead of positions and normals: 3
+  // position codes and one normal word per vertex from first_vertex onwards.
+  uint16_t* packed_positions = nullptr;
+  uint32_t* packed_normals = nullptr;
+  float quantisation_min[3] = {0, 0, 0};
+  float quantisation_scale[3] = {0, 0, 0};
 };
 
 // Skins the vertices [first_vertex, end_vertex) (checked by SkinningJob).
