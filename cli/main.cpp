@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
-#include <new>
 
 #include "asset/errors.h"
+#include "cli/child_run.h"
 #include "cli/commands.h"
 #include "profile/environment.h"
 #include "skinning/output_stores.h"
@@ -76,18 +76,8 @@ int run_command(int argc, char** argv) {
     }
   try {
     return run ? run() : crowdprof::kExitUsage;
-  } catch (const crowdprof::InputError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitBadInput;
-  } catch (const crowdprof::UsageError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitUsage;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "crowdprof: out of memory\n";
-    return crowdprof::kExitRuntime;
-  } catch (const std::exception& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitRuntime;
+  } catch (...) {
+    return crowdprof::report_current_exception();
   }
 }
 
