@@ -3,6 +3,8 @@
 // tolerance and significantly, or when the work done (counters, digest)
 // changed; exit 0 with a one-line summary otherwise. The logic is in
 // lib/profile/regression.h.
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -14,6 +16,7 @@
 #include "asset/gltf_loader.h"
 #include "output/output_file.h"
 #include "cli/bench_options.h"
+#include "cli/child_run.h"
 #include "cli/commands.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
@@ -34,7 +37,7 @@ struct CheckCliOptions {
   std::vector<std::string> metrics = {"cpu"};
   std::string tolerance = "7%";
   std::string floor = "2%";
-  long long attempts = 3;
+  long long runs = 8;
   double alpha = 0.05;
   bool update = false;
   bool timings_only = false;
@@ -159,7 +162,7 @@ void require_recorded_action(const CheckCliOptions& o, const Character& characte
                                    o.bench.file + "'s (" + names + ")");
 }
 
-RunReport run_bench_report(CheckCliOptions& o) {
+RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label) {
   BenchScene scene;
   try {
     scene = load_bench_scene(o.bench);
@@ -176,7 +179,7 @@ RunReport run_bench_report(CheckCliOptions& o) {
   RunOptions run;
   run.frames = static_cast<size_t>(o.bench.frames);
   run.warmup = static_cast<size_t>(o.bench.warmup);
-  run.progress = terminal_progress(o.bench.quiet, "check, mode " + config.mode_name + ",");
+  run.progress = terminal_progress(o.bench.quiet, progress_label + ", mode " + config.mode_name + ",");
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
   RunReport report = run_bench(bench, o.bench.file, run);
@@ -206,7 +209,8 @@ int check(CheckCliOptions& o) {
   options.tolerance = parse_tolerance(o.tolerance);
   options.floor = parse_floor(o.floor);
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
-  if (o.attempts < 1 || o.attempts > 100) throw UsageError("--attempts " + std::to_string(o.attempts) + ": expected 1 to 100");
+  if (o.runs < 1 || o.runs > static_cast<long long>(kMaxRuns))
+    throw UsageError("--runs " + std::to_string(o.runs) + ": expected 1 to " + std::to_string(kMaxRuns));
   options.alpha = o.alpha;
   options.compare_work = !o.timings_only;
   if (o.timings_only && o.update) throw UsageError("--timings-only compares; it cannot record a baseline");
@@ -253,15 +257,10 @@ int check(CheckCliOptions& o) {
       std::cerr << "crowdprof: note: replacing a baseline that cannot be read (" << e.what() << ")\n";
     }
   }
-  // A run that measured slower may have met a noisy moment of the machine:
-  // timing alone is measured again, up to --attempts runs, and fails only if
-  // every attempt fails. A baseline records the median of --attempts runs (by
-  // the first metric): a typical run, not the luckiest, since a check is then
-  // held against it for as long as the baseline lives (the fastest of three sat
-  // 2.5% below a typical run and turned the machine's drift into false alarms).
-  auto write_run = [&](const RunReport& report) {
-    if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
-  };
+  // Each run is a process of its own (child_run.h): the CPU time of one
+  // unchanged scene moves about three times more between processes than within
+  // one, so a baseline and a check each sample --runs processes, and the gate
+  // compares their medians. The CSV is of the last run.
   json current;
   if (!o.result.empty()) {
     current = read_result(o.result);
@@ -269,31 +268,45 @@ int check(CheckCliOptions& o) {
     if (baseline) adopt_baseline_options(o, *baseline);
     if (o.bench.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
     require_safe_outputs();  // the scene file may have come from the baseline
-  }
-  bool interrupted = false;
-  auto measure = [&]() {
-    RunReport report = run_bench_report(o);
-    write_run(report);
-    current = to_json(report);
-    interrupted = report.partial;
-  };
-
-  if (o.update) {
-    if (o.result.empty()) {
-      std::vector<json> runs;
-      for (long long attempt = 1; attempt <= o.attempts; ++attempt) {
-        measure();
-        if (interrupted) break;
-        runs.push_back(current);
+    std::vector<json> runs;
+    bool interrupted = false;
+    install_interrupt_handlers();  // here, to forward a ^C to the run in progress
+    for (long long i = 1; i <= o.runs && !interrupted; ++i) {
+      std::string label = o.runs > 1 ? "check, run " + std::to_string(i) + " of " + std::to_string(o.runs) : "check";
+      json run = run_in_child_process([&] {
+        RunReport report = run_bench_report(o, label);
+        if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
+        json j = to_json(report);
+        j["pid"] = static_cast<long long>(::getpid());
+        return j;
+      });
+      interrupted = run.value("partial", false) || interrupt_requested().load();
+      if (run.value("partial", false)) {
+        run.erase("pid");
+        current = std::move(run);
+      } else {
+        // Another run than the baseline's is found after one run, not after all.
+        if (runs.empty() && baseline && !o.update && !o.timings_only) require_same_run(*baseline, run, o.baseline);
+        runs.push_back(std::move(run));
       }
-      if (!interrupted) current = median_run(std::move(runs), options.metrics.front());
     }
     if (interrupted) {
-      if (!o.bench.json.empty())
-        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
-      std::cerr << "crowdprof: interrupted: the baseline is not updated from a partial run\n";
+      // The frames measured so far: the cut run's, or the last whole one's.
+      if (current.is_null() && !runs.empty()) current = std::move(runs.back());
+      if (current.is_object()) {
+        current.erase("pid");
+        current["partial"] = true;
+        if (!o.bench.json.empty())
+          write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
+      }
+      std::cerr << "crowdprof: interrupted: "
+                << (o.update ? "the baseline is not updated from a partial run" : "a partial run is not compared") << "\n";
       return kExitInterrupted;
     }
+    current = pooled_runs(std::move(runs), options.metrics.front());
+  }
+
+  if (o.update) {
     if (!o.bench.json.empty())
       write_text(o.bench.json, "JSON",
                  [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
@@ -308,7 +321,7 @@ int check(CheckCliOptions& o) {
       std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
                 << current["scene"]["characters"] << " characters, frame median "
                 << current["frame"]["median_ms"].get<double>() << " ms"
-                << (o.result.empty() && o.attempts > 1 ? ", the median of " + std::to_string(o.attempts) + " runs by " + metric_display_name(options.metrics.front()) : "")
+                << (o.result.empty() && o.runs > 1 ? ", the median of " + std::to_string(o.runs) + " runs by " + metric_display_name(options.metrics.front()) : "")
                 << ", digest " << current["digest"].get<std::string>() << ")\n";
     return kExitOk;
   }
@@ -319,35 +332,15 @@ int check(CheckCliOptions& o) {
               << " has no CPU time per frame (an older crowdprof's): checking the frame time instead\n";
     options.metrics = {"frame_ms"};
   }
-  CheckResult result;
-  for (long long attempt = 1;; ++attempt) {
-    if (o.result.empty()) measure();
-    if (interrupted) {
-      if (!o.bench.json.empty())
-        write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
-      std::cerr << "crowdprof: interrupted: a partial run is not compared\n";
-      return kExitInterrupted;
-    }
-    if (!o.timings_only) require_same_run(*baseline, current, o.baseline);
-    if (attempt == 1)
-      for (const std::string& note : comparison_notes(*baseline, current))
-        std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
-    for (const std::string& key : options.metrics)
-      for (const auto& [doc, path] : {std::pair{&*baseline, o.baseline}, {&current, o.result.empty() ? std::string("the run") : o.result}})
-        if (!doc->at("samples").contains(key))
-          throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
-                                 "check another --metric");
-    result = check_results(*baseline, current, options);
-    // Counters and digest are exact: measuring again cannot change them.
-    bool timing_only = result.counters.empty() && result.counters_missing.empty() && !result.digest_differs();
-    if (!result.regressed() || !timing_only || !o.result.empty() || attempt >= o.attempts) {
-      if (attempt > 1)
-        std::cerr << "crowdprof: note: attempt " << attempt << " of " << o.attempts << " decided\n";
-      break;
-    }
-    std::cerr << "crowdprof: note: attempt " << attempt << " of " << o.attempts
-                << " measured a slowdown; measuring again\n";
-  }
+  if (!o.timings_only) require_same_run(*baseline, current, o.baseline);
+  for (const std::string& note : comparison_notes(*baseline, current))
+    std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
+  for (const std::string& key : options.metrics)
+    for (const auto& [doc, path] : {std::pair{&*baseline, o.baseline}, {&current, o.result.empty() ? std::string("the run") : o.result}})
+      if (!doc->at("samples").contains(key))
+        throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
+                               "check another --metric");
+  CheckResult result = check_results(*baseline, current, options);
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON",
                [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
@@ -401,9 +394,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "Smallest slowdown of a median that can fail, however significant: a time (0.05ms, 50us) or a share "
                   "of the baseline's median frame (2%)")
       ->capture_default_str();
-  cmd->add_option("--attempts", options->attempts,
-                  "Runs before a timing regression fails (it fails only if every run regressed); --update-baseline "
-                  "records the median of this many runs (by the first --metric)")
+  cmd->add_option("--runs,--attempts", options->runs,
+                  "Runs to measure, each in a process of its own; with 8 or more here and in the baseline, the gate "
+                  "compares the median of each run (processes differ more than frames do), else the frames of the "
+                  "median run. --update-baseline records this many (--attempts: the older name)")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,

@@ -6,11 +6,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
-#include <new>
 
 #include "asset/errors.h"
+#include "cli/child_run.h"
 #include "cli/commands.h"
 #include "profile/environment.h"
+#include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
 
 namespace {
@@ -41,6 +42,14 @@ int run_command(int argc, char** argv) {
          "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
          "also the environment variable CROWDPROF_SIMD)")
       ->trigger_on_parse();
+  // How skinned vertices are stored (output_stores.h): CROWDPROF_STORES, else --stores.
+  std::string stores_error;
+  if (const char* from_env = std::getenv(crowdprof::kStoresEnvironmentVariable))
+    stores_error = crowdprof::force_output_stores(from_env);
+  app.add_option_function<std::string>(
+      "--stores", [&](const std::string& name) { stores_error = crowdprof::force_output_stores(name); },
+      "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "
+      "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)");
   app.require_subcommand(1);
   std::function<int()> run;
   add_info_command(app, run);
@@ -60,24 +69,15 @@ int run_command(int argc, char** argv) {
     std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
     return crowdprof::kExitUsage;
   }
-  if (!simd_error.empty()) {
-    std::cerr << "crowdprof: " << simd_error << "\n";
-    return crowdprof::kExitUsage;
-  }
+  for (const std::string& error : {simd_error, stores_error})
+    if (!error.empty()) {
+      std::cerr << "crowdprof: " << error << "\n";
+      return crowdprof::kExitUsage;
+    }
   try {
     return run ? run() : crowdprof::kExitUsage;
-  } catch (const crowdprof::InputError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitBadInput;
-  } catch (const crowdprof::UsageError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitUsage;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "crowdprof: out of memory\n";
-    return crowdprof::kExitRuntime;
-  } catch (const std::exception& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
-    return crowdprof::kExitRuntime;
+  } catch (...) {
+    return crowdprof::report_current_exception();
   }
 }
 

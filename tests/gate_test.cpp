@@ -1,10 +1,12 @@
 // The gate of `check` and `diff`: a metric fails only when its slowdown is
 // significant after Holm's correction over the metrics tested together, beyond
-// the tolerance, and beyond an absolute floor; a timing failure is measured
-// again before it counts.
+// the tolerance, and beyond an absolute floor; with enough runs (each a
+// process of its own) on both sides, the runs' medians are what is compared.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -99,40 +101,87 @@ TEST(Gate, ABaselineIsTheMedianRunNotTheFastest) {
   EXPECT_EQ(metric_display_name("frame_ms"), "frame");
 }
 
-TEST(GateCli, ATimingRegressionIsMeasuredAgainBeforeItFails) {
-  auto dir = test::scratch_dir("gate_attempts");
+TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
+  auto dir = test::scratch_dir("gate_runs");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
   auto r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
-                         "' --update-baseline --attempts 2");
+                         "' --update-baseline --runs 8");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("the median of 2 runs by cpu"), std::string::npos) << r.out;
-  // A baseline ten times faster than any machine: every attempt regresses.
-  json fast = json::parse(std::ifstream(base));
+  EXPECT_NE(r.out.find("the median of 8 runs by cpu"), std::string::npos) << r.out;
+  json recorded = json::parse(std::ifstream(base));
+  ASSERT_EQ(recorded["runs"]["count"], 8);
+  std::set<long long> pids;
+  for (const json& pid : recorded["runs"]["pids"]) pids.insert(pid.get<long long>());
+  EXPECT_EQ(pids.size(), 8u) << "each run a process of its own";
+  EXPECT_FALSE(recorded.contains("pid"));
+  // The samples are of the median run: the lower middle of the runs' medians.
+  std::vector<double> medians = recorded["runs"]["median_ms"]["cpu_ms"].get<std::vector<double>>();
+  ASSERT_EQ(medians.size(), 8u);
+  ASSERT_EQ(recorded["runs"]["median_ms"]["frame_ms"].size(), 8u);
+  std::sort(medians.begin(), medians.end());
+  std::vector<double> cpu = recorded["samples"]["cpu_ms"].get<std::vector<double>>();
+  std::sort(cpu.begin(), cpu.end());
+  EXPECT_DOUBLE_EQ((cpu[4] + cpu[5]) / 2, medians[3]);
+
+  // Runs slower by a fifth, frames unchanged: the runs decide when both have 8.
+  json slower = recorded;
+  for (auto& [key, values] : slower["runs"]["median_ms"].items())
+    for (auto& v : values) v = v.get<double>() * 1.2;
+  std::ofstream(dir / "slower.json") << slower.dump();
+  std::string slower_path = (dir / "slower.json").string();
+  r = test::run_cli("check --result '" + slower_path + "' --baseline '" + base + "' --floor 0ms");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("(Mann-Whitney U, 8 vs 8 runs, the median of each)"), std::string::npos) << r.out;
+  // A baseline of one run: the frames of the median run, which did not move.
+  std::string single = (dir / "single.json").string();
+  r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + single +
+                    "' --update-baseline --runs 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(std::ifstream(single))["runs"]["count"], 1);
+  json same_frames = json::parse(std::ifstream(single));
+  for (auto& v : same_frames["runs"]["median_ms"]["cpu_ms"]) v = v.get<double>() * 10;
+  std::ofstream(dir / "same_frames.json") << same_frames.dump();
+  r = test::run_cli("check --result '" + (dir / "same_frames.json").string() + "' --baseline '" + single +
+                    "' --floor 0ms --metric cpu");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+
+  // A baseline ten times faster than any machine, runs and frames: a real check
+  // of 8 runs regresses, and so does one of a single run, judged on frames.
+  json fast = recorded;
   for (auto& [key, values] : fast["samples"].items())
+    if (values.is_array())
+      for (auto& v : values) v = v.get<double>() / 10.0;
+  for (auto& [key, values] : fast["runs"]["median_ms"].items())
     for (auto& v : values) v = v.get<double>() / 10.0;
   std::ofstream(dir / "fast.json") << fast.dump();
   std::string fast_path = (dir / "fast.json").string();
-  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 3 --floor 0ms");
+  r = test::run_cli("check --baseline '" + fast_path + "' --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
-  EXPECT_NE(r.err.find("attempt 1 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("attempt 2 of 3 measured a slowdown; measuring again"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.rfind("REGRESSION cpu", 0), 0u) << r.out;
-  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 1 --floor 0ms");
+  EXPECT_NE(r.out.find("8 vs 8 runs"), std::string::npos) << r.out;
+  r = test::run_cli("check --baseline '" + fast_path + "' --runs 1 --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("10 vs 10 frames"), std::string::npos) << r.out;
   // A floor larger than any slowdown passes it, even ten times slower.
-  r = test::run_cli("check --baseline '" + fast_path + "' --attempts 1 --floor 10s");
+  r = test::run_cli("check --baseline '" + fast_path + "' --runs 1 --floor 10s");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("under the floor"), std::string::npos) << r.out;
-  // A changed counter is not measured again: it cannot change by chance.
+  // A changed counter fails, however fast the machine.
   json planted = json::parse(std::ifstream(base));
   planted["counters"]["poses_updated"] = 999;
   std::ofstream(dir / "planted.json") << planted.dump();
-  r = test::run_cli("check --baseline '" + (dir / "planted.json").string() + "' --attempts 3");
+  r = test::run_cli("check --baseline '" + (dir / "planted.json").string() + "' --runs 2");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
-  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
-  for (const char* bad : {"--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
+  EXPECT_NE(r.out.find("CHANGED counter poses_updated"), std::string::npos) << r.out;
+  // A runs section that does not add up is a bad baseline.
+  json broken = recorded;
+  broken["runs"]["median_ms"]["cpu_ms"].erase(0);
+  std::ofstream(dir / "broken.json") << broken.dump();
+  r = test::run_cli("check --baseline '" + (dir / "broken.json").string() + "' --runs 1");
+  EXPECT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("runs.median_ms.cpu_ms"), std::string::npos) << r.err;
+  for (const char* bad : {"--runs 0", "--runs 101", "--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
     r = test::run_cli("check --baseline '" + base + "' " + bad);
     EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
   }

@@ -101,6 +101,26 @@ TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
   EXPECT_EQ(slurp(base), "the earlier baseline");
 }
 
+TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {
+  // The run is a child process in a group of its own: only check's forwarding
+  // can stop it (the signal goes to check alone, as a terminal's ^C would).
+  auto dir = crowdprof::test::scratch_dir("interrupt_check_run");
+  std::string base = (dir / "base.json").string();
+  ASSERT_EQ(crowdprof::test::run_cli("check '" + scene() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
+                                     "' --update-baseline -q")
+                .status,
+            0);
+  std::string result = (dir / "partial.json").string();
+  Interrupted r = interrupt_cli({"check", "--baseline", base, "--frames", "10000000", "--json", result}, dir, SIGINT,
+                                std::chrono::milliseconds(2500));
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("crowdprof: interrupted: a partial run is not compared"), std::string::npos) << r.err;
+  json j = json::parse(std::ifstream(result));
+  EXPECT_TRUE(j["partial"].get<bool>());
+  EXPECT_GT(j["samples"]["frame_ms"].size(), 0u);
+  EXPECT_LT(j["samples"]["frame_ms"].size(), 10000000u);
+}
+
 TEST(Interrupt, TheSecondSignalEndsTheProcessAtOnce) {
   pid_t child = fork();
   if (child == 0) {

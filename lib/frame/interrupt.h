@@ -12,5 +12,11 @@ void install_interrupt_handlers();
 // Set by the first signal; the frame loops read it between frames.
 const std::atomic<bool>& interrupt_requested();
 
+// While `pid` is not 0, every SIGINT or SIGTERM this process takes is also sent
+// to process `pid` (a run measured in a child process of its own, which the
+// terminal's ^C does not reach): the first asks it to stop after its frame, a
+// second ends both at once. 0 stops forwarding.
+void forward_interrupts_to(int pid);
+
 // The exit status after an interrupt: 128 + SIGINT, as shells report ^C.
 inline constexpr int kExitInterrupted = 130;

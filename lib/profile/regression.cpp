@@ -84,6 +84,35 @@ std::vector<double> samples_of(const json& doc, const std::string& key) {
   return doc.at("samples").at(key).get<std::vector<double>>();
 }
 
+// "runs" (pooled_runs): optional; when present, a count and one median per run
+// for every samples key given, each a finite, non-negative number.
+void validate_runs(const json& doc, const std::string& path) {
+  if (!doc.contains("runs")) return;
+  const json& runs = doc["runs"];
+  require_type(runs.is_object(), "/runs", "an object", path);
+  require_type(whole(field(doc, "/runs/count", path)), "/runs/count", "a whole number", path);
+  size_t count = runs["count"].get<size_t>();
+  if (count == 0 || count > kMaxRuns) throw InputError(path, "\"runs.count\" should be 1 to " + std::to_string(kMaxRuns));
+  const json& medians = field(doc, "/runs/median_ms", path);
+  require_type(medians.is_object(), "/runs/median_ms", "an object", path);
+  for (const auto& [key, values] : medians.items()) {
+    std::string where = "/runs/median_ms/" + key;
+    if (!doc["samples"].contains(key) || !doc["samples"][key].is_array()) throw InputError(path, "\"runs.median_ms." + key + "\" is not a metric of \"samples\"");
+    require_type(values.is_array() && values.size() == count, where, "an array of one median per run", path);
+    for (const json& v : values)
+      require_type(v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() >= 0, where,
+                   "finite, non-negative milliseconds", path);
+  }
+}
+
+// The medians of each run of `doc` for `key` when it pools `runs` or more runs
+// (pooled_runs); empty otherwise.
+std::vector<double> run_medians(const json& doc, const std::string& key, size_t runs) {
+  if (!doc.contains("runs") || doc["runs"]["count"].get<size_t>() < runs || !doc["runs"]["median_ms"].contains(key))
+    return {};
+  return doc["runs"]["median_ms"][key].get<std::vector<double>>();
+}
+
 // A non-negative decimal number that is all of `s` (no sign, no words, finite).
 bool parse_plain_number(const std::string& s, double& value) {
   size_t used = 0;
@@ -245,6 +274,7 @@ void validate_result(const nlohmann::json& doc, const std::string& path) {
     field(doc, std::string("/counters/").append(name), path);
   for (const auto& [name, value] : counters.items())
     require_type(whole(value), std::string("/counters/").append(name), "a whole number", path);
+  validate_runs(doc, path);
 }
 
 void require_same_run(const nlohmann::json& baseline, const nlohmann::json& current, const std::string& path) {
@@ -403,10 +433,21 @@ void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options)
 
 CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options) {
   CheckResult result;
-  double floor = floor_ms(options.floor, summarize(samples_of(baseline, "frame_ms")).median);
-  for (const std::string& key : options.metrics)
-    result.metrics.push_back(
-        check_metric(display_name(key), samples_of(baseline, key), samples_of(current, key), options, floor));
+  // Runs are the unit when both results pool enough of them: processes differ
+  // more than frames of one process do (child_run.h).
+  std::vector<double> base_frame = run_medians(baseline, "frame_ms", kMannWhitneyMinSamples);
+  double floor = floor_ms(options.floor, summarize(base_frame.empty() ? samples_of(baseline, "frame_ms") : base_frame).median);
+  for (const std::string& key : options.metrics) {
+    std::vector<double> a = run_medians(baseline, key, kMannWhitneyMinSamples);
+    std::vector<double> b = run_medians(current, key, kMannWhitneyMinSamples);
+    bool by_runs = !a.empty() && !b.empty();
+    if (!by_runs) {
+      a = samples_of(baseline, key);
+      b = samples_of(current, key);
+    }
+    result.metrics.push_back(check_metric(display_name(key), a, b, options, floor));
+    result.metrics.back().unit = by_runs ? "runs" : "frames";
+  }
   adjust_holm(result.metrics, options);
   if (!options.compare_work) return result;
   const json& before = baseline["counters"];
@@ -435,7 +476,8 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
         << fixed(m.floor_ms, 3) << " ms), IQR " << fixed(m.baseline_iqr, 3) << " -> " << fixed(m.current_iqr, 3)
         << " ms, p = " << p_value(m.test.p);
     if (corrected) out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
-    out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " frames"
+    out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " " << m.unit
+        << (m.unit == "runs" ? ", the median of each" : "")
         << (m.too_few_samples ? "; too few for the test, decided on the tolerance and floor" : "") << ")\n";
   };
   for (const MetricCheck& m : result.metrics)
@@ -459,6 +501,9 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
     else out << ", within " << tolerance;
     out << ");";
   }
+  if (!result.metrics.empty())
+    out << " " << result.metrics.front().test.n2 << " vs " << result.metrics.front().test.n1 << " "
+        << result.metrics.front().unit << ";";
   out << (options.compare_work ? " counters and digest match\n" : " counters and digest not compared\n");
   return out.str();
 }
@@ -472,6 +517,25 @@ json median_run(std::vector<json> runs, const std::string& key) {
   for (size_t i = 0; i < runs.size(); ++i) medians.emplace_back(summarize(samples_of(runs[i], key)).median, i);
   std::sort(medians.begin(), medians.end());
   return std::move(runs.at(medians.at((medians.size() - 1) / 2).second));
+}
+
+json pooled_runs(std::vector<json> runs, const std::string& key) {
+  json medians = json::object();
+  json pids = json::array();
+  for (json& run : runs) {
+    for (const auto& [name, values] : run.at("samples").items())
+      if (values.is_array())  // gpu_ms is null without a GPU timer
+        medians[name].push_back(summarize(values.get<std::vector<double>>()).median);
+    if (run.contains("pid")) {
+      pids.push_back(run["pid"]);
+      run.erase("pid");
+    }
+  }
+  size_t count = runs.size();
+  json pooled = median_run(std::move(runs), key);
+  pooled["runs"] = {{"count", count}, {"median_ms", std::move(medians)}};
+  if (pids.size() == count) pooled["runs"]["pids"] = std::move(pids);
+  return pooled;
 }
 
 std::string metric_display_name(const std::string& key) { return display_name(key); }

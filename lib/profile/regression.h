@@ -107,6 +107,17 @@ struct CheckOptions {
 // `runs` must not be empty and each must hold samples `key`.
 nlohmann::json median_run(std::vector<nlohmann::json> runs, const std::string& key);
 
+// Most runs a result may pool (check --runs).
+inline constexpr size_t kMaxRuns = 100;
+
+// Several runs of one scene, each measured in a process of its own, as one
+// result: the median run (median_run by `key`) with a "runs" section:
+// {"count": n, "median_ms": {samples key: [the median of each run]}, "pids":
+// [each run's process id]} (pids when every run has a "pid", which is moved
+// there). check_results judges runs instead of frames when both results pool
+// at least kMannWhitneyMinSamples runs. `runs` must not be empty.
+nlohmann::json pooled_runs(std::vector<nlohmann::json> runs, const std::string& key);
+
 // How a samples key is named to users: "cpu_ms" as "cpu", "frame_ms" as
 // "frame", a category by its key ("animations_ms").
 std::string metric_display_name(const std::string& key);
@@ -121,6 +132,7 @@ struct MetricCheck {
   double p_adjusted = 1;                     // test.p, Holm-corrected for the metrics tested together
   bool beyond_tolerance = false, beyond_floor = false, significant = false;
   bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance and floor alone
+  std::string unit = "frames";   // what was compared: each frame, or the median of each run ("runs")
   bool regressed = false;
 };
 
@@ -154,9 +166,11 @@ void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options)
 // Every key of "samples" (frame_ms, then the categories): --metric all.
 std::vector<std::string> all_metrics();
 
-// Both documents validated and of the same run (require_same_run). The floor
-// is resolved against the baseline's median frame, and the metrics are
-// Holm-corrected together.
+// Both documents validated and of the same run (require_same_run). When both
+// pool kMannWhitneyMinSamples runs or more (pooled_runs), each metric compares
+// the medians of their runs; otherwise the frames of each (of the median run).
+// The floor is resolved against the baseline's median frame, and the metrics
+// are Holm-corrected together.
 CheckResult check_results(const nlohmann::json& baseline, const nlohmann::json& current, const CheckOptions& options);
 
 // What stdout shows: a line per regressed metric or changed counter (metric,

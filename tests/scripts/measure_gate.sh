@@ -18,7 +18,8 @@
 #   WARMUP (10), RUNS (50), DETECT (20), OUT (a new temporary folder; kept),
 #   CHECK_ARGS (extra options for every check, e.g. "--tolerance 10%").
 # Needs jq. Prints one line per phase and a summary; per-run results are in
-# $OUT/runs.csv (phase, run, exit, attempts, baseline and current frame medians).
+# $OUT/runs.csv (phase, run, exit, runs per check, the medians of the baseline's and the
+# check's runs, the check's fastest and slowest run).
 set -euo pipefail
 
 crowdprof=${1:?usage: measure_gate.sh CROWDPROF [N] [N_SLOWER]}
@@ -57,7 +58,15 @@ echo "measure_gate: scene $scene, mode $mode, $frames frames after $warmup warm-
 echo "measure_gate: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; files in $out"
 "$crowdprof" check "$scene" -n "$n" --mode "$mode" --frames "$frames" --warmup "$warmup" \
   --baseline "$base" --update-baseline -q
-echo "phase,run,exit,attempts,baseline_frame_ms,current_frame_ms,baseline_cpu_ms,current_cpu_ms" >"$out/runs.csv"
+echo "phase,run,exit,runs,baseline_cpu_ms,current_cpu_ms,current_cpu_min_ms,current_cpu_max_ms,baseline_frame_ms,current_frame_ms" >"$out/runs.csv"
+
+# CPU and frame time of a result: the median of its runs' medians (check pools
+# --runs runs, each a process of its own), and the fastest and slowest run.
+medians() {
+  jq -r 'def med: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end;
+    .runs.median_ms as $m | [.runs.count, ($m.cpu_ms | med), ($m.cpu_ms | min), ($m.cpu_ms | max), ($m.frame_ms | med)]
+    | @csv' "$1"
+}
 
 # One check; echoes its exit status and records the run.
 one_check() {
@@ -70,11 +79,10 @@ one_check() {
     cat "$out/stderr" >&2
     exit 3
   fi
-  local attempts
-  attempts=$(($(grep -c "measuring again" "$out/stderr" || true) + 1))
-  echo "$phase,$run,$status,$attempts,$(jq -r '[.frame.median_ms, .cpu.median_ms] | @csv' "$base" | cut -d, -f1),$(
-    jq -r '.frame.median_ms' "$out/current.json"),$(jq -r '.cpu.median_ms' "$base"),$(jq -r '.cpu.median_ms' "$out/current.json")" \
-    >>"$out/runs.csv"
+  local b_cpu b_frame count c_cpu c_min c_max c_frame
+  IFS=, read -r _ b_cpu _ _ b_frame <<<"$(medians "$base")"
+  IFS=, read -r count c_cpu c_min c_max c_frame <<<"$(medians "$out/current.json")"
+  echo "$phase,$run,$status,$count,$b_cpu,$c_cpu,$c_min,$c_max,$b_frame,$c_frame" >>"$out/runs.csv"
   echo "$status"
 }
 
@@ -84,15 +92,18 @@ for ((i = 1; i <= runs; ++i)); do
 done
 echo "false alarms: $false_alarms of $runs unchanged checks (goal: at most 1)"
 
-# The slower variant's real cost, measured the same way.
-"$crowdprof" bench "$scene" -n "$n_slower" --mode "$mode" --frames "$frames" --warmup "$warmup" -q \
-  --json "$out/slower.json"
 detected=0
 for ((i = 1; i <= detect; ++i)); do
   [[ $(one_check slower "$i" -n "$n_slower" --timings-only) == 1 ]] && detected=$((detected + 1))
 done
-slowdown=$(jq -n --slurpfile a "$base" --slurpfile b "$out/slower.json" \
-  '[(($b[0].frame.median_ms / $a[0].frame.median_ms - 1) * 1000 | round) / 10,
-    (($b[0].cpu.median_ms / $a[0].cpu.median_ms - 1) * 1000 | round) / 10] | "frame \(.[0])%, cpu \(.[1])%"')
-echo "detections: $detected of $detect checks of -n $n_slower (one bench of it against the baseline: $slowdown; goal: at least 19)"
+# How the runs spread and how much slower the variant measured (medians over checks).
+summary=$(awk -F, 'NR > 1 { r = $6 / $5 - 1; if ($1 == "unchanged") u[++nu] = r; else s[++ns] = r;
+    if ($1 == "unchanged") { lo = (lo == "" || $7 / $5 - 1 < lo) ? $7 / $5 - 1 : lo; hi = (hi == "" || $8 / $5 - 1 > hi) ? $8 / $5 - 1 : hi } }
+  function med(a, n,   i, j, t) { for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+    return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2 }
+  END { mu = med(u, nu); ms = med(s, ns)  # sorts u and s
+    printf "unchanged checks: median change %+.1f%%, range %+.1f%% to %+.1f%%, single runs %+.1f%% to %+.1f%%; slower: median change %+.1f%%, range %+.1f%% to %+.1f%%",
+      100 * mu, 100 * u[1], 100 * u[nu], 100 * lo, 100 * hi, 100 * ms, 100 * s[1], 100 * s[ns] }' "$out/runs.csv")
+echo "detections: $detected of $detect checks of -n $n_slower (goal: at least 19)"
+echo "measure_gate: CPU time of the median run against the baseline's, $summary"
 echo "measure_gate: took $(($(date +%s) - start)) s, load average now $(cut -d' ' -f1-3 /proc/loadavg)"
