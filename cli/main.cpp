@@ -11,6 +11,7 @@
 #include "cli/child_run.h"
 #include "cli/commands.h"
 #include "profile/environment.h"
+#include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
 
 namespace {
@@ -41,6 +42,14 @@ int run_command(int argc, char** argv) {
          "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
          "also the environment variable CROWDPROF_SIMD)")
       ->trigger_on_parse();
+  // How skinned vertices are stored (output_stores.h): CROWDPROF_STORES, else --stores.
+  std::string stores_error;
+  if (const char* from_env = std::getenv(crowdprof::kStoresEnvironmentVariable))
+    stores_error = crowdprof::force_output_stores(from_env);
+  app.add_option_function<std::string>(
+      "--stores", [&](const std::string& name) { stores_error = crowdprof::force_output_stores(name); },
+      "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "
+      "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)");
   app.require_subcommand(1);
   std::function<int()> run;
   add_info_command(app, run);
@@ -60,10 +69,11 @@ int run_command(int argc, char** argv) {
     std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
     return crowdprof::kExitUsage;
   }
-  if (!simd_error.empty()) {
-    std::cerr << "crowdprof: " << simd_error << "\n";
-    return crowdprof::kExitUsage;
-  }
+  for (const std::string& error : {simd_error, stores_error})
+    if (!error.empty()) {
+      std::cerr << "crowdprof: " << error << "\n";
+      return crowdprof::kExitUsage;
+    }
   try {
     return run ? run() : crowdprof::kExitUsage;
   } catch (...) {

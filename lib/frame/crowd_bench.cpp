@@ -18,6 +18,7 @@
 #include "asset/errors.h"
 #include "profile/trace.h"
 #include "skinning/bake_deviation.h"
+#include "skinning/output_stores.h"
 #include "scene/screen_size.h"
 #include "skinning/skinning.h"
 
@@ -30,7 +31,9 @@ uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
   uint64_t channels = 0;
   for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
   const uint64_t vertex_bytes = mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes : kFloatVertexBytes;
-  return c.skeleton.joint_count() * sizeof(SkinMatrix) + c.mesh.vertex_count() * vertex_bytes +
+  // Each copy's vertices start on a whole batch (the constructor's vertex offsets).
+  const uint64_t vertices = (c.mesh.vertex_count() + kSkinBatch - 1) / kSkinBatch * kSkinBatch;
+  return c.skeleton.joint_count() * sizeof(SkinMatrix) + vertices * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
 }
 uint64_t slot_bytes(const Character& c) {
@@ -118,7 +121,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     joint_offset_[i] = joints;
     vertex_offset_[i] = vertices;
     joints += kind.joints;
-    vertices += kind.vertices;
+    vertices += (kind.vertices + kSkinBatch - 1) / kSkinBatch * kSkinBatch;  // the next copy on a cache line
     const Character& character = character_of(i);
     if (!character.actions.empty()) reset_cursor(character.actions[crowd_.action[i]], &cursors_[i]);
   }
@@ -140,6 +143,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   targets_.assign(slot_channel_total, -1);
   palettes_.resize(joints);
   const bool packed = packed_vertices();
+  stream_output_ = !packed && stream_skinned_output(vertices * kFloatVertexBytes);
   positions_.resize(packed ? 0 : vertices);
   normals_.resize(packed ? 0 : vertices);
   packed_positions_.resize(packed ? 3 * vertices : 0);
@@ -515,7 +519,7 @@ void CrowdBench::skin_storage(size_t storage) {
   }
   SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, 0,
               kind.vertices, std::span(positions_).subspan(vertex_offset_[storage], kind.vertices),
-              std::span(normals_).subspan(vertex_offset_[storage], kind.vertices)}
+              std::span(normals_).subspan(vertex_offset_[storage], kind.vertices), stream_output_}
       .Run();
 }
 

@@ -158,6 +158,10 @@ class CrowdBench {
   // Every character skinned by the renderer.
   bool gpu_skinned() const;
   std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
+  // Float vertices skinned on the CPU are written with streaming stores: the
+  // frame's output is larger than the caches (skinning/output_stores.h). Each
+  // copy's skinned_positions() and skinned_normals() start on a cache line.
+  bool streams_output() const { return stream_output_; }
   std::span<const glm::vec3> skinned_positions(size_t copy) const;
   std::span<const glm::vec3> skinned_normals(size_t copy) const;
   // This frame's time of a copy on its action's clock (from the Logic stage).
@@ -276,7 +280,11 @@ class CrowdBench {
   std::vector<glm::mat4> model_;              // per pose slot x its joints
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
   std::vector<SkinMatrix> palettes_;          // per copy x its joints
-  std::vector<glm::vec3> positions_, normals_;  // per copy x its vertices (float format)
+  // Per copy x its vertices (float format). Each copy's run starts on a cache
+  // line (offsets in whole batches of kSkinBatch vertices, 192 bytes), so that
+  // skinning can stream whole lines (stream_output_).
+  std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> positions_, normals_;
+  bool stream_output_ = false;  // skinned with streaming stores (output_stores.h)
   std::vector<uint16_t> packed_positions_;      // per copy x its vertices x 3 (packed format)
   std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
   // Issue 13: sharing, update rates, the budget.

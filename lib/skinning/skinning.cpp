@@ -57,6 +57,7 @@ bool SkinningJob::Run() const {
   SkinKernelArgs args = kernel_args(skinning_matrices, plan, first_vertex, vertex_count);
   args.positions = &out_positions[0].x;
   args.normals = &out_normals[0].x;
+  args.stream = streaming_stores;
   run_skinning_kernel(args);
   return true;
 }

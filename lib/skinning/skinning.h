@@ -40,6 +40,11 @@ struct SkinningJob {
   // spans hold exactly vertex_count elements.
   std::span<glm::vec3> out_positions;
   std::span<glm::vec3> out_normals;
+  // Non-temporal (streaming) stores: for output headed to memory rather than
+  // to a cache that will still hold it when it is read (output_stores.h). Only
+  // the batches whose outputs start on a 64-byte boundary stream; the others,
+  // and the bits written, are as without. Fenced before Run returns.
+  bool streaming_stores = false;
 
   // Plan set, palette covering its joints, range inside the mesh, outputs sized
   // to the range. Constant time: the joint indices were checked with the plan.

@@ -11,6 +11,7 @@
 #define HWY_TARGET_INCLUDE "skinning/skinning_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -43,18 +44,32 @@ constexpr Interleave3Tables kInterleave3{};
 #endif
 
 // Stores x, y, z interleaved (x0 y0 z0 x1 ...): the same bytes whichever way.
-template <class D, class V = hn::Vec<D>>
+// kStream: non-temporal stores (`out` then 64-byte aligned), which write whole
+// cache lines to memory without reading them first (see SkinKernelArgs::stream).
+template <bool kStream, class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
   if constexpr (hn::MaxLanes(d) == 16) {
     for (int o = 0; o < 3; ++o) {
       const __m512 xy = _mm512_permutex2var_ps(x.raw, _mm512_load_si512(kInterleave3.xy[o]), y.raw);
-      _mm512_storeu_ps(out + 16 * o, _mm512_permutex2var_ps(xy, _mm512_load_si512(kInterleave3.z[o]), z.raw));
+      const __m512 xyz = _mm512_permutex2var_ps(xy, _mm512_load_si512(kInterleave3.z[o]), z.raw);
+      if constexpr (kStream)
+        _mm512_stream_ps(out + 16 * o, xyz);
+      else
+        _mm512_storeu_ps(out + 16 * o, xyz);
     }
     return;
   }
 #endif
-  hn::StoreInterleaved3(x, y, z, d, out);
+  if constexpr (kStream) {
+    // Interleaved in L1 first, then streamed a whole vector at a time.
+    const size_t n = hn::Lanes(d);
+    alignas(64) float xyz[3 * hn::MaxLanes(d)];
+    hn::StoreInterleaved3(x, y, z, d, xyz);
+    for (size_t i = 0; i < 3 * n; i += n) hn::Stream(hn::Load(d, xyz + i), d, out + i);
+  } else {
+    hn::StoreInterleaved3(x, y, z, d, out);
+  }
 }
 
 // Where one batch's lanes go: float x, y, z, or the packed format's codes
@@ -90,7 +105,7 @@ HWY_INLINE void StorePacked(D d, const V (&position)[3], const V (&normal)[3], c
   hn::StoreU(hn::BitCast(du32, word), du32, out.normals);
 }
 
-template <bool kPacked, class D>
+template <bool kPacked, bool kStream, class D>
 HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                           const float* palette, bool normalise, float* positions, float* normals,
                           const SkinKernelArgs& args, PackedOut packed) {
@@ -119,7 +134,7 @@ HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* j
   for (int r = 0; r < 3; ++r)
     position[r] =
         hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)), a[3][r]);
-  if constexpr (!kPacked) StoreXyz(d, position[0], position[1], position[2], positions);
+  if constexpr (!kPacked) StoreXyz<kStream>(d, position[0], position[1], position[2], positions);
   V out[3];
 
   const V nx = hn::Load(d, rows + 3 * kSkinBatch + lane);
@@ -140,7 +155,7 @@ HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* j
   if constexpr (kPacked)
     StorePacked(d, position, out, args, packed);
   else
-    StoreXyz(d, out[0], out[1], out[2], normals);
+    StoreXyz<kStream>(d, out[0], out[1], out[2], normals);
 }
 
 template <bool kPacked>
@@ -174,12 +189,21 @@ void SkinBatches(const SkinKernelArgs& args) {
       positions = whole ? args.positions + 3 * at : scratch_positions;
       normals = whole ? args.normals + 3 * at : scratch_normals;
     }
+    // Streamed: whole batches whose outputs start on a cache line (a batch is
+    // 192 bytes of positions and as many of normals, three lines each).
+    const bool stream = !kPacked && args.stream && whole && reinterpret_cast<uintptr_t>(positions) % 64 == 0 &&
+                        reinterpret_cast<uintptr_t>(normals) % 64 == 0;
     for (size_t lane = 0; lane < kSkinBatch; lane += lanes) {
       PackedOut lane_out{nullptr, nullptr};
       if constexpr (kPacked) lane_out = PackedOut{packed.positions + 3 * lane, packed.normals + lane};
-      SkinLanes<kPacked>(d, rows, lane, joints, batch.joint_count, args.palette, normalise,
-                         kPacked ? nullptr : positions + 3 * lane, kPacked ? nullptr : normals + 3 * lane, args,
-                         lane_out);
+      float* lane_positions = kPacked ? nullptr : positions + 3 * lane;
+      float* lane_normals = kPacked ? nullptr : normals + 3 * lane;
+      if (stream)
+        SkinLanes<kPacked, true>(d, rows, lane, joints, batch.joint_count, args.palette, normalise, lane_positions,
+                                 lane_normals, args, lane_out);
+      else
+        SkinLanes<kPacked, false>(d, rows, lane, joints, batch.joint_count, args.palette, normalise,
+                                  lane_positions, lane_normals, args, lane_out);
     }
     if (!whole) {
       const size_t from = std::max(first, args.first_vertex);
@@ -197,6 +221,9 @@ void SkinBatches(const SkinKernelArgs& args) {
       }
     }
   }
+  // Streamed stores are weakly ordered: fenced before this thread hands the
+  // output on (a task's end, a join), so that whoever reads it next sees it.
+  if (!kPacked && args.stream) hwy::FlushStream();
 }
 
 void SkinVertices(const SkinKernelArgs& args) {

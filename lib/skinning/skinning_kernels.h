@@ -17,6 +17,10 @@ struct SkinKernelArgs {
   float* normals = nullptr;
   // Single-influence batches keep their rotated normals (every such joint rigid).
   bool keep_single_normals = false;
+  // Float format only: non-temporal stores for the batches whose positions and
+  // normals start on a 64-byte boundary, then a store fence. Output bound for
+  // memory rather than cache is written without first being read in.
+  bool stream = false;
   // The packed format (packed_vertex.h) instead of positions and normals: 3
   // position codes and one normal word per vertex from first_vertex onwards.
   uint16_t* packed_positions = nullptr;
