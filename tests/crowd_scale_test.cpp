@@ -143,6 +143,47 @@ TEST(PoseSharing, TheStorageTakenLastIsTakenBackFromTheFreeList) {
   EXPECT_EQ(sharing.viewers(s), 1u);
 }
 
+TEST(PoseSharing, ManyCopiesAtOnceAsOneByOne) {
+  // The frame loop releases and takes runs of copies at once; the storages
+  // each copy shows, their keys and viewers are those of one call a copy.
+  std::vector<uint16_t> kinds(40, 0);
+  PoseSharing one, many;
+  one.reset(kinds, 1);
+  many.reset(kinds, 1);
+  for (uint32_t frame = 0; frame < 30; ++frame) {
+    std::vector<uint32_t> copies;
+    std::vector<uint64_t> keys;
+    for (uint32_t i = 0; i < 40; ++i) {
+      if ((i + frame) % 7 == 3) continue;  // some copies keep their state
+      copies.push_back(i);
+      // Runs of equal keys of several lengths, states coming back now and then.
+      keys.push_back(state_key(0, 0, (frame + i / (1 + frame % 5)) % 11));
+    }
+    for (uint32_t c : copies) one.release(c);
+    many.release(copies);
+    std::vector<uint32_t> evaluated_one, evaluated_many;
+    for (size_t c = 0; c < copies.size(); ++c) {
+      bool evaluate = false;
+      uint32_t s = one.take(copies[c], keys[c], &evaluate);
+      if (evaluate) evaluated_one.push_back(s);
+    }
+    for (size_t c = 0; c < copies.size();) {
+      size_t end = c + 1;
+      while (end < copies.size() && keys[end] == keys[c]) ++end;
+      bool evaluate = false;
+      uint32_t s = many.take(std::span(copies).subspan(c, end - c), keys[c], &evaluate);
+      if (evaluate) evaluated_many.push_back(s);
+      c = end;
+    }
+    ASSERT_EQ(evaluated_one, evaluated_many) << frame;
+    for (uint32_t i = 0; i < 40; ++i) {
+      ASSERT_EQ(one.shown(i), many.shown(i)) << frame << " " << i;
+      ASSERT_EQ(one.viewers(i), many.viewers(i)) << frame << " " << i;
+      ASSERT_EQ(one.key_of(i), many.key_of(i)) << frame << " " << i;
+    }
+  }
+}
+
 TEST(PoseSharing, ManyStatesComeAndGoWithoutLosingOne) {
   // 64 copies of one character walk through states; a copy's storage always
   // holds the key it asked for.

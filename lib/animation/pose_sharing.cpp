@@ -92,6 +92,25 @@ void PoseSharing::free_storage(uint32_t s) {
   push_back(s);
 }
 
+void PoseSharing::release(std::span<const uint32_t> copies) {
+  for (size_t c = 0; c < copies.size();) {
+    const uint32_t s = shown_[copies[c]];
+    size_t end = c + 1;
+    while (end < copies.size() && shown_[copies[end]] == s) ++end;
+    // Each of them counted once in refs_[s]: it reaches 0 at the run's end at the earliest.
+    refs_[s] -= static_cast<uint32_t>(end - c);
+    if (refs_[s] == 0) free_storage(s);
+    c = end;
+  }
+}
+
+uint32_t PoseSharing::take(std::span<const uint32_t> copies, uint64_t key, bool* evaluate) {
+  const uint32_t s = take(copies[0], key, evaluate);
+  for (size_t c = 1; c < copies.size(); ++c) shown_[copies[c]] = s;
+  refs_[s] += static_cast<uint32_t>(copies.size() - 1);
+  return s;
+}
+
 uint32_t PoseSharing::take_slow(size_t copy, uint64_t key, bool* evaluate) {
   size_t slot = slot_of(key);
   uint32_t s;

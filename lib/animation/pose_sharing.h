@@ -53,6 +53,13 @@ class PoseSharing {
     *evaluate = false;
     return s;
   }
+  // release() and take() for many copies, in order, as the frame loop calls
+  // them: copies that show one storage one after another give it up at once,
+  // and copies that take one key one after another are counted in at once (a
+  // storage's count is then not read back and written per copy).
+  void release(std::span<const uint32_t> copies);
+  // Every copy of `copies` (not empty) shows `key` from now on.
+  uint32_t take(std::span<const uint32_t> copies, uint64_t key, bool* evaluate);
   // The key a storage holds (kNoState for the rest pose).
   uint64_t key_of(uint32_t storage) const { return key_[storage]; }
   static constexpr uint64_t kNoState = ~uint64_t{0};

@@ -193,7 +193,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   }
   if (config.mode.share_poses) {
     sharing_.reset(crowd_.kind, characters_.size());
-    changing_.reserve(n);
+    changing_copies_.resize(n);
+    changing_keys_.resize(n);
   }
   if (config.mode.parallel) {
     auto threads = static_cast<size_t>(std::max(1, config.threads));
@@ -385,21 +386,22 @@ void CrowdBench::run_budget() {
 void CrowdBench::plan_updates(Counters& counters) {
   run_budget();
   jobs_.clear();
-  changing_.clear();
+  size_t changes = 0;  // copies taking a new state: changing_copies_, changing_keys_
   const bool share = config_.mode.share_poses;
   const double quantum = config_.mode.share_quantum_s;
   const bool culling = config_.mode.animation_culling;
   const auto frame = static_cast<int64_t>(frame_);
   // Tallied in locals and stored once: the loop runs per copy, every frame.
   std::array<uint64_t, kRateCount> by_rate{}, updates_by_rate{};
-  uint64_t held = 0, longest_gap = schedule_.longest_gap;
+  uint64_t held = 0, longest_gap = schedule_.longest_gap, every_frame = 0, updated_every_frame = 0;
   const size_t n = crowd_.size();
   for (size_t i = 0; i < n; ++i) {
     updated_[i] = 0;
     // poses(i), with the character's part read from one byte.
     if (!kind_poses_[crowd_.kind[i]] || (culling && !visible_[i])) continue;
     const uint8_t shift = shift_[i];
-    ++by_rate[shift];
+    // Most copies are updated every frame: that count lives in a register.
+    if (shift == 0) ++every_frame; else ++by_rate[shift];
     // Copy i takes its turn at offset i: neighbours of one period alternate.
     const int64_t last = last_update_[i];
     if (!update_due(frame_, last, shift, i)) {
@@ -409,7 +411,7 @@ void CrowdBench::plan_updates(Counters& counters) {
     if (last >= 0) longest_gap = std::max<uint64_t>(longest_gap, frame - last);
     last_update_[i] = frame;
     updated_[i] = 1;
-    ++updates_by_rate[shift];
+    if (shift == 0) ++updated_every_frame; else ++updates_by_rate[shift];
     float time = times_[i];
     if (quantum > 0) {
       // The nearest multiple of the quantum from the action's start, never past its end.
@@ -425,9 +427,11 @@ void CrowdBench::plan_updates(Counters& counters) {
     std::memcpy(&bits, &time, sizeof bits);
     uint64_t key = state_key(crowd_.kind[i], crowd_.action[i], bits);
     if (sharing_.key_of(sharing_.shown(i)) == key) continue;  // still in the state it shows
-    sharing_.release(i);
-    changing_.push_back({static_cast<uint32_t>(i), key});
+    changing_copies_[changes] = static_cast<uint32_t>(i);
+    changing_keys_[changes++] = key;
   }
+  by_rate[0] = every_frame;
+  updates_by_rate[0] = updated_every_frame;
   schedule_.copies_by_rate = by_rate;
   schedule_.longest_gap = longest_gap;
   counters.copies_held += held;
@@ -435,15 +439,23 @@ void CrowdBench::plan_updates(Counters& counters) {
     counters.copies_updated += updates_by_rate[r];
     counters.*kUpdatesByShift[r] += updates_by_rate[r];
   }
+  if (!share) return;
   // Every release before any take: a state that one copy leaves and another
   // enters this frame keeps its storage, and there is always room.
-  for (const auto& [copy, key] : changing_) {
+  std::span<const uint32_t> copies = std::span(changing_copies_).first(changes);
+  sharing_.release(copies);
+  for (size_t c = 0; c < changes;) {
+    // Copies taking one key one after another (a shared action: all of them).
+    const uint64_t key = changing_keys_[c];
+    size_t end = c + 1;
+    while (end < changes && changing_keys_[end] == key) ++end;
     bool evaluate = false;
-    uint32_t storage = sharing_.take(copy, key, &evaluate);
+    uint32_t storage = sharing_.take(copies.subspan(c, end - c), key, &evaluate);
     float time;
     auto bits = static_cast<uint32_t>(key);
     std::memcpy(&time, &bits, sizeof time);
-    if (evaluate) jobs_.push_back({copy, storage, time});
+    if (evaluate) jobs_.push_back({copies[c], storage, time});
+    c = end;
   }
 }
 

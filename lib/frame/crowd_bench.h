@@ -305,7 +305,9 @@ class CrowdBench {
   std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
   // Issue 13: sharing, update rates, the budget.
   std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
-  std::vector<std::pair<uint32_t, uint64_t>> changing_;  // sharing: copies taking a new state, and its key
+  // Sharing, room for every copy: this frame's copies taking a new state, and its key.
+  std::vector<uint32_t> changing_copies_;
+  std::vector<uint64_t> changing_keys_;
   PoseSharing sharing_;
   std::vector<float> storage_time_;           // per storage: the time it was evaluated at (NaN: rest)
   std::vector<float> screen_fraction_;        // per copy
