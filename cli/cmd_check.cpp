@@ -37,7 +37,9 @@ struct CheckCliOptions {
   std::vector<std::string> metrics = {"cpu"};
   std::string tolerance = "7%";
   std::string floor = "2%";
-  long long runs = 8;
+  // A baseline is held against every later check, so its luck counts many
+  // times: it gets more runs than a check (docs/compare-and-check.md).
+  long long runs = 8, baseline_runs = 20;
   double alpha = 0.05;
   bool update = false;
   bool timings_only = false;
@@ -209,6 +211,7 @@ int check(CheckCliOptions& o) {
   options.tolerance = parse_tolerance(o.tolerance);
   options.floor = parse_floor(o.floor);
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
+  if (o.update && o.command->count("--runs") == 0) o.runs = o.baseline_runs;
   if (o.runs < 1 || o.runs > static_cast<long long>(kMaxRuns))
     throw UsageError("--runs " + std::to_string(o.runs) + ": expected 1 to " + std::to_string(kMaxRuns));
   options.alpha = o.alpha;
@@ -397,8 +400,8 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--runs,--attempts", options->runs,
                   "Runs to measure, each in a process of its own; with 8 or more here and in the baseline, the gate "
                   "compares the median of each run (processes differ more than frames do), else the frames of the "
-                  "median run. --update-baseline records this many (--attempts: the older name)")
-      ->capture_default_str();
+                  "median run; --attempts: the older name")
+      ->default_str("8; 20 with --update-baseline");
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "

@@ -206,6 +206,9 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
                          "' --update-baseline");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("baseline written"), std::string::npos) << r.out;
+  // A baseline's luck counts against every later check: 20 runs by default.
+  EXPECT_NE(r.out.find("the median of 20 runs by cpu"), std::string::npos) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(base))["runs"]["count"], 20);
 
   r = test::run_cli("check --result '" + base + "' --baseline '" + base + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
