@@ -260,27 +260,30 @@ TEST(CrowdScale, SharedActionIsOnePoseAndOneMeshAFrame) {
 TEST(CrowdScale, FewerStatesThanThreadsAreSkinnedInParts) {
   // One state a frame on 3 threads: its mesh is skinned in 4 parts a thread,
   // each a task of its own, with the same bits as on one thread (where the
-  // state is one task, posed and skinned).
+  // state is one task, posed and skinned), in both vertex formats.
   const Character& character = small_humanoid();
-  std::string digest[2];
-  for (int threads : {1, 3}) {
-    Tracer tracer;
-    BenchConfig config = config_for("shared", threads, 40, ActionChoice::Shared);
-    config.tracer = &tracer;
-    CrowdBench bench(character, config);
-    FrameRecord last = run_frames(bench, 3);
-    EXPECT_EQ(last.counters.poses_updated, 1u);
-    EXPECT_EQ(last.counters.vertices_skinned, character.mesh.vertex_count());
-    std::map<std::string, size_t> tasks;
-    for (const TraceSpan& span : tracer.spans())
-      if (span.category == "task") ++tasks[std::string(span.name)];
-    if (threads == 1)
-      EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin", 3}}));
-    else
-      EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin part", 3 * 12}}));
-    digest[threads == 1 ? 0 : 1] = bench.digest();
+  for (VertexFormat format : {VertexFormat::Float, VertexFormat::Packed}) {
+    std::string digest[2];
+    for (int threads : {1, 3}) {
+      Tracer tracer;
+      BenchConfig config = config_for("shared", threads, 40, ActionChoice::Shared);
+      config.mode.vertex_format = format;
+      config.tracer = &tracer;
+      CrowdBench bench(character, config);
+      FrameRecord last = run_frames(bench, 3);
+      EXPECT_EQ(last.counters.poses_updated, 1u);
+      EXPECT_EQ(last.counters.vertices_skinned, character.mesh.vertex_count());
+      std::map<std::string, size_t> tasks;
+      for (const TraceSpan& span : tracer.spans())
+        if (span.category == "task") ++tasks[std::string(span.name)];
+      if (threads == 1)
+        EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin", 3}}));
+      else
+        EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin part", 3 * 12}}));
+      digest[threads == 1 ? 0 : 1] = bench.digest();
+    }
+    EXPECT_EQ(digest[0], digest[1]) << (format == VertexFormat::Packed ? "packed" : "float");
   }
-  EXPECT_EQ(digest[0], digest[1]);
   // As many states as threads or more: one task per state, as in threaded.
   Tracer tracer;
   BenchConfig config = config_for("shared", 2, 40, ActionChoice::Random);
