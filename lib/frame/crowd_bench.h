@@ -28,6 +28,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/output_buffer.h"
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 
@@ -295,14 +296,15 @@ class CrowdBench {
   std::vector<size_t> slot_joints_, slot_channels_;  // per pose slot, offsets into model_ and targets_
   std::vector<glm::mat4> model_;              // per pose slot x its joints
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
-  std::vector<SkinMatrix> palettes_;          // per copy x its joints
+  std::vector<SkinMatrix, CacheLineAllocator<SkinMatrix>> palettes_;  // per copy x its joints
   // Per copy x its vertices (float format). Each copy's run starts on a cache
   // line (offsets in whole batches of kSkinBatch vertices, 192 bytes), so that
-  // skinning can stream whole lines (stream_output_).
+  // skinning can stream whole lines (stream_output_). Large arrays on huge
+  // pages (output_buffer.h).
   std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> positions_, normals_;
   bool stream_output_ = false;  // skinned with streaming stores (output_stores.h)
-  std::vector<uint16_t> packed_positions_;      // per copy x its vertices x 3 (packed format)
-  std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
+  std::vector<uint16_t, CacheLineAllocator<uint16_t>> packed_positions_;  // per copy x its vertices x 3 (packed format)
+  std::vector<uint32_t, CacheLineAllocator<uint32_t>> packed_normals_;    // per copy x its vertices (packed format)
   // Issue 13: sharing, update rates, the budget.
   std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
   // Sharing, room for every copy: this frame's copies taking a new state, and its key.
