@@ -12,6 +12,12 @@
 #          from commit 3f0d03a (the last one before the SIMD kernels) with
 #          -DCROWDPROF_NATIVE=ON, its default then
 #   REPS=3 (runs per configuration), OUT=folder for the JSON (default a temp dir)
+#   NEW_ARGS, OLD_ARGS: global options for each binary, e.g. to compare store
+#          policies with one binary: OLD_ARGS="--stores regular" NEW_ARGS=
+#          "--stores auto" bench/measure_cpu.sh build/crowdprof build/crowdprof
+#   RT=1   run each configuration under SCHED_FIFO (chrt -f 10, needs root): on
+#          a machine other jobs load, a two-thread run then gets both cores
+#          (it takes them from the other jobs for the few seconds it runs)
 #
 # Each run gets its own scheduling group (setsid): with autogroup on, `nice`
 # alone does not keep other jobs off a two-thread run. Other tenants still add
@@ -25,6 +31,10 @@ out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 scene=scenes/humanoid.glb
 binaries=(new)
+rt=()
+[[ ${RT:-0} == 1 ]] && rt=(chrt -f 10)
+read -r -a new_args <<<"${NEW_ARGS:-}"
+read -r -a old_args <<<"${OLD_ARGS:-}"
 [[ -n $old ]] && binaries+=(old)
 
 # copies:frames:warm-up, so that each run lasts about the same.
@@ -35,15 +45,15 @@ for ((rep = 1; rep <= reps; rep++)); do
       for size in "${sizes[@]}"; do
         IFS=: read -r copies frames warmup <<<"$size"
         for which in "${binaries[@]}"; do
-          bin=$new
-          [[ $which == old ]] && bin=$old
-          setsid "$bin" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
+          bin=$new args=("${new_args[@]}")
+          [[ $which == old ]] && bin=$old args=("${old_args[@]}")
+          setsid "${rt[@]}" "$bin" "${args[@]}" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
             --actions "$actions" --seed 7 --frames "$frames" --warmup "$warmup" \
             --json "$out/$which-$threads-$actions-$copies-$rep.json" >/dev/null
         done
         # --vertex-format packed (10 bytes a vertex instead of 24), new binary, shared actions.
         if [[ $actions == shared ]]; then
-          setsid "$new" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
+          setsid "${rt[@]}" "$new" "${new_args[@]}" bench "$scene" -n "$copies" --mode threaded --culling off --threads "$threads" \
             --actions "$actions" --seed 7 --frames "$frames" --warmup "$warmup" --vertex-format packed \
             --json "$out/packed-$threads-$actions-$copies-$rep.json" >/dev/null
         fi

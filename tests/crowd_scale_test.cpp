@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "animation/pose_sharing.h"
 #include "animation/update_rates.h"
 #include "frame/run_bench.h"
 #include "gen/humanoid.h"
+#include "profile/trace.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -115,6 +117,30 @@ TEST(PoseSharing, CopiesInOneStateShareOneStorage) {
   EXPECT_NE(fresh, first);  // copy 1 still shows a
   EXPECT_NE(fresh, other);  // copy 0 shows b
   EXPECT_EQ(sharing.key_of(first), a);
+}
+
+TEST(PoseSharing, TheStorageTakenLastIsTakenBackFromTheFreeList) {
+  // take() answers a key equal to the last one taken without hashing; when no
+  // copy shows that storage any more it is on the free list, and taking it
+  // back must take it off, or a new state could overwrite it.
+  std::vector<uint16_t> kinds = {0, 0};
+  PoseSharing sharing;
+  sharing.reset(kinds, 1);
+  sharing.release(0);
+  sharing.release(1);
+  bool evaluate = false;
+  uint64_t a = state_key(0, 0, 1), c = state_key(0, 0, 2), d = state_key(0, 0, 3);
+  uint32_t t = sharing.take(1, c, &evaluate);
+  uint32_t s = sharing.take(0, a, &evaluate);
+  ASSERT_NE(s, t);
+  sharing.release(0);  // s holds a, no copy shows it: free
+  EXPECT_EQ(sharing.take(0, a, &evaluate), s);
+  EXPECT_FALSE(evaluate);
+  sharing.release(1);  // t is the only free storage now
+  EXPECT_EQ(sharing.take(1, d, &evaluate), t);
+  EXPECT_TRUE(evaluate);
+  EXPECT_EQ(sharing.key_of(sharing.shown(0)), a);
+  EXPECT_EQ(sharing.viewers(s), 1u);
 }
 
 TEST(PoseSharing, ManyStatesComeAndGoWithoutLosingOne) {
@@ -229,6 +255,47 @@ TEST(CrowdScale, SharedActionIsOnePoseAndOneMeshAFrame) {
   EXPECT_EQ(fidelity.max_deviation, 0.0);
   EXPECT_EQ(fidelity.copies_deviating, 0u);
   EXPECT_EQ(fidelity.copies_checked, a.counters.copies_visible);
+}
+
+TEST(CrowdScale, FewerStatesThanThreadsAreSkinnedInParts) {
+  // One state a frame on 3 threads: its mesh is skinned in 4 parts a thread,
+  // each a task of its own, with the same bits as on one thread (where the
+  // state is one task, posed and skinned), in both vertex formats.
+  const Character& character = small_humanoid();
+  for (VertexFormat format : {VertexFormat::Float, VertexFormat::Packed}) {
+    std::string digest[2];
+    for (int threads : {1, 3}) {
+      Tracer tracer;
+      BenchConfig config = config_for("shared", threads, 40, ActionChoice::Shared);
+      config.mode.vertex_format = format;
+      config.tracer = &tracer;
+      CrowdBench bench(character, config);
+      FrameRecord last = run_frames(bench, 3);
+      EXPECT_EQ(last.counters.poses_updated, 1u);
+      EXPECT_EQ(last.counters.vertices_skinned, character.mesh.vertex_count());
+      std::map<std::string, size_t> tasks;
+      for (const TraceSpan& span : tracer.spans())
+        if (span.category == "task") ++tasks[std::string(span.name)];
+      if (threads == 1)
+        EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin", 3}}));
+      else
+        EXPECT_EQ(tasks, (std::map<std::string, size_t>{{"pose+skin part", 3 * 12}}));
+      digest[threads == 1 ? 0 : 1] = bench.digest();
+    }
+    EXPECT_EQ(digest[0], digest[1]) << (format == VertexFormat::Packed ? "packed" : "float");
+  }
+  // As many states as threads or more: one task per state, as in threaded.
+  Tracer tracer;
+  BenchConfig config = config_for("shared", 2, 40, ActionChoice::Random);
+  config.mode.animation_culling = false;
+  config.tracer = &tracer;
+  CrowdBench bench(character, config);
+  FrameRecord first = bench.step();
+  ASSERT_GE(first.counters.poses_updated, 2u);
+  size_t tasks = 0;
+  for (const TraceSpan& span : tracer.spans())
+    if (span.category == "task") tasks += span.name == "pose+skin";
+  EXPECT_EQ(tasks, first.counters.poses_updated);
 }
 
 TEST(CrowdScale, QuantumGroupsRandomCopiesIntoDistinctStates) {

@@ -13,6 +13,7 @@
 
 #include "frame/crowd_bench.h"
 #include "gen/humanoid.h"
+#include "skinning/output_buffer.h"
 #include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
 #include "skinning/skinning.h"
@@ -165,4 +166,18 @@ TEST(OutputStoresCli, OptionAndEnvironmentChooseThePolicy) {
   r = test::run_cli("--stores never" + run);
   EXPECT_EQ(2, r.status);
   EXPECT_EQ("crowdprof: unknown store policy \"never\": expected auto, regular or streaming\n", r.err);
+}
+
+// Output arrays start on a cache line, large ones on a 2 MiB boundary (where
+// Linux can back them with huge pages), and are freed with the same alignment.
+TEST(OutputBuffer, SmallOnACacheLineLargeOnAHugePage) {
+  for (size_t n : {size_t{1}, size_t{100}, size_t{174'762}}) {
+    std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> v(n);
+    EXPECT_TRUE(on_cache_line(v.data())) << n;
+  }
+  for (size_t n : {size_t{174'763}, size_t{1'000'000}}) {  // 2 MiB / 12 bytes and more
+    std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> v(n, glm::vec3(1));
+    EXPECT_EQ(0u, reinterpret_cast<uintptr_t>(v.data()) % (size_t{2} << 20)) << n;
+    EXPECT_EQ(1.0f, v.back().z);
+  }
 }

@@ -32,6 +32,7 @@ void PoseSharing::reset(std::span<const uint16_t> kind_of_copy, size_t kinds) {
   table_keys_.assign(slots, kNoState);
   table_storage_.assign(slots, kNone);
   mask_ = slots - 1;
+  last_taken_ = kNone;
 }
 
 size_t PoseSharing::slot_of(uint64_t key) const {
@@ -78,9 +79,7 @@ void PoseSharing::push_back(uint32_t s) {
   tail_[k] = s;
 }
 
-void PoseSharing::release(size_t copy) {
-  uint32_t s = shown_[copy];
-  if (--refs_[s] > 0) return;
+void PoseSharing::free_storage(uint32_t s) {
   if (key_[s] == kNoState) {
     // The rest pose is never looked up again: its storage is free at once,
     // ahead of those that still hold a state.
@@ -93,7 +92,7 @@ void PoseSharing::release(size_t copy) {
   push_back(s);
 }
 
-uint32_t PoseSharing::take(size_t copy, uint64_t key, bool* evaluate) {
+uint32_t PoseSharing::take_slow(size_t copy, uint64_t key, bool* evaluate) {
   size_t slot = slot_of(key);
   uint32_t s;
   if (table_keys_[slot] == key) {
@@ -113,6 +112,7 @@ uint32_t PoseSharing::take(size_t copy, uint64_t key, bool* evaluate) {
   }
   ++refs_[s];
   shown_[copy] = s;
+  last_taken_ = s;
   return s;
 }
 

@@ -36,15 +36,31 @@ class PoseSharing {
 
   // Copy `copy` stops showing its storage (call for every copy that changes
   // state this frame before any take()).
-  void release(size_t copy);
+  void release(size_t copy) {
+    uint32_t s = shown_[copy];
+    if (--refs_[s] == 0) free_storage(s);
+  }
   // Copy `copy` shows `key` from now on. Returns the storage holding it; sets
   // *evaluate when the caller must evaluate the state into it (it was not held).
-  uint32_t take(size_t copy, uint64_t key, bool* evaluate);
+  uint32_t take(size_t copy, uint64_t key, bool* evaluate) {
+    // Copies in one state come one after another (a shared action: all of
+    // them), so the storage of the last take answers most takes at once. A key
+    // is held by one storage at most: key_[s] == key is the table's answer.
+    uint32_t s = last_taken_;
+    if (s == kNone || key_[s] != key || refs_[s] == 0) return take_slow(copy, key, evaluate);
+    ++refs_[s];
+    shown_[copy] = s;
+    *evaluate = false;
+    return s;
+  }
   // The key a storage holds (kNoState for the rest pose).
   uint64_t key_of(uint32_t storage) const { return key_[storage]; }
   static constexpr uint64_t kNoState = ~uint64_t{0};
 
  private:
+  // A storage no copy shows any more joins its character's free list.
+  void free_storage(uint32_t storage);
+  uint32_t take_slow(size_t copy, uint64_t key, bool* evaluate);
   // Open addressing with linear probing, 2^k slots for at least twice the
   // storages; kNoState marks an empty slot.
   size_t slot_of(uint64_t key) const;
@@ -63,6 +79,7 @@ class PoseSharing {
   std::vector<uint64_t> table_keys_;
   std::vector<uint32_t> table_storage_;
   size_t mask_ = 0;
+  uint32_t last_taken_ = kNone;  // the storage the last take() returned
 };
 
 }  // namespace crowdprof

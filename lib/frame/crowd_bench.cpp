@@ -10,6 +10,7 @@
 #include <ctime>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -101,6 +102,10 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
       kind.max_channels = std::max(kind.max_channels, action.channels.size());
     }
     kinds_.push_back(std::move(kind));
+  }
+  for (const Kind& kind : kinds_) {
+    kind_poses_.push_back(!kind.bindings.empty() && kind.site != SkinningSite::Baked);
+    skins_in_animations_ = skins_in_animations_ || kind.site == SkinningSite::CpuInAnimations;
   }
   character_counters_.resize(characters_.size());
   crowd_ = make_crowd(characters_, config.crowd);
@@ -195,6 +200,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     if (threads > tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))
       parallelism_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
     arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+    posed_ = std::make_unique<std::atomic<uint8_t>[]>(threads);  // skin_parts(): fewer states than threads
   }
   if (config.mode.skinning == SkinningSite::Baked) bake_characters();
   // The scenegraph of "frame -1": the first frame's animation culling needs it.
@@ -382,22 +388,28 @@ void CrowdBench::plan_updates(Counters& counters) {
   changing_.clear();
   const bool share = config_.mode.share_poses;
   const double quantum = config_.mode.share_quantum_s;
+  const bool culling = config_.mode.animation_culling;
   const auto frame = static_cast<int64_t>(frame_);
-  schedule_.copies_by_rate.fill(0);
-  for (size_t i = 0; i < crowd_.size(); ++i) {
+  // Tallied in locals and stored once: the loop runs per copy, every frame.
+  std::array<uint64_t, kRateCount> by_rate{}, updates_by_rate{};
+  uint64_t held = 0, longest_gap = schedule_.longest_gap;
+  const size_t n = crowd_.size();
+  for (size_t i = 0; i < n; ++i) {
     updated_[i] = 0;
-    if (!poses(i)) continue;
-    ++schedule_.copies_by_rate[shift_[i]];
+    // poses(i), with the character's part read from one byte.
+    if (!kind_poses_[crowd_.kind[i]] || (culling && !visible_[i])) continue;
+    const uint8_t shift = shift_[i];
+    ++by_rate[shift];
     // Copy i takes its turn at offset i: neighbours of one period alternate.
-    if (!update_due(frame_, last_update_[i], shift_[i], i)) {
-      ++counters.copies_held;
+    const int64_t last = last_update_[i];
+    if (!update_due(frame_, last, shift, i)) {
+      ++held;
       continue;
     }
-    if (last_update_[i] >= 0) schedule_.longest_gap = std::max<uint64_t>(schedule_.longest_gap, frame - last_update_[i]);
+    if (last >= 0) longest_gap = std::max<uint64_t>(longest_gap, frame - last);
     last_update_[i] = frame;
     updated_[i] = 1;
-    ++counters.copies_updated;
-    ++(counters.*kUpdatesByShift[shift_[i]]);
+    ++updates_by_rate[shift];
     float time = times_[i];
     if (quantum > 0) {
       // The nearest multiple of the quantum from the action's start, never past its end.
@@ -416,6 +428,13 @@ void CrowdBench::plan_updates(Counters& counters) {
     sharing_.release(i);
     changing_.push_back({static_cast<uint32_t>(i), key});
   }
+  schedule_.copies_by_rate = by_rate;
+  schedule_.longest_gap = longest_gap;
+  counters.copies_held += held;
+  for (size_t r = 0; r < kRateCount; ++r) {
+    counters.copies_updated += updates_by_rate[r];
+    counters.*kUpdatesByShift[r] += updates_by_rate[r];
+  }
   // Every release before any take: a state that one copy leaves and another
   // enters this frame keeps its storage, and there is always room.
   for (const auto& [copy, key] : changing_) {
@@ -432,19 +451,53 @@ void CrowdBench::update_poses(Counters& counters) {
   plan_updates(counters);
   uint64_t lookups = 0;
   if (!arena_) {
-    for (const StateJob& job : jobs_) update_state(job, slot_of(job.leader), &lookups);
+    for (const StateJob& job : jobs_) update_state(job, slot_of(job.leader), &lookups, true);
+  } else if (size_t parts = skin_parts(); parts > 1) {
+    // Fewer states than threads (sharing: often one a frame): each state's
+    // mesh is skinned in parts, so that every thread has a share. One parallel
+    // loop over the parts, so that workers are woken while the first pose is
+    // built: the first task of a state to start builds its pose, the others
+    // wait for it (for a thread that is running it, never for a queued task).
+    std::atomic<uint64_t> total{0};
+    for (size_t j = 0; j < jobs_.size(); ++j) posed_[j].store(kNotPosed, std::memory_order_relaxed);
+    for_each_index("pose+skin part", jobs_.size() * parts, [&](size_t t) {
+      const size_t j = t / parts;
+      uint8_t expected = kNotPosed;
+      if (posed_[j].compare_exchange_strong(expected, kPosing, std::memory_order_acq_rel)) {
+        uint64_t mine = 0;
+        update_state(jobs_[j], jobs_[j].leader, &mine, false);
+        total.fetch_add(mine, std::memory_order_relaxed);
+        posed_[j].store(kPosed, std::memory_order_release);
+      } else if (posed_[j].load(std::memory_order_acquire) != kPosed) {
+        // Meanwhile, the memory this part writes is brought in (storages
+        // taken for new states have not been written for many frames).
+        prefetch_while(jobs_[j].storage, t % parts, parts, posed_[j]);
+        while (posed_[j].load(std::memory_order_acquire) != kPosed) std::this_thread::yield();
+      }
+      skin_range(jobs_[j].storage, t % parts, parts);
+    });
+    lookups = total.load();
   } else {
     std::atomic<uint64_t> total{0};
     bool skin_here = std::any_of(kinds_.begin(), kinds_.end(),
                                  [](const Kind& kind) { return kind.site == SkinningSite::CpuInAnimations; });
     for_each_index(skin_here ? "pose+skin" : "pose", jobs_.size(), [&](size_t j) {
       uint64_t mine = 0;
-      update_state(jobs_[j], jobs_[j].leader, &mine);
-      total.fetch_add(mine, std::memory_order_relaxed);
+      update_state(jobs_[j], jobs_[j].leader, &mine, true);
+      // Only string lookups count anything: an add of 0 per copy would still
+      // pull the counter's cache line back and forth between the threads.
+      if (mine != 0) total.fetch_add(mine, std::memory_order_relaxed);
     });
     lookups = total.load();
   }
   counters.channel_lookups = lookups;
+}
+
+size_t CrowdBench::skin_parts() const {
+  const auto threads = static_cast<size_t>(std::max(1, config_.threads));
+  if (!arena_ || jobs_.empty() || jobs_.size() >= threads || !skins_in_animations_) return 1;
+  // Two parts a thread: a worker that wakes late still finds one to take.
+  return (4 * threads + jobs_.size() - 1) / jobs_.size();
 }
 
 void CrowdBench::count_work(Counters& counters) {
@@ -478,7 +531,7 @@ void CrowdBench::count_work(Counters& counters) {
   counters.copies_fallback = fallback;
 }
 
-void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookups) {
+void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookups, bool skin) {
   const size_t copy = job.leader;
   const Character& character = character_of(copy);
   const Kind& kind = kinds_[crowd_.kind[copy]];
@@ -504,22 +557,70 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
   LocalToModelJob{&skeleton, &pose, model}.Run();
   SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[job.storage], kind.joints)}.Run();
   storage_time_[job.storage] = job.time;
-  if (kind.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
+  if (skin && kind.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
 }
 
 void CrowdBench::skin_storage(size_t storage) {
+  skin_vertices(storage, 0, kinds_[crowd_.kind[storage]].vertices);
+}
+
+namespace {
+// Part `part` of `parts` of a mesh's vertices, [first, end): whole batches of
+// the skinning kernels (16 vertices), which give the same bits for any split
+// (skinning.h).
+std::pair<size_t, size_t> part_of(size_t vertices, size_t part, size_t parts) {
+  const size_t batches = (vertices + kSkinBatch - 1) / kSkinBatch;
+  return {std::min(vertices, part * batches / parts * kSkinBatch),
+          std::min(vertices, (part + 1) * batches / parts * kSkinBatch)};
+}
+
+// Asks for the cache lines of [begin, end) to be fetched for writing.
+void prefetch_for_write(const void* begin, const void* end) {
+  for (auto p = reinterpret_cast<uintptr_t>(begin) & ~uintptr_t{63}; p < reinterpret_cast<uintptr_t>(end); p += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(p), 1, 3);
+}
+}  // namespace
+
+void CrowdBench::skin_range(size_t storage, size_t part, size_t parts) {
   const Kind& kind = kinds_[crowd_.kind[storage]];
+  if (kind.site != SkinningSite::CpuInAnimations) return;  // skinned elsewhere (a mixed crowd)
+  auto [first, end] = part_of(kind.vertices, part, parts);
+  skin_vertices(storage, first, end - first);
+}
+
+void CrowdBench::prefetch_while(size_t storage, size_t part, size_t parts, const std::atomic<uint8_t>& posed) const {
+  const Kind& kind = kinds_[crowd_.kind[storage]];
+  if (kind.site != SkinningSite::CpuInAnimations) return;
+  const size_t v = vertex_offset_[storage];
+  // Positions and normals side by side, 64 vertices at a time (that many
+  // floats or codes span whole cache lines), from this part to the mesh's end.
+  constexpr size_t kStep = 64;
+  for (size_t first = part_of(kind.vertices, part, parts).first; first < kind.vertices; first += kStep) {
+    if (posed.load(std::memory_order_acquire) == kPosed) return;
+    const size_t end = std::min(kind.vertices, first + kStep);
+    if (packed_vertices()) {
+      prefetch_for_write(&packed_positions_[3 * (v + first)], &packed_positions_[3 * (v + end)]);
+      prefetch_for_write(&packed_normals_[v + first], &packed_normals_[v + end]);
+    } else {
+      prefetch_for_write(&positions_[v + first], &positions_[v + end]);
+      prefetch_for_write(&normals_[v + first], &normals_[v + end]);
+    }
+  }
+}
+
+void CrowdBench::skin_vertices(size_t storage, size_t first, size_t count) {
+  if (count == 0) return;
+  const Kind& kind = kinds_[crowd_.kind[storage]];
+  const size_t v = vertex_offset_[storage] + first;
   if (packed_vertices()) {
     PackedSkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan,
-                      &kind.quantisation, 0, kind.vertices,
-                      std::span(packed_positions_).subspan(3 * vertex_offset_[storage], 3 * kind.vertices),
-                      std::span(packed_normals_).subspan(vertex_offset_[storage], kind.vertices)}
+                      &kind.quantisation, first, count, std::span(packed_positions_).subspan(3 * v, 3 * count),
+                      std::span(packed_normals_).subspan(v, count)}
         .Run();
     return;
   }
-  SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, 0,
-              kind.vertices, std::span(positions_).subspan(vertex_offset_[storage], kind.vertices),
-              std::span(normals_).subspan(vertex_offset_[storage], kind.vertices), stream_output_}
+  SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, first, count,
+              std::span(positions_).subspan(v, count), std::span(normals_).subspan(v, count), stream_output_}
       .Run();
 }
 

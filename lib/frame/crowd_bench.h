@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -27,6 +28,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "skinning/output_buffer.h"
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 
@@ -222,18 +224,27 @@ class CrowdBench {
     uint32_t leader = 0, storage = 0;
     float time = 0;
   };
-  void update_state(const StateJob& job, size_t slot, uint64_t* lookups);
+  // `skin`: also skin the job's storage when its character is skinned in
+  // Animations (else the caller skins it, in parts: skin_range).
+  void update_state(const StateJob& job, size_t slot, uint64_t* lookups, bool skin);
+  // How many parts update_poses skins each of this frame's states in: 1, or
+  // with fewer states than threads (on a parallel mode skinning in
+  // Animations) two parts a thread, so that one state keeps every thread busy.
+  size_t skin_parts() const;
   void skin_storage(size_t storage);
+  // Part `part` of `parts` of a storage's mesh (whole kernel batches).
+  void skin_range(size_t storage, size_t part, size_t parts);
+  // While `posed` says the state's pose is not built yet, prefetches for
+  // writing the skinned vertices from this part to the mesh's end.
+  void prefetch_while(size_t storage, size_t part, size_t parts, const std::atomic<uint8_t>& posed) const;
+  void skin_vertices(size_t storage, size_t first, size_t count);
   // Mode baked, at load: bakes every character and measures the deviation.
   void bake_characters();
   bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
   // Animated this frame: not culled, and its character has actions to play
   // (one without stands in its rest pose).
   // Baked copies are never posed on the CPU: the GPU reads their baked samples.
-  bool poses(size_t copy) const {
-    const Kind& kind = kinds_[crowd_.kind[copy]];
-    return animates(copy) && !kind.bindings.empty() && kind.site != SkinningSite::Baked;
-  }
+  bool poses(size_t copy) const { return animates(copy) && kind_poses_[crowd_.kind[copy]]; }
   // The pose storage a copy is built in: its own, or its character's scratch.
   size_t slot_of(size_t copy) const {
     return config_.mode.pose == PoseStorage::SharedScratch ? crowd_.kind[copy] : copy;
@@ -265,6 +276,12 @@ class CrowdBench {
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer
   size_t frame_ = 0;
   std::vector<Kind> kinds_;                   // per character
+  std::vector<uint8_t> kind_poses_;           // per character: has actions and is posed on the CPU (not baked)
+  bool skins_in_animations_ = false;          // some character is skinned on the CPU in Animations
+  // Per state when its mesh is skinned in parts (fewer states than threads):
+  // whether its pose is built yet.
+  static constexpr uint8_t kNotPosed = 0, kPosing = 1, kPosed = 2;
+  std::unique_ptr<std::atomic<uint8_t>[]> posed_;
   std::vector<Counters> character_counters_;  // per character, the last frame's
   BakeSummary bake_summary_;
   uint64_t animation_gpu_bytes_ = 0;
@@ -279,14 +296,15 @@ class CrowdBench {
   std::vector<size_t> slot_joints_, slot_channels_;  // per pose slot, offsets into model_ and targets_
   std::vector<glm::mat4> model_;              // per pose slot x its joints
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
-  std::vector<SkinMatrix> palettes_;          // per copy x its joints
+  std::vector<SkinMatrix, CacheLineAllocator<SkinMatrix>> palettes_;  // per copy x its joints
   // Per copy x its vertices (float format). Each copy's run starts on a cache
   // line (offsets in whole batches of kSkinBatch vertices, 192 bytes), so that
-  // skinning can stream whole lines (stream_output_).
+  // skinning can stream whole lines (stream_output_). Large arrays on huge
+  // pages (output_buffer.h).
   std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> positions_, normals_;
   bool stream_output_ = false;  // skinned with streaming stores (output_stores.h)
-  std::vector<uint16_t> packed_positions_;      // per copy x its vertices x 3 (packed format)
-  std::vector<uint32_t> packed_normals_;        // per copy x its vertices (packed format)
+  std::vector<uint16_t, CacheLineAllocator<uint16_t>> packed_positions_;  // per copy x its vertices x 3 (packed format)
+  std::vector<uint32_t, CacheLineAllocator<uint32_t>> packed_normals_;    // per copy x its vertices (packed format)
   // Issue 13: sharing, update rates, the budget.
   std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
   std::vector<std::pair<uint32_t, uint64_t>> changing_;  // sharing: copies taking a new state, and its key

@@ -8,9 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <new>
-
 #include "asset/character.h"
+#include "skinning/output_buffer.h"
 
 namespace crowdprof {
 
@@ -28,20 +27,6 @@ struct SkinBatch {
   // normal: when that joint's skinning matrix is a rotation (no scale), the
   // skinned normal is unit length already and the job skips renormalising it.
   uint16_t single_influence = 0;
-};
-
-// Allocates on 64-byte boundaries: a batch's rows then never straddle a cache
-// line, and aligned vector loads are allowed.
-template <typename T>
-struct CacheLineAllocator {
-  using value_type = T;
-  CacheLineAllocator() = default;
-  template <typename U>
-  CacheLineAllocator(const CacheLineAllocator<U>&) {}
-  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64})); }
-  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t{64}); }
-  template <typename U>
-  bool operator==(const CacheLineAllocator<U>&) const { return true; }
 };
 
 // Built by build_skinning_plan; read-only afterwards, shared by every copy.
