@@ -153,10 +153,20 @@ TEST(OutputStoresCli, OptionAndEnvironmentChooseThePolicy) {
   const std::string run = " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'";
   auto r = test::run_cli("--stores streaming" + run);
   ASSERT_EQ(0, r.status) << r.err;
-  const std::string streamed = nlohmann::json::parse(std::ifstream(json))["digest"];
+  const nlohmann::json streamed = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ("streaming", streamed["stores"]);
   r = test::run_cli("--stores regular" + run);
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ(streamed, nlohmann::json::parse(std::ifstream(json))["digest"]);
+  EXPECT_EQ(streamed["digest"], nlohmann::json::parse(std::ifstream(json))["digest"]);
+  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(json))["stores"]);
+  ASSERT_EQ(0, setenv(kStoresEnvironmentVariable, "STREAMING", 1));
+  r = test::run_cli(run);
+  unsetenv(kStoresEnvironmentVariable);
+  ASSERT_EQ(0, r.status) << r.err;
+  EXPECT_EQ("streaming", nlohmann::json::parse(std::ifstream(json))["stores"]);
+  r = test::run_cli(run);  // auto: 4 copies stay far under the threshold
+  ASSERT_EQ(0, r.status) << r.err;
+  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(json))["stores"]);
 
   ASSERT_EQ(0, setenv(kStoresEnvironmentVariable, "sometimes", 1));
   r = test::run_cli(run);

@@ -183,6 +183,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   bench.collect_gpu_times();
   place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
+  report.stores = bench.streams_output() ? "streaming" : "regular";
   record_character_counters(bench, report.run);
   record_animation(bench, report);
   return report;

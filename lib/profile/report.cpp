@@ -259,6 +259,7 @@ nlohmann::json to_json(const RunReport& report) {
     j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
   }
   j["digest"] = report.digest;
+  if (!report.stores.empty()) j["stores"] = report.stores;
   if (report.animation.is_object()) j["animation"] = report.animation;
   if (report.partial) {
     j["partial"] = true;

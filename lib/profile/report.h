@@ -57,6 +57,9 @@ struct RunReport {
   Environment environment;
   std::vector<FrameRecord> frames;  // after warm-up
   std::string digest;
+  // How CPU skinning stored float vertices: "streaming" or "regular"
+  // (skinning/output_stores.h); left out of the JSON when empty.
+  std::string stores;
   // A run stopped early (^C): frames holds fewer than frames_planned.
   bool partial = false;
   size_t frames_planned = 0;
