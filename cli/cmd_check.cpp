@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -35,11 +37,14 @@ struct CheckCliOptions {
   BenchCliOptions bench;
   std::string baseline, result;
   std::vector<std::string> metrics = {"cpu"};
-  std::string tolerance = "7%";
+  std::string tolerance = "5%";
   std::string floor = "2%";
   // A baseline is held against every later check, so its luck counts many
   // times: it gets more runs than a check (docs/compare-and-check.md).
   long long runs = 8, baseline_runs = 20;
+  // The machine drifts by several percent for seconds at a time: runs spread
+  // over this many seconds sample several drifts instead of one.
+  double spread = 15, baseline_spread = 45;
   double alpha = 0.05;
   bool update = false;
   bool timings_only = false;
@@ -212,6 +217,9 @@ int check(CheckCliOptions& o) {
   options.floor = parse_floor(o.floor);
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
   if (o.update && o.command->count("--runs") == 0) o.runs = o.baseline_runs;
+  if (o.update && o.command->count("--spread") == 0) o.spread = o.baseline_spread;
+  if (!(o.spread >= 0 && o.spread <= 3600))
+    throw UsageError("--spread " + std::to_string(o.spread) + ": expected 0 to 3600 seconds");
   if (o.runs < 1 || o.runs > static_cast<long long>(kMaxRuns))
     throw UsageError("--runs " + std::to_string(o.runs) + ": expected 1 to " + std::to_string(kMaxRuns));
   options.alpha = o.alpha;
@@ -274,8 +282,22 @@ int check(CheckCliOptions& o) {
     std::vector<json> runs;
     bool interrupted = false;
     install_interrupt_handlers();  // here, to forward a ^C to the run in progress
+    auto start = std::chrono::steady_clock::now();
     for (long long i = 1; i <= o.runs && !interrupted; ++i) {
+      // Run i starts (i - 1) / (runs - 1) of the way through the spread.
+      if (i > 1 && o.spread > 0) {
+        auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                               std::chrono::duration<double>(o.spread * static_cast<double>(i - 1) /
+                                                             static_cast<double>(o.runs - 1)));
+        while (std::chrono::steady_clock::now() < due && !interrupt_requested().load())
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (interrupt_requested().load()) {
+          interrupted = true;
+          break;
+        }
+      }
       std::string label = o.runs > 1 ? "check, run " + std::to_string(i) + " of " + std::to_string(o.runs) : "check";
+      auto run_started = i == 1 ? start : std::chrono::steady_clock::now();
       json run = run_in_child_process([&] {
         RunReport report = run_bench_report(o, label);
         if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
@@ -283,9 +305,11 @@ int check(CheckCliOptions& o) {
         j["pid"] = static_cast<long long>(::getpid());
         return j;
       });
+      run["started_s"] = std::chrono::duration<double>(run_started - start).count();
       interrupted = run.value("partial", false) || interrupt_requested().load();
       if (run.value("partial", false)) {
         run.erase("pid");
+        run.erase("started_s");
         current = std::move(run);
       } else {
         // Another run than the baseline's is found after one run, not after all.
@@ -298,6 +322,7 @@ int check(CheckCliOptions& o) {
       if (current.is_null() && !runs.empty()) current = std::move(runs.back());
       if (current.is_object()) {
         current.erase("pid");
+        current.erase("started_s");
         current["partial"] = true;
         if (!o.bench.json.empty())
           write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << current.dump(2) << "\n"; });
@@ -391,7 +416,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--tolerance", options->tolerance,
-                  "Slowdown of the median allowed before a significant shift fails: 7% or 0.07")
+                  "Slowdown of the median allowed before a significant shift fails: 5% or 0.05")
       ->capture_default_str();
   cmd->add_option("--floor", options->floor,
                   "Smallest slowdown of a median that can fail, however significant: a time (0.05ms, 50us) or a share "
@@ -402,6 +427,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "compares the median of each run (processes differ more than frames do), else the frames of the "
                   "median run; --attempts: the older name")
       ->default_str("8; 20 with --update-baseline");
+  cmd->add_option("--spread", options->spread,
+                  "Seconds the runs are spread over (they wait between them): the machine's speed drifts by several "
+                  "percent for seconds at a time, and runs spread out sample several drifts; 0: back to back")
+      ->default_str("15; 45 with --update-baseline");
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "

@@ -23,18 +23,18 @@ TEST(BaselineOrigin, TheSceneIsFoundFromTheBaselinesFolderFromAnywhere) {
   std::string base = (dir / "ci" / "perf" / "base.json").string();
   // Recorded from the top folder with a relative scene path.
   std::string cd = "cd '" + dir.string() + "' && '" + CROWDPROF_CLI + "' ";
-  ASSERT_EQ(std::system((cd + "check assets/hero.glb -n 4 --frames 10 --warmup 1 --mode culled --attempts 1 "
+  ASSERT_EQ(std::system((cd + "check --spread 0 assets/hero.glb -n 4 --frames 10 --warmup 1 --mode culled --attempts 1 "
                                "--baseline ci/perf/base.json --update-baseline -q").c_str()),
             0);
   json recorded = json::parse(std::ifstream(base));
   EXPECT_EQ(recorded["scene"]["file"], "../../assets/hero.glb");
   EXPECT_EQ(recorded["scene"]["file_from"], "result");
   // Checked from another folder (the test's own), naming only the baseline.
-  auto r = run_cli("check --baseline '" + base + "' --tolerance 900% --floor 10s");
+  auto r = run_cli("check --spread 0 --baseline '" + base + "' --tolerance 900% --floor 10s");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   // The scene gone: the error says the path came from the baseline.
   fs::remove(dir / "assets" / "hero.glb");
-  r = run_cli("check --baseline '" + base + "'");
+  r = run_cli("check --spread 0 --baseline '" + base + "'");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + base + ": its scene file: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("the path the baseline recorded, resolved from the baseline's folder"), std::string::npos) << r.err;

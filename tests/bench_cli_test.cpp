@@ -88,7 +88,7 @@ TEST(BenchCli, ACharacterWithoutActionsNeedsStatic) {
   // A baseline of a static crowd reruns as one: check adopts --static.
   std::string base = (dir / "still.json").string();
   ASSERT_EQ(run_cli("bench '" + file + "' -n 4 --frames 8 --warmup 0 --static -q --json '" + base + "'").status, 0);
-  auto check = run_cli("check --baseline '" + base + "' --tolerance 900%");
+  auto check = run_cli("check --spread 0 --baseline '" + base + "' --tolerance 900%");
   EXPECT_EQ(check.status, 0) << check.out << check.err;
 }
 

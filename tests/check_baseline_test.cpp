@@ -45,7 +45,7 @@ TEST(CheckBaseline, RerunsEverythingTheBaselineRecorded) {
   EXPECT_EQ(recorded["scene"]["resolution"], "600x600");
 
   std::string current = (dir / "current.json").string();
-  auto r = run_cli("check --baseline '" + base + "' --tolerance 900% --json '" + current + "'");
+  auto r = run_cli("check --spread 0 --baseline '" + base + "' --tolerance 900% --json '" + current + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(r.out.rfind("ok cpu", 0), 0u) << r.out;
   json rerun = read_json(current);
@@ -54,13 +54,13 @@ TEST(CheckBaseline, RerunsEverythingTheBaselineRecorded) {
   EXPECT_EQ(rerun["scene"], recorded["scene"]);
 
   // An option on the command line wins, and a different run is refused.
-  r = run_cli("check --baseline '" + base + "' --resolution 1600x900 -q");
+  r = run_cli("check --spread 0 --baseline '" + base + "' --resolution 1600x900 -q");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("the baseline is of another run: resolution \"600x600\" there, \"1600x900\" here"),
             std::string::npos)
       << r.err;
   // A mode given brings its own switches rather than the baseline's overrides.
-  r = run_cli("check --baseline '" + base + "' --mode threaded -q");
+  r = run_cli("check --spread 0 --baseline '" + base + "' --mode threaded -q");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("mode \"threaded+custom\" there, \"threaded\" here"), std::string::npos) << r.err;
 }
@@ -86,7 +86,7 @@ TEST(CheckBaseline, ValuesNoRunCouldRecordAreTheBaselinesFault) {
     json bad = good;
     bad[c.where] = c.value;
     std::string path = write_json(dir / (std::string(c.name) + ".json"), bad);
-    auto r = run_cli("check --baseline '" + path + "' -q");
+    auto r = run_cli("check --spread 0 --baseline '" + path + "' -q");
     EXPECT_EQ(r.status, 3) << c.name << ": " << r.err;
     EXPECT_EQ(r.err.rfind("crowdprof: " + path + ": records a run that crowdprof cannot make: " + c.words, 0), 0u)
         << r.err;
@@ -95,7 +95,7 @@ TEST(CheckBaseline, ValuesNoRunCouldRecordAreTheBaselinesFault) {
   json moonwalk = good;
   moonwalk["scene"]["action"] = "moonwalk";
   std::string path = write_json(dir / "action.json", moonwalk);
-  auto r = run_cli("check --baseline '" + path + "' -q");
+  auto r = run_cli("check --spread 0 --baseline '" + path + "' -q");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find(path + ": the baseline is of another run: its action 'moonwalk' is not one of"),
             std::string::npos)
@@ -136,12 +136,12 @@ TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
   auto dir = crowdprof::test::scratch_dir("check_baseline_overwrite");
   std::string base = unusual_baseline(dir);
   std::string before = read_json(base).dump();
-  auto r = run_cli("check --baseline '" + base + "' --json '" + base + "'");
+  auto r = run_cli("check --spread 0 --baseline '" + base + "' --json '" + base + "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("is the baseline; to replace it, use --update-baseline"), std::string::npos) << r.err;
   EXPECT_EQ(read_json(base).dump(), before);
   // Outputs that cannot be written are found before the run, not after it.
-  r = run_cli("check --baseline '" + base + "' --svg '" + (dir / "no" / "chart.svg").string() + "'");
+  r = run_cli("check --spread 0 --baseline '" + base + "' --svg '" + (dir / "no" / "chart.svg").string() + "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("cannot write SVG file"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;

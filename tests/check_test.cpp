@@ -202,7 +202,7 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   auto dir = test::scratch_dir("check_cli");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  auto r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
+  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
                          "' --update-baseline");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("baseline written"), std::string::npos) << r.out;
@@ -218,7 +218,7 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   // A fresh run with the baseline's options (taken from it): the counters and
   // digest must match exactly; the timing's tolerance is wide, as a loaded
   // machine may be slower now than a second ago.
-  r = test::run_cli("check '" + scene + "' --baseline '" + base + "' --tolerance 900%");
+  r = test::run_cli("check --spread 0 '" + scene + "' --baseline '" + base + "' --tolerance 900%");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
 
   json planted = json::parse(std::ifstream(base));

@@ -105,7 +105,7 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   auto dir = test::scratch_dir("gate_runs");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  auto r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
+  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
                          "' --update-baseline --runs 8");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("the median of 8 runs by cpu"), std::string::npos) << r.out;
@@ -124,6 +124,18 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   std::sort(cpu.begin(), cpu.end());
   EXPECT_DOUBLE_EQ((cpu[4] + cpu[5]) / 2, medians[3]);
 
+  // --spread spaces the runs evenly over that many seconds.
+  std::string spread = (dir / "spread.json").string();
+  r = test::run_cli("check --spread 1 '" + scene + "' -n 2 --frames 2 --warmup 0 --baseline '" + spread +
+                    "' --update-baseline --runs 3 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<double> started = json::parse(std::ifstream(spread))["runs"]["started_s"].get<std::vector<double>>();
+  ASSERT_EQ(started.size(), 3u);
+  EXPECT_EQ(started[0], 0.0);
+  EXPECT_GE(started[1], 0.5);
+  EXPECT_GE(started[2], 1.0);
+  EXPECT_LT(started[2], 30.0);
+
   // Runs slower by a fifth, frames unchanged: the runs decide when both have 8.
   json slower = recorded;
   for (auto& [key, values] : slower["runs"]["median_ms"].items())
@@ -135,7 +147,7 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   EXPECT_NE(r.out.find("(Mann-Whitney U, 8 vs 8 runs, the median of each)"), std::string::npos) << r.out;
   // A baseline of one run: the frames of the median run, which did not move.
   std::string single = (dir / "single.json").string();
-  r = test::run_cli("check '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + single +
+  r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + single +
                     "' --update-baseline --runs 1");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(json::parse(std::ifstream(single))["runs"]["count"], 1);
@@ -156,33 +168,33 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
     for (auto& v : values) v = v.get<double>() / 10.0;
   std::ofstream(dir / "fast.json") << fast.dump();
   std::string fast_path = (dir / "fast.json").string();
-  r = test::run_cli("check --baseline '" + fast_path + "' --floor 0ms");
+  r = test::run_cli("check --spread 0 --baseline '" + fast_path + "' --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_EQ(r.out.rfind("REGRESSION cpu", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("8 vs 8 runs"), std::string::npos) << r.out;
-  r = test::run_cli("check --baseline '" + fast_path + "' --runs 1 --floor 0ms");
+  r = test::run_cli("check --spread 0 --baseline '" + fast_path + "' --runs 1 --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("10 vs 10 frames"), std::string::npos) << r.out;
   // A floor larger than any slowdown passes it, even ten times slower.
-  r = test::run_cli("check --baseline '" + fast_path + "' --runs 1 --floor 10s");
+  r = test::run_cli("check --spread 0 --baseline '" + fast_path + "' --runs 1 --floor 10s");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("under the floor"), std::string::npos) << r.out;
   // A changed counter fails, however fast the machine.
   json planted = json::parse(std::ifstream(base));
   planted["counters"]["poses_updated"] = 999;
   std::ofstream(dir / "planted.json") << planted.dump();
-  r = test::run_cli("check --baseline '" + (dir / "planted.json").string() + "' --runs 2");
+  r = test::run_cli("check --spread 0 --baseline '" + (dir / "planted.json").string() + "' --runs 2");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("CHANGED counter poses_updated"), std::string::npos) << r.out;
   // A runs section that does not add up is a bad baseline.
   json broken = recorded;
   broken["runs"]["median_ms"]["cpu_ms"].erase(0);
   std::ofstream(dir / "broken.json") << broken.dump();
-  r = test::run_cli("check --baseline '" + (dir / "broken.json").string() + "' --runs 1");
+  r = test::run_cli("check --spread 0 --baseline '" + (dir / "broken.json").string() + "' --runs 1");
   EXPECT_EQ(r.status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find("runs.median_ms.cpu_ms"), std::string::npos) << r.err;
-  for (const char* bad : {"--runs 0", "--runs 101", "--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
-    r = test::run_cli("check --baseline '" + base + "' " + bad);
+  for (const char* bad : {"--spread -1", "--spread 5000", "--runs 0", "--runs 101", "--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
+    r = test::run_cli("check --spread 0 --baseline '" + base + "' " + bad);
     EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
   }
   r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric all");

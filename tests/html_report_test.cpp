@@ -265,7 +265,7 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
 
   std::string base = (dir / "base.json").string(), check = (dir / "check.html").string();
-  ASSERT_EQ(test::run_cli("check '" + scene + "' " + small + " --baseline '" + base + "' --update-baseline --runs 2").status, 0);
+  ASSERT_EQ(test::run_cli("check --spread 0 '" + scene + "' " + small + " --baseline '" + base + "' --update-baseline --runs 2").status, 0);
   r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric frame,Animations --html '" + check + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   html = slurp(check);

@@ -93,7 +93,7 @@ TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
   auto dir = crowdprof::test::scratch_dir("interrupt_check");
   std::string base = (dir / "base.json").string();
   std::ofstream(base) << "the earlier baseline";
-  Interrupted r = interrupt_cli({"check", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
+  Interrupted r = interrupt_cli({"check", "--spread", "0", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
                                  base, "--update-baseline"},
                                 dir, SIGINT, std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
@@ -106,12 +106,12 @@ TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {
   // can stop it (the signal goes to check alone, as a terminal's ^C would).
   auto dir = crowdprof::test::scratch_dir("interrupt_check_run");
   std::string base = (dir / "base.json").string();
-  ASSERT_EQ(crowdprof::test::run_cli("check '" + scene() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
+  ASSERT_EQ(crowdprof::test::run_cli("check --spread 0 '" + scene() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
                                      "' --update-baseline -q")
                 .status,
             0);
   std::string result = (dir / "partial.json").string();
-  Interrupted r = interrupt_cli({"check", "--baseline", base, "--frames", "10000000", "--json", result}, dir, SIGINT,
+  Interrupted r = interrupt_cli({"check", "--spread", "0", "--baseline", base, "--frames", "10000000", "--json", result}, dir, SIGINT,
                                 std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: a partial run is not compared"), std::string::npos) << r.err;

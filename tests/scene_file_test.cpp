@@ -117,7 +117,7 @@ TEST(SceneFile, CheckRerunsASceneBaselineWithItsOverrides) {
   auto base = dir / "base.json";
   ASSERT_EQ(run_cli("bench '" + scenes("mixed.json") + "' -n 12 --seed 9 --frames 6 --warmup 0 -q --json '" +
                     base.string() + "'").status, 0);
-  auto r = run_cli("check --baseline '" + base.string() + "' --tolerance 1000%");
+  auto r = run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000%");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("counters and digest match"), std::string::npos) << r.out;  // the same work
 }
@@ -199,7 +199,7 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
   std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 6}]}";
   ASSERT_EQ(run_cli("bench '" + scene.string() + "' --frames 4 --warmup 0 -q --json '" + base.string() + "'").status, 0);
   std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 6, \"action\": \"walk\"}]}";
-  auto r = run_cli("check --baseline '" + base.string() + "' --tolerance 1000%");
+  auto r = run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000%");
   EXPECT_EQ(r.status, 1) << r.out << r.err;  // they play another action: another digest
   EXPECT_NE(r.err.find("the scene file changed since the baseline"), std::string::npos) << r.err;
 }

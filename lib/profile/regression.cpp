@@ -521,20 +521,23 @@ json median_run(std::vector<json> runs, const std::string& key) {
 
 json pooled_runs(std::vector<json> runs, const std::string& key) {
   json medians = json::object();
-  json pids = json::array();
+  // Per-run fields moved into "runs" as arrays: "pid" to "pids", "started_s".
+  std::pair<const char*, json> moved[] = {{"pid", json::array()}, {"started_s", json::array()}};
   for (json& run : runs) {
     for (const auto& [name, values] : run.at("samples").items())
       if (values.is_array())  // gpu_ms is null without a GPU timer
         medians[name].push_back(summarize(values.get<std::vector<double>>()).median);
-    if (run.contains("pid")) {
-      pids.push_back(run["pid"]);
-      run.erase("pid");
-    }
+    for (auto& [field, values] : moved)
+      if (run.contains(field)) {
+        values.push_back(run[field]);
+        run.erase(field);
+      }
   }
   size_t count = runs.size();
   json pooled = median_run(std::move(runs), key);
   pooled["runs"] = {{"count", count}, {"median_ms", std::move(medians)}};
-  if (pids.size() == count) pooled["runs"]["pids"] = std::move(pids);
+  for (auto& [field, values] : moved)
+    if (values.size() == count) pooled["runs"][std::string(field) == "pid" ? "pids" : field] = std::move(values);
   return pooled;
 }
 

@@ -87,7 +87,7 @@ double floor_ms(const Floor& floor, double frame_ms);
 // Default tolerance: a 10% slowdown of the frame, real work added, must fail
 // (docs/compare-and-check.md measures how often it does), so the tolerance sits
 // below it, and noise that moves a median by a few percent does not.
-inline constexpr double kDefaultTolerance = 0.07;
+inline constexpr double kDefaultTolerance = 0.05;
 
 struct CheckOptions {
   // Keys of "samples" (resolve_metric). CPU time by default: on a machine shared
@@ -113,8 +113,9 @@ inline constexpr size_t kMaxRuns = 100;
 // Several runs of one scene, each measured in a process of its own, as one
 // result: the median run (median_run by `key`) with a "runs" section:
 // {"count": n, "median_ms": {samples key: [the median of each run]}, "pids":
-// [each run's process id]} (pids when every run has a "pid", which is moved
-// there). check_results judges runs instead of frames when both results pool
+// [each run's process id], "started_s": [when each run started, seconds after
+// the first]} (pids and started_s when every run has a "pid" or "started_s",
+// which is moved there). check_results judges runs instead of frames when both results pool
 // at least kMannWhitneyMinSamples runs. `runs` must not be empty.
 nlohmann::json pooled_runs(std::vector<nlohmann::json> runs, const std::string& key);
 
