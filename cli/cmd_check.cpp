@@ -37,7 +37,7 @@ struct CheckCliOptions {
   BenchCliOptions bench;
   std::string baseline, result;
   std::vector<std::string> metrics = {"cpu"};
-  std::string tolerance = "5%";
+  std::string tolerance = "7%";
   std::string floor = "2%";
   // A baseline is held against every later check, so its luck counts many
   // times: it gets more runs than a check (docs/compare-and-check.md).
@@ -417,7 +417,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--tolerance", options->tolerance,
-                  "Slowdown of the median allowed before a significant shift fails: 5% or 0.05")
+                  "Slowdown of the median allowed before a significant shift fails: 7% or 0.07")
       ->capture_default_str();
   cmd->add_option("--floor", options->floor,
                   "Smallest slowdown of a median that can fail, however significant: a time (0.05ms, 50us) or a share "

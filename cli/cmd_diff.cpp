@@ -17,7 +17,7 @@ using namespace crowdprof;
 
 struct DiffCliOptions {
   std::string a, b;
-  std::string tolerance = "5%";
+  std::string tolerance = "7%";
   std::string floor = "2%";
   double alpha = 0.05;
   std::string json, html;
