@@ -13,7 +13,11 @@ std::string fixed(double value, int decimals) {
 
 std::string percent(double fraction) {
   if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "n/a";
-  return (fraction >= 0 ? "+" : "") + fixed(fraction * 100.0, 1) + "%";
+  // Appended, not `"+" + string`: GCC 12 warns falsely on that (-Wrestrict, its bug 105329).
+  std::string text = fraction >= 0 ? "+" : "";
+  text += fixed(fraction * 100.0, 1);
+  text += '%';
+  return text;
 }
 
 }  // namespace crowdprof
