@@ -41,8 +41,10 @@ size_t GpuTimer::take(const void* owner, uint64_t frame, std::span<GpuTime> out,
   for (Slot& slot : slots_)
     if (slot.state != State::Free && slot.owner == owner && &slot != active_ && (wait || slot.frame < frame))
       mine[count++] = &slot;
-  std::sort(mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(count),
-            [](const Slot* a, const Slot* b) { return a->order < b->order; });
+  // Insertion sort of at most kRing slots (std::sort here draws a false
+  // -Warray-bounds from GCC 12, which assumes 16 elements for small sorts).
+  for (size_t i = 1; i < count; ++i)
+    for (size_t j = i; j > 0 && mine[j]->order < mine[j - 1]->order; --j) std::swap(mine[j], mine[j - 1]);
   size_t written = 0;
   for (size_t i = 0; i < count && written < out.size(); ++i) {
     Slot& slot = *mine[i];

@@ -176,7 +176,7 @@ TEST(ReportInBrowser, SeveralResultsSideBySideAndTheirSweep) {
   std::vector<json> runs;
   std::string files;
   for (const char* spec : {"master -n 2", "threaded -n 2", "master -n 4", "threaded -n 4"}) {
-    std::string name = f.path("r" + std::to_string(runs.size()) + ".json");
+    std::string name = f.path("r" + std::to_string(runs.size()).append(".json"));
     f.run("bench '" + f.scene + "' --frames 8 --warmup 1 -q --mode " + spec + " --json '" + name + "'");
     runs.push_back(json::parse(std::ifstream(name)));
     files += " '" + name + "'";
