@@ -1,0 +1,92 @@
+// What a run is checked by, beside its timings: how far the drawn vertices
+// stray from exact times (sharing, LOD, budget, baking) and the digest of the
+// last frame's work. Split from crowd_bench.cpp, which runs the frames.
+#include "frame/crowd_bench.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "animation/pose.h"
+#include "skinning/skinning.h"
+
+namespace crowdprof {
+
+AnimationFidelity CrowdBench::measure_fidelity() const {
+  AnimationFidelity fidelity;
+  std::vector<float> heights;
+  for (const Character* character : characters_) {
+    float low = 0, high = 0;
+    for (size_t v = 0; v < character->mesh.positions.size(); ++v) {
+      float y = character->mesh.positions[v].y;
+      low = v ? std::min(low, y) : y;
+      high = v ? std::max(high, y) : y;
+    }
+    heights.push_back(high - low);
+  }
+  LocalPose pose;
+  SamplingCursor cursor;
+  std::vector<glm::mat4> model;
+  std::vector<SkinMatrix> palette;
+  std::vector<glm::vec3> drawn, drawn_normals, exact, exact_normals;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!visible_[i] || !poses(i)) continue;
+    ++fidelity.copies_checked;
+    // Drawn at its exact time (same action: a copy's storage holds its own action).
+    if (storage_time_[storage_of(i)] == times_[i]) continue;
+    ++fidelity.copies_deviating;
+    const Character& character = character_of(i);
+    const Kind& kind = kinds_[crowd_.kind[i]];
+    const Action& action = character.actions[crowd_.action[i]];
+    reset_to_rest(character.skeleton, &pose);
+    reset_cursor(action, &cursor);
+    model.resize(kind.joints);
+    palette.resize(kind.joints);
+    SamplingJob{&action, times_[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}.Run();
+    LocalToModelJob{&character.skeleton, &pose, model}.Run();
+    SkinningMatricesJob{&character.skeleton, model, palette}.Run();
+    for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
+    // Both skinned here, so that a copy skinned on the GPU is measured too.
+    SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals}.Run();
+    SkinningJob{palette, &kind.skinning_plan, 0, kind.vertices, exact, exact_normals}.Run();
+    double worst = 0;
+    for (size_t v = 0; v < kind.vertices; ++v)
+      worst = std::max(worst, static_cast<double>(glm::distance(drawn[v], exact[v])));
+    fidelity.max_deviation = std::max(fidelity.max_deviation, worst);
+    double height = heights[crowd_.kind[i]];
+    if (height > 0) fidelity.deviation_fraction = std::max(fidelity.deviation_fraction, worst / height);
+  }
+  return fidelity;
+}
+
+namespace {
+void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 0x100000001b3ull;
+}
+}  // namespace
+
+std::string CrowdBench::digest() const {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!visible_[i]) continue;
+    auto palette = skinning_matrices(i);
+    fnv1a(hash, palette.data(), palette.size_bytes());
+    if (kinds_[crowd_.kind[i]].site == SkinningSite::Baked) {
+      // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
+      BakedInstance instance = baked_instance(i);
+      fnv1a(hash, &instance, sizeof instance);
+    } else if (!gpu_skinned_copy(i) && packed_vertices()) {
+      fnv1a(hash, packed_positions(i).data(), packed_positions(i).size_bytes());
+      fnv1a(hash, packed_normals(i).data(), packed_normals(i).size_bytes());
+    } else if (!gpu_skinned_copy(i)) {
+      fnv1a(hash, skinned_positions(i).data(), skinned_positions(i).size_bytes());
+      fnv1a(hash, skinned_normals(i).data(), skinned_normals(i).size_bytes());
+    }
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
+}  // namespace crowdprof
