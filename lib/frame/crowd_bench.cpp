@@ -198,9 +198,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   }
   if (config.mode.parallel) {
     auto threads = static_cast<size_t>(std::max(1, config.threads));
-    if (threads > tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))
-      parallelism_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-    arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+    threads_ = bench_threads(threads);
+    arena_ = threads_->arena.get();
     posed_ = std::make_unique<std::atomic<uint8_t>[]>(threads);  // skin_parts(): fewer states than threads
   }
   if (config.mode.skinning == SkinningSite::Baked) bake_characters();

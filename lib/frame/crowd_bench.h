@@ -11,9 +11,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
-
 #include "animation/bake.h"
 #include "animation/binding.h"
 #include "animation/local_pose.h"
@@ -22,6 +19,7 @@
 #include "animation/sampling.h"
 #include "animation/skin_matrix.h"
 #include "asset/character.h"
+#include "frame/bench_threads.h"
 #include "frame/frame_renderer.h"
 #include "frame/modes.h"
 #include "profile/category_clock.h"
@@ -320,10 +318,10 @@ class CrowdBench {
   uint64_t last_updates_ = 0;                 // copy updates of the last frame, for the budget
   double last_animations_ms_ = 0;
   UpdateSchedule schedule_;
-  // More threads than cores are given, not silently capped by TBB's default
-  // worker limit (one per core): the control lifts it while the bench lives.
-  std::unique_ptr<tbb::global_control> parallelism_;
-  std::unique_ptr<tbb::task_arena> arena_;
+  // The process's arena for this many threads (bench_threads.h), and its
+  // arena, null when the mode runs on the calling thread alone.
+  std::shared_ptr<BenchThreads> threads_;
+  tbb::task_arena* arena_ = nullptr;
 };
 
 }  // namespace crowdprof
