@@ -14,6 +14,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "animation/pose.h"
 #include "asset/errors.h"
@@ -40,7 +41,8 @@ uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
 uint64_t slot_bytes(const Character& c) {
   uint64_t channels = 0;
   for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
-  return c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat) + sizeof(glm::mat4)) + channels * 4;
+  // Model-space matrices are per thread, not per slot: a few KiB in all.
+  return c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4;
 }
 
 }  // namespace
@@ -133,18 +135,18 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   bool shared = config.mode.pose == PoseStorage::SharedScratch;
   size_t slots = shared ? characters_.size() : n;
   poses_.resize(slots);
-  slot_joints_.resize(slots);
   slot_channels_.resize(slots);
-  size_t slot_joint_total = 0, slot_channel_total = 0;
+  size_t slot_channel_total = 0, most_joints = 0;
   for (size_t s = 0; s < slots; ++s) {
     size_t k = shared ? s : crowd_.kind[s];
     reset_to_rest(characters_[k]->skeleton, &poses_[s]);
-    slot_joints_[s] = slot_joint_total;
     slot_channels_[s] = slot_channel_total;
-    slot_joint_total += kinds_[k].joints;
     slot_channel_total += kinds_[k].max_channels;
   }
-  model_.resize(slot_joint_total);
+  for (const Kind& kind : kinds_) most_joints = std::max(most_joints, kind.joints);
+  model_joints_ = most_joints;
+  model_threads_ = config.mode.parallel ? static_cast<size_t>(std::max(1, config.threads)) : 1;
+  model_.resize(most_joints * model_threads_);
   targets_.assign(slot_channel_total, -1);
   palettes_.resize(joints);
   const bool packed = packed_vertices();
@@ -564,11 +566,21 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
   if (config_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
   // The leader's own cursor: its action, and its time moving forward.
   SamplingJob{&action, job.time, targets, &cursors_[copy], &pose}.Run();
-  std::span<glm::mat4> model = std::span(model_).subspan(slot_joints_[slot], kind.joints);
+  std::span<glm::mat4> model = std::span(model_).subspan(worker_index() * model_joints_, kind.joints);
   LocalToModelJob{&skeleton, &pose, model}.Run();
   SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[job.storage], kind.joints)}.Run();
   storage_time_[job.storage] = job.time;
   if (skin && kind.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
+}
+
+size_t CrowdBench::worker_index() const {
+  if (!arena_) return 0;
+  // The arena's slot of the calling thread: unique among the threads in it,
+  // below its thread count (bench_threads.h), for as long as the task runs.
+  const int slot = tbb::this_task_arena::current_thread_index();
+  if (slot < 0 || static_cast<size_t>(slot) >= model_threads_)
+    throw std::logic_error("a pose update outside the bench's arena");
+  return static_cast<size_t>(slot);
 }
 
 void CrowdBench::skin_storage(size_t storage) {
