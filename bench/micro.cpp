@@ -9,6 +9,8 @@
 #include <emmintrin.h>
 #endif
 
+#include <atomic>
+#include <chrono>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -124,6 +126,34 @@ void BM_MemoryWriteStreaming(benchmark::State& state) {
 }
 BENCHMARK(BM_MemoryWriteStreaming)->Threads(1)->Threads(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 #endif
+
+// The time for one thread to signal another and see its answer, through one
+// shared cache line: what a frame pays at each hand-over between threads (a
+// worker taking a task, waiting for a pose, the join). It depends on where the
+// host puts the two vCPUs: measured 75-110 ns when they share a cache, about
+// 390 ns when they do not (docs/performance.md, crowd scale).
+void BM_CoreRoundTrip(benchmark::State& state) {
+  alignas(64) static std::atomic<int64_t> flag{0};
+  if (state.thread_index() == 0) flag.store(0);  // before the threads' common start
+  int64_t i = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    if (state.thread_index() == 0) {
+      flag.store(2 * i + 1, std::memory_order_release);
+      while (flag.load(std::memory_order_acquire) != 2 * i + 2) {
+      }
+    } else {
+      while (flag.load(std::memory_order_acquire) != 2 * i + 1) {
+      }
+      flag.store(2 * i + 2, std::memory_order_release);
+    }
+    ++i;
+  }
+  const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+  // Thread 0's figure only (counters of threads are summed).
+  state.counters["ns_round_trip"] = state.thread_index() == 0 && i > 0 ? ns / static_cast<double>(i) : 0.0;
+}
+BENCHMARK(BM_CoreRoundTrip)->Threads(2)->UseRealTime();
 
 // Sampling every channel of the dance, the clock moving a frame at a time.
 void BM_Sampling(benchmark::State& state) {

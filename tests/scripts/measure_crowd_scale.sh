@@ -17,7 +17,7 @@
 #      and the deviation from exact times; then the same with --update-lod on,
 #      and the budget alone (`threaded --anim-budget 2`: exact times, no sharing).
 # Usage: tests/scripts/measure_crowd_scale.sh CROWDPROF
-# Environment: SCENE (scenes/humanoid.glb), RUNS (5: compares of section 1),
+# Environment: SCENE (scenes/humanoid.glb), RUNS (9: compares of section 1),
 #   FRAMES (240), WARMUP (60), N (10000),
 #   OUT (a new temporary folder; kept: the JSON of both runs).
 # Needs jq.
@@ -36,12 +36,23 @@ command -v jq >/dev/null || { echo "measure_crowd_scale: needs jq (apt-get insta
 mkdir -p "$out"
 start=$(date +%s)
 echo "measure_crowd_scale: $("$crowdprof" --version), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+# Sharing splits one state's mesh between the threads, so its time depends on
+# how fast two cores hand over a cache line, which depends on where the host
+# put them (docs/performance.md): printed when the micro-benchmarks are built.
+round_trip() {
+  local micro
+  micro="$(dirname "$crowdprof")/crowdprof_micro"
+  [[ -x $micro ]] || return 0
+  "$micro" --benchmark_filter=CoreRoundTrip --benchmark_format=json 2>/dev/null \
+    | jq -r '"  core-to-core round trip: \(.benchmarks[0].ns_round_trip | round) ns (\($when))"' --arg when "$1" || true
+}
+round_trip "before"
 
 # 1. The thesis scene. One compare's ratio moves by a few percent from run to
 # run (each is its own process), so it runs RUNS times and the median ratio is
 # the one to quote.
 ratios=()
-for ((run = 1; run <= ${RUNS:-5}; ++run)); do
+for ((run = 1; run <= ${RUNS:-9}; ++run)); do
   "$crowdprof" compare "$scene" -n 160 --actions shared --modes threaded,shared --frames 100 \
     --warmup 10 --backend none -q --json "$out/thesis_$run.json"
   ratios+=("$(jq -r '
@@ -54,6 +65,7 @@ for ((run = 1; run <= ${RUNS:-5}; ++run)); do
     | "thesis scene, 160 copies, shared action, run \($run): threaded Animations \($t * 1000 | round) us, shared \($s.categories.Animations.median_ms * 10000 | round / 10) us (medians): \(if $s.categories.Animations.median_ms > 0 then ($t / $s.categories.Animations.median_ms * 10 | round / 10) else "inf" end)x faster"
   ' "$out/thesis_$run.json"
 done
+round_trip "after"
 cp "$out/thesis_1.json" "$out/thesis.json"
 printf '%s\n' "${ratios[@]}" | sort -g | awk '{ r[NR] = $1 } END {
   m = NR % 2 ? r[(NR + 1) / 2] : (r[NR / 2] + r[NR / 2 + 1]) / 2
