@@ -4,14 +4,19 @@
 # shared and random actions, 160, 1,000 and 10,000 copies of scenes/humanoid.glb
 # (and, shared, with --vertex-format packed);
 # each configuration run REPS times, binaries interleaved, median frame of each
-# run, then the median of those medians. About 5 minutes on the 2-core machine.
+# run, then the median of those medians. Then the thesis scene's two-thread
+# speed-up measured side by side in one process: COMPARES runs of `compare`
+# (1 thread, i.e. the plain serial loop, against 2, interleaved in blocks of 10
+# frames), each run's ratio of median frames and their median, the figure to
+# quote (separate processes catch the host's noise at different moments). About
+# 2 minutes on the 2-core machine with REPS=3.
 #
 #   bench/measure_cpu.sh [NEW] [OLD]
 #     NEW  crowdprof to measure (default build/crowdprof)
 #     OLD  a crowdprof from before, run side by side (optional); e.g. one built
 #          from commit 3f0d03a (the last one before the SIMD kernels) with
 #          -DCROWDPROF_NATIVE=ON, its default then
-#   REPS=3 (runs per configuration), OUT=folder for the JSON (default a temp dir)
+#   REPS=3 (runs per configuration), COMPARES=9 (0: skip them), OUT=folder for the JSON (default a temp dir)
 #   NEW_ARGS, OLD_ARGS: global options for each binary, e.g. to compare store
 #          policies with one binary: OLD_ARGS="--stores regular" NEW_ARGS=
 #          "--stores auto" bench/measure_cpu.sh build/crowdprof build/crowdprof
@@ -113,3 +118,21 @@ for threads in (1, 2):
         print(f"| {threads} | {copies:,} | {f:.3f} | {p:.3f} | {gbs:.1f} | {f / p:.2f}× |")
 print(f"\nJSON in {out}; SIMD target: {median_ms(binaries[0], 1, 'shared', 160)[2]}")
 EOF
+
+# The thesis scene's two-thread speed-up, side by side in one process.
+compares=${COMPARES:-9}
+((compares > 0)) || exit 0
+for actions in shared random; do
+  ratios=()
+  for ((run = 1; run <= compares; run++)); do
+    setsid "${rt[@]}" "$new" "${new_args[@]}" compare "$scene" -n 160 --actions "$actions" --seed 7 \
+      --modes threaded+culling=off+parallel=off,threaded+culling=off --threads 2 --frames 240 --warmup 20 \
+      --backend none -q --json "$out/compare-$actions-$run.json"
+    ratios+=("$(python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["runs"]; print(round(r[0]["frame"]["median_ms"] / r[1]["frame"]["median_ms"], 3))' "$out/compare-$actions-$run.json")")
+  done
+  printf '%s\n' "${ratios[@]}" | python3 -c '
+import statistics, sys
+r = sorted(float(x) for x in sys.stdin)
+print(f"new, interleaved in one process: {sys.argv[1]}, 160 copies: 2 threads {statistics.median(r):.2f}x faster"
+      f" than 1 (median of {len(r)} compares; runs {r[0]:.2f} to {r[-1]:.2f})")' "$actions"
+done
