@@ -14,6 +14,7 @@
 #include "asset/gltf_loader.h"
 #include "skinning/bake_deviation.h"
 #include "skinning/skinning_plan.h"
+#include "one_joint_character.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -24,35 +25,10 @@ namespace {
 // one vertex at (1, 0, 0) bound to it: the vertex sweeps a quarter of the unit
 // circle, to (0, 0, -1). A second vertex, 2 up on the axis, never moves.
 Character turning_joint() {
-  Character c;
-  c.name = "turn";
-  Skeleton& s = c.skeleton;
-  s.names = {"root"};
-  s.parents = {-1};
-  s.rest_translations = {glm::vec3(0)};
-  s.rest_rotations = {glm::quat(1, 0, 0, 0)};
-  s.rest_scales = {glm::vec3(1)};
-  s.parent_offsets = {glm::mat4(1)};
-  s.inverse_binds = {glm::mat4(1)};
-  SkinnedMesh& m = c.mesh;
-  m.positions = {glm::vec3(1, 0, 0), glm::vec3(0, 2, 0)};
-  m.normals = {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)};
-  m.joints = {glm::u16vec4(0), glm::u16vec4(0)};
-  m.weights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0)};
-  m.indices = {0, 1, 0};
-  Action a;
-  a.name = "turn";
-  a.start = 0.0f;
-  a.end = 1.0f;
-  Channel ch;
-  ch.joint = 0;
-  ch.path = ChannelPath::Rotation;
-  ch.times = {0.0f, 1.0f};
-  float h = std::sqrt(0.5f);
-  ch.values = {0, 0, 0, 1, 0, h, 0, h};  // x y z w: identity, then 90 degrees about y
-  a.channels.push_back(ch);
-  c.actions.push_back(a);
-  return c;
+  const float h = std::sqrt(0.5f);
+  return test::one_joint_character("turn", {glm::vec3(1, 0, 0), glm::vec3(0, 2, 0)},
+                                   {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {0, 1, 0}, ChannelPath::Rotation,
+                                   {0, 0, 0, 1, 0, h, 0, h});  // x y z w: identity, then 90 degrees about y
 }
 
 std::vector<std::span<const int32_t>> targets_of(const std::vector<ActionBindings>& bindings) {

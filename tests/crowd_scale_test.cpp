@@ -15,6 +15,7 @@
 #include "frame/run_bench.h"
 #include "gen/humanoid.h"
 #include "profile/trace.h"
+#include "one_joint_character.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -30,37 +31,10 @@ const Character& small_humanoid() {
 // mesh 2 units tall bound rigidly to it: every vertex is displaced by exactly
 // the joint's translation, so deviations can be worked out by hand.
 const Character& slider() {
-  static const Character character = [] {
-    Character c;
-    c.name = "slider";
-    Skeleton& s = c.skeleton;
-    s.names = {"root"};
-    s.parents = {-1};
-    s.rest_translations = {glm::vec3(0.0f)};
-    s.rest_rotations = {glm::quat(1.0f, 0.0f, 0.0f, 0.0f)};
-    s.rest_scales = {glm::vec3(1.0f)};
-    s.inverse_binds = {glm::mat4(1.0f)};
-    s.parent_offsets = {glm::mat4(1.0f)};
-    SkinnedMesh& m = c.mesh;
-    m.positions = {{0, 0, 0}, {0, 2, 0}, {0.5f, 0, 0}, {0, 1, 0.5f}};
-    m.normals.assign(4, glm::vec3(0, 0, 1));
-    m.joints.assign(4, glm::u16vec4(0));
-    m.weights.assign(4, glm::vec4(1, 0, 0, 0));
-    m.indices = {0, 1, 2, 0, 2, 3};
-    m.primitives = {{0, 6, 0, 4}};
-    Action slide;
-    slide.name = "slide";
-    slide.start = 0.0f;
-    slide.end = 1.0f;
-    Channel channel;
-    channel.joint = 0;
-    channel.path = ChannelPath::Translation;
-    channel.times = {0.0f, 1.0f};
-    channel.values = {0, 0, 0, 1, 0, 0};
-    slide.channels = {channel};
-    c.actions = {slide};
-    return c;
-  }();
+  static const Character character =
+      test::one_joint_character("slider", {{0, 0, 0}, {0, 2, 0}, {0.5f, 0, 0}, {0, 1, 0.5f}},
+                                std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)), {0, 1, 2, 0, 2, 3},
+                                ChannelPath::Translation, {0, 0, 0, 1, 0, 0});
   return character;
 }
 
