@@ -24,45 +24,29 @@ constexpr ModeSwitches kCulled = thesis(Lookups::PerFrameString, true, PoseStora
 constexpr ModeSwitches kThreaded =
     thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations);
 constexpr ModeSwitches kHwskin = thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu);
+// A preset that is `base` with one switch changed: each mode below is the one
+// before it plus one idea.
+template <typename Value>
+constexpr ModeSwitches with(ModeSwitches base, Value ModeSwitches::*which, Value value) {
+  base.*which = value;
+  return base;
+}
+
 // Beyond the thesis: hwskin with its palettes in a shader storage buffer, then
 // also drawn instanced.
-constexpr ModeSwitches kBuffer = [] {
-  ModeSwitches s = kHwskin;
-  s.palettes = PaletteStorage::Buffer;
-  return s;
-}();
-constexpr ModeSwitches kInstanced = [] {
-  ModeSwitches s = kBuffer;
-  s.draw = DrawMethod::Instanced;
-  return s;
-}();
+constexpr ModeSwitches kBuffer = with(kHwskin, &ModeSwitches::palettes, PaletteStorage::Buffer);
+constexpr ModeSwitches kInstanced = with(kBuffer, &ModeSwitches::draw, DrawMethod::Instanced);
 // threaded, and copies in the same (action, time) share one pose and one mesh.
-constexpr ModeSwitches kShared = [] {
-  ModeSwitches s = kThreaded;
-  s.share_poses = true;
-  return s;
-}();
+constexpr ModeSwitches kShared = with(kThreaded, &ModeSwitches::share_poses, true);
 // shared with times snapped to 1/30 s and 2 ms for Animations. No fixed LOD:
 // the budget slows the smallest copies only when the time needs it, so copies
 // keep every frame's pose while it fits (--update-lod on adds the LOD's floor).
-constexpr ModeSwitches kBudget = [] {
-  ModeSwitches s = kShared;
-  s.share_quantum_s = 1.0 / 30.0;
-  s.anim_budget_ms = 2.0;
-  return s;
-}();
+constexpr ModeSwitches kBudget =
+    with(with(kShared, &ModeSwitches::share_quantum_s, 1.0 / 30.0), &ModeSwitches::anim_budget_ms, 2.0);
 // Skinned by a compute pass from palettes in a storage buffer, drawn per copy;
 // baked: every copy of a character in one instanced draw, reading baked tables.
-constexpr ModeSwitches kCompute = [] {
-  ModeSwitches s = kBuffer;
-  s.skinning = SkinningSite::Compute;
-  return s;
-}();
-constexpr ModeSwitches kBaked = [] {
-  ModeSwitches s = kInstanced;
-  s.skinning = SkinningSite::Baked;
-  return s;
-}();
+constexpr ModeSwitches kCompute = with(kBuffer, &ModeSwitches::skinning, SkinningSite::Compute);
+constexpr ModeSwitches kBaked = with(kInstanced, &ModeSwitches::skinning, SkinningSite::Baked);
 
 constexpr std::array<ModePreset, 10> kPresets = {{
     {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
