@@ -136,10 +136,17 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   EXPECT_GE(started[2], 1.0);
   EXPECT_LT(started[2], 30.0);
 
-  // Runs slower by a fifth, frames unchanged: the runs decide when both have 8.
+  // Every run slower than the slowest recorded by a fifth, frames unchanged: the
+  // runs decide when both have 8. (Not each run scaled by 1.2: on a noisy host
+  // the recorded runs spread by more than that, and the shift is then rightly
+  // not significant.)
   json slower = recorded;
-  for (auto& [key, values] : slower["runs"]["median_ms"].items())
-    for (auto& v : values) v = v.get<double>() * 1.2;
+  for (auto& [key, values] : slower["runs"]["median_ms"].items()) {
+    double slowest = 0;
+    for (const auto& v : values) slowest = std::max(slowest, v.get<double>());
+    double step = 0;
+    for (auto& v : values) v = slowest * (1.2 + (step += 0.01));
+  }
   std::ofstream(dir / "slower.json") << slower.dump();
   std::string slower_path = (dir / "slower.json").string();
   r = test::run_cli("check --result '" + slower_path + "' --baseline '" + base + "' --floor 0ms");
