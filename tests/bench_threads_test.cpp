@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 
 #include "frame/bench_threads.h"
 
@@ -45,6 +47,49 @@ TEST(BenchThreads, TheArenaGoesWithItsLastHolder) {
   }
   EXPECT_TRUE(seen.expired());
   EXPECT_NE(bench_threads(4), nullptr);
+}
+
+
+// Arenas of different sizes alive together each get their threads: oneTBB
+// applies the smallest live worker limit, so they share one control set to the
+// largest, in whichever order they are made.
+TEST(BenchThreads, ArenasOfDifferentSizesKeepTheWidestLimit) {
+  for (bool wide_first : {false, true}) {
+    std::shared_ptr<BenchThreads> narrow, wide;
+    if (wide_first) wide = bench_threads(6);
+    narrow = bench_threads(3);
+    if (!wide_first) wide = bench_threads(6);
+    EXPECT_GE(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), 6u) << wide_first;
+    wide.reset();
+    // The narrow arena still holds a control that lifts the limit to its own.
+    EXPECT_GE(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), 3u) << wide_first;
+  }
+}
+
+// A one-thread arena has two slots: two outside threads executing in it at
+// once may be given slots 0 and 1, which a per-thread scratch must cover.
+TEST(BenchThreads, AOneThreadArenaHasTwoSlots) {
+  std::shared_ptr<BenchThreads> one = bench_threads(1);
+  std::atomic<int> inside{0}, largest{-1};
+  auto enter = [&] {
+    one->arena->execute([&] {
+      // Both threads inside the arena at once (or, were there one slot, the
+      // second's work waiting for the first: no deadlock, a second's wait).
+      inside.fetch_add(1);
+      auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+      while (inside.load() < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+      int slot = tbb::this_task_arena::current_thread_index();
+      int seen = largest.load();
+      while (slot > seen && !largest.compare_exchange_weak(seen, slot)) {
+      }
+    });
+  };
+  std::thread a(enter), b(enter);
+  a.join();
+  b.join();
+  EXPECT_LT(static_cast<size_t>(largest.load()), arena_slots(1));
+  EXPECT_EQ(arena_slots(1), 2u);
+  EXPECT_EQ(arena_slots(4), 4u);
 }
 
 }  // namespace

@@ -13,7 +13,10 @@ namespace crowdprof {
 struct BenchThreads {
   // More threads than cores are given, not silently capped by TBB's default
   // worker limit (one per core): the control lifts it while the arena lives.
-  std::unique_ptr<tbb::global_control> parallelism;
+  // One control for the process, set to the most threads any live arena asks
+  // for, shared by every arena above the default (oneTBB applies the smallest
+  // of the live controls, so one per arena would cap the larger arenas).
+  std::shared_ptr<tbb::global_control> parallelism;
   std::unique_ptr<tbb::task_arena> arena;
 };
 
@@ -26,5 +29,11 @@ struct BenchThreads {
 // first 7 frames of each 10-frame block, 9.1 us a frame against 6.7 us alone).
 // Thread-safe.
 std::shared_ptr<BenchThreads> bench_threads(size_t threads);
+
+// How many slots a thread of `threads` may be given in its arena: oneTBB gives
+// an arena at least two (the caller's and a worker's), even one of one thread,
+// and two outside threads executing in it at once take both. What a per-thread
+// scratch indexed by tbb::this_task_arena::current_thread_index() needs.
+inline size_t arena_slots(size_t threads) { return threads < 2 ? 2 : threads; }
 
 }  // namespace crowdprof

@@ -145,7 +145,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   }
   for (const Kind& kind : kinds_) most_joints = std::max(most_joints, kind.joints);
   model_joints_ = most_joints;
-  model_threads_ = config.mode.parallel ? static_cast<size_t>(std::max(1, config.threads)) : 1;
+  model_threads_ = config.mode.parallel ? arena_slots(static_cast<size_t>(std::max(1, config.threads))) : 1;
   model_.resize(most_joints * model_threads_);
   targets_.assign(slot_channel_total, -1);
   palettes_.resize(joints);
@@ -576,7 +576,7 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
 size_t CrowdBench::worker_index() const {
   if (!arena_) return 0;
   // The arena's slot of the calling thread: unique among the threads in it,
-  // below its thread count (bench_threads.h), for as long as the task runs.
+  // below arena_slots() (bench_threads.h), for as long as the task runs.
   const int slot = tbb::this_task_arena::current_thread_index();
   if (slot < 0 || static_cast<size_t>(slot) >= model_threads_)
     throw std::logic_error("a pose update outside the bench's arena");

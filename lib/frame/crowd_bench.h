@@ -299,8 +299,9 @@ class CrowdBench {
   // character: an evaluation's intermediate (local-to-model, then the skinning
   // matrices), used at once. Per copy they were 4.4 KiB of the default
   // character's 130 written and read back from memory every frame at 10,000
-  // copies.
-  std::vector<glm::mat4> model_;
+  // copies. Cache-line aligned (a mat4 is one line), so that no two threads'
+  // regions share a line.
+  std::vector<glm::mat4, CacheLineAllocator<glm::mat4>> model_;
   size_t model_joints_ = 0, model_threads_ = 1;
   std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
   std::vector<SkinMatrix, CacheLineAllocator<SkinMatrix>> palettes_;  // per copy x its joints
