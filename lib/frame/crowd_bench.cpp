@@ -136,17 +136,17 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   size_t slots = shared ? characters_.size() : n;
   poses_.resize(slots);
   slot_channels_.resize(slots);
-  size_t slot_channel_total = 0, most_joints = 0;
+  size_t slot_channel_total = 0;
   for (size_t s = 0; s < slots; ++s) {
     size_t k = shared ? s : crowd_.kind[s];
     reset_to_rest(characters_[k]->skeleton, &poses_[s]);
     slot_channels_[s] = slot_channel_total;
     slot_channel_total += kinds_[k].max_channels;
   }
-  for (const Kind& kind : kinds_) most_joints = std::max(most_joints, kind.joints);
-  model_joints_ = most_joints;
-  model_threads_ = config.mode.parallel ? arena_slots(static_cast<size_t>(std::max(1, config.threads))) : 1;
-  model_.resize(most_joints * model_threads_);
+  const size_t threads = config.mode.parallel ? static_cast<size_t>(std::max(1, config.threads)) : 1;
+  for (const Kind& kind : kinds_) model_joints_ = std::max(model_joints_, kind.joints);
+  model_threads_ = config.mode.parallel ? arena_slots(threads) : 1;
+  model_.resize(model_joints_ * model_threads_);
   targets_.assign(slot_channel_total, -1);
   palettes_.resize(joints);
   const bool packed = packed_vertices();
@@ -199,7 +199,6 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     changing_keys_.resize(n);
   }
   if (config.mode.parallel) {
-    auto threads = static_cast<size_t>(std::max(1, config.threads));
     threads_ = bench_threads(threads);
     arena_ = threads_->arena.get();
     posed_ = std::make_unique<std::atomic<uint8_t>[]>(threads);  // skin_parts(): fewer states than threads

@@ -328,8 +328,8 @@ class CrowdBench {
   uint64_t last_updates_ = 0;                 // copy updates of the last frame, for the budget
   double last_animations_ms_ = 0;
   UpdateSchedule schedule_;
-  // The process's arena for this many threads (bench_threads.h), and its
-  // arena, null when the mode runs on the calling thread alone.
+  // The process's threads for this bench's thread count (bench_threads.h),
+  // and their arena; both null when the mode runs on the calling thread alone.
   std::shared_ptr<BenchThreads> threads_;
   tbb::task_arena* arena_ = nullptr;
 };
