@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "animation/run_job.h"
 #include "animation/binding.h"
 #include "animation/local_pose.h"
 #include "animation/pose.h"
@@ -46,9 +47,9 @@ struct Copy {
   Copy() {
     reset_cursor(c.actions[0], &cursor);
     reset_to_rest(c.skeleton, &pose);
-    SamplingJob{&c.actions[0], 0.4f, bindings.targets, &cursor, &pose}.Run();
-    LocalToModelJob{&c.skeleton, &pose, model}.Run();
-    SkinningMatricesJob{&c.skeleton, model, palette}.Run();
+    run_job(SamplingJob{&c.actions[0], 0.4f, bindings.targets, &cursor, &pose}, "SamplingJob");
+    run_job(LocalToModelJob{&c.skeleton, &pose, model}, "LocalToModelJob");
+    run_job(SkinningMatricesJob{&c.skeleton, model, palette}, "SkinningMatricesJob");
   }
 };
 
@@ -57,7 +58,7 @@ void sample_next_frame(Copy& copy, float* time) {
   const Action& action = copy.c.actions[0];
   *time += 1.0f / 60.0f;
   if (*time > action.end) *time = action.start;
-  SamplingJob{&action, *time, copy.bindings.targets, &copy.cursor, &copy.pose}.Run();
+  run_job(SamplingJob{&action, *time, copy.bindings.targets, &copy.cursor, &copy.pose}, "SamplingJob");
 }
 
 void per_joint(benchmark::State& state, size_t joints) {
@@ -170,7 +171,7 @@ BENCHMARK(BM_Sampling);
 void BM_LocalToModel(benchmark::State& state) {
   Copy copy;
   for (auto _ : state) {
-    LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}.Run();
+    run_job(LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}, "LocalToModelJob");
     benchmark::DoNotOptimize(copy.model.data());
   }
   per_joint(state, copy.c.skeleton.joint_count());
@@ -180,7 +181,7 @@ BENCHMARK(BM_LocalToModel);
 void BM_SkinningMatrices(benchmark::State& state) {
   Copy copy;
   for (auto _ : state) {
-    SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}.Run();
+    run_job(SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}, "SkinningMatricesJob");
     benchmark::DoNotOptimize(copy.palette.data());
   }
   per_joint(state, copy.c.skeleton.joint_count());
@@ -216,7 +217,7 @@ void BM_Skinning(benchmark::State& state, std::string target) {
   build_skinning_plan(mesh, copy.c.skeleton.joint_count(), &plan);
   std::vector<glm::vec3> positions(mesh.vertex_count()), normals(mesh.vertex_count());
   for (auto _ : state) {
-    SkinningJob{copy.palette, &plan, 0, mesh.vertex_count(), positions, normals}.Run();
+    run_job(SkinningJob{copy.palette, &plan, 0, mesh.vertex_count(), positions, normals}, "SkinningJob");
     benchmark::DoNotOptimize(positions.data());
     benchmark::DoNotOptimize(normals.data());
   }
@@ -238,7 +239,7 @@ void BM_SkinningFormat(benchmark::State& state) {
   SkinningPlan plan;
   build_skinning_plan(mesh, copy.c.skeleton.joint_count(), &plan);
   std::vector<glm::vec3> positions(n), normals(n);
-  SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+  run_job(SkinningJob{copy.palette, &plan, 0, n, positions, normals}, "SkinningJob");
   glm::vec3 lo(1e9f), hi(-1e9f);
   for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const PositionQuantisation q = position_quantisation(lo - 0.1f, hi + 0.1f);
@@ -247,11 +248,11 @@ void BM_SkinningFormat(benchmark::State& state) {
   const bool packed = state.range(0) != 0;
   for (auto _ : state) {
     if (packed) {
-      PackedSkinningJob{copy.palette, &plan, &q, 0, n, codes, words}.Run();
+      run_job(PackedSkinningJob{copy.palette, &plan, &q, 0, n, codes, words}, "PackedSkinningJob");
       benchmark::DoNotOptimize(codes.data());
       benchmark::DoNotOptimize(words.data());
     } else {
-      SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+      run_job(SkinningJob{copy.palette, &plan, 0, n, positions, normals}, "SkinningJob");
       benchmark::DoNotOptimize(positions.data());
       benchmark::DoNotOptimize(normals.data());
     }
@@ -273,9 +274,9 @@ void BM_PoseAndSkin(benchmark::State& state) {
   float time = 0.0f;
   for (auto _ : state) {
     sample_next_frame(copy, &time);
-    LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}.Run();
-    SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}.Run();
-    SkinningJob{copy.palette, &plan, 0, n, positions, normals}.Run();
+    run_job(LocalToModelJob{&copy.c.skeleton, &copy.pose, copy.model}, "LocalToModelJob");
+    run_job(SkinningMatricesJob{&copy.c.skeleton, copy.model, copy.palette}, "SkinningMatricesJob");
+    run_job(SkinningJob{copy.palette, &plan, 0, n, positions, normals}, "SkinningJob");
     benchmark::DoNotOptimize(positions.data());
   }
   per_vertex(state, n);

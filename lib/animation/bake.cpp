@@ -1,4 +1,5 @@
 #include "animation/bake.h"
+#include "animation/run_job.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,9 +40,9 @@ bool BakeJob::Run() const {
     float time = s == intervals ? action->end
                                 : action->start + action->duration() * static_cast<float>(s) / static_cast<float>(intervals);
     reset_to_rest(*skeleton, pose);  // joints the action leaves alone stand at rest (no allocation: sized)
-    SamplingJob{action, time, targets, cursor, pose}.Run();
-    LocalToModelJob{skeleton, pose, model}.Run();
-    SkinningMatricesJob{skeleton, model, output.subspan(s * joints, joints)}.Run();
+    run_job(SamplingJob{action, time, targets, cursor, pose}, "SamplingJob");
+    run_job(LocalToModelJob{skeleton, pose, model}, "LocalToModelJob");
+    run_job(SkinningMatricesJob{skeleton, model, output.subspan(s * joints, joints)}, "SkinningMatricesJob");
   }
   return true;
 }

@@ -48,7 +48,7 @@ struct BakeJob {
   // Pointers set, rate finite and > 0, spans sized as above, a target per channel.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // What the vertex shader of `baked` computes: the palette at sample position
@@ -63,7 +63,7 @@ struct BakedPaletteJob {
   // At least two samples of `joints` matrices, position finite, output sized.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 }  // namespace crowdprof

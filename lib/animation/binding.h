@@ -51,7 +51,7 @@ struct ResolvePathsJob {
 
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 }  // namespace crowdprof

@@ -25,7 +25,7 @@ struct LocalToModelJob {
   // children, `output` one per joint.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // output[j] = model[j] * inverse_binds[j]: the matrix that takes a bind-pose
@@ -37,7 +37,7 @@ struct SkinningMatricesJob {
 
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 }  // namespace crowdprof

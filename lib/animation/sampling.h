@@ -44,7 +44,7 @@ struct SamplingJob {
   // target inside `output`, every channel's arrays sized for its key count.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // Spherical linear interpolation of unit quaternions along the shorter arc.

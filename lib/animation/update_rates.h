@@ -66,7 +66,7 @@ struct AnimBudgetJob {
 
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // Whether a copy with period 2^shift is due at `frame`: on its first frame

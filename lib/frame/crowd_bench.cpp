@@ -1,4 +1,5 @@
 #include "frame/crowd_bench.h"
+#include "animation/run_job.h"
 
 #include <algorithm>
 #include <array>
@@ -161,9 +162,9 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     LocalPose rest;
     reset_to_rest(character->skeleton, &rest);
     std::vector<glm::mat4> model(character->skeleton.joint_count());
-    LocalToModelJob{&character->skeleton, &rest, model}.Run();
+    run_job(LocalToModelJob{&character->skeleton, &rest, model}, "LocalToModelJob");
     rest_palettes.emplace_back(model.size());
-    SkinningMatricesJob{&character->skeleton, model, rest_palettes.back()}.Run();
+    run_job(SkinningMatricesJob{&character->skeleton, model, rest_palettes.back()}, "SkinningMatricesJob");
   }
   for (size_t i = 0; i < n; ++i) {
     const SkinnedMesh& mesh = character_of(i).mesh;
@@ -239,9 +240,10 @@ void CrowdBench::bake_characters() {
       LocalPose rest;
       reset_to_rest(character.skeleton, &rest);
       std::vector<glm::mat4> model(kind.joints);
-      LocalToModelJob{&character.skeleton, &rest, model}.Run();
+      run_job(LocalToModelJob{&character.skeleton, &rest, model}, "LocalToModelJob");
       kind.baked.matrices.resize(2 * kind.joints);
-      SkinningMatricesJob{&character.skeleton, model, std::span(kind.baked.matrices).first(kind.joints)}.Run();
+      run_job(SkinningMatricesJob{&character.skeleton, model, std::span(kind.baked.matrices).first(kind.joints)},
+              "SkinningMatricesJob");
       std::copy_n(kind.baked.matrices.begin(), kind.joints, kind.baked.matrices.begin() + static_cast<std::ptrdiff_t>(kind.joints));
     }
     bake_summary_.samples += kind.baked.samples();
@@ -378,7 +380,8 @@ void CrowdBench::run_budget() {
   if (config_.mode.anim_budget_ms <= 0 || frame_ == 0) return;
   const std::vector<double>& replay = config_.replay_animations_ms;
   double measured = replay.empty() ? last_animations_ms_ : replay[(frame_ - 1) % replay.size()];
-  AnimBudgetJob{&budget_plan_, config_.mode.anim_budget_ms, measured, last_updates_, &schedule_.demotions}.Run();
+  run_job(AnimBudgetJob{&budget_plan_, config_.mode.anim_budget_ms, measured, last_updates_, &schedule_.demotions},
+          "AnimBudgetJob");
   for (size_t r = 0; r < budget_plan_.size(); ++r)
     shift_[budget_plan_.order[r]] = budget_plan_.demoted_shift(r, schedule_.demotions);
 }
@@ -556,7 +559,7 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
   if (config_.mode.lookups == Lookups::PerFrameString) {
     std::span<int32_t> scratch = std::span(targets_).subspan(slot_channels_[slot], action.channels.size());
     size_t count = 0;
-    ResolvePathsJob{&skeleton, &bindings, scratch, &count}.Run();
+    run_job(ResolvePathsJob{&skeleton, &bindings, scratch, &count}, "ResolvePathsJob");
     *lookups += count;
     targets = scratch;
   }
@@ -564,10 +567,11 @@ void CrowdBench::update_state(const StateJob& job, size_t slot, uint64_t* lookup
   // as the BGE's pose swap copied the armature's own pose in.
   if (config_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
   // The leader's own cursor: its action, and its time moving forward.
-  SamplingJob{&action, job.time, targets, &cursors_[copy], &pose}.Run();
+  run_job(SamplingJob{&action, job.time, targets, &cursors_[copy], &pose}, "SamplingJob");
   std::span<glm::mat4> model = std::span(model_).subspan(worker_index() * model_joints_, kind.joints);
-  LocalToModelJob{&skeleton, &pose, model}.Run();
-  SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[job.storage], kind.joints)}.Run();
+  run_job(LocalToModelJob{&skeleton, &pose, model}, "LocalToModelJob");
+  run_job(SkinningMatricesJob{&skeleton, model, std::span(palettes_).subspan(joint_offset_[job.storage], kind.joints)},
+          "SkinningMatricesJob");
   storage_time_[job.storage] = job.time;
   if (skin && kind.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
 }
@@ -635,15 +639,16 @@ void CrowdBench::skin_vertices(size_t storage, size_t first, size_t count) {
   const Kind& kind = kinds_[crowd_.kind[storage]];
   const size_t v = vertex_offset_[storage] + first;
   if (packed_vertices()) {
-    PackedSkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan,
-                      &kind.quantisation, first, count, std::span(packed_positions_).subspan(3 * v, 3 * count),
-                      std::span(packed_normals_).subspan(v, count)}
-        .Run();
+    run_job(PackedSkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan,
+                              &kind.quantisation, first, count,
+                              std::span(packed_positions_).subspan(3 * v, 3 * count),
+                              std::span(packed_normals_).subspan(v, count)},
+            "PackedSkinningJob");
     return;
   }
-  SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, first, count,
-              std::span(positions_).subspan(v, count), std::span(normals_).subspan(v, count), stream_output_}
-      .Run();
+  run_job(SkinningJob{std::span(palettes_).subspan(joint_offset_[storage], kind.joints), &kind.skinning_plan, first, count,
+                      std::span(positions_).subspan(v, count), std::span(normals_).subspan(v, count), stream_output_},
+          "SkinningJob");
 }
 
 void CrowdBench::skin_copies() {

@@ -2,6 +2,7 @@
 // stray from exact times (sharing, LOD, budget, baking) and the digest of the
 // last frame's work. Split from crowd_bench.cpp, which runs the frames.
 #include "frame/crowd_bench.h"
+#include "animation/run_job.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -42,13 +43,14 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
     reset_cursor(action, &cursor);
     model.resize(kind.joints);
     palette.resize(kind.joints);
-    SamplingJob{&action, times_[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}.Run();
-    LocalToModelJob{&character.skeleton, &pose, model}.Run();
-    SkinningMatricesJob{&character.skeleton, model, palette}.Run();
+    run_job(SamplingJob{&action, times_[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}, "SamplingJob");
+    run_job(LocalToModelJob{&character.skeleton, &pose, model}, "LocalToModelJob");
+    run_job(SkinningMatricesJob{&character.skeleton, model, palette}, "SkinningMatricesJob");
     for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
     // Both skinned here, so that a copy skinned on the GPU is measured too.
-    SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals}.Run();
-    SkinningJob{palette, &kind.skinning_plan, 0, kind.vertices, exact, exact_normals}.Run();
+    run_job(SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals},
+            "SkinningJob");
+    run_job(SkinningJob{palette, &kind.skinning_plan, 0, kind.vertices, exact, exact_normals}, "SkinningJob");
     double worst = 0;
     for (size_t v = 0; v < kind.vertices; ++v)
       worst = std::max(worst, static_cast<double>(glm::distance(drawn[v], exact[v])));

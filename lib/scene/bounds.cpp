@@ -1,4 +1,5 @@
 #include "scene/bounds.h"
+#include "animation/run_job.h"
 
 #include <algorithm>
 #include <limits>
@@ -32,9 +33,9 @@ namespace {
 void grow_by_pose(const Character& c, const SkinningPlan& plan, const LocalPose& local, std::vector<glm::mat4>& model,
                   std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions,
                   std::vector<glm::vec3>& normals, Aabb& box) {
-  LocalToModelJob{&c.skeleton, &local, model}.Run();
-  SkinningMatricesJob{&c.skeleton, model, palette}.Run();
-  SkinningJob{palette, &plan, 0, c.mesh.vertex_count(), positions, normals}.Run();
+  run_job(LocalToModelJob{&c.skeleton, &local, model}, "LocalToModelJob");
+  run_job(SkinningMatricesJob{&c.skeleton, model, palette}, "SkinningMatricesJob");
+  run_job(SkinningJob{palette, &plan, 0, c.mesh.vertex_count(), positions, normals}, "SkinningJob");
   for (const glm::vec3& p : positions) {
     box.min = glm::min(box.min, p);
     box.max = glm::max(box.max, p);
@@ -70,7 +71,7 @@ Aabb animated_bounds(const Character& c, int samples_per_action, float padding) 
     size_t step = std::max<size_t>(1, times.size() / 512);
     for (size_t i = 0; i < times.size(); i += step) {
       reset_to_rest(c.skeleton, &local);
-      SamplingJob{&action, times[i], bindings.targets, &cursor, &local}.Run();
+      run_job(SamplingJob{&action, times[i], bindings.targets, &cursor, &local}, "SamplingJob");
       grow_by_pose(c, plan, local, model, palette, positions, normals, box);
     }
   }

@@ -1,4 +1,5 @@
 #include "skinning/bake_deviation.h"
+#include "animation/run_job.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,12 +28,12 @@ bool BakeDeviationJob::Run() const {
       float position = static_cast<float>(i) + static_cast<float>(p) / (kDeviationProbes + 1);
       float time = action->start + action->duration() * position / static_cast<float>(intervals);
       reset_to_rest(*skeleton, pose);
-      SamplingJob{action, time, targets, cursor, pose}.Run();
-      LocalToModelJob{skeleton, pose, model}.Run();
-      SkinningMatricesJob{skeleton, model, exact}.Run();
-      BakedPaletteJob{baked, joints, position, interpolated}.Run();
-      SkinningJob{exact, plan, 0, vertices, exact_positions, normals}.Run();
-      SkinningJob{interpolated, plan, 0, vertices, baked_positions, normals}.Run();
+      run_job(SamplingJob{action, time, targets, cursor, pose}, "SamplingJob");
+      run_job(LocalToModelJob{skeleton, pose, model}, "LocalToModelJob");
+      run_job(SkinningMatricesJob{skeleton, model, exact}, "SkinningMatricesJob");
+      run_job(BakedPaletteJob{baked, joints, position, interpolated}, "BakedPaletteJob");
+      run_job(SkinningJob{exact, plan, 0, vertices, exact_positions, normals}, "SkinningJob");
+      run_job(SkinningJob{interpolated, plan, 0, vertices, baked_positions, normals}, "SkinningJob");
       for (size_t v = 0; v < vertices; ++v) worst = std::max(worst, glm::distance(exact_positions[v], baked_positions[v]));
     }
   *max_deviation = worst;
@@ -59,9 +60,10 @@ BakeDeviation measure_bake_deviation(const Character& character, std::span<const
   for (size_t a = 0; a < character.actions.size() && a < targets.size(); ++a) {
     const Action& action = character.actions[a];
     reset_cursor(action, &cursor);
-    BakeDeviationJob{&skeleton, &action, targets[a], baked.action(a), baked.intervals[a], &plan, &cursor, &pose,
-                     model, exact, interpolated, exact_positions, baked_positions, normals, &result.model_units}
-        .Run();
+    run_job(BakeDeviationJob{&skeleton, &action, targets[a], baked.action(a), baked.intervals[a], &plan, &cursor, &pose,
+                             model, exact, interpolated, exact_positions, baked_positions, normals,
+                             &result.model_units},
+            "BakeDeviationJob");
   }
   return result;
 }

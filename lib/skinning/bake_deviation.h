@@ -40,7 +40,7 @@ struct BakeDeviationJob {
 
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // The whole character: its largest deviation over every action, and its

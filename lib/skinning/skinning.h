@@ -50,7 +50,7 @@ struct SkinningJob {
   // to the range. Constant time: the joint indices were checked with the plan.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // SkinningJob with its output in the packed format (packed_vertex.h): the same
@@ -71,7 +71,7 @@ struct PackedSkinningJob {
   // As SkinningJob's, with the quantisation set.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
-  bool Run() const;
+  [[nodiscard]] bool Run() const;
 };
 
 // How far a single-influence joint's 3x3 columns may be from orthonormal (each
