@@ -1,5 +1,7 @@
 #include "cli/child_run.h"
 
+#include "cli/bench_options.h"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -26,6 +28,10 @@ int report_current_exception() {
   } catch (const InputError& e) {
     std::cerr << "crowdprof: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const SettingError& e) {
+    // lib/ names the setting; the user typed its option.
+    std::cerr << "crowdprof: " << option_name(e.name) << " '" << e.value << "': " << e.why << "\n";
+    return kExitUsage;
   } catch (const UsageError& e) {
     std::cerr << "crowdprof: " << e.what() << "\n";
     return kExitUsage;

@@ -22,12 +22,14 @@ namespace {
 using namespace crowdprof;
 
 int bench(BenchCliOptions& options) {
-  validate_bench_options(options);
+  resolve_bench_spec(options);
+  const RunSpec& spec = options.spec;
+  validate_run_spec(spec);
   require_writable_outputs(options);
-  BenchScene scene = load_bench_scene(options);
-  BenchConfig config = make_bench_config(options, scene);
+  BenchScene scene = load_bench_scene(spec);
+  BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
-  if (!options.screenshot.empty() && options.backend == "none")
+  if (!options.screenshot.empty() && spec.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
   BenchRendering rendering = open_bench_rendering(options, scene, config);
   if (!options.screenshot.empty() && !rendering.renderer)
@@ -38,17 +40,17 @@ int bench(BenchCliOptions& options) {
     tracer->name_process(1, "mode " + config.mode_name);
     config.tracer = tracer.get();
     // Said before a long run, not after it.
-    std::string warning = trace_length_warning(static_cast<size_t>(options.frames + options.warmup), tracer->max_spans());
+    std::string warning = trace_length_warning(spec.frames + spec.warmup, tracer->max_spans());
     if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
   }
   CrowdBench crowd(scene.characters, config);
   RunOptions run;
-  run.frames = options.frames;
-  run.warmup = options.warmup;
+  run.frames = spec.frames;
+  run.warmup = spec.warmup;
   run.progress = terminal_progress(options.quiet, "mode " + config.mode_name + ",");
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
-  RunReport report = run_bench(crowd, options.file, run);
+  RunReport report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
   if (!options.quiet) std::cout << format_profile(report);

@@ -71,11 +71,12 @@ int capacity(CapacityCliOptions& o) {
   bool named = !o.modes.empty();
   std::vector<std::string> names = modes_to_run(o.modes);
 
+  resolve_bench_spec(o.bench);
   require_writable_outputs(o.bench, {}, {{"--svg", o.svg}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
-  BenchScene scene = load_bench_scene(o.bench);
+  BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
-  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, scene));
+  for (const std::string& name : names) configs.push_back(config_for(o.bench.spec, name, scene));
   configs.front().crowd.copies = rule.start;
   BenchRendering rendering = open_bench_rendering(o.bench, scene, configs.front());
   // Only the modes that can run here; one named that cannot is an error.
@@ -119,8 +120,8 @@ int capacity(CapacityCliOptions& o) {
   };
   CapacityRun result = run_capacity(std::move(modes), *metric, measure);
   result.block = static_cast<size_t>(o.block);
-  result.frames = static_cast<size_t>(o.bench.frames);
-  result.warmup = static_cast<size_t>(o.bench.warmup);
+  result.frames = o.bench.spec.frames;
+  result.warmup = o.bench.spec.warmup;
 
   if (!o.bench.quiet) std::cout << format_capacity(result);
   if (!o.bench.json.empty())

@@ -12,6 +12,7 @@
 #include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
+#include "frame/switch_table.h"
 #include "cli/compare_modes.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
@@ -53,7 +54,7 @@ std::vector<size_t> parse_sweep(const std::string& text) {
 
 }  // namespace
 
-std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
+std::string apply_mode_spec(const std::string& spec, RunSpec& run) {
   std::string preset = spec.substr(0, spec.find('+'));
   if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
   size_t at = preset.size();
@@ -62,34 +63,26 @@ std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options) {
     std::string item = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
     size_t equals = item.find('=');
     std::string key = item.substr(0, equals);
-    std::string* target = key == "lookups" ? &options.lookups
-                          : key == "culling" ? &options.culling
-                          : key == "pose"    ? &options.pose
-                          : key == "parallel" ? &options.parallel
-                          : key == "skinning" ? &options.skinning
-                          : key == "share" ? &options.share
-                          : key == "share-quantum" ? &options.share_quantum
-                          : key == "update-lod" ? &options.update_lod
-                          : key == "lod-thresholds" ? &options.lod_thresholds
-                          : key == "anim-budget" ? &options.anim_budget
-                                              : nullptr;
-    if (!target || equals == std::string::npos || equals + 1 == item.size())
-      throw UsageError("--modes '" + spec + "': '" + item +
-                       "': expected SWITCH=VALUE with a switch of lookups, culling, pose, parallel, skinning, share, "
-                       "share-quantum, update-lod, lod-thresholds, anim-budget");
-    *target = item.substr(equals + 1);
+    for (char& c : key)
+      if (c == '-') c = '_';  // share-quantum as the option spells it, share_quantum as results do
+    if (!find_switch(key) || equals == std::string::npos || equals + 1 == item.size())
+      throw UsageError("--modes '" + spec + "': '" + item + "': expected SWITCH=VALUE with a switch of " +
+                       switch_names());
+    std::string value = item.substr(equals + 1);
+    ModeSwitches scratch;
+    if (std::string problem = find_switch(key)->set(scratch, value); !problem.empty())
+      throw UsageError("--modes '" + spec + "': " + key + " '" + value + "': " + problem);
+    run.switches[key] = value;
     at = next == std::string::npos ? spec.size() : next;
   }
   return preset;
 }
 
-BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const BenchScene& scene) {
-  BenchCliOptions options = shared;
-  options.mode = apply_mode_spec(mode, options);
-  const ModePreset* preset = find_mode(options.mode);
-  bool parallel = options.parallel.empty() ? preset && preset->switches.parallel : options.parallel == "on";
-  if (!parallel) options.threads = kThreadsUnset;
-  BenchConfig config = make_bench_config(options, scene);
+BenchConfig config_for(const RunSpec& shared, const std::string& mode, const BenchScene& scene) {
+  RunSpec spec = shared;
+  spec.mode = apply_mode_spec(mode, spec);
+  if (!spec.mode_switches().parallel) spec.threads = 0;
+  BenchConfig config = make_bench_config(spec, scene);
   if (mode.find('+') != std::string::npos) config.mode_name = mode;  // as the user named it
   return config;
 }
@@ -116,11 +109,11 @@ std::vector<RunReport> run_modes(ModeRun& modes, const BenchCliOptions& o, size_
   std::vector<CrowdBench*> benches;
   for (auto& bench : modes.benches) benches.push_back(bench.get());
   RunOptions run;
-  run.frames = static_cast<size_t>(o.frames);
-  run.warmup = static_cast<size_t>(o.warmup);
+  run.frames = o.spec.frames;
+  run.warmup = o.spec.warmup;
   run.progress = terminal_progress(o.quiet, what);
   run.stop = &interrupt_requested();
-  std::vector<RunReport> reports = run_interleaved(benches, o.file, run, block);
+  std::vector<RunReport> reports = run_interleaved(benches, o.spec.file, run, block);
   for (RunReport& report : reports) {
     report.run.backend = rendering.backend_name();
     report.run.renderer = rendering.renderer_name();
@@ -133,7 +126,7 @@ std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
   if (names.empty())
     for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
   for (size_t i = 0; i < names.size(); ++i) {
-    BenchCliOptions scratch;
+    RunSpec scratch;
     apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
     if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
       throw UsageError("--modes: " + names[i] + " is listed twice");
@@ -153,12 +146,13 @@ int compare(CompareCliOptions& o) {
   bool named = !o.modes.empty();
   std::vector<std::string> names = modes_to_run(o.modes);
 
+  resolve_bench_spec(o.bench);
   require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   if (!o.trace.empty()) require_writable(o.trace, "trace");
-  BenchScene scene = load_bench_scene(o.bench);
+  BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
-  for (const std::string& name : names) configs.push_back(config_for(o.bench, name, scene));
+  for (const std::string& name : names) configs.push_back(config_for(o.bench.spec, name, scene));
   // One renderer draws every mode in turn: the modes run one block at a time.
   BenchRendering rendering = open_bench_rendering(o.bench, scene, configs.front());
   for (BenchConfig& config : configs) config.renderer = rendering.renderer.get();
@@ -173,7 +167,7 @@ int compare(CompareCliOptions& o) {
       configs[m].trace_pid = static_cast<int>(m + 1);
     }
   }
-  size_t copies = static_cast<size_t>(o.bench.characters);
+  size_t copies = o.bench.spec.characters;
   std::string modes_text = "modes";
   for (const BenchConfig& config : configs) modes_text += (modes_text == "modes" ? " " : ",") + config.mode_name;
   install_interrupt_handlers();
@@ -231,7 +225,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
   cmd->add_option("--modes", options->modes,
                   "Modes to compare, the first being the reference for speedups (default: every mode the backend "
-                  "can run: master, culled, threaded, hwskin); a mode may set switches away from its preset, "
+                  "can run of " + mode_names() + "); a mode may set switches away from its preset, "
                   "e.g. master+lookups=bundled")
       ->delimiter(',');
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();

@@ -25,11 +25,14 @@ struct RenderCliOptions {
 int render(RenderCliOptions& options) {
   if (options.frame < 0 || options.frame > 10'000'000)
     throw UsageError("--frame " + std::to_string(options.frame) + ": expected 0 to 10,000,000");
-  if (options.bench.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
-  require_distinct_outputs(bench_input_files(options.bench.file), {{"-o", options.output}});
+  resolve_bench_spec(options.bench);
+  const RunSpec& spec = options.bench.spec;
+  validate_run_spec(spec);
+  if (spec.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
+  require_distinct_outputs(bench_input_files(spec.file), {{"-o", options.output}});
   require_writable(options.output, "PNG");
-  BenchScene scene = load_bench_scene(options.bench);
-  BenchConfig config = make_bench_config(options.bench, scene);
+  BenchScene scene = load_bench_scene(spec);
+  BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
   BenchRendering rendering = open_bench_rendering(options.bench, scene, config);
   if (!rendering.renderer) throw GlUnavailable("no GL backend could be opened, so there is nothing to render");
@@ -52,7 +55,7 @@ int render(RenderCliOptions& options) {
 
 void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<RenderCliOptions>();
-  options->bench.backend = "auto";
+  options->bench.defaults.values["backend"] = "auto";
   auto* cmd = app.add_subcommand("render", "Draw one frame of a bench with OpenGL and write it as a PNG");
   add_bench_options(*cmd, options->bench);
   // One frame, not a measured run.

@@ -13,9 +13,9 @@
 
 // A mode as --modes names it: a preset, then any switches set away from it,
 // PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
-// Applies the switches to `options` and returns the preset's name; UsageError
+// Applies the switches to `run` and returns the preset's name; UsageError
 // for an unknown preset or switch.
-std::string apply_mode_spec(const std::string& spec, BenchCliOptions& options);
+std::string apply_mode_spec(const std::string& spec, crowdprof::RunSpec& run);
 
 // --modes checked (UsageError for a bad or repeated mode); empty: every preset.
 std::vector<std::string> modes_to_run(const std::vector<std::string>& asked);
@@ -25,7 +25,8 @@ void check_block(long long block);
 
 // The config of one mode: the shared options, with --threads applying only to
 // the modes that run in parallel.
-crowdprof::BenchConfig config_for(const BenchCliOptions& shared, const std::string& mode, const BenchScene& scene);
+crowdprof::BenchConfig config_for(const crowdprof::RunSpec& shared, const std::string& mode,
+                                  const crowdprof::BenchScene& scene);
 
 struct ModeRun {
   std::vector<crowdprof::BenchConfig> configs;
@@ -34,8 +35,8 @@ struct ModeRun {
 
 // Builds one bench per mode at `copies`; modes the user did not ask for by
 // name are skipped, with a note, when they cannot run here (hwskin without GL).
-ModeRun make_benches(const BenchScene& scene, std::vector<crowdprof::BenchConfig> configs, size_t copies, bool named,
-                     bool note);
+ModeRun make_benches(const crowdprof::BenchScene& scene, std::vector<crowdprof::BenchConfig> configs, size_t copies,
+                     bool named, bool note);
 
 // The benches of `modes` interleaved in blocks of `block` frames (frame/compare.h),
 // with --frames, --warmup, progress on a terminal naming `what`, and ^C.

@@ -75,12 +75,12 @@ TEST(CheckBaseline, ValuesNoRunCouldRecordAreTheBaselinesFault) {
     const char* words;
   };
   const Corruption corruptions[] = {
-      {"threads", json::json_pointer("/threads"), json(18446744073709551615ull), "--threads"},
-      {"fps", json::json_pointer("/fps"), json(-5.0), "--fps"},
-      {"camera", json::json_pointer("/scene/camera"), json("somewhere"), "--camera 'somewhere'"},
-      {"backend", json::json_pointer("/environment/backend"), json("vulkan"), "--backend 'vulkan'"},
-      {"switch", json::json_pointer("/switches/culling"), json(7), "--culling '7'"},
-      {"mode", json::json_pointer("/mode"), json("turbo"), "--mode 'turbo'"},
+      {"threads", json::json_pointer("/threads"), json(18446744073709551615ull), "threads '18446744073709551615'"},
+      {"fps", json::json_pointer("/fps"), json(-5.0), "fps '-5'"},
+      {"camera", json::json_pointer("/scene/camera"), json("somewhere"), "camera 'somewhere'"},
+      {"backend", json::json_pointer("/environment/backend"), json("vulkan"), "backend 'vulkan'"},
+      {"switch", json::json_pointer("/switches/culling"), json(7), "culling '7'"},
+      {"mode", json::json_pointer("/mode"), json("turbo"), "mode 'turbo'"},
   };
   for (const Corruption& c : corruptions) {
     json bad = good;

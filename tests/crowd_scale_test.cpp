@@ -514,7 +514,7 @@ TEST(CrowdScaleCli, SharedPresetOnTheThesisScene) {
   j = nlohmann::json::parse(again);
   EXPECT_EQ(j["mode"], "shared+custom");
   EXPECT_DOUBLE_EQ(j["switches"]["share_quantum"].get<double>(), 1.0 / 30);
-  EXPECT_EQ(j["switches"]["lod_thresholds"], "0.5,0.200000003,0.100000001");
+  EXPECT_EQ(j["switches"]["lod_thresholds"], "0.5,0.2,0.1");
   EXPECT_LT(j["counters"]["poses_updated"].get<int>(), j["counters"]["copies_updated"].get<int>());
 }
 

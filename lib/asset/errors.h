@@ -28,4 +28,14 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A bad value of one setting of a run (frame/run_spec.h), said by the
+// setting's name as results and scene files spell it ("characters"); cli/
+// names the option the user typed instead (-n/--characters).
+struct SettingError : UsageError {
+  SettingError(std::string setting_name, std::string text, const std::string& problem)
+      : UsageError(setting_name + " '" + text + "': " + problem), name(std::move(setting_name)),
+        value(std::move(text)), why(problem) {}
+  std::string name, value, why;
+};
+
 }  // namespace crowdprof

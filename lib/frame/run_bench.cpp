@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "asset/errors.h"
+#include "frame/switch_table.h"
 
 namespace crowdprof {
 
@@ -49,13 +50,6 @@ std::string_view choice_name(ActionChoice choice) {
   return "?";
 }
 
-// A threshold as few digits as give it back exactly.
-std::string shortest(float value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
-  return text;
-}
-
 }  // namespace
 
 RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
@@ -92,26 +86,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.seed = config.crowd.seed;
   run.mode = config.mode_name;
   const ModeSwitches& s = config.mode;
-  run.switches = {{"lookups", to_string(s.lookups)},
-                  {"culling", s.animation_culling},
-                  {"pose", to_string(s.pose)},
-                  {"parallel", s.parallel},
-                  {"skinning", to_string(s.skinning)},
-                  {"palettes", to_string(s.palettes)},
-                  {"draw", to_string(s.draw)}};
-  // Issue 13's switches only when set away from their defaults, so that
-  // results recorded before them still match the same mode.
-  const ModeSwitches plain;
-  if (s.share_poses) run.switches["share"] = true;
-  if (s.share_quantum_s > 0) run.switches["share_quantum"] = s.share_quantum_s;
-  if (s.update_lod) run.switches["update_lod"] = true;
-  if (s.lod != plain.lod)
-    run.switches["lod_thresholds"] = shortest(s.lod.every_1) + "," + shortest(s.lod.every_2) + "," +
-                                     shortest(s.lod.every_4);
-  if (s.anim_budget_ms > 0) run.switches["anim_budget"] = s.anim_budget_ms;
-  // Recorded only when packed, so that results from before the switch (all
-  // float) still match a float run's switches.
-  if (s.vertex_format != VertexFormat::Float) run.switches["vertex_format"] = to_string(s.vertex_format);
+  run.switches = switches_to_json(s);
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;

@@ -13,6 +13,7 @@
 
 #include "asset/errors.h"
 #include "asset/input_file.h"
+#include "frame/switch_table.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
 #include "profile/number_text.h"
@@ -133,20 +134,20 @@ double parse_tolerance(std::string_view text) {
   if (is_percent) s.pop_back();
   double value = 0;
   if (!parse_plain_number(s, value))
-    throw UsageError("--tolerance '" + std::string(text) + "': expected a percentage such as 10% or a fraction such as 0.1");
+    throw SettingError("tolerance", std::string(text), "expected a percentage such as 10% or a fraction such as 0.1");
   if (!is_percent && value >= 1)
-    throw UsageError("--tolerance '" + std::string(text) + "': a fraction is below 1; for percent write " +
-                     std::string(text) + "%");
+    throw SettingError("tolerance", std::string(text),
+                       "a fraction is below 1; for percent write " + std::string(text) + "%");
   if (is_percent) value /= 100.0;
   if (value > 10.0)
-    throw UsageError("--tolerance '" + std::string(text) + "': at most 1000%");
+    throw SettingError("tolerance", std::string(text), "at most 1000%");
   return value;
 }
 
 Floor parse_floor(std::string_view text) {
   std::string s(text);
   auto bad = [&](const std::string& why) {
-    return UsageError("--floor '" + std::string(text) + "': " + why);
+    return SettingError("floor", std::string(text), why);
   };
   double scale = 0;  // to ms; 0 for a percentage
   bool is_percent = false;
@@ -199,7 +200,7 @@ std::string resolve_metric(std::string_view name) {
       return std::string(category_name(category));
     choices += ", " + std::string(category_name(category));
   }
-  throw UsageError("--metric '" + std::string(name) + "': expected one of " + choices);
+  throw SettingError("metric", std::string(name), "expected one of " + choices);
 }
 
 nlohmann::json read_json_file(const std::string& path) {
@@ -302,13 +303,11 @@ void require_same_run(const nlohmann::json& baseline, const nlohmann::json& curr
   if ((backend(baseline) == "none") != (backend(current) == "none"))
     differ("backend", backend(baseline), backend(current));
   differ("mode", baseline["mode"], current["mode"]);
-  // Switches added since a baseline was recorded hold the value runs had before.
-  auto switches = [](json s) {
-    if (s.is_object()) {
-      if (!s.contains("palettes")) s["palettes"] = "uniforms";
-      if (!s.contains("draw")) s["draw"] = "per-copy";
-    }
-    return s;
+  // Switches added since a baseline was recorded hold the value runs had
+  // before; values are compared as the switches they set, not as text.
+  auto switches = [](const json& recorded) {
+    ModeSwitches s;
+    return switches_from_json(recorded, s).empty() ? switches_to_json(s) : recorded;
   };
   differ("mode switches", switches(baseline["switches"]), switches(current["switches"]));
   for (const char* key : {"frames", "warmup", "fps"}) differ(key, baseline[key], current[key]);

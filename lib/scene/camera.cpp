@@ -105,11 +105,11 @@ Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect, con
       else break;
     }
     if (values.size() != 6 || p != end)
-      throw UsageError("--camera '" + spec + "': expected default, all, close or EX,EY,EZ,TX,TY,TZ");
+      throw SettingError("camera", spec, "expected default, all, close or EX,EY,EZ,TX,TY,TZ");
     camera.eye = glm::vec3(values[0], values[1], values[2]);
     camera.target = glm::vec3(values[3], values[4], values[5]);
     if (glm::length(camera.eye - camera.target) < 1e-6f)
-      throw UsageError("--camera '" + spec + "': the eye and the target are the same point");
+      throw SettingError("camera", spec, "the eye and the target are the same point");
     // Looking straight down (or up) the world's up axis leaves lookAt no
     // sideways direction: the view would be NaN and the frame empty. Let the
     // top of the picture point down -Z (away from the default camera) instead.

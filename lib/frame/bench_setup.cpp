@@ -1,0 +1,104 @@
+#include "frame/bench_setup.h"
+
+#include <algorithm>
+#include <thread>
+
+#include "asset/errors.h"
+#include "asset/gltf_loader.h"
+#include "scene/camera.h"
+
+namespace crowdprof {
+
+BenchScene load_bench_scene(const RunSpec& spec) {
+  BenchScene loaded;
+  if (!is_scene_file(spec.file)) {
+    if (spec.actions == "scene") throw SettingError("actions", "scene", spec.file + " is a character, not a scene file");
+    loaded.owned.push_back(std::make_unique<Character>(load_character(spec.file)));
+    loaded.characters.push_back(loaded.owned.back().get());
+    loaded.files.push_back(spec.file);
+    return loaded;
+  }
+  SceneFile scene = load_scene_file(spec.file);
+  for (const SceneCharacter& c : scene.characters) {
+    loaded.owned.push_back(std::make_unique<Character>(load_character(c.path)));
+    loaded.characters.push_back(loaded.owned.back().get());
+    loaded.files.push_back(c.file);
+  }
+  loaded.scene = std::move(scene);
+  return loaded;
+}
+
+std::vector<SpecLayer> run_layers(const SpecLayer& command_line, const SpecLayer* baseline, const SpecLayer* defaults) {
+  std::vector<SpecLayer> layers;
+  if (defaults) layers.push_back(*defaults);
+  std::string file = command_line.has("file") ? command_line.values.at("file")
+                     : baseline && baseline->has("file") ? baseline->values.at("file")
+                                                         : std::string();
+  if (is_scene_file(file)) layers.push_back(scene_layer(load_scene_file(file)));
+  if (baseline) layers.push_back(*baseline);
+  layers.push_back(command_line);
+  return layers;
+}
+
+std::pair<int, int> resolution_size(const std::string& resolution) {
+  size_t x = resolution.find('x');
+  return {std::stoi(resolution.substr(0, x)), std::stoi(resolution.substr(x + 1))};
+}
+
+BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
+  validate_run_spec(spec);
+  BenchConfig config;
+  config.mode = spec.mode_switches();
+  config.mode_name = spec.mode_name();
+  unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  config.threads = config.mode.parallel ? (spec.threads > 0 ? spec.threads : static_cast<int>(cores)) : 1;
+  config.fps = spec.fps;
+  config.bake_rate_hz = static_cast<float>(spec.bake_rate);
+  config.camera = spec.camera;
+  auto [width, height] = resolution_size(spec.resolution);
+  config.aspect = static_cast<float>(width) / static_cast<float>(height);
+  config.resolution = std::to_string(width) + "x" + std::to_string(height);
+  make_camera(spec.camera, Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, config.aspect);  // throws on a bad camera
+
+  config.crowd.copies = spec.characters;
+  config.crowd.seed = spec.seed;
+  config.actions_from_scene = spec.actions == "scene";
+  if (!config.actions_from_scene)
+    config.crowd.actions = spec.actions == "random" ? ActionChoice::Random : ActionChoice::Shared;
+  config.files = loaded.files;
+  for (const Character* character : loaded.characters)
+    if (character->actions.empty() && !spec.allow_static)
+      throw UsageError(character->name + " has no actions: its crowd would stand still (pass --static to bench that)");
+  // The index of the action named in each character.
+  auto action_index = [&](const Character& character, const std::string& file) {
+    std::string names;
+    for (size_t a = 0; a < character.actions.size(); ++a) {
+      if (character.actions[a].name == spec.action) return static_cast<int>(a);
+      names += (names.empty() ? "" : ", ") + character.actions[a].name;
+    }
+    throw SettingError("action", spec.action,
+                       (loaded.scene ? file + "'s" : std::string("the character's")) + " actions are " +
+                           (names.empty() ? std::string("none") : names));
+  };
+  if (!spec.action.empty()) config.crowd.shared_action = action_index(loaded.first(), loaded.files.front());
+  if (loaded.scene) {
+    const SceneFile& scene = *loaded.scene;
+    config.scene_file = scene.path;
+    config.scene_hash = scene.hash;
+    config.crowd.layout = scene.layout;
+    config.lens = scene.lens;
+    for (size_t k = 0; k < loaded.characters.size(); ++k) {
+      CrowdGroup group = scene_group(scene, k, *loaded.characters[k]);
+      if (!config.actions_from_scene) {
+        group.actions = config.crowd.actions;
+        group.weights.clear();
+        group.shared_action = spec.action.empty() ? 0 : action_index(*loaded.characters[k], loaded.files[k]);
+      }
+      config.crowd.groups.push_back(std::move(group));
+    }
+  }
+  if (spec.lens != 0) config.lens.focal_mm = static_cast<float>(spec.lens);
+  return config;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,49 @@
+// From a resolved RunSpec to a bench: the characters it runs on, loaded once,
+// and its BenchConfig. The command line never reaches here: values were
+// checked by resolve_run_spec, and problems are said by setting name.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "asset/character.h"
+#include "frame/crowd_bench.h"
+#include "frame/run_spec.h"
+#include "scene/scene_file.h"
+
+namespace crowdprof {
+
+// What a bench runs on: the characters loaded, and the scene file when the
+// run is of one. Characters keep their addresses (benches point at them).
+struct BenchScene {
+  std::optional<SceneFile> scene;
+  std::vector<std::unique_ptr<Character>> owned;
+  std::vector<const Character*> characters;
+  std::vector<std::string> files;  // per character, as the user or the scene names it
+  const Character& first() const { return *characters.front(); }
+};
+
+// Loads spec.file: a character, or a scene file and its characters. InputError
+// for a bad file (scene files: naming the key); SettingError for actions
+// "scene" on a character.
+BenchScene load_bench_scene(const RunSpec& spec);
+
+// The layers of a run in their order: `defaults` (a command's own, e.g. render
+// draws with auto), the scene file the run is of (the command line's file, else
+// the baseline's), the baseline, the command line. InputError for a bad scene
+// file.
+std::vector<SpecLayer> run_layers(const SpecLayer& command_line, const SpecLayer* baseline = nullptr,
+                                  const SpecLayer* defaults = nullptr);
+
+// WxH of a checked resolution.
+std::pair<int, int> resolution_size(const std::string& resolution);
+
+// The bench's config: crowd, mode, threads, clock, camera and lens. Throws
+// SettingError (a bad camera, an action the character lacks, threads in a
+// mode that runs on one) or UsageError (a character without actions, unless
+// spec.allow_static).
+BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& scene);
+
+}  // namespace crowdprof

@@ -1,0 +1,240 @@
+#include "frame/switch_table.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <utility>
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+// A number as the whole text (no trailing junk), or nullopt.
+std::optional<double> parse_number(std::string_view text) {
+  if (text.empty() || text.size() > 32) return std::nullopt;
+  std::string copy(text);
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(copy, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != copy.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// The shortest decimal that reads back as `value`.
+std::string shortest(double value) {
+  char text[32];
+  if (value == std::floor(value) && std::fabs(value) < 1e15) {
+    std::snprintf(text, sizeof text, "%.0f", value);
+    return text;
+  }
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+std::string shortest(float value) {
+  char text[32];
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+    if (std::strtof(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+std::string set_on_off(bool& field, std::string_view text) {
+  if (text == "on") field = true;
+  else if (text == "off") field = false;
+  else return "expected on or off";
+  return {};
+}
+
+// One of an enum's names; the names in `choices` are also what to_string gives.
+template <typename Enum, size_t N>
+std::string set_choice(Enum& field, std::string_view text, const std::array<Enum, N>& choices) {
+  std::string names;
+  for (Enum e : choices) {
+    if (text == to_string(e)) {
+      field = e;
+      return {};
+    }
+    names += (names.empty() ? "" : ", ") + std::string(to_string(e));
+  }
+  return "expected one of " + names;
+}
+
+constexpr std::array kLookups = {Lookups::PerFrameString, Lookups::Bundled};
+constexpr std::array kPoses = {PoseStorage::SharedScratch, PoseStorage::PerCopy};
+constexpr std::array kSites = {SkinningSite::CpuInRasterizer, SkinningSite::CpuInAnimations, SkinningSite::Gpu,
+                               SkinningSite::Compute, SkinningSite::Baked};
+constexpr std::array kFormats = {VertexFormat::Float, VertexFormat::Packed};
+constexpr std::array kPalettes = {PaletteStorage::Uniforms, PaletteStorage::Buffer};
+constexpr std::array kDraws = {DrawMethod::PerCopy, DrawMethod::Instanced};
+
+// Seconds, as a decimal or a fraction 1/N.
+std::string set_share_quantum(ModeSwitches& s, std::string_view text) {
+  std::optional<double> value;
+  size_t slash = text.find('/');
+  if (slash == std::string_view::npos) {
+    value = parse_number(text);
+  } else {
+    std::optional<double> top = parse_number(text.substr(0, slash)), bottom = parse_number(text.substr(slash + 1));
+    if (top && bottom && *bottom > 0) value = *top / *bottom;
+  }
+  if (!value || *value < 0 || *value > 10) return "expected seconds from 0 to 10, e.g. 1/30 or 0.05";
+  s.share_quantum_s = *value;
+  return {};
+}
+
+std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
+  std::optional<double> v[3];
+  size_t first = text.find(','), second = first == std::string_view::npos ? first : text.find(',', first + 1);
+  if (second != std::string_view::npos && text.find(',', second + 1) == std::string_view::npos) {
+    v[0] = parse_number(text.substr(0, first));
+    v[1] = parse_number(text.substr(first + 1, second - first - 1));
+    v[2] = parse_number(text.substr(second + 1));
+  }
+  if (!v[0] || !v[1] || !v[2] || !(*v[0] <= 1 && *v[0] >= *v[1] && *v[1] >= *v[2] && *v[2] >= 0))
+    return "expected three shares of the screen's height A,B,C with 1 >= A >= B >= C >= 0";
+  s.lod = {static_cast<float>(*v[0]), static_cast<float>(*v[1]), static_cast<float>(*v[2])};
+  return {};
+}
+
+std::string set_anim_budget(ModeSwitches& s, std::string_view text) {
+  std::optional<double> value = parse_number(text);
+  if (!value || *value < 0 || *value > 10000) return "expected milliseconds from 0 (no budget) to 10000";
+  s.anim_budget_ms = *value;
+  return {};
+}
+
+const std::array kSwitches = {
+    SwitchSpec{"lookups", "string|bundled",
+               "string: every channel found by its path every frame (the BGE's); bundled: resolved once at load (4.2)",
+               [](const ModeSwitches& s) { return json(to_string(s.lookups)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.lookups, t, kLookups); }},
+    SwitchSpec{"culling", "on|off", "Animation culling (4.1): copies off-screen get no pose update and no skinning",
+               [](const ModeSwitches& s) { return json(s.animation_culling); },
+               [](ModeSwitches& s, std::string_view t) { return set_on_off(s.animation_culling, t); }},
+    SwitchSpec{"pose", "shared|per-copy", "shared: one scratch pose every copy is sampled into (the BGE's); per-copy",
+               [](const ModeSwitches& s) { return json(to_string(s.pose)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.pose, t, kPoses); }},
+    SwitchSpec{"parallel", "on|off", "Pose updates (and CPU skinning in Animations) over copies on oneTBB (4.3)",
+               [](const ModeSwitches& s) { return json(s.parallel); },
+               [](ModeSwitches& s, std::string_view t) { return set_on_off(s.parallel, t); }},
+    SwitchSpec{"skinning", "rasterizer|animations|gpu|compute|baked",
+               "Where vertices are skinned: on the CPU counted in Rasterizer (the BGE's) or in Animations, in the "
+               "vertex shader (4.4), by a compute pass, or from actions baked at load",
+               [](const ModeSwitches& s) { return json(to_string(s.skinning)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.skinning, t, kSites); }},
+    SwitchSpec{"palettes", "uniforms|buffer",
+               "For skinning on the GPU: a uniform array per draw (128 bones at most) or one shader storage buffer "
+               "(no bone limit)",
+               [](const ModeSwitches& s) { return json(to_string(s.palettes)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.palettes, t, kPalettes); }},
+    SwitchSpec{"draw", "per-copy|instanced",
+               "A draw call per copy, or one per character kind (needs palettes buffer)",
+               [](const ModeSwitches& s) { return json(to_string(s.draw)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.draw, t, kDraws); }},
+    SwitchSpec{"vertex_format", "float|packed",
+               "What CPU skinning writes for the GPU: float (32-bit positions and normals, 24 bytes a vertex) or "
+               "packed (16-bit positions in the character's box, 10:10:10:2 normals, 10 bytes)",
+               [](const ModeSwitches& s) { return json(to_string(s.vertex_format)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.vertex_format, t, kFormats); }, false},
+    SwitchSpec{"share", "on|off",
+               "Animation sharing: copies in the same action and time share one pose and one skinned mesh",
+               [](const ModeSwitches& s) { return json(s.share_poses); },
+               [](ModeSwitches& s, std::string_view t) { return set_on_off(s.share_poses, t); }, false},
+    SwitchSpec{"share_quantum", "SECONDS",
+               "With share on: snap each copy's time to a multiple of this many seconds (e.g. 1/30 or 0.05) so "
+               "copies fall into shared states; 0: exact times",
+               [](const ModeSwitches& s) { return json(s.share_quantum_s); }, set_share_quantum, false},
+    SwitchSpec{"update_lod", "on|off",
+               "Update-rate LOD: copies updated every 1, 2, 4 or 8 frames by size on screen, holding their pose "
+               "between",
+               [](const ModeSwitches& s) { return json(s.update_lod); },
+               [](ModeSwitches& s, std::string_view t) { return set_on_off(s.update_lod, t); }, false},
+    SwitchSpec{"lod_thresholds", "A,B,C",
+               "Shares of the screen's height at which a copy is updated every frame (>= A), every 2nd (>= B), every "
+               "4th (>= C), else every 8th",
+               [](const ModeSwitches& s) {
+                 return json(shortest(s.lod.every_1) + "," + shortest(s.lod.every_2) + "," + shortest(s.lod.every_4));
+               },
+               set_lod_thresholds, false},
+    SwitchSpec{"anim_budget", "MS",
+               "Keep the Animations category's p95 at or under this many milliseconds by updating the copies "
+               "smallest on screen less often (at least every 64 frames); 0: no budget",
+               [](const ModeSwitches& s) { return json(s.anim_budget_ms); }, set_anim_budget, false},
+};
+
+}  // namespace
+
+std::span<const SwitchSpec> switch_table() { return kSwitches; }
+
+const SwitchSpec* find_switch(std::string_view name) {
+  for (const SwitchSpec& spec : kSwitches)
+    if (spec.name == name) return &spec;
+  return nullptr;
+}
+
+std::string switch_names() {
+  std::string names;
+  for (const SwitchSpec& spec : kSwitches) names += (names.empty() ? "" : ", ") + std::string(spec.name);
+  return names;
+}
+
+std::string option_spelling(std::string_view name) {
+  std::string option = "--" + std::string(name);
+  for (char& c : option)
+    if (c == '_') c = '-';
+  return option;
+}
+
+std::string switch_text(const json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
+  if (value.is_number_integer()) return value.dump();
+  if (value.is_number()) return shortest(value.get<double>());
+  return value.dump();
+}
+
+std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s) { return switch_text(spec.get(s)); }
+
+json switches_to_json(const ModeSwitches& s) {
+  const ModeSwitches plain;
+  json switches = json::object();
+  for (const SwitchSpec& spec : kSwitches) {
+    json value = spec.get(s);
+    if (spec.always_recorded || value != spec.get(plain)) switches[std::string(spec.name)] = std::move(value);
+  }
+  return switches;
+}
+
+std::string switches_from_json(const json& switches, ModeSwitches& s) {
+  if (!switches.is_object()) return "expected an object of switches";
+  s = ModeSwitches{};
+  for (const auto& [name, value] : switches.items()) {
+    const SwitchSpec* spec = find_switch(name);
+    if (!spec) return "no switch '" + name + "' (the switches are " + switch_names() + ")";
+    if (!value.is_string() && !value.is_boolean() && !value.is_number())
+      return name + ": expected a string, true/false or a number";
+    if (std::string problem = spec->set(s, switch_text(value)); !problem.empty()) return name + ": " + problem;
+  }
+  return {};
+}
+
+std::string preset_values(const SwitchSpec& spec) {
+  std::string text;
+  for (const ModePreset& preset : mode_presets())
+    text += (text.empty() ? "" : ", ") + std::string(preset.name) + " " + switch_text(spec, preset.switches);
+  return text;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,68 @@
+// Every switch of a mode, declared once. The command line's options, their
+// help, the validation of a value, the "switches" object of a result, a
+// baseline's re-run by `check` and compare's MODE+SWITCH=VALUE all come from
+// this table: adding a switch is one entry here plus its implementation.
+//
+// A switch has a name ("share_quantum": the key in results and scene files;
+// the command line spells it --share-quantum) and a value as users type it
+// ("on", "per-copy", "1/30"). lib/ reports a bad value in its own terms, by the
+// switch's name; cli/ puts the option's spelling in front.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "frame/modes.h"
+
+namespace crowdprof {
+
+struct SwitchSpec {
+  std::string_view name;   // result and scene key; the option is --name with '-' for '_'
+  std::string_view value;  // how a value looks, for help: "on|off", "SECONDS", "A,B,C"
+  std::string_view help;
+  // The switch's value in `s` as a result records it: a string, true/false, or
+  // a number.
+  nlohmann::json (*get)(const ModeSwitches& s);
+  // Sets the switch in `s` from a value as users type it. Returns "" or what is
+  // wrong with the value ("expected on or off").
+  std::string (*set)(ModeSwitches& s, std::string_view text);
+  // Recorded in a result even at its default value. The switches added after
+  // the thesis's are recorded only when set, so results made before them still
+  // match the same mode.
+  bool always_recorded = true;
+};
+
+// In the order help lists them.
+std::span<const SwitchSpec> switch_table();
+const SwitchSpec* find_switch(std::string_view name);
+
+// "lookups, culling, pose, ...".
+std::string switch_names();
+
+// "--share-quantum" for "share_quantum".
+std::string option_spelling(std::string_view name);
+
+// A recorded value back as users type it: strings as they are, booleans as
+// on/off, numbers in the shortest form that reads back the same.
+std::string switch_text(const nlohmann::json& value);
+
+// The value of switch `spec` in `s` as users type it.
+std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s);
+
+// A result's "switches" object for `s`.
+nlohmann::json switches_to_json(const ModeSwitches& s);
+
+// Reads a result's "switches" object: a switch it leaves out holds its default
+// (results made before the switch existed ran with that value). Returns "" or
+// what is wrong ("culling: expected on or off", "no switch 'x'").
+std::string switches_from_json(const nlohmann::json& switches, ModeSwitches& s);
+
+// A value that some preset holds, or each preset's value of the switch for
+// help: "master off, culled on, threaded on, ...".
+std::string preset_values(const SwitchSpec& spec);
+
+}  // namespace crowdprof

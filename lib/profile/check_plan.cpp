@@ -1,0 +1,41 @@
+#include "profile/check_plan.h"
+
+#include <algorithm>
+
+#include "asset/errors.h"
+
+namespace crowdprof {
+
+CheckPlan plan_check(const CheckRequest& r) {
+  CheckPlan plan;
+  plan.update_baseline = r.update_baseline;
+  plan.gate.tolerance = parse_tolerance(r.tolerance);
+  plan.gate.floor = parse_floor(r.floor);
+  if (!(r.alpha > 0 && r.alpha < 1)) throw SettingError("alpha", std::to_string(r.alpha), "expected between 0 and 1");
+  plan.gate.alpha = r.alpha;
+  long long runs = r.runs.value_or(r.update_baseline ? kBaselineRuns : kCheckRuns);
+  if (runs < 1 || runs > static_cast<long long>(kMaxRuns))
+    throw SettingError("runs", std::to_string(runs), "expected 1 to " + std::to_string(kMaxRuns));
+  plan.runs = static_cast<size_t>(runs);
+  plan.spread_s = r.spread_s.value_or(0.0);
+  if (!(plan.spread_s >= 0 && plan.spread_s <= 3600))
+    throw SettingError("spread", std::to_string(plan.spread_s), "expected 0 to 3600 seconds");
+  plan.gate.compare_work = !r.timings_only;
+  if (r.timings_only && r.update_baseline) throw UsageError("--timings-only compares; it cannot record a baseline");
+  plan.gate.metrics.clear();
+  auto add = [&](const std::string& key) {
+    if (std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), key) == plan.gate.metrics.end())
+      plan.gate.metrics.push_back(key);
+  };
+  for (const std::string& metric : r.metrics) {
+    if (metric == "all") {
+      for (const std::string& key : all_metrics()) add(key);
+      continue;
+    }
+    add(resolve_metric(metric));
+  }
+  if (plan.gate.metrics.empty()) throw SettingError("metric", "", "name at least one metric");
+  return plan;
+}
+
+}  // namespace crowdprof

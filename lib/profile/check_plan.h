@@ -1,0 +1,45 @@
+// `check` as steps: the plan (this file: what the gate compares, how many
+// runs, how they are spread), then the run spec (frame/run_spec.h: defaults,
+// scene file, baseline, command line), the runs, the gate (regression.h) and
+// the outputs. The plan is a pure function of what the user asked, so it is
+// tested without a process.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "profile/regression.h"
+
+namespace crowdprof {
+
+// What the user asked of `check`, as typed.
+struct CheckRequest {
+  std::vector<std::string> metrics = {"cpu"};  // "all", "frame", "cpu", a category
+  std::string tolerance = "7%";
+  std::string floor = "2%";
+  double alpha = 0.05;
+  std::optional<long long> runs;   // unset: 8, or 20 when recording a baseline
+  std::optional<double> spread_s;  // unset: 0 (back to back)
+  bool update_baseline = false;
+  bool timings_only = false;
+  bool has_result = false;  // --result: read, not run
+};
+
+// A baseline is held against every later check, so its luck counts many
+// times: it gets more runs than a check (docs/compare-and-check.md).
+inline constexpr long long kCheckRuns = 8, kBaselineRuns = 20;
+
+struct CheckPlan {
+  CheckOptions gate;  // metrics (samples keys, no repeats), tolerance, floor, alpha, work compared
+  size_t runs = kCheckRuns;  // each a process of its own
+  double spread_s = 0;       // the runs start this many seconds apart in all
+  bool update_baseline = false;
+};
+
+// The plan, every value checked: SettingError naming the setting (tolerance,
+// floor, alpha, runs, spread, metric) or UsageError for options that cannot go
+// together.
+CheckPlan plan_check(const CheckRequest& request);
+
+}  // namespace crowdprof

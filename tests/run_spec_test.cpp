@@ -1,0 +1,164 @@
+// A run's settings resolve in one visible order: the defaults, the scene file,
+// a baseline being re-run, the command line; later layers win, a mode brings
+// its own switches, and a bad value is said by setting name (the command
+// line's) or by the file it came from (a scene's or a baseline's).
+#include <gtest/gtest.h>
+
+#include "asset/errors.h"
+#include "frame/bench_setup.h"
+#include "frame/run_spec.h"
+#include "frame/switch_table.h"
+#include "scene/scene_file.h"
+#include "test_support.h"
+
+namespace {
+
+using namespace crowdprof;
+using nlohmann::json;
+using Source = SpecLayer::Source;
+
+SpecLayer layer(Source source, std::map<std::string, std::string> values, std::string path = "") {
+  return SpecLayer{source, std::move(path), std::move(values)};
+}
+
+TEST(RunSpec, TheDefaultsAreBenchs) {
+  RunSpec spec = resolve_run_spec({});
+  EXPECT_EQ(spec.characters, 160u);
+  EXPECT_EQ(spec.frames, 120u);
+  EXPECT_EQ(spec.warmup, 10u);
+  EXPECT_EQ(spec.mode, "threaded");
+  EXPECT_EQ(spec.mode_name(), "threaded");
+  EXPECT_EQ(spec.backend, "none");
+  EXPECT_TRUE(spec.mode_switches() == find_mode("threaded")->switches);
+}
+
+TEST(RunSpec, LaterLayersWin) {
+  std::vector<SpecLayer> layers = {layer(Source::SceneFile, {{"characters", "80"}, {"seed", "7"}}, "s.json"),
+                                   layer(Source::Baseline, {{"characters", "40"}, {"frames", "30"}}, "b.json"),
+                                   layer(Source::CommandLine, {{"characters", "4"}})};
+  RunSpec spec = resolve_run_spec(layers);
+  EXPECT_EQ(spec.characters, 4u);
+  EXPECT_EQ(spec.frames, 30u);
+  EXPECT_EQ(spec.seed, 7u);
+}
+
+TEST(RunSpec, AModeBringsItsOwnSwitches) {
+  std::vector<SpecLayer> layers = {layer(Source::Baseline, {{"mode", "threaded"}, {"culling", "off"}}, "b.json"),
+                                   layer(Source::CommandLine, {{"mode", "master"}})};
+  RunSpec spec = resolve_run_spec(layers);
+  EXPECT_TRUE(spec.mode_switches() == find_mode("master")->switches);
+  EXPECT_EQ(spec.mode_name(), "master");
+  // Without a mode on the command line, its switches add to the baseline's.
+  layers[1] = layer(Source::CommandLine, {{"share", "on"}});
+  spec = resolve_run_spec(layers);
+  EXPECT_FALSE(spec.mode_switches().animation_culling);
+  EXPECT_TRUE(spec.mode_switches().share_poses);
+  EXPECT_EQ(spec.mode_name(), "threaded+custom");
+  // An override that repeats the preset leaves it the preset.
+  spec = resolve_run_spec(std::vector{layer(Source::CommandLine, {{"mode", "culled"}, {"culling", "on"}})});
+  EXPECT_EQ(spec.mode_name(), "culled");
+}
+
+TEST(RunSpec, RecordedThreadsApplyOnlyToParallelModes) {
+  std::vector<SpecLayer> layers = {layer(Source::Baseline, {{"mode", "threaded"}, {"threads", "2"}}, "b.json"),
+                                   layer(Source::CommandLine, {{"mode", "master"}})};
+  EXPECT_EQ(resolve_run_spec(layers).threads, 0);
+  layers[1] = layer(Source::CommandLine, {});
+  EXPECT_EQ(resolve_run_spec(layers).threads, 2);
+  // Asked for on the command line, threads in a one-thread mode are an error.
+  RunSpec spec = resolve_run_spec(std::vector{layer(Source::CommandLine, {{"mode", "master"}, {"threads", "4"}})});
+  try {
+    validate_run_spec(spec);
+    FAIL() << "threads in master were accepted";
+  } catch (const SettingError& e) {
+    EXPECT_EQ(e.name, "threads");
+    EXPECT_NE(e.why.find("one thread"), std::string::npos);
+  }
+}
+
+TEST(RunSpec, AnActionOverAScenesActionsMeansShared) {
+  std::vector<SpecLayer> layers = {layer(Source::SceneFile, {{"actions", "scene"}}, "s.json"),
+                                   layer(Source::CommandLine, {{"action", "wave"}})};
+  RunSpec spec = resolve_run_spec(layers);
+  EXPECT_EQ(spec.actions, "shared");
+  EXPECT_EQ(spec.action, "wave");
+}
+
+TEST(RunSpec, BadValuesNameTheSettingOrTheFile) {
+  auto setting_error = [](std::map<std::string, std::string> values) -> SettingError {
+    try {
+      resolve_run_spec(std::vector{layer(Source::CommandLine, std::move(values))});
+    } catch (const SettingError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "accepted";
+    return SettingError("", "", "");
+  };
+  EXPECT_EQ(setting_error({{"characters", "0"}}).why, "a crowd needs at least 1 copy");
+  EXPECT_EQ(setting_error({{"characters", "many"}}).name, "characters");
+  EXPECT_EQ(setting_error({{"frames", "0"}}).name, "frames");
+  EXPECT_EQ(setting_error({{"warmup", "-1"}}).why, "cannot be negative");
+  EXPECT_EQ(setting_error({{"fps", "0"}}).name, "fps");
+  EXPECT_EQ(setting_error({{"resolution", "160"}}).why, "expected WIDTHxHEIGHT, e.g. 1600x900");
+  EXPECT_EQ(setting_error({{"backend", "vulkan"}}).name, "backend");
+  EXPECT_EQ(setting_error({{"mode", "fastest"}}).name, "mode");
+  EXPECT_EQ(setting_error({{"culling", "maybe"}}).why, "expected on or off");
+  // Not the command line's fault: the baseline's, by its path.
+  try {
+    resolve_run_spec(std::vector{layer(Source::Baseline, {{"frames", "0"}}, "base.json")});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("base.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot make"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RunSpec, ASceneFileIsALayerUnderTheCommandLine) {
+  std::string scene = (test::source_dir() / "scenes" / "thesis.json").string();
+  std::vector<SpecLayer> layers = run_layers(layer(Source::CommandLine, {{"file", scene}, {"seed", "9"}}));
+  ASSERT_EQ(layers.size(), 2u);
+  EXPECT_EQ(layers[0].source, Source::SceneFile);
+  RunSpec spec = resolve_run_spec(layers);
+  EXPECT_EQ(spec.characters, 160u);  // the scene's
+  EXPECT_EQ(spec.seed, 9u);          // the command line's
+  EXPECT_EQ(spec.actions, "scene");
+  EXPECT_EQ(spec.file, scene);
+}
+
+TEST(RunSpec, AResultRecordsEnoughToRunItAgain) {
+  json result = {{"frames", 30},
+                 {"warmup", 2},
+                 {"fps", 60.0},
+                 {"mode", "threaded+custom"},
+                 {"threads", 2},
+                 {"switches", switches_to_json([] {
+                    ModeSwitches s = find_mode("threaded")->switches;
+                    s.share_poses = true;
+                    return s;
+                  }())},
+                 {"environment", {{"backend", "none"}}},
+                 {"scene",
+                  {{"file", "hero.glb"},
+                   {"characters", 12},
+                   {"action_choice", "shared"},
+                   {"action", "dance"},
+                   {"seed", 1},
+                   {"camera", "default"},
+                   {"resolution", "640x360"},
+                   {"actions", 3},
+                   {"lens", {{"focal_mm", 50.0}}}}}};
+  RunSpec spec = resolve_run_spec(std::vector{recorded_layer(result, "b.json", "hero.glb")});
+  EXPECT_EQ(spec.file, "hero.glb");
+  EXPECT_EQ(spec.characters, 12u);
+  EXPECT_EQ(spec.frames, 30u);
+  EXPECT_EQ(spec.warmup, 2u);
+  EXPECT_EQ(spec.action, "dance");
+  EXPECT_EQ(spec.threads, 2);
+  EXPECT_EQ(spec.resolution, "640x360");
+  EXPECT_DOUBLE_EQ(spec.lens, 50.0);
+  EXPECT_TRUE(spec.mode_switches().share_poses);
+  EXPECT_EQ(spec.mode_name(), "threaded+custom");
+  EXPECT_FALSE(spec.allow_static);
+}
+
+}  // namespace

@@ -1,0 +1,101 @@
+// The switch table is the one place a switch is declared: every preset's
+// switches survive the trip through text and through a result's JSON, values
+// are checked in the library's own terms, and a result's switches read back
+// as the same ModeSwitches (older results, without later switches, included).
+#include <gtest/gtest.h>
+
+#include "frame/switch_table.h"
+
+namespace {
+
+using namespace crowdprof;
+using nlohmann::json;
+
+TEST(SwitchTable, EveryPresetSurvivesTextAndJson) {
+  for (const ModePreset& preset : mode_presets()) {
+    ModeSwitches from_text;
+    for (const SwitchSpec& spec : switch_table())
+      EXPECT_EQ(spec.set(from_text, switch_text(spec, preset.switches)), "") << preset.name << " " << spec.name;
+    EXPECT_TRUE(from_text == preset.switches) << preset.name;
+    ModeSwitches from_json;
+    EXPECT_EQ(switches_from_json(switches_to_json(preset.switches), from_json), "") << preset.name;
+    EXPECT_TRUE(from_json == preset.switches) << preset.name;
+  }
+}
+
+TEST(SwitchTable, EverySwitchChangesTheSwitches) {
+  // A switch whose setter wrote nothing (or the wrong field) would leave
+  // ModeSwitches as it was for one of these values.
+  const std::map<std::string, std::string> other = {
+      {"lookups", "string"},  {"culling", "on"},         {"pose", "shared"},      {"parallel", "on"},
+      {"skinning", "gpu"},    {"palettes", "buffer"},    {"draw", "instanced"},   {"vertex_format", "packed"},
+      {"share", "on"},        {"share_quantum", "1/30"}, {"update_lod", "on"},    {"lod_thresholds", "0.5,0.25,0.1"},
+      {"anim_budget", "2"}};
+  ASSERT_EQ(other.size(), switch_table().size());
+  for (const SwitchSpec& spec : switch_table()) {
+    ModeSwitches s;
+    ASSERT_TRUE(other.count(std::string(spec.name))) << spec.name;
+    EXPECT_EQ(spec.set(s, other.at(std::string(spec.name))), "") << spec.name;
+    EXPECT_FALSE(s == ModeSwitches{}) << spec.name;
+    EXPECT_EQ(switch_text(spec, s), other.at(std::string(spec.name)) == "1/30" ? switch_text(json(1.0 / 30))
+                                                                                 : other.at(std::string(spec.name)));
+  }
+}
+
+TEST(SwitchTable, BadValuesAreSaidWithoutTheCommandLine) {
+  ModeSwitches s;
+  EXPECT_EQ(find_switch("culling")->set(s, "maybe"), "expected on or off");
+  EXPECT_EQ(find_switch("skinning")->set(s, "cuda"), "expected one of rasterizer, animations, gpu, compute, baked");
+  EXPECT_NE(find_switch("share_quantum")->set(s, "-1"), "");
+  EXPECT_NE(find_switch("lod_thresholds")->set(s, "0.1,0.2,0.3"), "");
+  EXPECT_NE(find_switch("anim_budget")->set(s, "lots"), "");
+  for (const SwitchSpec& spec : switch_table()) EXPECT_EQ(spec.set(s, "nonsense").find("--"), std::string::npos);
+  EXPECT_EQ(find_switch("no_such"), nullptr);
+  EXPECT_EQ(option_spelling("share_quantum"), "--share-quantum");
+}
+
+TEST(SwitchTable, ResultsRecordLaterSwitchesOnlyWhenSet) {
+  json plain = switches_to_json(find_mode("threaded")->switches);
+  for (const char* later : {"vertex_format", "share", "share_quantum", "update_lod", "lod_thresholds", "anim_budget"})
+    EXPECT_FALSE(plain.contains(later)) << later;
+  for (const char* thesis : {"lookups", "culling", "pose", "parallel", "skinning", "palettes", "draw"})
+    EXPECT_TRUE(plain.contains(thesis)) << thesis;
+  json budget = switches_to_json(find_mode("budget")->switches);
+  EXPECT_EQ(budget["share"], true);
+  EXPECT_DOUBLE_EQ(budget["anim_budget"].get<double>(), 2.0);
+}
+
+TEST(SwitchTable, AnOlderResultReadsWithTheDefaults) {
+  // A result from before palettes and draw were recorded.
+  json old = {{"lookups", "bundled"}, {"culling", true}, {"pose", "per-copy"}, {"parallel", true}, {"skinning", "animations"}};
+  ModeSwitches s;
+  ASSERT_EQ(switches_from_json(old, s), "");
+  EXPECT_TRUE(s == find_mode("threaded")->switches);
+  EXPECT_NE(switches_from_json({{"warp", true}}, s), "");
+  EXPECT_NE(switches_from_json({{"culling", "sometimes"}}, s).find("culling"), std::string::npos);
+  EXPECT_NE(switches_from_json(json::array(), s), "");
+  EXPECT_NE(switches_from_json({{"culling", json::array()}}, s), "");
+}
+
+TEST(SwitchTable, HelpNamesEveryPresetsValue) {
+  std::string values = preset_values(*find_switch("culling"));
+  for (const ModePreset& preset : mode_presets()) EXPECT_NE(values.find(preset.name), std::string::npos);
+  EXPECT_NE(values.find("master off"), std::string::npos);
+  EXPECT_NE(values.find("culled on"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// Results before the table wrote thresholds with nine digits; they still read
+// as the same switches as today's shortest text.
+TEST(SwitchTable, OlderThresholdTextReadsTheSame) {
+  crowdprof::ModeSwitches older, today;
+  ASSERT_EQ(crowdprof::switches_from_json({{"lod_thresholds", "0.5,0.200000003,0.100000001"}}, older), "");
+  ASSERT_EQ(crowdprof::switches_from_json({{"lod_thresholds", "0.5,0.2,0.1"}}, today), "");
+  EXPECT_TRUE(older == today);
+  EXPECT_EQ(crowdprof::switches_to_json(today)["lod_thresholds"], "0.5,0.2,0.1");
+}
+
+}  // namespace
