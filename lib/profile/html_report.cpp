@@ -244,7 +244,9 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
     const json* gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? &run.doc["gpu_time"] : nullptr;
-    if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
+    if (gpu && gpu->contains("below_resolution") && (*gpu)["below_resolution"] == true)
+      out += "<td>-</td><td class=\"name\">below the timer's resolution</td>";
+    else if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
       out += "<td>" + report_number((*gpu)["median_ms"].get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
     else
       out += "<td>n/a</td><td class=\"name\">" +
