@@ -14,7 +14,10 @@ using crowdprof::test::run_cli;
 
 namespace {
 
-std::string character() { return "'" + (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string() + "'"; }
+std::string character() {
+  std::string path = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
+  return "'" + path + "'";
+}
 
 // Exit 2, one line on stderr holding every one of `words`, nothing on stdout.
 void expect_usage(const std::string& args, std::initializer_list<const char*> words) {
