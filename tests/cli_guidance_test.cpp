@@ -14,7 +14,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const fs::path& path) {
+  std::string text = "'";
+  return (text += path.string()) += "'";
+}
 
 std::string character() { return quoted(crowdprof::test::source_dir() / "scenes" / "humanoid.glb"); }
 
