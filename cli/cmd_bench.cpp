@@ -29,6 +29,10 @@ int bench(BenchCliOptions& options, const std::string& summary_csv) {
   BenchScene scene = load_bench_scene(options);
   BenchConfig config = make_bench_config(options, scene);
   check_fits_in_memory(scene.characters, config);
+  // The report embeds the screenshot by reading it back: it needs a file.
+  if (is_standard_output(options.screenshot) && !options.html.empty())
+    throw UsageError("--screenshot " + options.screenshot + " with --html: the report reads the screenshot back from "
+                     "its file; give --screenshot a file");
   if (!options.screenshot.empty() && options.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
   BenchRendering rendering = open_bench_rendering(options, scene, config);

@@ -120,6 +120,10 @@ TEST(OutputLinks, DashIsStandardOutput) {
   r = run_cli("bench " + character() + " -n 2 --frames 3 --csv - --json " + quoted(dir / "stdout"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("both write"), std::string::npos) << r.err;
+  // The report reads the screenshot back: stdout cannot be read back.
+  r = run_cli("bench " + character() + " -n 2 --frames 3 --screenshot - --html " + quoted(dir / "r.html"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("give --screenshot a file"), std::string::npos) << r.err;
 }
 
 TEST(OutputLinks, AnOutputLinkedToAnInputIsRefused) {
