@@ -184,6 +184,10 @@ TEST(GpuTimer, ATimeBelowTheTimersResolutionIsNotShownAsMeasured) {
   table = format_profile(report);
   EXPECT_NE(table.find("GPU time   :     0.50ms   median of 3 frames"), std::string::npos) << table;
   EXPECT_EQ(to_json(report)["gpu_time"]["below_resolution"], false);
+  // Above it but below 0.01 ms: in microseconds, never 0.00ms.
+  for (FrameRecord& f : report.frames) f.gpu_ms = 0.0042;
+  table = format_profile(report);
+  EXPECT_NE(table.find("GPU time   :      4.2us   median of 3 frames"), std::string::npos) << table;
 }
 
 TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {

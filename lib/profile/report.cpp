@@ -45,6 +45,14 @@ std::string significant(double value) {
   return text;
 }
 
+// "8.93ms", or below 0.01 ms "4.2us": a small time never reads 0.00.
+std::string short_time(double ms) {
+  char text[32];
+  if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
+  else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
+  return text;
+}
+
 nlohmann::json summary_json(const Summary& s) {
   return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
           {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
@@ -89,8 +97,8 @@ std::string format_profile(const RunReport& report) {
     std::snprintf(line, sizeof line, "%-11s: %8s     below the timer's resolution (%s ms): not a measurement\n",
                   "GPU time", "-", significant(run.gpu_timer_resolution_ms).c_str());
   else if (!gpu.empty())
-    std::snprintf(line, sizeof line, "%-11s: %8.2fms   median of %zu frames, GL timer queries (beside the frame)\n",
-                  "GPU time", summarize(gpu).median, gpu.size());
+    std::snprintf(line, sizeof line, "%-11s: %10s   median of %zu frames, GL timer queries (beside the frame)\n",
+                  "GPU time", short_time(summarize(gpu).median).c_str(), gpu.size());
   else
     std::snprintf(line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
                   (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
