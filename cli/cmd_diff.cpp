@@ -45,7 +45,7 @@ int diff(const DiffCliOptions& o) {
     HtmlReportInput input;
     add_result_file(input, o.a);
     add_result_file(input, o.b);
-    if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a};
+    if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a, "diff"};
     write_html_report(o.html, std::move(input));
   }
   return result.regressed() ? kExitRegression : kExitOk;

@@ -298,7 +298,7 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
 std::string check_section(const CheckSection& check, std::string& charts) {
   const CheckResult& r = check.result;
   std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
-  std::string out = "<section id=\"check\"><h2>Check against " + h(check.baseline) + ": " + verdict + "</h2>\n";
+  std::string out = "<section id=\"check\"><h2>" + std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) + ": " + verdict + "</h2>\n";
   SvgDocument svg;
   svg.add(verdict_chart(r, check.options));
   charts += "v";
@@ -376,7 +376,7 @@ std::string html_report(const HtmlReportInput& given) {
   const json& first = input.runs.front().doc;
   std::string caption = scene_caption(first);
   std::string title = "crowdprof report: " + caption +
-                      (input.check ? ", check" : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
+                      (input.check ? ", " + input.check->command : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
   std::string charts;  // one letter per chart, for the count the page checks
   std::string body;
   body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";
