@@ -295,6 +295,14 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
   return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";
 }
 
+// A p-value as the text reports print it: below 1e-4 in scientific notation,
+// never "0.0000", which reads as impossible.
+std::string p_text(double p) {
+  char text[32];
+  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
+  return text;
+}
+
 std::string check_section(const CheckSection& check, std::string& charts) {
   const CheckResult& r = check.result;
   std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
@@ -311,7 +319,7 @@ std::string check_section(const CheckSection& check, std::string& charts) {
     out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + "</td><td>" +
            report_number(metric.current.median, 3) + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + report_number(metric.p_adjusted, 4) + "</td><td>" + report_number(metric.floor_ms, 3) +
+           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + report_number(metric.floor_ms, 3) +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
