@@ -20,6 +20,12 @@
 
 namespace crowdprof {
 
+namespace {
+std::string current_command;
+}  // namespace
+
+void set_current_command(const std::string& command) { current_command = command; }
+
 int report_current_exception() {
   try {
     throw;
@@ -30,7 +36,9 @@ int report_current_exception() {
     return kExitBadInput;
   } catch (const SettingError& e) {
     // lib/ names the setting; the user typed its option.
-    std::cerr << "crowdprof: " << option_name(e.name) << " '" << e.value << "': " << e.why << "\n";
+    std::cerr << "crowdprof: " << (current_command.empty() ? "" : current_command + ": ") << option_name(e.name)
+              << " '" << e.value << "': " << e.why
+              << (current_command.empty() ? "" : " (see crowdprof " + current_command + " --help)") << "\n";
     return kExitUsage;
   } catch (const UsageError& e) {
     std::cerr << "crowdprof: " << e.what() << "\n";

@@ -37,4 +37,8 @@ nlohmann::json run_in_child_process(const std::function<nlohmann::json()>& work)
 // run). Call only inside a catch block.
 int report_current_exception();
 
+// The command being run ("bench"), so that a bad option value is reported as
+// "bench: --fps 'x': ... (see crowdprof bench --help)".
+void set_current_command(const std::string& command);
+
 }  // namespace crowdprof

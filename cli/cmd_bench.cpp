@@ -12,6 +12,7 @@
 #include "cli/output.h"
 #include "frame/interrupt.h"
 #include "profile/regression.h"
+#include "profile/summary_csv.h"
 #include "frame/run_bench.h"
 #include "profile/trace.h"
 #include "render/gl_errors.h"
@@ -21,14 +22,19 @@ namespace {
 
 using namespace crowdprof;
 
-int bench(BenchCliOptions& options) {
+int bench(BenchCliOptions& options, const std::string& summary_csv) {
   resolve_bench_spec(options);
   const RunSpec& spec = options.spec;
   validate_run_spec(spec);
-  require_writable_outputs(options);
+  require_writable_outputs(options, {}, {{"--summary-csv", summary_csv}});
+  if (!summary_csv.empty()) require_writable(summary_csv, "CSV");
   BenchScene scene = load_bench_scene(spec);
   BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
+  // The report embeds the screenshot by reading it back: it needs a file.
+  if (is_standard_output(options.screenshot) && !options.html.empty())
+    throw UsageError("--screenshot " + options.screenshot + " with --html: the report reads the screenshot back from "
+                     "its file; give --screenshot a file");
   if (!options.screenshot.empty() && spec.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
   BenchRendering rendering = open_bench_rendering(options, scene, config);
@@ -53,8 +59,12 @@ int bench(BenchCliOptions& options) {
   RunReport report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
-  if (!options.quiet) std::cout << format_profile(report);
+  if (prints_on_stdout(options.quiet,
+                       {options.csv, options.json, options.trace, options.screenshot, options.html, summary_csv}))
+    std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
+  if (!summary_csv.empty())
+    write_text(summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv({&report}, out); });
   if (!options.json.empty())
     write_text(options.json, "JSON",
                [&](std::ostream& out) { out << with_paths_relative_to(to_json(report), options.json).dump(2) << "\n"; });
@@ -63,8 +73,9 @@ int bench(BenchCliOptions& options) {
     std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
               << tracer->dropped() << " later ones were dropped\n";
   if (report.partial) {
+    bool wrote = !options.csv.empty() || !options.json.empty() || !options.trace.empty() || !summary_csv.empty();
     std::cerr << "crowdprof: interrupted: " << report.frames.size() << " of " << report.frames_planned
-              << " frames measured, and written as a partial result\n";
+              << " frames measured" << (wrote ? ", and written as a partial result" : "") << "\n";
     return kExitInterrupted;
   }
   if (!options.screenshot.empty()) {
@@ -84,10 +95,13 @@ int bench(BenchCliOptions& options) {
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCliOptions>();
+  auto summary_csv = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character (or the crowd of a scene file), "
                                           "play actions and print where each frame's time goes (BGE-style profile)");
   add_bench_options(*cmd, *options);
   cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
+  cmd->add_option("--summary-csv", *summary_csv,
+                  "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
   cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");
   cmd->add_option("--trace", options->trace,
                   "Write a Chrome trace-event JSON (Perfetto, chrome://tracing): a span per stage per frame, and per "
@@ -96,5 +110,5 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--html", options->html,
                   "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
                   "opens in any browser");
-  cmd->callback([&run, options] { run = [options] { return bench(*options); }; });
+  cmd->callback([&run, options, summary_csv] { run = [options, summary_csv] { return bench(*options, *summary_csv); }; });
 }

@@ -19,6 +19,7 @@
 #include "frame/run_bench.h"
 #include "output/output_file.h"
 #include "profile/regression.h"
+#include "profile/summary_csv.h"
 
 using namespace crowdprof;
 
@@ -32,7 +33,7 @@ struct CapacityCliOptions {
   long long start = 10, max_characters = 100'000;
   double resolution = 0.05;
   long long block = 10;
-  std::string svg;
+  std::string svg, summary_csv;
 };
 
 // The largest crowd, up to `cap`, whose bench fits its share of the memory
@@ -72,7 +73,8 @@ int capacity(CapacityCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}});
+  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--summary-csv", o.summary_csv}});
+  if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
@@ -123,7 +125,16 @@ int capacity(CapacityCliOptions& o) {
   result.frames = o.bench.spec.frames;
   result.warmup = o.bench.spec.warmup;
 
-  if (!o.bench.quiet) std::cout << format_capacity(result);
+  if (prints_on_stdout(o.bench.quiet, {o.bench.json, o.bench.html, o.svg, o.summary_csv}))
+    std::cout << format_capacity(result);
+  if (!o.summary_csv.empty())
+    write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
+      // Each mode at its capacity: the largest crowd that fit.
+      std::vector<const RunReport*> rows;
+      for (const ModeCapacity& mode : result.modes)
+        if (mode.fit_run) rows.push_back(&*mode.fit_run);
+      write_summary_csv(rows, out);
+    });
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON", [&](std::ostream& out) {
       out << with_paths_relative_to(capacity_to_json(result), o.bench.json).dump(2) << "\n";
@@ -142,7 +153,10 @@ int capacity(CapacityCliOptions& o) {
   if (result.partial) {
     std::cerr << "crowdprof: interrupted: round " << rounds << " was cut short and is left out of the search; "
               << "the results are those of the " << rounds - 1 << " round" << (rounds == 2 ? "" : "s")
-              << " before it, written as a partial result\n";
+              << " before it" << (o.bench.json.empty() && o.svg.empty() && o.bench.html.empty() && o.summary_csv.empty()
+                                     ? ""
+                                     : ", written as a partial result")
+              << "\n";
     return kExitInterrupted;
   }
   return kExitOk;
@@ -161,7 +175,8 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--modes", options->modes,
                   "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
                   "preset, e.g. master+lookups=bundled")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
   cmd->add_option("--metric", options->metric,
                   "What must fit the budget: frame (the median frame time) or a category's median, e.g. Animations")
       ->capture_default_str();
@@ -174,6 +189,9 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
                   "character)")
       ->capture_default_str();
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
+  cmd->add_option("--summary-csv", options->summary_csv,
+                  "Write one row per mode at its capacity (the largest crowd that fit) to this CSV file: median, p95, "
+                  "p99 and fps of the frame and of its CPU time");
   cmd->add_option("--json", options->bench.json, "Write every size tried per mode, with its median and percentiles");
   cmd->add_option("--svg", options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
   cmd->add_option("--html", options->bench.html,

@@ -255,7 +255,7 @@ int write_baseline(const CheckCliOptions& o, const CheckPlan& plan, const json& 
     add_result_document(input, current, o.baseline);
     write_html_report(o.bench.html, std::move(input));
   }
-  if (!o.bench.quiet)
+  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html}))
     std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
               << current["scene"]["characters"] << " characters, frame median "
               << current["frame"]["median_ms"].get<double>() << " ms"
@@ -301,7 +301,8 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const j
     input.check = CheckSection{result, options, o.baseline};
     write_html_report(o.bench.html, std::move(input));
   }
-  if (!o.bench.quiet) std::cout << format_check(result, options);
+  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html}))
+    std::cout << format_check(result, options);
   return result.regressed() ? kExitRegression : kExitOk;
 }
 
@@ -349,6 +350,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "clock), categories such as Animations, Rasterizer, or all: the frame and every category "
                   "(Holm-corrected together)")
       ->delimiter(',')
+      ->allow_extra_args(false)  // one comma-separated value: a file after it stays the file
       ->capture_default_str();
   cmd->add_option("--tolerance", options->tolerance,
                   "Slowdown of the median allowed before a significant shift fails: 7% or 0.07")

@@ -20,6 +20,7 @@
 #include "frame/interrupt.h"
 #include "profile/compare_report.h"
 #include "profile/regression.h"
+#include "profile/summary_csv.h"
 #include "profile/trace.h"
 
 using namespace crowdprof;
@@ -31,7 +32,7 @@ struct CompareCliOptions {
   std::vector<std::string> modes;  // empty: every mode the backend can run
   std::string sweep;
   long long block = 10;
-  std::string svg, trace;
+  std::string svg, trace, summary_csv;
 };
 
 std::vector<size_t> parse_sweep(const std::string& text) {
@@ -147,7 +148,8 @@ int compare(CompareCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}});
+  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}, {"--summary-csv", o.summary_csv}});
+  if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   if (!o.trace.empty()) require_writable(o.trace, "trace");
   BenchScene scene = load_bench_scene(o.bench.spec);
@@ -189,9 +191,19 @@ int compare(CompareCliOptions& o) {
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
-  if (!o.bench.quiet) std::cout << format_comparison(comparison);
+  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.bench.html, o.svg, o.trace, o.summary_csv}))
+    std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
+  if (!o.summary_csv.empty())
+    write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
+      // The main run's modes, then the sweep's other crowd sizes.
+      std::vector<const RunReport*> rows;
+      for (const RunReport& report : comparison.runs) rows.push_back(&report);
+      for (const RunReport& report : comparison.sweep)
+        if (report.run.characters != copies) rows.push_back(&report);
+      write_summary_csv(rows, out);
+    });
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON", [&](std::ostream& out) {
       out << with_paths_relative_to(comparison_to_json(comparison), o.bench.json).dump(2) << "\n";
@@ -207,8 +219,11 @@ int compare(CompareCliOptions& o) {
     write_html_report(o.bench.html, std::move(input));
   }
   if (partial) {
+    bool wrote = !o.bench.csv.empty() || !o.bench.json.empty() || !o.svg.empty() || !o.trace.empty() ||
+                 !o.bench.html.empty() || !o.summary_csv.empty();
     std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frames.size() << " of "
-              << comparison.runs.front().frames_planned << " frames per mode measured, and written as a partial result"
+              << comparison.runs.front().frames_planned << " frames per mode measured"
+              << (wrote ? ", and written as a partial result" : "")
               << (sweep.empty() ? "" : "; the sweep was not run") << "\n";
     return kExitInterrupted;
   }
@@ -227,12 +242,16 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                   "Modes to compare, the first being the reference for speedups (default: every mode the backend "
                   "can run of " + mode_names() + "); a mode may set switches away from its preset, "
                   "e.g. master+lookups=bundled")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--sweep", options->sweep,
                   "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160: rows in the table and JSON, "
                   "a chart in the SVG");
   cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
+  cmd->add_option("--summary-csv", options->summary_csv,
+                  "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
+                  "of its CPU time");
   cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
   cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, sweep");
   cmd->add_option("--html", options->bench.html,

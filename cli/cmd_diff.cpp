@@ -36,7 +36,7 @@ int diff(const DiffCliOptions& o) {
   std::vector<nlohmann::json> a = bench_results_in(read_json_file(o.a), o.a);
   std::vector<nlohmann::json> b = bench_results_in(read_json_file(o.b), o.b);
   Diff result = diff_results(a, o.a, b, o.b, options);
-  if (!o.quiet) std::cout << format_diff(result, options);
+  if (prints_on_stdout(o.quiet, {o.json, o.html})) std::cout << format_diff(result, options);
   if (!o.json.empty())
     write_text(o.json, "JSON", [&](std::ostream& out) { out << diff_to_json(result, options).dump(2) << "\n"; });
   if (!o.html.empty()) {
@@ -45,7 +45,7 @@ int diff(const DiffCliOptions& o) {
     HtmlReportInput input;
     add_result_file(input, o.a);
     add_result_file(input, o.b);
-    if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a};
+    if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a, "diff"};
     write_html_report(o.html, std::move(input));
   }
   return result.regressed() ? kExitRegression : kExitOk;

@@ -6,6 +6,7 @@
 #include "gen/gltf_writer.h"
 #include "gen/humanoid.h"
 #include "cli/commands.h"
+#include "output/output_file.h"
 
 namespace {
 
@@ -24,9 +25,12 @@ int gen(const GenArgs& args) {
   options.draco = args.draco;
   crowdprof::Character character = crowdprof::generate_humanoid(args.humanoid);
   crowdprof::write_gltf(character, args.output, options);
+  if (crowdprof::is_standard_output(args.output)) return crowdprof::kExitOk;  // stdout holds the file alone
+  std::error_code error;  // a pipe has no size
+  uintmax_t bytes = std::filesystem::file_size(args.output, error);
   std::cout << "wrote " << args.output << ": " << character.skeleton.joint_count() << " joints, "
-            << character.mesh.vertex_count() << " vertices, " << character.actions.size() << " actions, "
-            << std::filesystem::file_size(args.output) << " bytes\n";
+            << character.mesh.vertex_count() << " vertices, " << character.actions.size() << " actions"
+            << (error ? std::string() : ", " + std::to_string(bytes) + " bytes") << "\n";
   return crowdprof::kExitOk;
 }
 

@@ -5,6 +5,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
+#include "cli/output.h"
 #include "output/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
@@ -43,7 +44,7 @@ int render(RenderCliOptions& options) {
   for (long long k = 0; k <= options.frame; ++k) record = crowd.step();
   std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
   write_png(options.output, rendering.renderer->width(), rendering.renderer->height(), pixels);
-  if (!options.bench.quiet)
+  if (prints_on_stdout(options.bench.quiet, {options.output}))
     std::cout << options.output << ": frame " << options.frame << ", " << rendering.renderer->width() << "x"
               << rendering.renderer->height() << ", " << record.counters.draw_calls << " of " << crowd.crowd().size()
               << " copies drawn, mode " << config.mode_name << (crowd.gpu_skinned() ? " (skinned on the GPU)" : "")

@@ -7,6 +7,7 @@
 #include "asset/errors.h"
 #include "cli/commands.h"
 #include "cli/html_output.h"
+#include "cli/output.h"
 #include "output/output_file.h"
 
 namespace {
@@ -27,6 +28,9 @@ int report(const ReportCliOptions& o) {
   for (const std::string& file : o.files) add_result_file(input, file);
   if (!o.screenshot.empty()) input.screenshot_png = read_png(o.screenshot);
   write_html_report(o.output, std::move(input));
+  if (prints_on_stdout(false, {o.output}))  // where the page went, to open it
+    std::cout << "wrote " << o.output << ": " << o.files.size() << (o.files.size() == 1 ? " result" : " results")
+              << (o.screenshot.empty() ? "" : " and a screenshot") << "\n";
   return kExitOk;
 }
 

@@ -1,15 +1,19 @@
 // crowdprof: profile skinned-crowd scenes. This file only dispatches to the
 // subcommands (cli/cmd_*.cpp) and turns errors into exit statuses:
 // 2 for a bad command line, 3 for a bad input file, 4 when the run fails.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "asset/errors.h"
 #include "cli/child_run.h"
 #include "cli/commands.h"
+#include "cli/usage_errors.h"
 #include "profile/environment.h"
 #include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
@@ -30,13 +34,17 @@ int after_flushing_stdout(int status) {
 
 int run_command(int argc, char** argv) {
   CLI::App app{"crowdprof: profile skinned-crowd scenes (after Stokes 2014, skeletal animation in the BGE)"};
+  app.name("crowdprof");
+  // Global options are taken anywhere, also after the command (a command
+  // passes the options it does not know up to the app).
+  app.fallthrough();
   // The SIMD target skinning runs on: the CPU's best, else CROWDPROF_SIMD, else
-  // --simd (applied as soon as it is parsed, so that --version after it shows it).
+  // --simd (applied as soon as it is parsed, so that --version shows it).
   std::string simd_error;
   if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable))
     simd_error = crowdprof::force_simd_target(from_env);
-  app.set_version_flag("--version", [] { return crowdprof::version_line(); },
-                       "Print the version, commit, build type, compiler and SIMD target on one line");
+  bool version = false;
+  app.add_flag("-v,--version", version, "Print the version, commit, build type, compiler and SIMD target on one line");
   app.add_option_function<std::string>(
          "--simd", [&](const std::string& name) { simd_error = crowdprof::force_simd_target(name); },
          "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
@@ -47,10 +55,11 @@ int run_command(int argc, char** argv) {
   if (const char* from_env = std::getenv(crowdprof::kStoresEnvironmentVariable))
     stores_error = crowdprof::force_output_stores(from_env);
   app.add_option_function<std::string>(
-      "--stores", [&](const std::string& name) { stores_error = crowdprof::force_output_stores(name); },
-      "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "
-      "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)");
-  app.require_subcommand(1);
+         "--stores", [&](const std::string& name) { stores_error = crowdprof::force_output_stores(name); },
+         "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "
+         "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)")
+      ->trigger_on_parse();
+  app.require_subcommand(0, 1);  // none only with --version or --help
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
@@ -61,21 +70,51 @@ int run_command(int argc, char** argv) {
   add_diff_command(app, run);
   add_render_command(app, run);
   add_report_command(app, run);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    // One line, like every other error (CLI11 would add a second).
-    std::cerr << "crowdprof: " << e.what() << " (see crowdprof --help)\n";
+
+  std::vector<std::string> args(argv + 1, argv + argc);
+  // `crowdprof help [COMMAND]` is `crowdprof [COMMAND] --help`.
+  if (!args.empty() && args.front() == "help") {
+    args.erase(args.begin());
+    args.resize(std::min<size_t>(args.size(), 1));
+    args.push_back("--help");
+  }
+  std::string word = command_word(app, args);
+  std::vector<std::string> commands = command_names(app);
+  if (!word.empty() && std::find(commands.begin(), commands.end(), word) == commands.end()) {
+    std::string near = nearest_name(word, commands);
+    // A file where the command goes: the command was left out.
+    if (near.empty() && word.find('.') != std::string::npos) near = "bench " + word;
+    std::cerr << "crowdprof: unknown command '" << word << "'"
+              << (near.empty() ? "" : "; did you mean " + near + "?") << " (commands: " << command_list(app)
+              << "; see crowdprof --help)\n";
     return crowdprof::kExitUsage;
   }
+  try {
+    std::reverse(args.begin(), args.end());  // CLI11 takes them from the back
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // One line, like every other error (CLI11 would add a second).
+    std::cerr << "crowdprof: " << describe_parse_error(app, e) << "\n";
+    return crowdprof::kExitUsage;
+  }
+  // A bad global value is refused whatever else was asked, --version too.
   for (const std::string& error : {simd_error, stores_error})
     if (!error.empty()) {
       std::cerr << "crowdprof: " << error << "\n";
       return crowdprof::kExitUsage;
     }
+  if (version) {
+    std::cout << crowdprof::version_line() << "\n";
+    return crowdprof::kExitOk;
+  }
+  if (!run) {
+    std::cerr << "crowdprof: no command given (commands: " << command_list(app) << "; see crowdprof --help)\n";
+    return crowdprof::kExitUsage;
+  }
+  crowdprof::set_current_command(command_word(app, std::vector<std::string>(argv + 1, argv + argc)));
   try {
-    return run ? run() : crowdprof::kExitUsage;
+    return run();
   } catch (...) {
     return crowdprof::report_current_exception();
   }

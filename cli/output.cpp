@@ -33,6 +33,13 @@ std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::str
   };
 }
 
+bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs) {
+  if (quiet) return false;
+  for (const std::string& path : outputs)
+    if (crowdprof::is_standard_output(path)) return false;
+  return true;
+}
+
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body) {
   std::ostringstream text;
   body(text);

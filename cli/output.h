@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <ostream>
+#include <initializer_list>
 #include <string>
 
 // Progress on stderr once a run has taken a second, only when a person watches
@@ -12,6 +13,11 @@
 // redrawn in place: "crowdprof: <what> 120/1130 frames, 4 s left", where `what`
 // names the mode and sweep point; erased when the run ends.
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what = "frame");
+
+// Whether a command prints its text on stdout: not with --quiet, nor when one
+// of its output files is stdout ("--csv -", /dev/stdout), which then holds
+// that file alone.
+bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
 
 // Writes `path` with `body`; UsageError naming the file when it cannot (see
 // output/output_file.h, whose require_writable checks paths before a run).

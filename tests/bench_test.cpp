@@ -171,9 +171,11 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   std::string line;
   std::getline(csv, line);
   size_t columns = std::count(line.begin(), line.end(), ',') + 1;
-  EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 1);  // then gpu_ms
+  EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 2);  // then gpu_ms, cpu_ms
+  EXPECT_TRUE(line.ends_with(",gpu_ms,cpu_ms")) << line;
   EXPECT_EQ(line.rfind("frame,mode,characters,threads,frame_ms,physics_ms", 0), 0u);
   int rows = 0;
+  std::vector<double> cpu;
   while (std::getline(csv, line)) {
     ++rows;
     std::vector<std::string> cells;
@@ -183,12 +185,16 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
     double frame = std::stod(cells[4]), sum = 0;
     for (size_t c = 0; c < kCategoryCount; ++c) sum += std::stod(cells[5 + c]);
     EXPECT_NEAR(sum, frame, frame * 0.01);
+    cpu.push_back(std::stod(cells.back()));
   }
   EXPECT_EQ(rows, 4);
 
   nlohmann::json j = nlohmann::json::parse(to_json(report).dump());
   EXPECT_EQ(j["mode"], "master");
   EXPECT_EQ(j["frames"], 4);
+  ASSERT_EQ(j["samples"]["cpu_ms"].size(), cpu.size());
+  for (size_t i = 0; i < cpu.size(); ++i)  // the CSV's cpu_ms is the JSON's, to its 4 decimals
+    EXPECT_NEAR(cpu[i], j["samples"]["cpu_ms"][i].get<double>(), 1e-4);
   EXPECT_EQ(j["scene"]["characters"], 12);
   EXPECT_EQ(j["scene"]["joints"], 30);
   EXPECT_EQ(j["categories"].size(), kCategoryCount);

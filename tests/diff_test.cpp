@@ -82,6 +82,10 @@ TEST(Diff, SideBySideWithTheGateRule) {
   std::ifstream in(html);
   std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(page.find("<section id=\"check\">"), std::string::npos);
+  // The page says what made it: a diff, not a check.
+  EXPECT_NE(page.find(", diff</title>"), std::string::npos) << page.substr(0, 600);
+  EXPECT_EQ(page.find(", check</title>"), std::string::npos);
+  EXPECT_NE(page.find("<h2>Diff against "), std::string::npos);
   EXPECT_NE(page.find("a.json"), std::string::npos);
   EXPECT_NE(page.find("b.json"), std::string::npos);
   EXPECT_EQ(run_cli("diff '" + a + "' '" + b + "' --html '" + b + "'").status, 2);

@@ -146,6 +146,8 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
   EXPECT_EQ(count(html, "data-verdict=\"REGRESSION\""), 3u);
   EXPECT_NE(html.find("class=\"tolerance\""), std::string::npos);
   EXPECT_NE(html.find("Check against base.json: <span class=\"regression\">REGRESSION"), std::string::npos);
+  EXPECT_EQ(html.find("<td>0.0000</td>"), std::string::npos) << "a tiny p-value is not 0";
+  EXPECT_NE(html.find("e-"), std::string::npos) << "it is written as 1.2e-11";
 }
 
 TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {

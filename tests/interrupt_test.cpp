@@ -77,6 +77,7 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
     EXPECT_NE(r.out.find("Frametime :"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\npartial: interrupted after "), std::string::npos) << r.out;
     EXPECT_NE(r.err.find("crowdprof: interrupted: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("written as a partial result"), std::string::npos) << r.err;
     json j = json::parse(std::ifstream(result));
     EXPECT_TRUE(j["partial"].get<bool>());
     EXPECT_EQ(j["frames_planned"], 10000000);
@@ -87,6 +88,15 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
     std::string rows = slurp(csv);
     EXPECT_EQ(static_cast<size_t>(std::count(rows.begin(), rows.end(), '\n')), frames + 1);  // and the header
   }
+}
+
+TEST(Interrupt, WithoutOutputFilesNothingClaimsToBeWritten) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_no_outputs");
+  Interrupted r = interrupt_cli({"bench", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir, SIGINT,
+                                std::chrono::milliseconds(1500));
+  ASSERT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("crowdprof: interrupted: "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("written"), std::string::npos) << "no file was asked for:\n" << r.err;
 }
 
 TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {

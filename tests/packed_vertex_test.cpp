@@ -245,5 +245,5 @@ TEST(PackedVertex, TheSwitchIsRecordedOnlyWhenPackedAndBadValuesAreRefused) {
   EXPECT_NE(packed_digest, doc["digest"]);
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format half");
   EXPECT_EQ(2, r.status);
-  EXPECT_EQ("crowdprof: --vertex-format 'half': expected one of float, packed\n", r.err);
+  EXPECT_EQ("crowdprof: bench: --vertex-format 'half': expected one of float, packed (see crowdprof bench --help)\n", r.err);
 }

@@ -17,6 +17,26 @@ uint32_t read_u32(const unsigned char* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
+// Why a file that is not glTF is refused; for another 3D format, how to get
+// glTF from it.
+std::string not_gltf(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const std::pair<const char*, const char*> kOthers[] = {
+      {".fbx", "an FBX file"},          {".dae", "a COLLADA file"},
+      {".blend", "a Blender file"},     {".3ds", "a 3ds file"},   {".usd", "a USD file"},
+      {".usdz", "a USDZ file"},         {".usda", "a USD file"},  {".usdc", "a USD file"}};
+  if (ext == ".obj")  // OBJ holds meshes only: converting it gives no skin to animate
+    return "is a Wavefront OBJ file, not glTF: OBJ holds no skeleton or animation; crowdprof needs a skinned, "
+           "animated character as .glb or .gltf, e.g. rigged in Blender and written with File > Export > glTF 2.0";
+  for (const auto& [suffix, what] : kOthers)
+    if (ext == suffix)
+      return std::string("is ") + what +
+             ", not glTF: crowdprof reads .glb and .gltf; convert it to glTF, e.g. in Blender (import it, then "
+             "File > Export > glTF 2.0, with its armature and animations)";
+  return "is not a glTF file (neither GLB nor a JSON object)";
+}
+
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::error_code ec;
   fs::file_status status = fs::status(path, ec);
@@ -35,7 +55,7 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
   if (head.rfind("glTF", 0) != 0) {
     size_t first = head.find_first_not_of(" \t\r\n");
     if (first != std::string::npos && head[first] != '{')
-      throw InputError(path, "is not a glTF file (neither GLB nor a JSON object)");
+      throw InputError(path, not_gltf(path));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
@@ -109,7 +129,7 @@ GltfContainer read_gltf_container(const std::string& path) {
   size_t first = 0;
   while (first < bytes.size() && std::isspace(bytes[first])) ++first;
   if (first == bytes.size() || bytes[first] != '{')
-    throw InputError(path, "is not a glTF file (neither GLB nor a JSON object)");
+    throw InputError(path, not_gltf(path));
   const char* text = reinterpret_cast<const char*>(bytes.data());
   c.json = parse_json(path, text, text + bytes.size());
   return c;

@@ -77,8 +77,8 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
       names += (names.empty() ? "" : ", ") + character.actions[a].name;
     }
     throw SettingError("action", spec.action,
-                       (loaded.scene ? file + "'s" : std::string("the character's")) + " actions are " +
-                           (names.empty() ? std::string("none") : names));
+                       "not one of " + (loaded.scene ? file + "'s" : std::string("the character's")) + " actions (" +
+                           (names.empty() ? std::string("it has none") : names) + ")");
   };
   if (!spec.action.empty()) config.crowd.shared_action = action_index(loaded.first(), loaded.files.front());
   if (loaded.scene) {

@@ -347,6 +347,10 @@ std::string CrowdBench::gpu_timing_missing() const {
   return config_.renderer ? config_.renderer->gpu_timing_missing() : "no GL backend (--backend none)";
 }
 
+double CrowdBench::gpu_timer_resolution_ms() const {
+  return config_.renderer ? config_.renderer->gpu_timer_resolution_ms() : 0;
+}
+
 void CrowdBench::enter(Category category) {
   Category left = clock_.switch_to(category);
   if (!config_.tracer) return;

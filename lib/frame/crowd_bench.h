@@ -115,6 +115,8 @@ class CrowdBench {
   void collect_gpu_times();
   // Empty when the renderer times frames on the GPU, else why not ("no GL backend").
   std::string gpu_timing_missing() const;
+  // The GPU timer's resolution in ms (FrameRenderer); 0 without one.
+  double gpu_timer_resolution_ms() const;
 
   // Forgets the time since the last frame: the next frame is not charged (as
   // Outside) for what ran in between, e.g. the other modes of a compare.

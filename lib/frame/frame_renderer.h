@@ -64,6 +64,9 @@ class FrameRenderer {
   // out.size(); with `wait`, every frame still in flight, waiting for them.
   // Returns how many were written.
   virtual size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) = 0;
+  // The smallest GPU time the timer tells from nothing, in ms (GpuTimer::
+  // resolution_ms); 0 when not known.
+  virtual double gpu_timer_resolution_ms() const { return 0; }
 };
 
 }  // namespace crowdprof

@@ -116,6 +116,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
 void record_character_counters(const CrowdBench& bench, RunDescription& run) {
   std::span<const Counters> counters = bench.character_counters();
   for (size_t k = 0; k < run.crowd.size() && k < counters.size(); ++k) run.crowd[k].counters = counters[k];
+  run.gpu_timer_resolution_ms = bench.gpu_timer_resolution_ms();  // measured on the first frame drawn
 }
 
 void record_animation(const CrowdBench& bench, RunReport& report) {

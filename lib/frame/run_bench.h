@@ -31,7 +31,8 @@ void check_fits_in_memory(const Character& character, size_t copies, const ModeS
 // What a report says about a bench's scene and mode.
 RunDescription describe_run(const CrowdBench& bench, const std::string& file);
 
-// Copies the bench's last frame's per-character counters into run.crowd.
+// Copies the bench's last frame's per-character counters into run.crowd, and
+// what the run learnt of its GPU timer (its resolution).
 void record_character_counters(const CrowdBench& bench, RunDescription& run);
 
 // Throws UsageError, before anything is allocated, when the config's crowd of

@@ -106,7 +106,8 @@ const std::array kSettings = {
                 "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible", "60",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
-                  if (!v || !(*v > 0) || *v > 100000) return "expected a rate between 0 and 100000";
+                  if (!v) return "expected a number (a rate between 0 and 100000)";
+                  if (!(*v > 0) || *v > 100000) return "expected a rate between 0 and 100000";
                   s.fps = *v;
                   return {};
                 }},
@@ -114,7 +115,8 @@ const std::array kSettings = {
                 "30",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
-                  if (!v || !(*v > 0) || !(*v <= 10000)) return "expected 0 to 10000 samples per second";
+                  if (!v) return "expected a number (0 to 10000 samples per second)";
+                  if (!(*v > 0) || !(*v <= 10000)) return "expected 0 to 10000 samples per second";
                   s.bake_rate = *v;
                   return {};
                 }},
@@ -147,7 +149,8 @@ const std::array kSettings = {
                 "35, or the scene's",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
-                  if (!v || (*v != 0 && !(*v >= 1 && *v <= 5000))) return "expected a focal length of 1 to 5000 mm";
+                  if (!v) return "expected a number (a focal length of 1 to 5000 mm)";
+                  if (*v != 0 && !(*v >= 1 && *v <= 5000)) return "expected a focal length of 1 to 5000 mm";
                   s.lens = *v;
                   return {};
                 }},

@@ -1,10 +1,12 @@
 #include "frame/switch_table.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace crowdprof {
 
@@ -231,10 +233,21 @@ std::string switches_from_json(const json& switches, ModeSwitches& s) {
 }
 
 std::string preset_values(const SwitchSpec& spec) {
+  // Presets grouped by value, the largest group last as "the others".
+  std::vector<std::pair<std::string, std::string>> groups;  // value, presets
+  for (const ModePreset& preset : mode_presets()) {
+    std::string value = switch_text(spec, preset.switches);
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == value; });
+    if (group == groups.end()) groups.push_back({value, std::string(preset.name)});
+    else group->second += ", " + std::string(preset.name);
+  }
+  if (groups.size() == 1) return groups.front().first + " in every mode";
+  auto count = [](const std::string& names) { return std::count(names.begin(), names.end(), ',') + 1; };
+  std::stable_sort(groups.begin(), groups.end(),
+                   [&](const auto& a, const auto& b) { return count(a.second) < count(b.second); });
   std::string text;
-  for (const ModePreset& preset : mode_presets())
-    text += (text.empty() ? "" : ", ") + std::string(preset.name) + " " + switch_text(spec, preset.switches);
-  return text;
+  for (size_t g = 0; g + 1 < groups.size(); ++g) text += groups[g].first + " in " + groups[g].second + "; ";
+  return text + groups.back().first + " in the others";
 }
 
 }  // namespace crowdprof

@@ -61,8 +61,8 @@ nlohmann::json switches_to_json(const ModeSwitches& s);
 // what is wrong ("culling: expected on or off", "no switch 'x'").
 std::string switches_from_json(const nlohmann::json& switches, ModeSwitches& s);
 
-// A value that some preset holds, or each preset's value of the switch for
-// help: "master off, culled on, threaded on, ...".
+// Each preset's value of the switch, for help, grouped by value: "off in
+// master; on in the others".
 std::string preset_values(const SwitchSpec& spec);
 
 }  // namespace crowdprof

@@ -19,10 +19,18 @@ void require_writable(const std::string& path, const std::string& what);
 
 // Replaces `path` with `bytes` atomically: written to a temporary file in the
 // same folder, flushed, then renamed over `path`, so a failure (a full disk, a
-// signal) leaves the earlier file as it was. A path that exists and is not a
-// regular file (/dev/stdout, a pipe) is written in place. UsageError as above
-// when it cannot be written.
+// signal) leaves the earlier file as it was. A symbolic link is followed: the
+// file it names is replaced (keeping its mode and owner) or, for a dangling
+// link, created; the link stays. "-" is standard output, and so is any path
+// that names one of this process's descriptors (/dev/stdout, /dev/fd/N): written
+// through the descriptor. A path that is not a regular file (a pipe, a device),
+// or a file whose folder takes no new file, is written in place. UsageError as
+// above when it cannot be written.
 void write_file(const std::string& path, const std::string& what, std::string_view bytes);
+
+// True when writing `path` writes standard output ("-", /dev/stdout, a link
+// to it): a command then prints nothing else there, so the file stays whole.
+bool is_standard_output(const std::string& path);
 
 // A file the command reads or writes, named as its option is: {"--json", path}.
 struct NamedPath {
@@ -31,8 +39,9 @@ struct NamedPath {
 };
 
 // UsageError, before any work, when an output is one of the inputs (the same
-// path, or the same file by device and inode: a link, another spelling) or two
-// outputs share a path: "--json X.glb is the input file; refusing to overwrite
+// path, or the same file by device and inode: a link, another spelling; links
+// followed, a dangling one to the file it would create) or two outputs share a
+// path (also "-" and /dev/stdout): "--json X.glb is the input file; refusing to overwrite
 // it". Empty paths are ignored; "FILE#skin=N" inputs are compared as FILE.
 void require_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 

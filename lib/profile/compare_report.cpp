@@ -89,7 +89,13 @@ std::string format_comparison(const Comparison& comparison) {
     std::vector<std::string> row = {m.mode, std::to_string(m.characters), std::to_string(m.threads),
                                     fixed(m.frame_ms, 3)};
     for (Category c : shown) row.push_back(fixed(m.category_ms[static_cast<size_t>(c)], 3));
-    if (any_gpu) row.push_back(gpu[r].empty() ? "n/a" : fixed(summarize(gpu[r]).median, 3));
+    if (any_gpu) {
+      // Below the timer's resolution: "<" it, not a number read as measured.
+      double median = gpu[r].empty() ? 0 : summarize(gpu[r]).median, resolution = run.run.gpu_timer_resolution_ms;
+      std::string cell = gpu[r].empty() ? "n/a" : fixed(median, 3);
+      if (!gpu[r].empty() && resolution > 0 && median < resolution) (cell = "<") += fixed(resolution, 4);
+      row.push_back(cell);
+    }
     uint64_t culled = run.frames.empty() ? 0 : run.frames[median_frame(run.frames)].counters.copies_culled;
     row.push_back(fixed(m.speedup, 2));
     row.push_back(std::to_string(culled));

@@ -244,7 +244,9 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
     const json* gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? &run.doc["gpu_time"] : nullptr;
-    if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
+    if (gpu && gpu->contains("below_resolution") && (*gpu)["below_resolution"] == true)
+      out += "<td>-</td><td class=\"name\">below the timer's resolution</td>";
+    else if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
       out += "<td>" + report_number((*gpu)["median_ms"].get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
     else
       out += "<td>n/a</td><td class=\"name\">" +
@@ -293,10 +295,18 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
   return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";
 }
 
+// A p-value as the text reports print it: below 1e-4 in scientific notation,
+// never "0.0000", which reads as impossible.
+std::string p_text(double p) {
+  char text[32];
+  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
+  return text;
+}
+
 std::string check_section(const CheckSection& check, std::string& charts) {
   const CheckResult& r = check.result;
   std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
-  std::string out = "<section id=\"check\"><h2>Check against " + h(check.baseline) + ": " + verdict + "</h2>\n";
+  std::string out = "<section id=\"check\"><h2>" + std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) + ": " + verdict + "</h2>\n";
   SvgDocument svg;
   svg.add(verdict_chart(r, check.options));
   charts += "v";
@@ -309,7 +319,7 @@ std::string check_section(const CheckSection& check, std::string& charts) {
     out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + "</td><td>" +
            report_number(metric.current.median, 3) + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + report_number(metric.p_adjusted, 4) + "</td><td>" + report_number(metric.floor_ms, 3) +
+           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + report_number(metric.floor_ms, 3) +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
@@ -374,7 +384,7 @@ std::string html_report(const HtmlReportInput& given) {
   const json& first = input.runs.front().doc;
   std::string caption = scene_caption(first);
   std::string title = "crowdprof report: " + caption +
-                      (input.check ? ", check" : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
+                      (input.check ? ", " + input.check->command : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
   std::string charts;  // one letter per chart, for the count the page checks
   std::string body;
   body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";

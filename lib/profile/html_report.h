@@ -21,6 +21,7 @@ struct CheckSection {
   CheckResult result;
   CheckOptions options;
   std::string baseline;  // the baseline's path, as given
+  std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
 };
 
 struct HtmlReportInput {

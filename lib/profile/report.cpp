@@ -33,6 +33,26 @@ std::vector<double> gpu_ms(const std::vector<FrameRecord>& frames) {
   return out;
 }
 
+// A median GPU time the timer cannot tell from nothing (render/gpu_timer.h).
+bool below_timer_resolution(double median_ms, const RunDescription& run) {
+  return run.gpu_timer_resolution_ms > 0 && median_ms < run.gpu_timer_resolution_ms;
+}
+
+// "0.00125": a small number with its 3 significant digits.
+std::string significant(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+// "8.93ms", or below 0.01 ms "4.2us": a small time never reads 0.00.
+std::string short_time(double ms) {
+  char text[32];
+  if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
+  else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
+  return text;
+}
+
 nlohmann::json summary_json(const Summary& s) {
   return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
           {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
@@ -73,9 +93,12 @@ std::string format_profile(const RunReport& report) {
   // The GPU's own time, from timer queries: beside the categories, not one of
   // them (GPU Latency stays the CPU's wait in finish). Never a made-up zero.
   std::vector<double> gpu = gpu_ms(report.frames);
-  if (!gpu.empty())
-    std::snprintf(line, sizeof line, "%-11s: %8.2fms   median of %zu frames, GL timer queries (beside the frame)\n",
-                  "GPU time", summarize(gpu).median, gpu.size());
+  if (!gpu.empty() && below_timer_resolution(summarize(gpu).median, run))
+    std::snprintf(line, sizeof line, "%-11s: %8s     below the timer's resolution (%s ms): not a measurement\n",
+                  "GPU time", "-", significant(run.gpu_timer_resolution_ms).c_str());
+  else if (!gpu.empty())
+    std::snprintf(line, sizeof line, "%-11s: %10s   median of %zu frames, GL timer queries (beside the frame)\n",
+                  "GPU time", short_time(summarize(gpu).median).c_str(), gpu.size());
   else
     std::snprintf(line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
                   (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
@@ -170,8 +193,9 @@ std::string csv_header() {
     header += field.name;
   }
   // Appended after the counters, as columns never move: GL timer queries, n/a
-  // when not measured.
-  header += ",gpu_ms";
+  // when not measured; then the CPU time of every thread in the frame (check's
+  // default metric).
+  header += ",gpu_ms,cpu_ms";
   return header;
 }
 
@@ -183,7 +207,7 @@ void write_csv(const RunReport& report, std::ostream& out) {
         << fixed(f.times.total_ms(), 4);
     for (double ms : f.times.ms) out << "," << fixed(ms, 4);
     for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
-    out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a"));
+    out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a")) << "," << fixed(f.cpu_ms, 4);
     out << "\n";
   }
 }
@@ -242,6 +266,8 @@ nlohmann::json to_json(const RunReport& report) {
   if (!gpu.empty()) {
     gpu_time["source"] = "GL_TIME_ELAPSED timer queries";
     gpu_time.update(summary_json(summarize(gpu)));
+    if (run.gpu_timer_resolution_ms > 0) gpu_time["resolution_ms"] = run.gpu_timer_resolution_ms;
+    gpu_time["below_resolution"] = below_timer_resolution(summarize(gpu).median, run);
     nlohmann::json per_frame = nlohmann::json::array();
     for (const FrameRecord& f : report.frames)
       per_frame.push_back(std::isfinite(f.gpu_ms) ? nlohmann::json(f.gpu_ms) : nlohmann::json(nullptr));

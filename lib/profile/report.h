@@ -37,6 +37,9 @@ struct RunDescription {
   std::string backend = "none", renderer = "none";
   // Empty when frames were timed on the GPU (GL timer queries), else why not.
   std::string gpu_timing_missing = "no GL backend (--backend none)";
+  // The GPU timer's resolution (render/gpu_timer.h): a median GPU time below it
+  // is shown as such, not as a number. 0: not known.
+  double gpu_timer_resolution_ms = 0;
   size_t warmup = 0;
   double fps = 60.0;
   std::string camera;

@@ -77,6 +77,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   void finish() override;
   std::string gpu_timing_missing() const override;
   size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;
+  double gpu_timer_resolution_ms() const override { return features_.timer_queries() ? timer_.resolution_ms() : 0; }
 
   // The last frame drawn, RGBA8, rows top to bottom.
   std::vector<uint8_t> read_pixels() const { return framebuffer_.read_rgba(); }

@@ -9,7 +9,35 @@ GpuTimer::~GpuTimer() {
     if (slot.query) glDeleteQueries(1, &slot.query);
 }
 
+void GpuTimer::measure_resolution() {
+  // The clock's tick: the smallest step between two readings that differ.
+  GLint64 last = 0, tick = 0;
+  glGetInteger64v(GL_TIMESTAMP, &last);
+  for (int read = 0, steps = 0; read < 20000 && steps < 32; ++read) {
+    GLint64 now = 0;
+    glGetInteger64v(GL_TIMESTAMP, &now);
+    if (now <= last) continue;
+    tick = tick == 0 ? now - last : std::min(tick, now - last);
+    last = now;
+    ++steps;
+  }
+  // The floor: what a query around no work reads.
+  GLuint query = 0;
+  glGenQueries(1, &query);
+  GLuint64 floor = 0;
+  for (int i = 0; i < 8; ++i) {
+    glBeginQuery(GL_TIME_ELAPSED, query);
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+    floor = std::max(floor, ns);
+  }
+  glDeleteQueries(1, &query);
+  resolution_ms_ = static_cast<double>(std::max<uint64_t>(static_cast<uint64_t>(std::max<GLint64>(tick, 1)), floor)) * 1e-6;
+}
+
 void GpuTimer::begin(const void* owner, uint64_t frame) {
+  if (resolution_ms_ < 0) measure_resolution();  // before any query of ours is active
   auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) { return s.state == State::Free; });
   if (free == slots_.end()) {
     // Queries nobody took: drop the oldest, waiting for its result so that

@@ -34,7 +34,14 @@ class GpuTimer {
   // `wait`, every query of `owner`'s, waiting for those in flight.
   size_t take(const void* owner, uint64_t frame, std::span<GpuTime> out, bool wait);
 
+  // The smallest GPU time this timer can tell from nothing, in ms, measured on
+  // the first begin(): the larger of the step GL_TIMESTAMP takes between two
+  // reads and what an empty GL_TIME_ELAPSED query reads. A frame's time below
+  // it is not a measurement (llvmpipe's tiny frames read 0.00 ms). 0 before.
+  double resolution_ms() const { return resolution_ms_ > 0 ? resolution_ms_ : 0; }
+
  private:
+  void measure_resolution();
   enum class State : uint8_t { Free, Pending };
   struct Slot {
     GLuint query = 0;
@@ -45,6 +52,7 @@ class GpuTimer {
   std::array<Slot, kRing> slots_{};
   uint64_t next_order_ = 0;
   Slot* active_ = nullptr;
+  double resolution_ms_ = -1;  // < 0: not measured yet
 };
 
 }  // namespace crowdprof

@@ -1,0 +1,83 @@
+// Smaller mistakes a newcomer makes (issue 27, item 8), each answered with
+// what to do: another 3D format (how to get glTF), a result given as a scene
+// (which command reads it), and `report` saying where the page went.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+
+using crowdprof::test::run_cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const fs::path& path) {
+  std::string text = "'";
+  return (text += path.string()) += "'";
+}
+
+std::string character() { return quoted(crowdprof::test::source_dir() / "scenes" / "humanoid.glb"); }
+
+}  // namespace
+
+TEST(CliGuidance, OtherFormatsAreRefusedWithHowToConvert) {
+  auto dir = crowdprof::test::scratch_dir("guidance_formats");
+  std::ofstream(dir / "cube.obj") << "# Blender OBJ\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "hero.fbx") << "Kaydara FBX Binary  ";
+  for (const char* file : {"cube.obj", "hero.fbx"}) {
+    auto r = run_cli("bench " + quoted(dir / file));
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("not glTF"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("File > Export > glTF 2.0"), std::string::npos) << r.err;
+  }
+}
+
+TEST(CliGuidance, AResultGivenAsASceneSaysWhichCommandReadsIt) {
+  auto dir = crowdprof::test::scratch_dir("guidance_result");
+  fs::path result = dir / "run.json";
+  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --json " + quoted(result)).status, 0);
+  auto r = run_cli("bench " + quoted(result));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("run.json: this is a crowdprof result, not a scene file: use report, or check --result"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(CliGuidance, ReportSaysWhereItWrote) {
+  auto dir = crowdprof::test::scratch_dir("guidance_report");
+  fs::path result = dir / "run.json", page = dir / "run.html";
+  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --json " + quoted(result)).status, 0);
+  auto r = run_cli("report " + quoted(result) + " -o " + quoted(page));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "wrote " + page.string() + ": 1 result\n");
+  EXPECT_TRUE(fs::exists(page));
+}
+
+TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
+  auto dir = crowdprof::test::scratch_dir("guidance_summary");
+  fs::path bench = dir / "bench.csv", compare = dir / "compare.csv";
+  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 3 --warmup 0 -q --summary-csv " + quoted(bench)).status, 0);
+  std::ifstream in(bench);
+  std::string header, row, extra;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_EQ(header, "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,"
+                    "cpu_median_ms,cpu_p95_ms,cpu_p99_ms,cpu_fps,partial");
+  EXPECT_EQ(row.rfind("threaded,2,", 0), 0u) << row;
+  EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ',')) << row;
+  EXPECT_FALSE(std::getline(in, extra)) << "one row for one run";
+  auto r = run_cli("compare " + character() + " --modes master,culled -n 2 --frames 2 --warmup 0 --block 1 -q "
+                   "--summary-csv " + quoted(compare));
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream rows(compare);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(rows, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1].rfind("master,2,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("culled,2,", 0), 0u) << lines[2];
+}
