@@ -96,7 +96,9 @@ BenchCliOptions options_recorded_in(const json& baseline) {
                             {"lod_thresholds", &r.lod_thresholds}, {"anim_budget", &r.anim_budget}})
     if (switches.contains(key)) *value = switch_value(switches[key]);
   if (r.parallel == "on") r.threads = baseline["threads"].get<long long>();
-  if (std::string backend = optional_text(baseline["environment"], "backend"); !backend.empty()) r.backend = backend;
+  if (std::string backend = baseline.contains("environment") ? optional_text(baseline["environment"], "backend") : "";
+      !backend.empty())
+    r.backend = backend;
   r.allow_static = scene["actions"].get<long long>() == 0;
   if (scene.contains("lens") && scene["lens"].is_object() && scene["lens"].contains("focal_mm") &&
       scene["lens"]["focal_mm"].is_number())
@@ -349,7 +351,7 @@ int check(CheckCliOptions& o) {
     if (!o.bench.quiet)
       std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
                 << current["scene"]["characters"] << " characters, frame median "
-                << current["frame"]["median_ms"].get<double>() << " ms"
+                << summarize(current.at("samples").at("frame_ms").get<std::vector<double>>()).median << " ms"
                 << (o.result.empty() && o.runs > 1 ? ", the median of " + std::to_string(o.runs) + " runs by " + metric_display_name(options.metrics.front()) : "")
                 << ", digest " << current["digest"].get<std::string>() << ")\n";
     return kExitOk;

@@ -76,11 +76,17 @@ const json& result(const std::string& kind) {
   return found->second;
 }
 
-// One value of each JSON type, to stand in for a value of another.
-const json kStandIns[] = {nullptr, true, -1, 2.5, "text", json::array(), json::object()};
-
-bool same_type(const json& a, const json& b) {
-  return a.type() == b.type() || (a.is_number() && b.is_number() && !a.is_number_float() && !b.is_number_float());
+// Values of other types to put in place of `value`: null, a boolean, a string,
+// a number (a fraction for a whole number, a negative whole number for any
+// other) and a container (an object for an array, an array for anything else).
+// A reader's checks tell these apart; more of each type would only cost time.
+std::vector<json> stand_ins(const json& value) {
+  std::vector<json> out;
+  for (json other : {json(nullptr), json(true), json("text")})
+    if (other.type() != value.type()) out.push_back(other);
+  out.push_back(value.is_number_integer() ? json(2.5) : json(-1));
+  out.push_back(value.is_array() ? json::object() : json::array());
+  return out;
 }
 
 struct Damage {
@@ -99,8 +105,7 @@ void damage(const json& doc, const json::json_pointer& at, std::vector<Damage>& 
       removed[at.parent_pointer()].erase(at.back());
       out.push_back({"removed " + at.to_string(), std::move(removed)});
     }
-    for (const json& stand_in : kStandIns) {
-      if (same_type(node, stand_in)) continue;
+    for (const json& stand_in : stand_ins(node)) {
       json retyped = doc;
       retyped[at] = stand_in;
       out.push_back({at.to_string() + " as " + stand_in.dump(), std::move(retyped)});
@@ -271,9 +276,13 @@ TEST(UntrustedResults, TheCliReadsDamagedResultsWithExit0Or3) {
   };
   for (const Case& c : cases) {
     CliResult r = run_cli(c.args);
-    if (c.status >= 0) EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.err;
+    if (c.status >= 0) {
+      EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.err;
+    }
     EXPECT_TRUE(r.status == 0 || r.status == 1 || r.status == 3) << c.args << ": exit " << r.status << "\n" << r.err;
-    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+    if (r.status == 3) {  // a refusal is one line (a run may print notes besides)
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+    }
     EXPECT_EQ(r.err.find("nlohmann"), std::string::npos) << "an unguarded read: " << c.args << "\n" << r.err;
   }
 }

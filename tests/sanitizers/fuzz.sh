@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # ./setup.sh fuzz [SECONDS] [TARGET...]: runs each libFuzzer target of tests/fuzz
-# for SECONDS (default 60) on the ASan+UBSan build, starting from the seeds the
-# build makes and growing a corpus in build-sanitize/fuzz/corpus/TARGET. A crash,
+# for SECONDS (default 60) on the ASan+UBSan build, starting from the committed
+# corpus (tests/fuzz/corpus/TARGET, where the last long run stopped) and the
+# seeds the build makes, with the target's dictionary (tests/fuzz/dictionaries),
+# and growing a corpus in build-sanitize/fuzz/corpus/TARGET: the committed one is
+# copied there first, so the source tree stays as it was. A crash,
 # leak, timeout or sanitizer report stops with the input saved in
 # build-sanitize/fuzz/artifacts/TARGET/ (minimise it with -minimize_crash=1, fix,
 # and keep it in tests/fuzz/regressions/TARGET/). Prints, per target, the
@@ -26,9 +29,15 @@ for name in "${names[@]}"; do
   artifacts=$asan_dir/fuzz/artifacts/$name
   log=$asan_dir/fuzz/$name.log
   mkdir -p "$corpus" "$artifacts"
+  committed=$root/tests/fuzz/corpus/$name
+  if [[ -d $committed ]]; then cp -n "$committed"/* "$corpus"/ 2>/dev/null || true; fi
+  options=(-dict="$root/tests/fuzz/dictionaries/$name.dict")
+  # The loader's inputs are capped: the seeds' small characters (under 8 KiB)
+  # hold every structure it reads, and a larger input only costs time.
+  [[ $name == gltf_loader ]] && options+=(-max_len=12288)
   # -timeout: a single input that takes this long is a hang worth fixing.
   # -rss_limit_mb: the loader refuses files past 1 GiB; more memory is a finding.
-  if ! "$asan_dir/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 \
+  if ! "$asan_dir/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 "${options[@]}" \
       -print_final_stats=1 -seed="${FUZZ_SEED:-0}" -artifact_prefix="$artifacts/" "$corpus" "$asan_dir/fuzz/seeds/$name" >"$log" 2>&1; then
     status=1
     echo "fuzz: $name FAILED, see $log and $artifacts/" >&2
