@@ -8,7 +8,11 @@
 # leak, timeout or sanitizer report stops with the input saved in
 # build-sanitize/fuzz/artifacts/TARGET/ (minimise it with -minimize_crash=1, fix,
 # and keep it in tests/fuzz/regressions/TARGET/). Prints, per target, the
-# executions, coverage (edges) and features reached. FUZZ_SEED fixes libFuzzer's
+# executions, coverage (edges) and features reached. FUZZ_MERGE=1 then merges
+# what the run found into tests/fuzz/corpus/TARGET (-merge=1: the smallest set of
+# inputs that reaches every feature of the committed corpus and the run's), for a
+# long run whose ground CI should start from; commit the result if it stays
+# under 1 MB. FUZZ_SEED fixes libFuzzer's
 # random seed (the sanitizer stage of CI sets it, so that a finding there is the
 # same on every run of the same code); unset, each run explores anew.
 set -euo pipefail
@@ -42,6 +46,14 @@ for name in "${names[@]}"; do
     status=1
     echo "fuzz: $name FAILED, see $log and $artifacts/" >&2
     grep -E "ERROR|SUMMARY|fuzz: " "$log" | head -5 >&2 || true
+  fi
+  if [[ ${FUZZ_MERGE:-0} == 1 ]]; then
+    merged=$asan_dir/fuzz/merged/$name
+    rm -rf "$merged" && mkdir -p "$merged" "$committed"
+    "$asan_dir/tests/fuzz/fuzz_$name" -merge=1 "${options[@]}" -timeout=25 -rss_limit_mb=2560 \
+      "$merged" "$committed" "$corpus" >"$asan_dir/fuzz/$name.merge.log" 2>&1
+    rm -rf "$committed" && mv "$merged" "$committed"
+    echo "fuzz: $name: merged into tests/fuzz/corpus/$name: $(ls "$committed" | wc -l) inputs, $(du -sk "$committed" | cut -f1) KiB"
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   done_line=$(grep -E '^#[0-9]+' "$log" | tail -1)
