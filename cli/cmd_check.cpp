@@ -258,7 +258,7 @@ int write_baseline(const CheckCliOptions& o, const CheckPlan& plan, const json& 
   if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html}))
     std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
               << current["scene"]["characters"] << " characters, frame median "
-              << current["frame"]["median_ms"].get<double>() << " ms"
+              << summarize(current.at("samples").at("frame_ms").get<std::vector<double>>()).median << " ms"
               << (o.result.empty() && plan.runs > 1
                       ? ", the median of " + std::to_string(plan.runs) + " runs by " +
                             metric_display_name(plan.gate.metrics.front())

@@ -114,13 +114,18 @@ std::string printable(std::string_view text, size_t limit) {
   return out;
 }
 
-GltfContainer read_gltf_container(const std::string& path) {
+GltfContainer read_gltf_container(const std::string& path) { return gltf_container_from_bytes(read_bytes(path), path); }
+
+GltfContainer gltf_container_from_bytes(const std::vector<unsigned char>& bytes, const std::string& path) {
   GltfContainer c;
   c.path = path;
   std::error_code ec;
   fs::path absolute = fs::absolute(path, ec);
   c.base_dir = absolute.parent_path().string();
-  std::vector<unsigned char> bytes = read_bytes(path);
+  if (bytes.empty()) throw InputError(path, "is empty");
+  if (bytes.size() > kMaxAssetBytes)
+    throw InputError(path, "is " + std::to_string(bytes.size()) + " bytes; crowdprof reads at most " +
+                               std::to_string(kMaxAssetBytes) + " bytes");
   if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
     c.binary = true;
     split_glb(c, bytes);

@@ -33,6 +33,9 @@ struct GltfContainer {
 // Reads and splits the file and parses its JSON. Throws InputError for a missing
 // file, a directory, an empty or non-glTF file, a truncated GLB or broken JSON.
 GltfContainer read_gltf_container(const std::string& path);
+// The same for a file's bytes already in memory; `path` names it in messages and
+// its folder is base_dir.
+GltfContainer gltf_container_from_bytes(const std::vector<unsigned char>& bytes, const std::string& path);
 
 // Checks what tiny_gltf would trust (gltf_preflight.cpp): buffer and image URIs
 // stay inside base_dir (no absolute paths, no "..", no schemes but data:),

@@ -12,6 +12,7 @@
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_container.h"
 #include "asset/gltf_convert.h"
+#include "asset/json_assert.h"
 
 namespace crowdprof {
 namespace fs = std::filesystem;
@@ -324,8 +325,7 @@ void normalise_draco_views(tinygltf::Model& model, const std::vector<DracoPrimit
 // (the thesis's crowd shares one character of well under a megabyte).
 constexpr size_t kMaxAssetSharedBytes = size_t(2) << 30;
 
-GltfAsset load_checked(const std::string& file) {
-  GltfContainer container = read_gltf_container(file);
+GltfAsset load_checked(const std::string& file, GltfContainer container) {
   preflight_gltf(container);
   check_buffer_sizes(container);
   std::vector<DracoPrimitive> draco = trial_decode_draco(container);
@@ -351,11 +351,14 @@ GltfAsset load_checked(const std::string& file) {
   return asset;
 }
 
-}  // namespace
-
-GltfAsset load_gltf(const std::string& file) {
+// Loads the container, every InputError made one short line naming `file`.
+template <class ReadContainer>
+GltfAsset load_named(const std::string& file, ReadContainer read_container) {
   try {
-    return load_checked(file);
+    return load_checked(file, read_container());
+  } catch (const JsonAssertion& e) {
+    // A read nlohmann refused, in tiny_gltf's code or ours: the file is to blame.
+    throw InputError(file, printable(e.problem(), 300));
   } catch (const InputError& e) {
     // Every message should already be one short line; this keeps it so if one is not.
     std::string what = e.what(), prefix = file + ": ";
@@ -364,6 +367,16 @@ GltfAsset load_gltf(const std::string& file) {
     if (problem == what.substr(prefix.size())) throw;
     throw InputError(file, problem);
   }
+}
+
+}  // namespace
+
+GltfAsset load_gltf(const std::string& file) {
+  return load_named(file, [&] { return read_gltf_container(file); });
+}
+
+GltfAsset load_gltf_from_memory(const std::vector<unsigned char>& bytes, const std::string& file) {
+  return load_named(file, [&] { return gltf_container_from_bytes(bytes, file); });
 }
 
 size_t checked_skin(const GltfAsset& asset, const CharacterSpec& spec) {

@@ -31,6 +31,9 @@ struct GltfAsset {
 
 // Loads every skin of the file as a character.
 GltfAsset load_gltf(const std::string& file);
+// The same for a file's bytes already in memory (the fuzzer's way: no file per
+// input). `file` names it in messages; external URIs resolve beside it.
+GltfAsset load_gltf_from_memory(const std::vector<unsigned char>& bytes, const std::string& file);
 
 // The index of the skin the spec selects in a loaded asset. InputError when
 // there is none, when the index is past the last, or when the file holds

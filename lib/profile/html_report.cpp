@@ -243,14 +243,17 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   // them: n/a with the reason where it was not measured, never 0.
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
-    const json* gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? &run.doc["gpu_time"] : nullptr;
-    if (gpu && gpu->contains("below_resolution") && (*gpu)["below_resolution"] == true)
+    // Optional and unchecked by validate_result: every field may be missing or of another type.
+    static const json kNotRecorded = json::object();
+    const json& gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? run.doc["gpu_time"] : kNotRecorded;
+    const json available = gpu.value("available", json(false)), median = gpu.value("median_ms", json()),
+               reason = gpu.value("reason", json());
+    if (gpu.value("below_resolution", json(false)) == true)
       out += "<td>-</td><td class=\"name\">below the timer's resolution</td>";
-    else if (gpu && gpu->value("available", false) && (*gpu)["median_ms"].is_number())
-      out += "<td>" + report_number((*gpu)["median_ms"].get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
+    else if (available == true && median.is_number())
+      out += "<td>" + report_number(median.get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
     else
-      out += "<td>n/a</td><td class=\"name\">" +
-             h(gpu && (*gpu)["reason"].is_string() ? (*gpu)["reason"].get<std::string>() : "not recorded") + "</td>";
+      out += "<td>n/a</td><td class=\"name\">" + h(reason.is_string() ? reason.get<std::string>() : "not recorded") + "</td>";
   }
   out += "</tr>\n</table>\n";
   for (const ReportRun& run : runs) {

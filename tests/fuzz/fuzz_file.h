@@ -11,15 +11,21 @@
 
 namespace crowdprof::fuzz {
 
-// Writes `data` to <private folder>/<name> and returns the path. Aborts when the
-// file cannot be written: a fuzz run on a full disk would only find that.
-inline std::string write_input(const uint8_t* data, size_t size, const char* name) {
+// <private folder>/<name>: where an input is written, or, for a reader that
+// takes bytes, the name its messages use and the folder its URIs resolve in.
+inline std::string input_path(const char* name) {
   static const std::filesystem::path folder = [] {
     std::string pattern = (std::filesystem::temp_directory_path() / "crowdprof-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) std::abort();
     return std::filesystem::path(pattern);
   }();
-  std::string path = (folder / name).string();
+  return (folder / name).string();
+}
+
+// Writes `data` to input_path(name) and returns the path. Aborts when the
+// file cannot be written: a fuzz run on a full disk would only find that.
+inline std::string write_input(const uint8_t* data, size_t size, const char* name) {
+  std::string path = input_path(name);
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (!file || (size && std::fwrite(data, 1, size, file) != size) || std::fclose(file) != 0) std::abort();
   return path;

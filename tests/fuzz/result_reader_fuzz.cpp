@@ -1,14 +1,15 @@
 // Fuzz target: bytes as a result file (bench --json, a check baseline), through
 // what `check --result` does with it: read and validate, then compare it with
 // itself and format the verdict. The reader must refuse with an InputError or
-// give a document every later step takes; any other exception or a sanitizer
-// report is a finding.
+// give a document every later step takes; any other exception, nlohmann's
+// JSON_ASSERT reached (an unguarded read), or a sanitizer report is a finding.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 
 #include "asset/errors.h"
+#include "asset/json_assert.h"
 #include "fuzz_file.h"
 #include "profile/regression.h"
 
@@ -27,6 +28,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       std::fprintf(stderr, "fuzz: a result regressed against itself\n");
       std::abort();
     }
+  } catch (const JsonAssertion& e) {
+    // Refused, but only by the net under the reads: one was not guarded.
+    std::fprintf(stderr, "fuzz: an unguarded read: %s\n", e.what());
+    std::abort();
   } catch (const InputError&) {
     // Refused cleanly.
   } catch (const std::exception& e) {

@@ -3,14 +3,16 @@
 // read_json_file and then take it apart their own way (bench_results_in for
 // diff, add_result_document for the report), so each reader is driven to its
 // end: the file diffed against itself and the page made. Each must refuse with
-// an InputError or finish; any other exception, a regression of a file against
-// itself, or a sanitizer report is a finding.
+// an InputError or finish; any other exception, nlohmann's JSON_ASSERT reached
+// (an unguarded read), a regression of a file against itself, or a sanitizer
+// report is a finding.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 
 #include "asset/errors.h"
+#include "asset/json_assert.h"
 #include "fuzz_file.h"
 #include "profile/diff.h"
 #include "profile/html_report.h"
@@ -57,6 +59,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (auto* reader : {&run_diff, &run_report}) {
     try {
       reader(doc, path);
+    } catch (const JsonAssertion& e) {
+      // Refused, but only by the net under the reads: one was not guarded.
+      std::fprintf(stderr, "fuzz: %s, an unguarded read: %s\n", reader == &run_diff ? "diff" : "report", e.what());
+      std::abort();
     } catch (const InputError&) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "fuzz: %s, not an InputError: %s\n", reader == &run_diff ? "diff" : "report", e.what());
