@@ -51,6 +51,7 @@ int run_command(int argc, char** argv) {
       "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "
       "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)");
   app.require_subcommand(1);
+  app.footer("Each command lists its options: crowdprof bench --help\n\nExamples:\n  crowdprof bench scenes/thesis.json");
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
