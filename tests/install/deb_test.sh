@@ -13,6 +13,14 @@ build_dir=$(realpath "$1") stage=$2
 work=$build_dir/deb-test
 fail() { echo "deb_test: $*" >&2; exit 1; }
 mkdir -p "$work"
+# debootstrap mounts /proc and /sys in its root; a run killed midway (ctest's
+# timeout) leaves them mounted: undo that before and after.
+unmount_work() {
+  local mount_point
+  for mount_point in $(findmnt -rn -o TARGET | grep -F "$work/" | sort -r); do umount -l "$mount_point"; done
+}
+unmount_work
+trap unmount_work EXIT
 
 make_packages() {
   rm -rf "$work/out"
