@@ -27,7 +27,7 @@ foreach(command IN LISTS commands)
   list(APPEND see_also "\\fBcrowdprof-${command}\\fR(1)")
 endforeach()
 list(JOIN see_also ",\n" see_also)
-file(WRITE ${man_dir}/see-also.h2m "[FILES]
+file(WRITE ${man_dir}/extra-sections.h2m "[FILES]
 .TP
 \\fI/usr/share/crowdprof/scenes/\\fR
 The default scenes: \\fIthesis.json\\fR (the thesis's 160 dancing copies, what the examples bench),
@@ -39,12 +39,12 @@ ${see_also}
 ")
 
 set(help2man ${CROWDPROF_HELP2MAN} --no-info --version-string=${PROJECT_VERSION}
-  --include=${man_dir}/see-also.h2m)
+  --include=${man_dir}/extra-sections.h2m)
 set(pages ${man_dir}/crowdprof.1)
 add_custom_command(OUTPUT ${man_dir}/crowdprof.1
   COMMAND ${help2man} --name "profile skinned-crowd scenes" --output=${man_dir}/crowdprof.1
           $<TARGET_FILE:crowdprof_cli>
-  DEPENDS crowdprof_cli ${man_dir}/see-also.h2m COMMENT "Man page crowdprof(1)" VERBATIM)
+  DEPENDS crowdprof_cli ${man_dir}/extra-sections.h2m COMMENT "Man page crowdprof(1)" VERBATIM)
 foreach(command IN LISTS commands)
   # help2man names a page after its program: a one-line wrapper per command.
   set(wrapper ${man_dir}/bin/crowdprof-${command})
@@ -52,7 +52,7 @@ foreach(command IN LISTS commands)
        FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ WORLD_EXECUTE)
   add_custom_command(OUTPUT ${man_dir}/crowdprof-${command}.1
     COMMAND ${help2man} --name "${crowdprof_man_${command}}" --output=${man_dir}/crowdprof-${command}.1 ${wrapper}
-    DEPENDS crowdprof_cli ${man_dir}/see-also.h2m COMMENT "Man page crowdprof-${command}(1)" VERBATIM)
+    DEPENDS crowdprof_cli ${man_dir}/extra-sections.h2m COMMENT "Man page crowdprof-${command}(1)" VERBATIM)
   list(APPEND pages ${man_dir}/crowdprof-${command}.1)
 endforeach()
 add_custom_target(crowdprof_man_pages ALL DEPENDS ${pages})
