@@ -22,7 +22,7 @@ esac
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
-  libbenchmark-dev)
+  libbenchmark-dev help2man)
 # The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
 # are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.
 case "$action" in
@@ -33,6 +33,8 @@ esac
 # The tests load the HTML report in a real browser (tests/browser/); only the
 # test action needs it, and it is large.
 [[ $action == test ]] && packages+=(chromium)
+# The .deb's test installs it into a clean Debian 12 root (tests/install/).
+[[ $action == test ]] && packages+=(debootstrap)
 
 missing=()
 for package in "${packages[@]}"; do
@@ -52,7 +54,11 @@ case "$action" in
 esac
 
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j"$(nproc)"
+# run builds only the binary it runs; the tests, fuzzers, micro-benchmarks,
+# generated scenes and man pages come with the other actions.
+targets=()
+[[ $action == run ]] && targets=(--target crowdprof_cli)
+cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}"
 
 case "$action" in
   run) exec "$build_dir/crowdprof" bench scenes/thesis.json "$@" ;;

@@ -98,6 +98,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto summary_csv = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character (or the crowd of a scene file), "
                                           "play actions and print where each frame's time goes (BGE-style profile)");
+  cmd->footer("Examples:\n  crowdprof bench scenes/thesis.json --mode culled --json result.json");
   add_bench_options(*cmd, *options);
   cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
   cmd->add_option("--summary-csv", *summary_csv,

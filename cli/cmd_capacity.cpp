@@ -168,6 +168,7 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CapacityCliOptions>();
   auto* cmd = app.add_subcommand("capacity", "Find, per mode, the largest crowd whose median frame (or one category) "
                                              "fits a time budget, by a search over the crowd size");
+  cmd->footer("Examples:\n  crowdprof capacity scenes/humanoid.glb --budget 16.6 --modes threaded,shared");
   add_bench_options(*cmd, options->bench);
   cmd->remove_option(cmd->get_option("--mode"));        // --modes instead
   cmd->remove_option(cmd->get_option("--characters"));  // the search picks the sizes

@@ -327,6 +327,9 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CheckCliOptions>();
   auto* cmd = app.add_subcommand("check", "Run a bench (or read a result) and compare it with a baseline: exit 1 "
                                           "when it got slower or its work changed (see docs/compare-and-check.md)");
+  cmd->footer(
+      "Examples:\n  crowdprof check scenes/thesis.json --baseline base.json --update-baseline\n"
+      "  crowdprof check scenes/thesis.json --baseline base.json");
   options->command = cmd;
   add_bench_options(*cmd, options->bench);
   cmd->get_option("file")->required(false)->description(

@@ -236,6 +236,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CompareCliOptions>();
   auto* cmd = app.add_subcommand("compare", "Run several modes on one scene, interleaved in blocks of frames, and "
                                             "print each mode's median frame, categories and speedup");
+  cmd->footer("Examples:\n  crowdprof compare scenes/humanoid.glb -n 160 --modes master,culled,threaded");
   add_bench_options(*cmd, options->bench);
   cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
   cmd->add_option("--modes", options->modes,

@@ -58,6 +58,7 @@ void add_diff_command(CLI::App& app, std::function<int()>& run) {
   auto* cmd = app.add_subcommand("diff", "Two results (bench, check or compare JSON) side by side: per metric the "
                                          "medians, change, p-value and verdict; exit 1 when B is slower or does other "
                                          "work (see docs/compare-and-check.md)");
+  cmd->footer("Examples:\n  crowdprof diff before.json after.json");
   cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")->required();
   cmd->add_option("b", options->b, "Result B, judged against A")->required();
   cmd->add_option("--tolerance", options->tolerance, "Slowdown of a median allowed before a significant shift fails")

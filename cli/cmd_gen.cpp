@@ -40,6 +40,7 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<GenArgs>();
   auto* cmd = app.add_subcommand("gen", "Write the procedural humanoid (69 bones, 4,951 vertices, dance/walk/wave "
                                         "by default) as .glb or .gltf");
+  cmd->footer("Examples:\n  crowdprof gen -o big.glb --bones 300 --vertices 20000");
   cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")->required();
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
   cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 2,500,000 (the most the loader takes back)")->capture_default_str();

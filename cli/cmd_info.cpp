@@ -22,6 +22,7 @@ nlohmann::json describe(const std::string& file, bool json, std::ostream& out) {
 void add_info_command(CLI::App& app, std::function<int()>& run) {
   auto* cmd = app.add_subcommand("info", "Describe the characters in a glTF/GLB file: joints, vertices, "
                                          "influences, fix-ups, actions, Draco, memory");
+  cmd->footer("Examples:\n  crowdprof info scenes/humanoid.glb");
   static std::string file;
   static bool json = false;
   cmd->add_option("file", file,

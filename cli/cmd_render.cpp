@@ -58,6 +58,7 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<RenderCliOptions>();
   options->bench.defaults.values["backend"] = "auto";
   auto* cmd = app.add_subcommand("render", "Draw one frame of a bench with OpenGL and write it as a PNG");
+  cmd->footer("Examples:\n  crowdprof render scenes/humanoid.glb -n 40 --mode hwskin --frame 10 -o frame.png");
   add_bench_options(*cmd, options->bench);
   // One frame, not a measured run.
   cmd->remove_option(cmd->get_option("--frames"));

@@ -60,6 +60,7 @@ int run_command(int argc, char** argv) {
          "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)")
       ->trigger_on_parse();
   app.require_subcommand(0, 1);  // none only with --version or --help
+  app.footer("Each command lists its options: crowdprof bench --help\n\nExamples:\n  crowdprof bench scenes/thesis.json");
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);

@@ -18,6 +18,10 @@ using nlohmann::json;
 namespace {
 
 std::string scenes(const std::string& name) { return (crowdprof::test::source_dir() / "scenes" / name).string(); }
+// mixed.json runs from the build tree, where the build makes its generated characters.
+std::string built_scenes(const std::string& name) {
+  return (std::filesystem::path(CROWDPROF_BUILT_SCENES_DIR) / name).string();
+}
 
 json read_json(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -60,7 +64,7 @@ TEST(SceneFile, TheThesisSceneIsTheDefaultBench) {
 TEST(SceneFile, AMixedSceneShowsEachCharacter) {
   auto dir = crowdprof::test::scratch_dir("scene_mixed");
   auto out = dir / "mixed.json";
-  auto r = run_cli("bench '" + scenes("mixed.json") + "' --frames 2 --warmup 1 --json '" + out.string() + "'");
+  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' --frames 2 --warmup 1 --json '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
   ASSERT_EQ(j["crowd"].size(), 3u);
@@ -88,7 +92,7 @@ TEST(SceneFile, AMixedSceneShowsEachCharacter) {
   EXPECT_NE(r.out.find("160 characters of 3 kinds"), std::string::npos) << r.out;
   // The same scene gives the same bits again.
   auto again = dir / "again.json";
-  ASSERT_EQ(run_cli("bench '" + scenes("mixed.json") + "' --frames 2 --warmup 1 -q --threads 1 --json '" +
+  ASSERT_EQ(run_cli("bench '" + built_scenes("mixed.json") + "' --frames 2 --warmup 1 -q --threads 1 --json '" +
                     again.string() + "'").status, 0);
   EXPECT_EQ(read_json(again)["digest"], j["digest"]);
 }
@@ -96,7 +100,7 @@ TEST(SceneFile, AMixedSceneShowsEachCharacter) {
 TEST(SceneFile, TheCommandLineOverridesTheScene) {
   auto dir = crowdprof::test::scratch_dir("scene_override");
   auto out = dir / "r.json";
-  auto r = run_cli("bench '" + scenes("mixed.json") + "' -n 16 --camera all --seed 5 --lens 50 --resolution 640x480 "
+  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' -n 16 --camera all --seed 5 --lens 50 --resolution 640x480 "
                    "--actions random --frames 1 --warmup 0 -q --json '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
@@ -115,7 +119,7 @@ TEST(SceneFile, TheCommandLineOverridesTheScene) {
 TEST(SceneFile, CheckRerunsASceneBaselineWithItsOverrides) {
   auto dir = crowdprof::test::scratch_dir("scene_check");
   auto base = dir / "base.json";
-  ASSERT_EQ(run_cli("bench '" + scenes("mixed.json") + "' -n 12 --seed 9 --frames 6 --warmup 0 -q --json '" +
+  ASSERT_EQ(run_cli("bench '" + built_scenes("mixed.json") + "' -n 12 --seed 9 --frames 6 --warmup 0 -q --json '" +
                     base.string() + "'").status, 0);
   auto r = run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000%");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
@@ -126,7 +130,7 @@ TEST(SceneFile, HardwareSkinningFallsBackPerCharacter) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   auto dir = crowdprof::test::scratch_dir("scene_hwskin");
   auto out = dir / "r.json";
-  auto r = run_cli("bench '" + scenes("mixed.json") + "' -n 12 --mode hwskin --backend auto --resolution 320x180 "
+  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' -n 12 --mode hwskin --backend auto --resolution 320x180 "
                    "--frames 1 --warmup 0 -q --json '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
@@ -205,16 +209,16 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
 }
 
 TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
-  auto r = run_cli("info '" + scenes("mixed.json") + "'");
+  auto r = run_cli("info '" + built_scenes("mixed.json") + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("characters[1]: generated/humanoid-300.glb, 40 copies"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("joints:      300"), std::string::npos) << r.out;
-  auto j = run_cli("info '" + scenes("mixed.json") + "' --json");
+  auto j = run_cli("info '" + built_scenes("mixed.json") + "' --json");
   ASSERT_EQ(j.status, 0) << j.err;
   json doc = json::parse(j.out);
   ASSERT_EQ(doc["characters"].size(), 3u);
   EXPECT_EQ(doc["characters"][2]["count"], 40);
-  EXPECT_EQ(doc["scene_hash"], crowdprof::fnv1a64_hex(slurp(scenes("mixed.json"))));
+  EXPECT_EQ(doc["scene_hash"], crowdprof::fnv1a64_hex(slurp(built_scenes("mixed.json"))));
   auto dir = crowdprof::test::scratch_dir("scene_info_bad");
   auto bad = dir / "bad.json";
   std::ofstream(bad) << "{\"characters\": [{\"file\": \"missing.glb\", \"count\": 1}]}";

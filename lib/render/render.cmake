@@ -31,7 +31,8 @@ add_custom_command(
   COMMENT "Generating the GL loader with glad"
   VERBATIM)
 add_library(crowdprof_glad STATIC ${CROWDPROF_GLAD_DIR}/src/gl.c)
-target_include_directories(crowdprof_glad SYSTEM PUBLIC ${CROWDPROF_GLAD_DIR}/include)
+target_include_directories(crowdprof_glad SYSTEM PUBLIC $<BUILD_INTERFACE:${CROWDPROF_GLAD_DIR}/include>
+  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/crowdprof>)
 set_target_properties(crowdprof_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # shaders/*.vert|frag|glsl|comp -> one .cpp of raw string literals (render/shader_sources.h).
