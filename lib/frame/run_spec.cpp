@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "frame/switch_table.h"
+#include "profile/number_text.h"
 #include "render/gl_context.h"
 #include "scene/camera.h"
 #include "scene/scene_file.h"
@@ -23,20 +24,6 @@ std::optional<long long> parse_whole(std::string_view text) {
       text.find_first_not_of("0123456789", digits) != std::string_view::npos)
     return std::nullopt;
   return std::stoll(std::string(text));
-}
-
-std::optional<double> parse_number(std::string_view text) {
-  if (text.empty() || text.size() > 32) return std::nullopt;
-  std::string copy(text);
-  size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(copy, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != copy.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
 }
 
 // Sets a whole-number setting within [min, max]; `below` is said for values

@@ -8,26 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "profile/number_text.h"
+
 namespace crowdprof {
 
 namespace {
 
 using nlohmann::json;
-
-// A number as the whole text (no trailing junk), or nullopt.
-std::optional<double> parse_number(std::string_view text) {
-  if (text.empty() || text.size() > 32) return std::nullopt;
-  std::string copy(text);
-  size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(copy, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != copy.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
 
 // The shortest decimal that reads back as `value`.
 std::string shortest(double value) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace crowdprof {
 
@@ -18,6 +19,20 @@ std::string percent(double fraction) {
   text += fixed(fraction * 100.0, 1);
   text += '%';
   return text;
+}
+
+std::optional<double> parse_number(std::string_view text) {
+  if (text.empty() || text.size() > 32) return std::nullopt;
+  std::string copy(text);
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(copy, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != copy.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
 }
 
 }  // namespace crowdprof
