@@ -72,11 +72,11 @@ TEST(CliErrors, AMissingFileSaysWhatToGive) {
 }
 
 TEST(CliErrors, GlobalOptionsAreTakenAnywhereAndBadValuesRefused) {
-  auto r = run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --simd SCALAR --stores regular");
+  auto r = run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --simd SSE4 --stores regular");
   EXPECT_EQ(r.status, 0) << r.err;
-  r = run_cli("--simd SCALAR --version");
+  r = run_cli("--simd SSE4 --version");
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("SIMD SCALAR"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("SIMD SSE4"), std::string::npos) << r.out;
   expect_usage("--simd AVX9 --version", {"SIMD target \"AVX9\""});
   expect_usage("--version --simd AVX9", {"SIMD target \"AVX9\""});
   expect_usage("--stores fast --version", {"unknown store policy \"fast\""});
