@@ -8,16 +8,18 @@
 #       ./crowdprof_*.deb, crowdprof bench from /, an upgrade to a later version,
 #       then purge leaves nothing. Needs root and Debian's mirror: skipped (77)
 #       without them.
-set -euo pipefail
+set -Eeuo pipefail
 build_dir=$(realpath "$1") stage=$2
 work=$build_dir/deb-test
 fail() { echo "deb_test: $*" >&2; exit 1; }
+# A command that fails under set -e says where, not just the exit status.
+trap 'echo "deb_test: line $LINENO: \"$BASH_COMMAND\" failed (status $?)" >&2' ERR
 mkdir -p "$work"
 # debootstrap mounts /proc and /sys in its root; a run killed midway (ctest's
 # timeout) leaves them mounted: undo that before and after.
 unmount_work() {
   local mount_point
-  for mount_point in $(findmnt -rn -o TARGET | grep -F "$work/" | sort -r); do umount -l "$mount_point"; done
+  for mount_point in $(findmnt -rn -o TARGET | { grep -F "$work/" || true; } | sort -r); do umount -l "$mount_point"; done
 }
 unmount_work
 trap unmount_work EXIT
@@ -45,7 +47,9 @@ contents() {
   depends=$(dpkg-deb -f "$deb" Depends)
   local needed path package
   for needed in $(objdump -p "$build_dir/crowdprof" | awk '$1 == "NEEDED" {print $2}'); do
-    path=$(ldconfig -p | awk -v lib="$needed" '$1 == lib && /x86-64/ {print $NF; exit}')
+    # awk reads to the end: an early exit would kill ldconfig with SIGPIPE
+    # when its listing passes the pipe's buffer, and pipefail ends the test.
+    path=$(ldconfig -p | awk -v lib="$needed" '$1 == lib && /x86-64/ && !found {print $NF; found = 1}')
     [[ -n $path ]] || fail "cannot find $needed"
     package=$(dpkg -S "$(realpath "$path")" 2>/dev/null || dpkg -S "$path") || fail "no package owns $path"
     package=${package%%:*}
