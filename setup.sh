@@ -7,6 +7,8 @@
 #   ./setup.sh sanitize              ASan+UBSan and TSan builds, tests and a short fuzz (CI's second stage)
 #   ./setup.sh fuzz [SECONDS]        run each fuzz target SECONDS (default 60) on the ASan build
 #   ./setup.sh valgrind              memcheck of a short bench and of info on a Draco file
+#   ./setup.sh gpu-bundle DIR        a folder to carry to a GPU machine: the binary, its libraries,
+#                                    scenes and run.sh, which measures every GPU mode (docs/gpu.md)
 # The build goes to ./build (override with CROWDPROF_BUILD_DIR).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -16,7 +18,8 @@ shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
   run | test | build | bench | sanitize | fuzz | valgrind) ;;
-  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind] [options]" >&2; exit 2 ;;
+  gpu-bundle) [[ $# -eq 1 ]] || { echo "usage: ./setup.sh gpu-bundle DIR" >&2; exit 2; } ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|gpu-bundle DIR] [options]" >&2; exit 2 ;;
 esac
 
 packages=(build-essential cmake ninja-build git pkg-config
@@ -58,6 +61,7 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 # generated scenes and man pages come with the other actions.
 targets=()
 [[ $action == run ]] && targets=(--target crowdprof_cli)
+[[ $action == gpu-bundle ]] && targets=(--target crowdprof_cli crowdprof_scenes)
 cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}"
 
 case "$action" in
@@ -65,4 +69,5 @@ case "$action" in
   test) exec ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" "$@" ;;
   build) ;;
   bench) exec "$build_dir/crowdprof_micro" "$@" ;;
+  gpu-bundle) exec tests/gpu_bundle/make.sh "$build_dir" "$@" ;;
 esac

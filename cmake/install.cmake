@@ -27,8 +27,9 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/crowdprofConfig.cmake ${CMAKE_BINARY_DIR
 
 # Two Debian packages: crowdprof (the tool) and crowdprof-dev (the library).
 # dpkg-shlibdeps (dpkg-dev) finds the tool's run-time Depends from its ELF
-# needs; Mesa's EGL and DRI drivers are loaded by libEGL at run time, so they
-# are named by hand (Recommends: --backend none needs neither).
+# needs; libOSMesa is opened at run time (render/osmesa_context.cpp), so it is
+# named by hand, as are Mesa's EGL and DRI drivers, which libEGL loads
+# (Recommends: --backend none needs none of them).
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME crowdprof)
 set(CPACK_PACKAGE_VENDOR crowdprof)
@@ -42,7 +43,7 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION utils)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME crowdprof)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "libosmesa6, libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME crowdprof-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 # What crowdprofConfig.cmake finds, and the GL libraries the static library links.

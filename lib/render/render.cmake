@@ -1,5 +1,6 @@
 # The GL side of crowdprof_lib (included from lib/CMakeLists.txt): glad's loader,
-# generated at build time, libEGL and libOSMesa, and the shaders embedded as
+# generated at build time, libEGL, OSMesa's header (the library is opened at
+# run time: osmesa_context.cpp), and the shaders embedded as
 # string literals so that the binary needs no install directory.
 #
 # Never link libGL or libOpenGL here: they export every gl* symbol, like
@@ -19,7 +20,6 @@ endif()
 find_path(CROWDPROF_EGL_INCLUDE EGL/egl.h REQUIRED)
 find_library(CROWDPROF_EGL_LIBRARY EGL REQUIRED)
 find_path(CROWDPROF_OSMESA_INCLUDE GL/osmesa.h REQUIRED)
-find_library(CROWDPROF_OSMESA_LIBRARY OSMesa REQUIRED)
 find_path(CROWDPROF_STB_INCLUDE stb/stb_image_write.h REQUIRED)
 
 # GL 4.5 core headers, no extensions: everything crowdprof calls is core in 4.3.
@@ -50,4 +50,4 @@ target_sources(crowdprof_lib PRIVATE ${CROWDPROF_EMBEDDED_SHADERS})
 
 target_include_directories(crowdprof_lib SYSTEM PRIVATE ${CROWDPROF_EGL_INCLUDE} ${CROWDPROF_OSMESA_INCLUDE}
   ${CROWDPROF_STB_INCLUDE})
-target_link_libraries(crowdprof_lib PUBLIC crowdprof_glad PRIVATE ${CROWDPROF_EGL_LIBRARY} ${CROWDPROF_OSMESA_LIBRARY})
+target_link_libraries(crowdprof_lib PUBLIC crowdprof_glad PRIVATE ${CROWDPROF_EGL_LIBRARY} ${CMAKE_DL_LIBS})
