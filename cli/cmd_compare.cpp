@@ -20,6 +20,7 @@
 #include "frame/interrupt.h"
 #include "profile/compare_report.h"
 #include "profile/regression.h"
+#include "profile/gbench_json.h"
 #include "profile/summary_csv.h"
 #include "profile/trace.h"
 
@@ -32,7 +33,7 @@ struct CompareCliOptions {
   std::vector<std::string> modes;  // empty: every mode the backend can run
   std::string sweep;
   long long block = 10;
-  std::string svg, trace, summary_csv;
+  std::string svg, trace, summary_csv, gbench_json;
 };
 
 std::vector<size_t> parse_sweep(const std::string& text) {
@@ -148,8 +149,10 @@ int compare(CompareCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}, {"--summary-csv", o.summary_csv}});
+  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}, {"--summary-csv", o.summary_csv},
+                                         {"--gbench-json", o.gbench_json}});
   if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
+  if (!o.gbench_json.empty()) require_writable(o.gbench_json, "JSON");
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
   if (!o.trace.empty()) require_writable(o.trace, "trace");
   BenchScene scene = load_bench_scene(o.bench.spec);
@@ -191,19 +194,19 @@ int compare(CompareCliOptions& o) {
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
-  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.bench.html, o.svg, o.trace, o.summary_csv}))
+  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.bench.html, o.svg, o.trace, o.summary_csv,
+                                       o.gbench_json}))
     std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
-  if (!o.summary_csv.empty())
-    write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
-      // The main run's modes, then the sweep's other crowd sizes.
-      std::vector<const RunReport*> rows;
-      for (const RunReport& report : comparison.runs) rows.push_back(&report);
-      for (const RunReport& report : comparison.sweep)
-        if (report.run.characters != copies) rows.push_back(&report);
-      write_summary_csv(rows, out);
-    });
+  // The main run's modes, then the sweep's other crowd sizes.
+  std::vector<const RunReport*> rows;
+  for (const RunReport& report : comparison.runs) rows.push_back(&report);
+  for (const RunReport& report : comparison.sweep)
+    if (report.run.characters != copies) rows.push_back(&report);
+  if (!o.summary_csv.empty()) write_text(o.summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv(rows, out); });
+  if (!o.gbench_json.empty())
+    write_text(o.gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document(rows).dump(2) << "\n"; });
   if (!o.bench.json.empty())
     write_text(o.bench.json, "JSON", [&](std::ostream& out) {
       out << with_paths_relative_to(comparison_to_json(comparison), o.bench.json).dump(2) << "\n";
@@ -220,7 +223,7 @@ int compare(CompareCliOptions& o) {
   }
   if (partial) {
     bool wrote = !o.bench.csv.empty() || !o.bench.json.empty() || !o.svg.empty() || !o.trace.empty() ||
-                 !o.bench.html.empty() || !o.summary_csv.empty();
+                 !o.bench.html.empty() || !o.summary_csv.empty() || !o.gbench_json.empty();
     std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frames.size() << " of "
               << comparison.runs.front().frames_planned << " frames per mode measured"
               << (wrote ? ", and written as a partial result" : "")
@@ -254,6 +257,9 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                   "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
                   "of its CPU time");
   cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
+  cmd->add_option("--gbench-json", options->gbench_json,
+                  "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
+                  "github-action-benchmark or Bencher");
   cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, sweep");
   cmd->add_option("--html", options->bench.html,
                   "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
