@@ -22,20 +22,23 @@ case "$action" in
   *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|gpu-bundle DIR] [options]" >&2; exit 2 ;;
 esac
 
+# valgrind is built against too: its callgrind.h lets the frames toggle
+# callgrind's counting (check --metric instructions).
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
-  libbenchmark-dev help2man)
+  libbenchmark-dev help2man valgrind)
 # The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
 # are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.
 case "$action" in
   sanitize) packages+=(clang libclang-rt-14-dev dpkg-dev) ;;
   fuzz) packages+=(clang libclang-rt-14-dev) ;;
-  valgrind) packages+=(valgrind) ;;
 esac
-# The tests load the HTML report in a real browser (tests/browser/); only the
+# The tests load the HTML report in a real browser (tests/browser/) and parse
+# docs/ci.md's workflow as YAML and run Google Benchmark's compare.py on
+# crowdprof's results (tests/ci/); only the
 # test action needs it, and it is large.
-[[ $action == test ]] && packages+=(chromium)
+[[ $action == test ]] && packages+=(chromium python3-yaml libbenchmark-tools python3-scipy)
 # The .deb's test installs it into a clean Debian 12 root (tests/install/).
 [[ $action == test ]] && packages+=(debootstrap)
 

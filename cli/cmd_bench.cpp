@@ -12,6 +12,7 @@
 #include "cli/output.h"
 #include "frame/interrupt.h"
 #include "profile/regression.h"
+#include "profile/gbench_json.h"
 #include "profile/summary_csv.h"
 #include "frame/run_bench.h"
 #include "profile/trace.h"
@@ -22,15 +23,28 @@ namespace {
 
 using namespace crowdprof;
 
-int bench(BenchCliOptions& options, const std::string& summary_csv) {
+// Outputs bench has and the other commands' shared options do not.
+struct BenchOutputs {
+  std::string summary_csv, gbench_json;
+  bool count_instructions = false;
+};
+
+int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
+  const std::string& summary_csv = outputs.summary_csv;
+  const std::string& gbench_json = outputs.gbench_json;
   resolve_bench_spec(options);
   const RunSpec& spec = options.spec;
   validate_run_spec(spec);
-  require_writable_outputs(options, {}, {{"--summary-csv", summary_csv}});
+  require_writable_outputs(options, {}, {{"--summary-csv", summary_csv}, {"--gbench-json", gbench_json}});
   if (!summary_csv.empty()) require_writable(summary_csv, "CSV");
+  if (!gbench_json.empty()) require_writable(gbench_json, "JSON");
   BenchScene scene = load_bench_scene(spec);
   BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
+  // Instructions are counted on the frame's thread: workers' would be missed.
+  if (outputs.count_instructions && config.mode.parallel && config.threads != 1)
+    throw UsageError("--count-instructions counts the frame's own thread: with mode " + config.mode_name +
+                     " (parallel), add --threads 1");
   // The report embeds the screenshot by reading it back: it needs a file.
   if (is_standard_output(options.screenshot) && !options.html.empty())
     throw UsageError("--screenshot " + options.screenshot + " with --html: the report reads the screenshot back from "
@@ -56,15 +70,19 @@ int bench(BenchCliOptions& options, const std::string& summary_csv) {
   run.progress = terminal_progress(options.quiet, "mode " + config.mode_name + ",");
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
+  run.count_instructions = outputs.count_instructions;
   RunReport report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
   if (prints_on_stdout(options.quiet,
-                       {options.csv, options.json, options.trace, options.screenshot, options.html, summary_csv}))
+                       {options.csv, options.json, options.trace, options.screenshot, options.html, summary_csv,
+                        gbench_json}))
     std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
   if (!summary_csv.empty())
     write_text(summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv({&report}, out); });
+  if (!gbench_json.empty())
+    write_text(gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document({&report}).dump(2) << "\n"; });
   if (!options.json.empty())
     write_text(options.json, "JSON",
                [&](std::ostream& out) { out << with_paths_relative_to(to_json(report), options.json).dump(2) << "\n"; });
@@ -73,7 +91,8 @@ int bench(BenchCliOptions& options, const std::string& summary_csv) {
     std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
               << tracer->dropped() << " later ones were dropped\n";
   if (report.partial) {
-    bool wrote = !options.csv.empty() || !options.json.empty() || !options.trace.empty() || !summary_csv.empty();
+    bool wrote = !options.csv.empty() || !options.json.empty() || !options.trace.empty() || !summary_csv.empty() ||
+                 !gbench_json.empty();
     std::cerr << "crowdprof: interrupted: " << report.frames.size() << " of " << report.frames_planned
               << " frames measured" << (wrote ? ", and written as a partial result" : "") << "\n";
     return kExitInterrupted;
@@ -95,13 +114,20 @@ int bench(BenchCliOptions& options, const std::string& summary_csv) {
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCliOptions>();
-  auto summary_csv = std::make_shared<std::string>();
+  auto outputs = std::make_shared<BenchOutputs>();
   auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character (or the crowd of a scene file), "
                                           "play actions and print where each frame's time goes (BGE-style profile)");
   cmd->footer("Examples:\n  crowdprof bench scenes/thesis.json --mode culled --json result.json");
   add_bench_options(*cmd, *options);
   cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
-  cmd->add_option("--summary-csv", *summary_csv,
+  cmd->add_option("--gbench-json", outputs->gbench_json,
+                  "Write the run as Google Benchmark's JSON (each frame a repetition; mean, median, stddev), for "
+                  "compare.py, github-action-benchmark or Bencher");
+  cmd->add_flag("--count-instructions", outputs->count_instructions,
+                "Count each measured frame's instructions on one thread: perf_event's hardware counter, or "
+                "callgrind's under valgrind --tool=callgrind --collect-atstart=no (check --metric instructions runs "
+                "that); recorded in --json as \"instructions\"");
+  cmd->add_option("--summary-csv", outputs->summary_csv,
                   "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
   cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");
   cmd->add_option("--trace", options->trace,
@@ -111,5 +137,5 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--html", options->html,
                   "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
                   "opens in any browser");
-  cmd->callback([&run, options, summary_csv] { run = [options, summary_csv] { return bench(*options, *summary_csv); }; });
+  cmd->callback([&run, options, outputs] { run = [options, outputs] { return bench(*options, *outputs); }; });
 }

@@ -18,7 +18,9 @@
 #include "asset/gltf_loader.h"
 #include "output/output_file.h"
 #include "cli/bench_options.h"
+#include "cli/check_against.h"
 #include "cli/child_run.h"
+#include "cli/spawn.h"
 #include "cli/commands.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
@@ -26,9 +28,12 @@
 #include "frame/run_bench.h"
 #include "frame/switch_table.h"
 #include "profile/check_plan.h"
+#include "profile/instruction_counter.h"
 #include "profile/regression.h"
 #include "profile/report_charts.h"
+#include "profile/number_text.h"
 #include "profile/svg_chart.h"
+#include "profile/verdict_report.h"
 
 namespace {
 
@@ -50,6 +55,9 @@ struct CheckCliOptions {
   bool update = false;
   bool timings_only = false;
   std::string svg;
+  std::string against;  // the base build's binary: an A/B instead of a stored baseline
+  long long groups = static_cast<long long>(kAbGroups);
+  std::string junit, markdown;
   CLI::App* command = nullptr;  // to tell options given from defaults
   bool action_from_baseline = false;
   bool file_from_baseline = false;  // the scene file is the one the baseline recorded
@@ -141,6 +149,7 @@ CheckPlan plan_of(const CheckCliOptions& o) {
   CheckRequest request;
   request.metrics = o.metrics;
   request.tolerance = o.tolerance;
+  request.tolerance_given = o.command->count("--tolerance") > 0;
   request.floor = o.floor;
   request.alpha = o.alpha;
   if (o.command->count("--runs") > 0) request.runs = o.runs;
@@ -158,10 +167,12 @@ void require_safe_outputs(const CheckCliOptions& o) {
     throw UsageError("--json " + o.bench.json + " is the baseline; to replace it, use --update-baseline");
   std::vector<NamedPath> inputs = {{"--result file", o.result}};
   if (!o.update) inputs.push_back({"baseline", o.baseline});
-  std::vector<NamedPath> outputs = {{"--svg", o.svg}};  // --html is among the bench options
+  std::vector<NamedPath> outputs = {{"--svg", o.svg}, {"--junit", o.junit}, {"--markdown", o.markdown}};  // --html is among the bench options
   if (o.update) outputs.push_back({"--baseline", o.baseline});
   require_writable_outputs(o.bench, inputs, outputs);
   if (!o.svg.empty()) require_writable(o.svg, "SVG");
+  if (!o.junit.empty()) require_writable(o.junit, "JUnit XML");
+  if (!o.markdown.empty()) require_writable(o.markdown, "Markdown");
   if (o.update) require_writable(o.baseline, "baseline");
 }
 
@@ -183,6 +194,100 @@ std::optional<json> read_baseline(const CheckCliOptions& o) {
   return std::nullopt;
 }
 
+// crowdprof's own line among a run's stderr (valgrind's banner comes first).
+std::string crowdprof_line(const std::string& text) {
+  size_t at = text.rfind("crowdprof: ");
+  if (at != std::string::npos && (at == 0 || text[at - 1] == '\n')) return first_line(text.substr(at));
+  return first_line(text);
+}
+
+bool on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  for (size_t start = 0; start <= dirs.size();) {
+    size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    std::string candidate = dirs.substr(start, end - start) + "/" + program;
+    if (end > start && ::access(candidate.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// Step 4, --metric instructions: each run is this binary's bench in a process
+// of its own, on one thread (waiting is never counted), counted by the CPU's
+// hardware counter where the host exposes one, else under callgrind (which
+// must start the process, so never a fork). A run's count is the
+// instructions of its measured frames over their number.
+std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& plan) {
+  std::string perf_problem = perf_event_problem();
+  const bool callgrind = !perf_problem.empty();
+  if (callgrind && !on_path("valgrind"))
+    throw std::runtime_error("--metric instructions: nothing counts instructions here: no hardware counter (" +
+                             perf_problem + ") and no valgrind (apt-get install valgrind)");
+  RunSpec spec = o.bench.spec;
+  spec.threads = 1;
+  ScratchFolder scratch;
+  const std::string result_path = scratch.file("run.json"), callgrind_path = scratch.file("callgrind.out");
+  std::vector<std::string> bench_args = {"bench"};
+  for (std::string& arg : run_spec_arguments(spec)) bench_args.push_back(std::move(arg));
+  bench_args.insert(bench_args.end(), {"--count-instructions", "-q", "--json", result_path});
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  std::string program = self;
+  std::vector<std::string> args = bench_args;
+  if (callgrind) {
+    program = "valgrind";
+    args = {"--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + callgrind_path, self};
+    args.insert(args.end(), bench_args.begin(), bench_args.end());
+  }
+  install_interrupt_handlers();
+  std::vector<json> runs;
+  std::vector<double> counts;
+  for (size_t i = 1; i <= plan.runs; ++i) {
+    if (!o.bench.quiet && ::isatty(STDERR_FILENO))
+      std::cerr << "\rcrowdprof: check: counting instructions" << (callgrind ? " under callgrind" : "") << ", run "
+                << i << " of " << plan.runs << std::flush;
+    Finished finished = run_program(program, args, scratch.file("run.err"));
+    if (interrupt_requested().load()) {
+      std::cerr << "\ncrowdprof: interrupted: instructions are not compared from a cut run\n";
+      return std::nullopt;
+    }
+    if (finished.status != 0)
+      throw std::runtime_error("--metric instructions: the counted run failed (exit " +
+                               std::to_string(finished.status) + "): " + crowdprof_line(finished.error_text));
+    json run = read_result(result_path);
+    // The run wrote its scene file relative to the scratch folder; as an
+    // in-process run records it, it is the spec's (relative to here).
+    run["scene"]["file"] = spec.file;
+    run["scene"].erase("file_from");
+    json& instructions = run["instructions"];
+    if (callgrind) {
+      std::string problem;
+      uint64_t total = callgrind_totals(callgrind_path, problem);
+      if (!problem.empty()) throw std::runtime_error("--metric instructions: " + problem);
+      // The frames toggle collection through valgrind's header, found at build time.
+      if (total == 0)
+        throw std::runtime_error("--metric instructions: callgrind counted nothing: this crowdprof was built without "
+                                 "valgrind's callgrind.h (apt-get install valgrind, then build again)");
+      instructions["source"] = "callgrind";
+      instructions["per_frame"] = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
+    } else if (!instructions.is_object() || !instructions["per_frame"].is_number()) {
+      throw std::runtime_error("--metric instructions: the run counted none (" +
+                               instructions.value("problem", std::string("no count")) + ")");
+    }
+    counts.push_back(instructions["per_frame"].get<double>());
+    runs.push_back(std::move(run));
+  }
+  if (!o.bench.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
+  // The run whose count is the median, with every run's count beside it.
+  std::vector<size_t> order(runs.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return counts[a] < counts[b]; });
+  json median = runs[order[(order.size() - 1) / 2]];
+  median["instructions"]["runs"] = counts;
+  return median;
+}
+
 // Step 4: the runs. The spec resolves as defaults, scene file, baseline,
 // command line; then plan.runs runs, each a process of its own (child_run.h):
 // the CPU time of one unchanged scene moves about three times more between
@@ -195,6 +300,7 @@ std::optional<json> measure(CheckCliOptions& o, const CheckPlan& plan, const std
   else resolve_bench_spec(o.bench);
   if (o.bench.spec.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
   require_safe_outputs(o);  // the scene file may have come from the baseline
+  if (plan.gate.metrics.front() == kInstructionsMetric) return measure_instructions(o, plan);
   std::vector<json> runs;
   json partial;
   install_interrupt_handlers();  // here, to forward a ^C to the run in progress
@@ -267,8 +373,69 @@ int write_baseline(const CheckCliOptions& o, const CheckPlan& plan, const json& 
   return kExitOk;
 }
 
+// What an instruction count was made with: counts compare only within one.
+std::string instruction_origin(const json& result) {
+  const json& i = result.at("instructions");
+  return i.value("source", std::string("?")) + " (SIMD " + i.value("simd", std::string("?")) + ", " +
+         i.value("compiler", std::string("?")) + ", " + std::to_string(i.value("threads", 0)) + " thread)";
+}
+
+// Step 5b for --metric instructions: the counts against the tolerance (no test
+// of significance: the count does not vary with the machine), then the work.
+int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const json& current) {
+  if (!baseline.contains("instructions") || !baseline["instructions"].is_object() ||
+      !baseline["instructions"].value("per_frame", json()).is_number())
+    throw InputError(o.baseline, "has no instruction count: record one with --metric instructions --update-baseline");
+  if (!current.contains("instructions") || !current["instructions"].is_object() ||
+      !current["instructions"].value("per_frame", json()).is_number())
+    throw InputError(o.result.empty() ? std::string("the run") : o.result,
+                     "has no instruction count (a result of check --metric instructions, or bench --count-instructions "
+                     "where hardware counters exist)");
+  if (instruction_origin(baseline) != instruction_origin(current))
+    throw InputError(o.baseline, "its instructions were counted by " + instruction_origin(baseline) + ", this run's by " +
+                                     instruction_origin(current) +
+                                     ": counts compare only from the same source, SIMD target and compiler (record "
+                                     "the baseline again here)");
+  if (!o.timings_only) require_same_run(baseline, current, o.baseline);
+  CheckOptions work = plan.gate;
+  work.metrics = {"frame_ms"};  // for the counters and the digest; the frame itself is not judged
+  CheckResult result = check_results(baseline, current, work);
+  const double base = baseline["instructions"]["per_frame"].get<double>();
+  const double now = current["instructions"]["per_frame"].get<double>();
+  const double change = base > 0 ? now / base - 1 : 0;
+  const bool slower = change > plan.gate.tolerance;
+  GateTable table = check_verdict_table(result, work);
+  GateRow row;
+  row.metric = "instructions";
+  row.unit = "instructions";
+  row.base_ms = base;
+  row.current_ms = now;
+  row.change = change;
+  row.has_p = false;
+  row.verdict = slower ? "slower" : change < -plan.gate.tolerance ? "faster" : "no change";
+  row.failed = slower;
+  if (slower) row.why = "more instructions per frame than the " + percent(plan.gate.tolerance).substr(1) + " tolerance";
+  table.metrics = {row};
+  table.title = "instructions per measured frame, " + instruction_origin(current) + ": stored baseline " + o.baseline;
+  if (!o.bench.json.empty())
+    write_text(o.bench.json, "JSON",
+               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
+  if (!o.junit.empty())
+    write_text(o.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table, "crowdprof check"); });
+  if (!o.markdown.empty()) write_text(o.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
+  if (prints_on_stdout(o.bench.quiet, {o.bench.json, o.junit, o.markdown})) {
+    std::cout << "instructions per frame: " << fixed(base, 0) << " -> " << fixed(now, 0) << " (" << percent(change)
+              << "; tolerance " << percent(plan.gate.tolerance).substr(1) << "), "
+              << (slower ? "SLOWER" : row.verdict) << "; counted by " << instruction_origin(current) << "\n";
+    std::cout << "work: " << (table.work_compared ? (table.work_equal ? "the same" : "CHANGED") : "not compared")
+              << " (" << table.work_detail << ")\n";
+  }
+  return table.failed() ? kExitRegression : kExitOk;
+}
+
 // Step 5b: the gate, then its outputs.
 int gate(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const json& current) {
+  if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
   // A baseline from before CPU time was recorded is checked on the frame, when
   // the metric was not asked for by name.
@@ -301,14 +468,75 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const j
     input.check = CheckSection{result, options, o.baseline};
     write_html_report(o.bench.html, std::move(input));
   }
-  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html}))
+  if (!o.junit.empty() || !o.markdown.empty()) {
+    GateTable table = check_verdict_table(result, options);
+    table.title = "stored baseline " + o.baseline + " against " + current_name;
+    if (!o.junit.empty())
+      write_text(o.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table, "crowdprof check"); });
+    if (!o.markdown.empty())
+      write_text(o.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
+  }
+  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html, o.junit, o.markdown}))
     std::cout << format_check(result, options);
   return result.regressed() ? kExitRegression : kExitOk;
+}
+
+// check --against BASE: the A/B of two builds (cli/check_against.h). Its
+// defaults differ from a stored baseline's: the frame, and a 5% tolerance.
+int check_ab(CheckCliOptions& o, CheckPlan plan) {
+  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--svg", "--csv",
+                             "--trace", "--screenshot"})
+    if (const CLI::Option* given = o.command->get_option_no_throw(option); given && given->count() > 0)
+      throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
+  if (plan.gate.metrics.front() == kInstructionsMetric)
+    throw UsageError("--metric instructions is for a stored baseline: an A/B times both builds side by side");
+  SpecLayer command_line = command_line_layer(o.bench);
+  if (!command_line.has("file")) throw UsageError("check --against needs a scene FILE to run on both builds");
+  resolve_bench_spec(o.bench);
+  validate_run_spec(o.bench.spec);
+  // Under 6 groups no paired test reaches p < 0.05 (the smallest two-sided p is 2/2^groups).
+  if (o.groups < 6 || o.groups > 100)
+    throw SettingError("groups", std::to_string(o.groups), "expected 6 to 100 (fewer can never be significant)");
+  require_writable_outputs(o.bench, {{"--against binary", o.against}},  // --json and --html among them
+                           {{"--junit", o.junit}, {"--markdown", o.markdown}});
+  if (!o.junit.empty()) require_writable(o.junit, "JUnit XML");
+  if (!o.markdown.empty()) require_writable(o.markdown, "Markdown");
+  AgainstRequest request;
+  request.base_binary = o.against;
+  request.bench = &o.bench;
+  request.groups = static_cast<size_t>(o.groups);
+  request.gate.metrics = o.command->count("--metric") > 0 ? plan.gate.metrics : std::vector<std::string>{"frame_ms"};
+  request.gate.tolerance = o.command->count("--tolerance") > 0 ? plan.gate.tolerance : kAbTolerance;
+  request.gate.alpha = plan.gate.alpha;
+  request.gate.floor = plan.gate.floor;
+  request.gate.compare_work = !o.timings_only;
+  request.json = o.bench.json;
+  request.junit = o.junit;
+  request.markdown = o.markdown;
+  request.html = o.bench.html;
+  for (const char* option : {"--metric", "--tolerance", "--floor", "--alpha", "--groups"})
+    if (const CLI::Option* given = o.command->get_option(option); given->count() > 0) {
+      request.gate_arguments.push_back(option);
+      std::string values;
+      for (const std::string& value : given->results()) values += (values.empty() ? "" : ",") + value;
+      request.gate_arguments.push_back(values);
+    }
+  if (o.timings_only) request.gate_arguments.push_back("--timings-only");
+  return check_against(request);
 }
 
 // The steps in their order.
 int check(CheckCliOptions& o) {
   CheckPlan plan = plan_of(o);
+  // A counted run is not a timed one: no frame times worth a file.
+  if (plan.gate.metrics.front() == kInstructionsMetric)
+    for (const char* option : {"--csv", "--html", "--svg", "--trace", "--screenshot"})
+      if (const CLI::Option* given = o.command->get_option_no_throw(option); given && given->count() > 0)
+        throw UsageError(std::string(option) + " is not written by --metric instructions (its runs are counted, "
+                                                "not timed); --json, --junit and --markdown are");
+  if (!o.against.empty()) return check_ab(o, std::move(plan));
+  if (o.baseline.empty())
+    throw UsageError("check needs --baseline FILE (a stored result) or --against BINARY (an A/B of two builds)");
   SpecLayer command_line = command_line_layer(o.bench);
   if (command_line.has("file")) o.bench.spec.file = command_line.values["file"];
   if (!o.result.empty() && command_line.has("file"))
@@ -329,7 +557,8 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                                           "when it got slower or its work changed (see docs/compare-and-check.md)");
   cmd->footer(
       "Examples:\n  crowdprof check scenes/thesis.json --baseline base.json --update-baseline\n"
-      "  crowdprof check scenes/thesis.json --baseline base.json");
+      "  crowdprof check scenes/thesis.json --baseline base.json\n"
+      "  crowdprof check scenes/thesis.json --against ../base-build/crowdprof --junit check.xml");
   options->command = cmd;
   add_bench_options(*cmd, options->bench);
   cmd->get_option("file")->required(false)->description(
@@ -345,13 +574,27 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
     text = text.substr(0, std::min(text.find(" (default:"), text.find(" (overrides the mode's:")));
     option->default_str("")->description(text + " (default: the baseline's)");
   }
-  cmd->add_option("--baseline", options->baseline, "Baseline result (bench --json or check --update-baseline)")
-      ->required();
+  cmd->add_option("--baseline", options->baseline,
+                  "Baseline result (bench --json or check --update-baseline); or use --against");
+  cmd->add_option("--against", options->against,
+                  "A/B instead of a stored baseline: the base build's crowdprof binary, run with the same options in "
+                  "ABBA groups of processes beside this build, so that the machine's changes of speed fall on both; "
+                  "gates on the paired ratios (Wilcoxon signed-rank); default metric frame, tolerance 5% "
+                  "(docs/ci.md)");
+  cmd->add_option("--groups", options->groups,
+                  "With --against: ABBA groups of four processes (two of each build)")
+      ->capture_default_str();
+  cmd->add_option("--junit", options->junit,
+                  "Write the verdict as JUnit XML: a test case per metric and one for the work, the verdict as a "
+                  "failure's message");
+  cmd->add_option("--markdown", options->markdown,
+                  "Write the verdict as a Markdown table (a CI job summary or a pull-request comment)");
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");
   cmd->add_option("--metric", options->metrics,
                   "Timed metrics that must not regress: cpu (CPU time of every thread in the frame), frame (wall "
                   "clock), categories such as Animations, Rasterizer, or all: the frame and every category "
-                  "(Holm-corrected together)")
+                  "(Holm-corrected together); or instructions: instructions per frame on one thread (hardware "
+                  "counter, else callgrind), tolerance 1%, one run")
       ->delimiter(',')
       ->allow_extra_args(false)  // one comma-separated value: a file after it stays the file
       ->capture_default_str();

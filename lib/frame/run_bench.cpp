@@ -1,5 +1,7 @@
 #include "frame/run_bench.h"
 
+#include "profile/instruction_counter.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -7,6 +9,7 @@
 
 #include "asset/errors.h"
 #include "frame/switch_table.h"
+#include "profile/instruction_counter.h"
 
 namespace crowdprof {
 
@@ -146,15 +149,29 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   size_t total = options.warmup + options.frames;
   report.frames.reserve(options.frames);
   report.frames_planned = options.frames;
+  InstructionCounter instructions;
+  if (options.count_instructions) {
+    instructions = InstructionCounter::open();
+    report.instruction_source = instruction_source_name(instructions.source());
+    if (instructions.source() == InstructionSource::None) report.instruction_problem = instructions.why_none();
+  }
   for (size_t i = 0; i < total; ++i) {
     if (options.stop && options.stop->load()) {
       report.partial = true;
       break;
     }
+    // Only the measured frames' work is counted, never the warm-up's.
+    const bool measured = i >= options.warmup;
+    if (measured) instructions.begin_frame();
     FrameRecord record = bench.step();
-    if (i >= options.warmup) report.frames.push_back(record);
+    if (measured) record.instructions = instructions.end_frame();
+    if (measured) report.frames.push_back(record);
     place_gpu_times(bench, options.warmup, report.frames);
     if (options.progress) options.progress(i + 1, total);
+  }
+  if (instructions.failed()) {
+    report.instruction_source = "none";
+    report.instruction_problem = "a read of the hardware counter failed";
   }
   bench.collect_gpu_times();
   place_gpu_times(bench, options.warmup, report.frames);

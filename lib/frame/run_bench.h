@@ -19,6 +19,9 @@ struct RunOptions {
   // When set and true, the run stops after the frame in progress (^C): the
   // report holds the frames measured so far and says it is partial.
   const std::atomic<bool>* stop = nullptr;
+  // Count each measured frame's instructions on this thread
+  // (profile/instruction_counter.h); the caller makes the run one thread's.
+  bool count_instructions = false;
 };
 
 // Bytes of memory the machine can still give (MemAvailable), 0 if unknown.

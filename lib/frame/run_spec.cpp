@@ -278,3 +278,33 @@ void validate_run_spec(const RunSpec& spec) {
 }
 
 }  // namespace crowdprof
+
+namespace crowdprof {
+
+std::vector<std::string> run_spec_arguments(const RunSpec& spec) {
+  auto number = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return std::string(text);
+  };
+  std::vector<std::string> args = {spec.file,
+                                   "--characters", std::to_string(spec.characters),
+                                   "--seed", std::to_string(spec.seed),
+                                   "--frames", std::to_string(spec.frames),
+                                   "--warmup", std::to_string(spec.warmup),
+                                   "--fps", number(spec.fps),
+                                   "--bake-rate", number(spec.bake_rate),
+                                   "--mode", spec.mode,
+                                   "--camera", spec.camera,
+                                   "--backend", spec.backend,
+                                   "--resolution", spec.resolution};
+  if (spec.actions != "scene") args.insert(args.end(), {"--actions", spec.actions});
+  if (!spec.action.empty()) args.insert(args.end(), {"--action", spec.action});
+  if (spec.threads > 0) args.insert(args.end(), {"--threads", std::to_string(spec.threads)});
+  if (spec.lens > 0) args.insert(args.end(), {"--lens", number(spec.lens)});
+  for (const auto& [name, text] : spec.switches) args.insert(args.end(), {option_spelling(name), text});
+  if (spec.allow_static) args.push_back("--static");
+  return args;
+}
+
+}  // namespace crowdprof

@@ -97,4 +97,9 @@ RunSpec resolve_run_spec(std::span<const SpecLayer> layers);
 // switches can run together, that threads apply. Throws as resolve_run_spec.
 void validate_run_spec(const RunSpec& spec);
 
+// The spec as `crowdprof bench` arguments (without "bench"): the file, then
+// every setting and switch override as its option, so that a process of its
+// own runs what the spec resolved to (a scene file's actions stay the scene's).
+std::vector<std::string> run_spec_arguments(const RunSpec& spec);
+
 }  // namespace crowdprof

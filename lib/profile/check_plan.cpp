@@ -13,7 +13,9 @@ CheckPlan plan_check(const CheckRequest& r) {
   plan.gate.floor = parse_floor(r.floor);
   if (!(r.alpha > 0 && r.alpha < 1)) throw SettingError("alpha", std::to_string(r.alpha), "expected between 0 and 1");
   plan.gate.alpha = r.alpha;
-  long long runs = r.runs.value_or(r.update_baseline ? kBaselineRuns : kCheckRuns);
+  bool instructions = false;
+  for (const std::string& metric : r.metrics) instructions = instructions || metric == kInstructionsMetric;
+  long long runs = r.runs.value_or(instructions ? 1 : r.update_baseline ? kBaselineRuns : kCheckRuns);
   if (runs < 1 || runs > static_cast<long long>(kMaxRuns))
     throw SettingError("runs", std::to_string(runs), "expected 1 to " + std::to_string(kMaxRuns));
   plan.runs = static_cast<size_t>(runs);
@@ -21,6 +23,14 @@ CheckPlan plan_check(const CheckRequest& r) {
   if (!(plan.spread_s >= 0 && plan.spread_s <= 3600))
     throw SettingError("spread", std::to_string(plan.spread_s), "expected 0 to 3600 seconds");
   plan.gate.compare_work = !r.timings_only;
+  if (instructions) {
+    if (r.metrics.size() > 1)
+      throw SettingError("metric", kInstructionsMetric,
+                         "instructions is a metric of its own: its runs are counted, not timed");
+    if (!r.tolerance_given) plan.gate.tolerance = kInstructionTolerance;
+    plan.gate.metrics = {kInstructionsMetric};
+    return plan;
+  }
   if (r.timings_only && r.update_baseline) throw UsageError("--timings-only compares; it cannot record a baseline");
   plan.gate.metrics.clear();
   auto add = [&](const std::string& key) {

@@ -17,6 +17,7 @@ namespace crowdprof {
 struct CheckRequest {
   std::vector<std::string> metrics = {"cpu"};  // "all", "frame", "cpu", a category
   std::string tolerance = "7%";
+  bool tolerance_given = false;  // else the metric's own default (instructions: 1%)
   std::string floor = "2%";
   double alpha = 0.05;
   std::optional<long long> runs;   // unset: 8, or 20 when recording a baseline
@@ -30,8 +31,14 @@ struct CheckRequest {
 // times: it gets more runs than a check (docs/compare-and-check.md).
 inline constexpr long long kCheckRuns = 8, kBaselineRuns = 20;
 
+// --metric instructions: the instructions per measured frame (profile/
+// instruction_counter.h), a count of work that the machine's speed does not
+// move, so one run is enough and the tolerance is small.
+inline constexpr const char* kInstructionsMetric = "instructions";
+inline constexpr double kInstructionTolerance = 0.01;
+
 struct CheckPlan {
-  CheckOptions gate;  // metrics (samples keys, no repeats), tolerance, floor, alpha, work compared
+  CheckOptions gate;  // metrics: samples keys, or kInstructionsMetric alone  // metrics (samples keys, no repeats), tolerance, floor, alpha, work compared
   size_t runs = kCheckRuns;  // each a process of its own
   double spread_s = 0;       // the runs start this many seconds apart in all
   bool update_baseline = false;

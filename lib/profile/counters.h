@@ -76,6 +76,9 @@ struct FrameRecord {
   // NaN when not measured (no GL backend, no timer, or not read back). Not a
   // category: the GPU runs beside the CPU's frame, not in it.
   double gpu_ms = std::numeric_limits<double>::quiet_NaN();
+  // Instructions the frame's thread retired (profile/instruction_counter.h,
+  // perf_event); 0 when not counted or counted by callgrind.
+  uint64_t instructions = 0;
 };
 
 }  // namespace crowdprof

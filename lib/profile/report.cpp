@@ -287,6 +287,20 @@ nlohmann::json to_json(const RunReport& report) {
   j["digest"] = report.digest;
   if (!report.stores.empty()) j["stores"] = report.stores;
   if (report.animation.is_object()) j["animation"] = report.animation;
+  if (!report.instruction_source.empty()) {
+    // What a stored instruction baseline must match to be compared.
+    nlohmann::json instructions = {{"source", report.instruction_source}, {"threads", run.threads},
+                                   {"simd", report.environment.simd}, {"compiler", report.environment.compiler}};
+    if (report.instruction_source == "perf_event") {
+      std::vector<double> counts;
+      for (const FrameRecord& f : report.frames) counts.push_back(static_cast<double>(f.instructions));
+      instructions["per_frame"] = quantile(counts, 0.5);
+    } else {
+      instructions["per_frame"] = nullptr;  // callgrind: filled from its output by the caller
+    }
+    if (!report.instruction_problem.empty()) instructions["problem"] = report.instruction_problem;
+    j["instructions"] = instructions;
+  }
   if (report.partial) {
     j["partial"] = true;
     j["frames_planned"] = report.frames_planned;

@@ -69,6 +69,11 @@ struct RunReport {
   // With animation sharing, update-rate LOD or a budget (issue 13): how updates
   // were scheduled and what it cost in fidelity (docs/formats.md); null otherwise.
   nlohmann::json animation;
+  // How the frames' instructions were counted: "" (not asked), "perf_event",
+  // "callgrind" (the total is read from callgrind's output by who ran it) or
+  // "none" (asked, but nothing here counts; instruction_problem says why).
+  std::string instruction_source;
+  std::string instruction_problem;
 };
 
 // Index of the frame whose time is the median (the lower one for an even count).
