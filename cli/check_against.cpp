@@ -222,7 +222,6 @@ int check_against(const AgainstRequest& request) {
     groups.push_back(std::move(group));
   }
   if (show_progress) std::cerr << "\n";
-  gate.floor = request.gate.floor;
   AbResult result = judge_ab(groups, gate);
   if (!run_difference.empty()) {
     result.work.run_difference = run_difference;

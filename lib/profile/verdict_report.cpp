@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "profile/number_text.h"  // percent
 #include "profile/svg_chart.h"  // xml_escape
 #include "profile/text_table.h"
 
@@ -31,10 +32,6 @@ std::string value(const GateRow& row, double v) {
   return row.unit == "ms" ? ms(v) + " ms" : format("%.0f", v) + " " + row.unit;
 }
 
-std::string percent(double fraction) {
-  if (!std::isfinite(fraction)) return fraction > 0 ? "+inf%" : "-inf%";
-  return format("%+.1f%%", 100 * fraction);
-}
 std::string interval(const GateRow& row) {
   if (!row.has_interval) return "-";
   std::string text = "[";  // appended, not a + chain: GCC 12 warns falsely (-Wrestrict) on that
