@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,8 @@
 #include "output/output_file.h"
 #include "profile/environment.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
+#include "profile/run_match.h"
 #include "profile/verdict_report.h"
 
 namespace check_against_impl {
@@ -81,40 +84,40 @@ std::string require_crowdprof(const std::string& binary, const ScratchFolder& sc
 // One process of `build`: its result, read and validated as this build reads
 // results. A base whose run fails or writes what this build cannot read is
 // the base's fault (InputError naming it); the current build's is a failed run.
-json run_once(const Build& build, const std::vector<std::string>& bench_args, const ScratchFolder& scratch,
-              const std::string& name) {
+std::optional<Result> run_once(const Build& build, const std::vector<std::string>& bench_args,
+                               const ScratchFolder& scratch, const std::string& name) {
   std::string result_path = scratch.file(name + ".json");
   std::vector<std::string> args = bench_args;
   args.push_back("--json");
   args.push_back(result_path);
   Finished finished = run_program(build.binary, args, scratch.file(name + ".err"));
-  if (interrupt_requested().load()) return json();
-  auto fail = [&](const std::string& why) -> json {
+  if (interrupt_requested().load()) return std::nullopt;
+  auto fail = [&](const std::string& why) -> Result {
     if (build.label == "base") throw InputError(build.binary, "the base build " + why);
     throw std::runtime_error("this build " + why);
   };
   if (finished.status != 0)
     return fail("failed its run (exit " + std::to_string(finished.status) + "): " +
                 (finished.error_text.empty() ? "no message" : first_line(finished.error_text)));
-  json result;
+  Result result;
   try {
     result = read_result(result_path);
   } catch (const InputError& e) {
     return fail(std::string("wrote a result this build cannot read: ") + e.what());
   }
-  result["wall_s"] = finished.wall_s;
+  result.wall_s = finished.wall_s;
   return result;
 }
 
-json process_record(const Build& build, size_t group, size_t position, const json& result, const AbProcess& process) {
+json process_record(const Build& build, size_t group, size_t position, const Result& result, const AbProcess& process) {
   return {{"build", build.label},         {"group", group},
-          {"position", position},         {"wall_s", result.value("wall_s", 0.0)},
+          {"position", position},         {"wall_s", result.wall_s.value_or(0.0)},
           {"median_ms", process.median_ms}, {"digest", process.digest}};
 }
 
 json ab_document(const AbResult& result, const AbOptions& options, const Build& base, const Build& current,
                  const std::vector<std::string>& bench_args, const json& processes, double wall_s,
-                 const json& base_result, const json& current_result) {
+                 const Result& base_result, const Result& current_result) {
   json metrics = json::array();
   for (const AbMetric& metric : result.metrics)
     metrics.push_back({{"metric", metric_display_name(metric.metric)},
@@ -134,12 +137,12 @@ json ab_document(const AbResult& result, const AbOptions& options, const Build& 
   json counters = json::array();
   for (const CounterDifference& c : result.work.counters)
     counters.push_back({{"name", c.name}, {"base", c.baseline}, {"current", c.current}});
-  return {{"crowdprof", {{"version", current_result["crowdprof"]["version"]}, {"format", kResultFormat},
+  return {{"crowdprof", {{"version", current_result.environment.version}, {"format", kResultFormat},
                          {"kind", "ab_check"}}},
           {"builds",
-           {{"base", {{"binary", base.binary}, {"version", base.version}, {"environment", base_result["environment"]}}},
+           {{"base", {{"binary", base.binary}, {"version", base.version}, {"environment", environment_to_json(base_result)}}},
             {"current",
-             {{"binary", current.binary}, {"version", current.version}, {"environment", current_result["environment"]}}}}},
+             {{"binary", current.binary}, {"version", current.version}, {"environment", environment_to_json(current_result)}}}}},
           {"bench_arguments", bench_args},
           {"tolerance", options.tolerance},
           {"alpha", options.alpha},
@@ -171,15 +174,15 @@ int check_against(const AgainstRequest& request) {
   // Before any measured run: both builds run one frame of the same options
   // and their results must be ones this build reads, of the same run.
   std::vector<std::string> probe_args = bench_arguments(*request.bench, {{"frames", "1"}, {"warmup", "0"}});
-  json base_probe = run_once(base, probe_args, scratch, "probe-base");
-  if (interrupt_requested().load()) return kExitInterrupted;
-  json current_probe = run_once(current, probe_args, scratch, "probe-current");
-  if (interrupt_requested().load()) return kExitInterrupted;
+  std::optional<Result> base_probe = run_once(base, probe_args, scratch, "probe-base");
+  if (!base_probe) return kExitInterrupted;
+  std::optional<Result> current_probe = run_once(current, probe_args, scratch, "probe-current");
+  if (!current_probe) return kExitInterrupted;
   // Runs of other settings (the base reads an option otherwise) are other
   // work: judged and reported as such, with the setting that differs.
   std::string run_difference;
   if (request.gate.compare_work) try {
-      require_same_run(base_probe, current_probe, base.binary);
+      require_same_run(*base_probe, *current_probe, base.binary);
     } catch (const InputError& e) {
       run_difference = e.what();
       size_t from = run_difference.find("another run: ");
@@ -189,15 +192,15 @@ int check_against(const AgainstRequest& request) {
 
   AbOptions gate = request.gate;
   for (const std::string& key : gate.metrics)
-    for (const json* probe : {&base_probe, &current_probe})
-      if (!probe->at("samples").contains(key))
-        throw InputError(probe == &base_probe ? base.binary : current.binary,
+    for (const Result* probe : {&*base_probe, &*current_probe})
+      if (!metric_samples(*probe, key))
+        throw InputError(probe == &*base_probe ? base.binary : current.binary,
                          "its results have no \"samples." + key + "\": check another --metric");
 
   const bool show_progress = !request.bench->quiet && ::isatty(STDERR_FILENO);
   std::vector<AbGroup> groups;
   json processes = json::array();
-  json last_base, last_current;
+  Result last_base, last_current;
   for (size_t g = 0; g < request.groups; ++g) {
     AbGroup group;
     group.base_first = g % 2 == 0;
@@ -209,15 +212,16 @@ int check_against(const AgainstRequest& request) {
       std::cerr << "\rcrowdprof: check --against: group " << (g + 1) << " of " << request.groups << std::flush;
     for (size_t position = 0; position < 4; ++position) {
       const Build& build = *order[position];
-      json result = run_once(build, bench_args, scratch, build.label + "-" + std::to_string(g) + "-" + std::to_string(position));
-      if (interrupt_requested().load()) {
+      std::optional<Result> result =
+          run_once(build, bench_args, scratch, build.label + "-" + std::to_string(g) + "-" + std::to_string(position));
+      if (!result) {
         std::cerr << "\ncrowdprof: interrupted: an A/B cut short is not judged\n";
         return kExitInterrupted;
       }
-      AbProcess process = ab_process(result);
-      processes.push_back(process_record(build, g, position, result, process));
-      if (&build == &base) group.base[base_seen++] = std::move(process), last_base = std::move(result);
-      else group.current[current_seen++] = std::move(process), last_current = std::move(result);
+      AbProcess process = ab_process(*result);
+      processes.push_back(process_record(build, g, position, *result, process));
+      if (&build == &base) group.base[base_seen++] = std::move(process), last_base = std::move(*result);
+      else group.current[current_seen++] = std::move(process), last_current = std::move(*result);
     }
     groups.push_back(std::move(group));
   }
@@ -250,8 +254,8 @@ int check_against(const AgainstRequest& request) {
     write_text(request.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
   if (!request.html.empty()) {
     HtmlReportInput input;
-    add_result_document(input, last_base, base.binary);
-    add_result_document(input, last_current, current.binary);
+    add_result(input, last_base, base.binary);
+    add_result(input, last_current, current.binary);
     input.runs[0].label = "base";
     input.runs[1].label = "current";
     write_html_report(request.html, std::move(input));

@@ -12,6 +12,7 @@
 #include "cli/output.h"
 #include "frame/interrupt.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
 #include "profile/gbench_json.h"
 #include "profile/summary_csv.h"
 #include "frame/run_bench.h"
@@ -83,9 +84,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
     write_text(summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv({&report}, out); });
   if (!gbench_json.empty())
     write_text(gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document({&report}).dump(2) << "\n"; });
-  if (!options.json.empty())
-    write_text(options.json, "JSON",
-               [&](std::ostream& out) { out << with_paths_relative_to(to_json(report), options.json).dump(2) << "\n"; });
+  if (!options.json.empty()) write_result_file(options.json, "JSON", make_result(report));
   if (tracer) write_text(options.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   if (tracer && tracer->dropped())
     std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
@@ -103,7 +102,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   }
   if (!options.html.empty()) {
     HtmlReportInput input;
-    add_result_document(input, to_json(report), "this run");
+    add_result(input, make_result(report), "this run");
     if (!options.screenshot.empty()) input.screenshot_png = read_png(options.screenshot);
     write_html_report(options.html, std::move(input));
   }

@@ -19,6 +19,7 @@
 #include "frame/run_bench.h"
 #include "output/output_file.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
 #include "profile/summary_csv.h"
 
 using namespace crowdprof;

@@ -29,7 +29,10 @@
 #include "frame/switch_table.h"
 #include "profile/check_plan.h"
 #include "profile/instruction_counter.h"
+#include "profile/pooled_runs.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
+#include "profile/run_match.h"
 #include "profile/report_charts.h"
 #include "profile/number_text.h"
 #include "profile/svg_chart.h"
@@ -72,7 +75,7 @@ bool same_file(const std::string& a, const std::string& b) {
 // and the command line (frame/run_spec.h), so options left out take the
 // baseline's values and options given override them. A value no run could
 // have recorded is the baseline's fault, not the command line's: InputError.
-void resolve_with_baseline(CheckCliOptions& o, const json& baseline) {
+void resolve_with_baseline(CheckCliOptions& o, const Result& baseline) {
   SpecLayer command_line = command_line_layer(o.bench);
   SpecLayer recorded = recorded_layer(baseline, o.baseline, recorded_scene_file(baseline, o.baseline));
   o.file_from_baseline = !command_line.has("file");
@@ -128,14 +131,14 @@ RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label
   return report;
 }
 
-void write_svg(const std::string& path, const json& baseline, const json& current, const std::string& metric) {
+void write_svg(const std::string& path, const Result& baseline, const Result& current, const std::string& metric) {
   std::string shown = metric == "frame_ms" ? "frame" : metric == "cpu_ms" ? "CPU" : metric;
   LineChart chart{"check: " + shown + " time per frame, baseline and current: " + scene_caption(current),
-                  "frame (0 = the first measured, after " + std::to_string(current["warmup"].get<size_t>()) + " warm-up)",
+                  "frame (0 = the first measured, after " + std::to_string(current.run.warmup) + " warm-up)",
                   "time (ms)", {}, false};
   ModeColours colours(preset_mode_order());  // baseline and current as the HTML report colours them
-  for (const auto& [name, doc] : {std::pair<const char*, const json*>{"baseline", &baseline}, {"current", &current}}) {
-    LineSeries series{name, {}, doc->at("samples").at(metric).get<std::vector<double>>(), colours.colour(name)};
+  for (const auto& [name, result] : {std::pair<const char*, const Result*>{"baseline", &baseline}, {"current", &current}}) {
+    LineSeries series{name, {}, result_samples(*result, metric), colours.colour(name)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
     chart.series.push_back(std::move(series));
   }
@@ -178,7 +181,7 @@ void require_safe_outputs(const CheckCliOptions& o) {
 
 // Step 3: a bad baseline is found before a long run, not after it. One being
 // replaced only lends its options, if it can.
-std::optional<json> read_baseline(const CheckCliOptions& o) {
+std::optional<Result> read_baseline(const CheckCliOptions& o) {
   if (!o.update) {
     if (!std::filesystem::exists(o.baseline))
       throw InputError(o.baseline, "no such file (record a baseline first with --update-baseline)");
@@ -219,7 +222,7 @@ bool on_path(const std::string& program) {
 // hardware counter where the host exposes one, else under callgrind (which
 // must start the process, so never a fork). A run's count is the
 // instructions of its measured frames over their number.
-std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& plan) {
+std::optional<Result> measure_instructions(CheckCliOptions& o, const CheckPlan& plan) {
   std::string perf_problem = perf_event_problem();
   const bool callgrind = !perf_problem.empty();
   if (callgrind && !on_path("valgrind"))
@@ -241,7 +244,7 @@ std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& pl
     args.insert(args.end(), bench_args.begin(), bench_args.end());
   }
   install_interrupt_handlers();
-  std::vector<json> runs;
+  std::vector<Result> runs;
   std::vector<double> counts;
   for (size_t i = 1; i <= plan.runs; ++i) {
     if (!o.bench.quiet && ::isatty(STDERR_FILENO))
@@ -255,12 +258,12 @@ std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& pl
     if (finished.status != 0)
       throw std::runtime_error("--metric instructions: the counted run failed (exit " +
                                std::to_string(finished.status) + "): " + crowdprof_line(finished.error_text));
-    json run = read_result(result_path);
+    Result run = read_result(result_path);
     // The run wrote its scene file relative to the scratch folder; as an
     // in-process run records it, it is the spec's (relative to here).
-    run["scene"]["file"] = spec.file;
-    run["scene"].erase("file_from");
-    json& instructions = run["instructions"];
+    run.run.file = spec.file;
+    run.file_from_result = false;
+    InstructionRecord& instructions = run.instructions ? *run.instructions : run.instructions.emplace();
     if (callgrind) {
       std::string problem;
       uint64_t total = callgrind_totals(callgrind_path, problem);
@@ -269,13 +272,13 @@ std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& pl
       if (total == 0)
         throw std::runtime_error("--metric instructions: callgrind counted nothing: this crowdprof was built without "
                                  "valgrind's callgrind.h (apt-get install valgrind, then build again)");
-      instructions["source"] = "callgrind";
-      instructions["per_frame"] = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
-    } else if (!instructions.is_object() || !instructions["per_frame"].is_number()) {
+      instructions.source = "callgrind";
+      instructions.per_frame = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
+    } else if (!instructions.per_frame) {
       throw std::runtime_error("--metric instructions: the run counted none (" +
-                               instructions.value("problem", std::string("no count")) + ")");
+                               (instructions.problem.empty() ? std::string("no count") : instructions.problem) + ")");
     }
-    counts.push_back(instructions["per_frame"].get<double>());
+    counts.push_back(*instructions.per_frame);
     runs.push_back(std::move(run));
   }
   if (!o.bench.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
@@ -283,8 +286,8 @@ std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& pl
   std::vector<size_t> order(runs.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return counts[a] < counts[b]; });
-  json median = runs[order[(order.size() - 1) / 2]];
-  median["instructions"]["runs"] = counts;
+  Result median = runs[order[(order.size() - 1) / 2]];
+  median.instructions->runs = counts;
   return median;
 }
 
@@ -295,14 +298,14 @@ std::optional<json> measure_instructions(CheckCliOptions& o, const CheckPlan& pl
 // processes, and the gate compares their medians. The CSV is of the last run.
 // A ^C writes the frames measured so far as a partial result (--json) and
 // returns nullopt.
-std::optional<json> measure(CheckCliOptions& o, const CheckPlan& plan, const std::optional<json>& baseline) {
+std::optional<Result> measure(CheckCliOptions& o, const CheckPlan& plan, const std::optional<Result>& baseline) {
   if (baseline) resolve_with_baseline(o, *baseline);
   else resolve_bench_spec(o.bench);
   if (o.bench.spec.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
   require_safe_outputs(o);  // the scene file may have come from the baseline
   if (plan.gate.metrics.front() == kInstructionsMetric) return measure_instructions(o, plan);
-  std::vector<json> runs;
-  json partial;
+  std::vector<Result> runs;
+  json partial;  // a cut run's document: written as it is, never read back
   install_interrupt_handlers();  // here, to forward a ^C to the run in progress
   auto start = std::chrono::steady_clock::now();
   for (size_t i = 1; i <= plan.runs && partial.is_null(); ++i) {
@@ -317,17 +320,18 @@ std::optional<json> measure(CheckCliOptions& o, const CheckPlan& plan, const std
     std::string label =
         plan.runs > 1 ? "check, run " + std::to_string(i) + " of " + std::to_string(plan.runs) : "check";
     auto run_started = i == 1 ? start : std::chrono::steady_clock::now();
-    json run = run_in_child_process([&] {
+    json doc = run_in_child_process([&] {
       RunReport report = run_bench_report(o, label);
       if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
-      json j = to_json(report);
-      j["pid"] = static_cast<long long>(::getpid());
-      return j;
+      Result result = make_result(report);
+      result.pid = static_cast<int64_t>(::getpid());
+      return result_to_json(result);
     });
-    run["started_s"] = std::chrono::duration<double>(run_started - start).count();
-    if (run.value("partial", false)) {
-      partial = std::move(run);
+    if (is_partial_result(doc)) {
+      partial = std::move(doc);
     } else {
+      Result run = result_from_json(doc, "the run");
+      run.started_s = std::chrono::duration<double>(run_started - start).count();
       // Another run than the baseline's is found after one run, not after all.
       if (runs.empty() && baseline && !o.update && !o.timings_only) require_same_run(*baseline, run, o.baseline);
       runs.push_back(std::move(run));
@@ -336,11 +340,15 @@ std::optional<json> measure(CheckCliOptions& o, const CheckPlan& plan, const std
   if (partial.is_null() && !interrupt_requested().load())
     return pooled_runs(std::move(runs), plan.gate.metrics.front());
   // The frames measured so far: the cut run's, or the last whole one's.
-  if (partial.is_null() && !runs.empty()) partial = std::move(runs.back());
+  if (partial.is_null() && !runs.empty()) {
+    Result last = std::move(runs.back());
+    last.pid.reset();
+    last.partial = true;
+    last.frames_planned = last.frames();
+    partial = result_to_json(last);
+  }
   if (partial.is_object()) {
-    partial.erase("pid");
-    partial.erase("started_s");
-    partial["partial"] = true;
+    partial = as_partial_result(std::move(partial));
     if (!o.bench.json.empty())
       write_text(o.bench.json, "JSON", [&](std::ostream& out) { out << partial.dump(2) << "\n"; });
   }
@@ -350,58 +358,53 @@ std::optional<json> measure(CheckCliOptions& o, const CheckPlan& plan, const std
 }
 
 // Step 5a, --update-baseline: the result becomes the baseline.
-int write_baseline(const CheckCliOptions& o, const CheckPlan& plan, const json& current) {
-  if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON",
-               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
-  write_text(o.baseline, "baseline",
-             [&](std::ostream& out) { out << with_paths_relative_to(current, o.baseline).dump(2) << "\n"; });
+int write_baseline(const CheckCliOptions& o, const CheckPlan& plan, const Result& current) {
+  if (!o.bench.json.empty()) write_result_file(o.bench.json, "JSON", current);
+  write_result_file(o.baseline, "baseline", current);
   if (!o.bench.html.empty()) {
     HtmlReportInput input;
-    add_result_document(input, current, o.baseline);
+    add_result(input, current, o.baseline);
     write_html_report(o.bench.html, std::move(input));
   }
   if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.svg, o.bench.html}))
-    std::cout << "baseline written: " << o.baseline << " (" << current["mode"].get<std::string>() << ", "
-              << current["scene"]["characters"] << " characters, frame median "
-              << summarize(current.at("samples").at("frame_ms").get<std::vector<double>>()).median << " ms"
+    std::cout << "baseline written: " << o.baseline << " (" << current.run.mode << ", " << current.run.characters
+              << " characters, frame median " << summarize(current.samples.frame_ms).median << " ms"
               << (o.result.empty() && plan.runs > 1
                       ? ", the median of " + std::to_string(plan.runs) + " runs by " +
                             metric_display_name(plan.gate.metrics.front())
                       : "")
-              << ", digest " << current["digest"].get<std::string>() << ")\n";
+              << ", digest " << current.digest << ")\n";
   return kExitOk;
 }
 
 // What an instruction count was made with: counts compare only within one.
-std::string instruction_origin(const json& result) {
-  const json& i = result.at("instructions");
-  return i.value("source", std::string("?")) + " (SIMD " + i.value("simd", std::string("?")) + ", " +
-         i.value("compiler", std::string("?")) + ", " + std::to_string(i.value("threads", 0)) + " thread)";
+std::string instruction_origin(const InstructionRecord& i) {
+  auto known = [](const std::string& text) { return text.empty() ? std::string("?") : text; };
+  return known(i.source) + " (SIMD " + known(i.simd) + ", " + known(i.compiler) + ", " + std::to_string(i.threads) +
+         " thread)";
 }
 
 // Step 5b for --metric instructions: the counts against the tolerance (no test
 // of significance: the count does not vary with the machine), then the work.
-int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const json& current) {
-  if (!baseline.contains("instructions") || !baseline["instructions"].is_object() ||
-      !baseline["instructions"].value("per_frame", json()).is_number())
+int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, const Result& current) {
+  if (!baseline.instructions || !baseline.instructions->per_frame)
     throw InputError(o.baseline, "has no instruction count: record one with --metric instructions --update-baseline");
-  if (!current.contains("instructions") || !current["instructions"].is_object() ||
-      !current["instructions"].value("per_frame", json()).is_number())
+  if (!current.instructions || !current.instructions->per_frame)
     throw InputError(o.result.empty() ? std::string("the run") : o.result,
                      "has no instruction count (a result of check --metric instructions, or bench --count-instructions "
                      "where hardware counters exist)");
-  if (instruction_origin(baseline) != instruction_origin(current))
-    throw InputError(o.baseline, "its instructions were counted by " + instruction_origin(baseline) + ", this run's by " +
-                                     instruction_origin(current) +
+  const std::string base_origin = instruction_origin(*baseline.instructions);
+  const std::string origin = instruction_origin(*current.instructions);
+  if (base_origin != origin)
+    throw InputError(o.baseline, "its instructions were counted by " + base_origin + ", this run's by " + origin +
                                      ": counts compare only from the same source, SIMD target and compiler (record "
                                      "the baseline again here)");
   if (!o.timings_only) require_same_run(baseline, current, o.baseline);
   CheckOptions work = plan.gate;
   work.metrics = {"frame_ms"};  // for the counters and the digest; the frame itself is not judged
   CheckResult result = check_results(baseline, current, work);
-  const double base = baseline["instructions"]["per_frame"].get<double>();
-  const double now = current["instructions"]["per_frame"].get<double>();
+  const double base = *baseline.instructions->per_frame;
+  const double now = *current.instructions->per_frame;
   const double change = base > 0 ? now / base - 1 : 0;
   const bool slower = change > plan.gate.tolerance;
   GateTable table = check_verdict_table(result, work);
@@ -416,17 +419,15 @@ int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const json& base
   row.failed = slower;
   if (slower) row.why = "more instructions per frame than the " + percent(plan.gate.tolerance).substr(1) + " tolerance";
   table.metrics = {row};
-  table.title = "instructions per measured frame, " + instruction_origin(current) + ": stored baseline " + o.baseline;
-  if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON",
-               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
+  table.title = "instructions per measured frame, " + origin + ": stored baseline " + o.baseline;
+  if (!o.bench.json.empty()) write_result_file(o.bench.json, "JSON", current);
   if (!o.junit.empty())
     write_text(o.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table, "crowdprof check"); });
   if (!o.markdown.empty()) write_text(o.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
   if (prints_on_stdout(o.bench.quiet, {o.bench.json, o.junit, o.markdown})) {
     std::cout << "instructions per frame: " << fixed(base, 0) << " -> " << fixed(now, 0) << " (" << percent(change)
               << "; tolerance " << percent(plan.gate.tolerance).substr(1) << "), "
-              << (slower ? "SLOWER" : row.verdict) << "; counted by " << instruction_origin(current) << "\n";
+              << (slower ? "SLOWER" : row.verdict) << "; counted by " << origin << "\n";
     std::cout << "work: " << (table.work_compared ? (table.work_equal ? "the same" : "CHANGED") : "not compared")
               << " (" << table.work_detail << ")\n";
   }
@@ -434,12 +435,12 @@ int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const json& base
 }
 
 // Step 5b: the gate, then its outputs.
-int gate(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const json& current) {
+int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, const Result& current) {
   if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
   // A baseline from before CPU time was recorded is checked on the frame, when
   // the metric was not asked for by name.
-  if (o.command->count("--metric") == 0 && !baseline.at("samples").contains("cpu_ms")) {
+  if (o.command->count("--metric") == 0 && !metric_samples(baseline, "cpu_ms")) {
     std::cerr << "crowdprof: note: " << o.baseline
               << " has no CPU time per frame (an older crowdprof's): checking the frame time instead\n";
     options.metrics = {"frame_ms"};
@@ -449,20 +450,18 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const json& baseline, const j
     std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
   std::string current_name = o.result.empty() ? std::string("the run") : o.result;
   for (const std::string& key : options.metrics)
-    for (const auto& [doc, path] : {std::pair{&baseline, o.baseline}, {&current, current_name}})
-      if (!doc->at("samples").contains(key))
+    for (const auto& [result, path] : {std::pair{&baseline, o.baseline}, {&current, current_name}})
+      if (!metric_samples(*result, key))
         throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
                                "check another --metric");
   CheckResult result = check_results(baseline, current, options);
-  if (!o.bench.json.empty())
-    write_text(o.bench.json, "JSON",
-               [&](std::ostream& out) { out << with_paths_relative_to(current, o.bench.json).dump(2) << "\n"; });
+  if (!o.bench.json.empty()) write_result_file(o.bench.json, "JSON", current);
   if (!o.svg.empty()) write_svg(o.svg, baseline, current, options.metrics.front());
   if (!o.bench.html.empty()) {
     // Both runs side by side under the verdict.
     HtmlReportInput input;
-    add_result_document(input, baseline, o.baseline);
-    add_result_document(input, current, o.result.empty() ? "this run" : o.result);
+    add_result(input, baseline, o.baseline);
+    add_result(input, current, o.result.empty() ? "this run" : o.result);
     input.runs[0].label = "baseline";
     input.runs[1].label = "current";
     input.check = CheckSection{result, options, o.baseline};
@@ -542,8 +541,8 @@ int check(CheckCliOptions& o) {
   if (!o.result.empty() && command_line.has("file"))
     throw UsageError("give either a scene FILE to run or --result FILE to read, not both");
   require_safe_outputs(o);
-  std::optional<json> baseline = read_baseline(o);
-  std::optional<json> current = o.result.empty() ? measure(o, plan, baseline) : read_result(o.result);
+  std::optional<Result> baseline = read_baseline(o);
+  std::optional<Result> current = o.result.empty() ? measure(o, plan, baseline) : read_result(o.result);
   if (!current) return kExitInterrupted;
   if (o.update) return write_baseline(o, plan, *current);
   return gate(o, std::move(plan), *baseline, *current);

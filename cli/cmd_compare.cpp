@@ -20,6 +20,7 @@
 #include "frame/interrupt.h"
 #include "profile/compare_report.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
 #include "profile/gbench_json.h"
 #include "profile/summary_csv.h"
 #include "profile/trace.h"

@@ -10,6 +10,7 @@
 #include "cli/output.h"
 #include "output/output_file.h"
 #include "profile/diff.h"
+#include "profile/result_codec.h"
 
 namespace {
 
@@ -33,8 +34,8 @@ int diff(const DiffCliOptions& o) {
   require_distinct_outputs({{"file A", o.a}, {"file B", o.b}}, {{"--json", o.json}, {"--html", o.html}});
   if (!o.json.empty()) require_writable(o.json, "JSON");
   if (!o.html.empty()) require_writable(o.html, "HTML");
-  std::vector<nlohmann::json> a = bench_results_in(read_json_file(o.a), o.a);
-  std::vector<nlohmann::json> b = bench_results_in(read_json_file(o.b), o.b);
+  std::vector<Result> a = bench_results_in(read_json_file(o.a), o.a);
+  std::vector<Result> b = bench_results_in(read_json_file(o.b), o.b);
   Diff result = diff_results(a, o.a, b, o.b, options);
   if (prints_on_stdout(o.quiet, {o.json, o.html})) std::cout << format_diff(result, options);
   if (!o.json.empty())

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "output/output_file.h"
+#include "profile/result_codec.h"
 
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
   if (quiet || !isatty(STDERR_FILENO)) return {};
@@ -44,4 +45,10 @@ void write_text(const std::string& path, const std::string& what, const std::fun
   std::ostringstream text;
   body(text);
   crowdprof::write_file(path, what, text.view());
+}
+
+void write_result_file(const std::string& path, const std::string& what, const crowdprof::Result& result) {
+  write_text(path, what, [&](std::ostream& out) {
+    out << crowdprof::with_paths_relative_to(crowdprof::result_to_json(result), path).dump(2) << "\n";
+  });
 }

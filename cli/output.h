@@ -8,6 +8,8 @@
 #include <initializer_list>
 #include <string>
 
+#include "profile/result.h"
+
 // Progress on stderr once a run has taken a second, only when a person watches
 // (stderr is a terminal) and not --quiet; an empty function otherwise. One line,
 // redrawn in place: "crowdprof: <what> 120/1130 frames, 4 s left", where `what`
@@ -22,3 +24,7 @@ bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
 // Writes `path` with `body`; UsageError naming the file when it cannot (see
 // output/output_file.h, whose require_writable checks paths before a run).
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
+
+// A result as bench --json writes it, its scene file stored relative to `path`
+// (profile/result_codec.h), through write_text.
+void write_result_file(const std::string& path, const std::string& what, const crowdprof::Result& result);

@@ -77,7 +77,8 @@ AbProcess process(double frame_ms, const std::string& digest = "d", uint64_t ski
   AbProcess p;
   p.median_ms = {{"frame_ms", frame_ms}, {"cpu_ms", frame_ms * 2}};
   p.digest = digest;
-  p.counters = {{"vertices_skinned", skinned}};
+  p.counters.values.vertices_skinned = skinned;
+  p.counters.present.fill(true);
   return p;
 }
 

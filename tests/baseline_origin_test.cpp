@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "profile/regression.h"
+#include "profile/result_codec.h"
 #include "test_support.h"
 
 using crowdprof::test::run_cli;
@@ -45,9 +46,15 @@ TEST(BaselineOrigin, PathsRelativeToTheResultKeepTheSkin) {
   json doc = {{"scene", {{"file", "/data/chars/fox.glb#skin=1"}}}};
   json moved = crowdprof::with_paths_relative_to(doc, "/data/results/r.json");
   EXPECT_EQ(moved["scene"]["file"], "../chars/fox.glb#skin=1");
-  EXPECT_EQ(crowdprof::recorded_scene_file(moved, "/data/results/r.json"), "/data/chars/fox.glb#skin=1");
+  EXPECT_EQ(moved["scene"]["file_from"], "result");
+  crowdprof::Result stored;
+  stored.run.file = moved["scene"]["file"];
+  stored.file_from_result = true;
+  EXPECT_EQ(crowdprof::recorded_scene_file(stored, "/data/results/r.json"), "/data/chars/fox.glb#skin=1");
   // An older result (no file_from) keeps its path as recorded.
-  EXPECT_EQ(crowdprof::recorded_scene_file(doc, "/elsewhere/r.json"), "/data/chars/fox.glb#skin=1");
+  crowdprof::Result older;
+  older.run.file = doc["scene"]["file"];
+  EXPECT_EQ(crowdprof::recorded_scene_file(older, "/elsewhere/r.json"), "/data/chars/fox.glb#skin=1");
 }
 
 TEST(BaselineOrigin, AnotherMachineOrBuildIsOneWarningLine) {

@@ -11,6 +11,8 @@
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
+#include "profile/run_match.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -128,43 +130,43 @@ TEST(Check, EitherConditionAloneDoesNotFail) {
 }
 
 TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
-  json baseline = small_result();
-  ASSERT_NO_THROW(validate_result(baseline, "fresh"));
+  Result baseline = result_from_json(small_result(), "fresh");
   CheckOptions options;
   options.metrics = {"frame_ms", "Animations"};
   CheckResult same = check_results(baseline, baseline, options);
   EXPECT_FALSE(same.regressed());
   EXPECT_NE(format_check(same, options).find("counters and digest match"), std::string::npos);
 
-  json planted = baseline;
-  planted["counters"]["vertices_skinned"] = planted["counters"]["vertices_skinned"].get<uint64_t>() + 800;
+  Result planted = baseline;
+  planted.counters.values.vertices_skinned += 800;
   CheckResult changed = check_results(baseline, planted, options);
   ASSERT_TRUE(changed.regressed());
   ASSERT_EQ(changed.counters.size(), 1u);
   EXPECT_EQ(changed.counters[0].name, "vertices_skinned");
   EXPECT_NE(format_check(changed, options).find("CHANGED counter vertices_skinned"), std::string::npos);
 
-  json other_digest = baseline;
-  other_digest["digest"] = "0000000000000000";
+  Result other_digest = baseline;
+  other_digest.digest = "0000000000000000";
   CheckResult digest = check_results(baseline, other_digest, options);
   EXPECT_TRUE(digest.regressed());
   EXPECT_NE(format_check(digest, options).find("CHANGED digest"), std::string::npos);
 }
 
 TEST(Check, ResultsOfAnotherRunAreRefused) {
-  json baseline = small_result();
-  json other = baseline;
-  other["scene"]["characters"] = 7;
+  Result baseline = result_from_json(small_result(), "base.json");
+  json changed = small_result();
+  changed["scene"]["characters"] = 7;
+  Result other = result_from_json(changed, "other.json");
   try {
     require_same_run(baseline, other, "base.json");
     FAIL() << "another crowd size was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("characters 6 there, 7 here"), std::string::npos) << e.what();
   }
-  json threaded = small_result("threaded");
+  Result threaded = result_from_json(small_result("threaded"), "threaded.json");
   EXPECT_THROW(require_same_run(baseline, threaded, "base.json"), InputError);
-  json elsewhere = baseline;
-  elsewhere["scene"]["file"] = "/elsewhere/scenes/humanoid.glb";  // the same file name: the same scene
+  Result elsewhere = baseline;
+  elsewhere.run.file = "/elsewhere/scenes/humanoid.glb";  // the same file name: the same scene
   EXPECT_NO_THROW(require_same_run(baseline, elsewhere, "base.json"));
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset/errors.h"
+#include "profile/pooled_runs.h"
 #include "profile/regression.h"
 #include "test_support.h"
 
@@ -89,14 +90,28 @@ TEST(Gate, HolmCorrectsForTheMetricsTestedTogether) {
 
 TEST(Gate, ABaselineIsTheMedianRunNotTheFastest) {
   auto run = [](std::vector<double> cpu, const char* tag) {
-    return json{{"tag", tag}, {"samples", {{"cpu_ms", cpu}, {"frame_ms", {1.0, 1.0, 1.0}}}}};
+    Result r;
+    r.digest = tag;
+    r.samples.cpu_ms = cpu;
+    r.samples.frame_ms.assign(cpu.size(), 1.0);
+    return r;
   };
   // Medians 2.0, 1.0 (the fastest), 3.0 and 2.5: the lower middle of four is 2.0.
-  std::vector<json> runs = {run({2.0, 1.9, 2.1}, "a"), run({1.0, 0.9, 5.0}, "fast"), run({3.0, 3.0, 3.0}, "slow")};
-  EXPECT_EQ(median_run(runs, "cpu_ms")["tag"], "a");
+  std::vector<Result> runs = {run({2.0, 1.9, 2.1}, "a"), run({1.0, 0.9, 5.0}, "fast"), run({3.0, 3.0, 3.0}, "slow")};
+  EXPECT_EQ(median_run(runs, "cpu_ms").digest, "a");
   runs.push_back(run({2.5, 2.5, 2.5}, "b"));
-  EXPECT_EQ(median_run(runs, "cpu_ms")["tag"], "a");
-  EXPECT_EQ(median_run({run({7.0}, "only")}, "cpu_ms")["tag"], "only");
+  EXPECT_EQ(median_run(runs, "cpu_ms").digest, "a");
+  EXPECT_EQ(median_run({run({7.0}, "only")}, "cpu_ms").digest, "only");
+  // Pooled: each run's median per metric, in run order, and the median run's samples.
+  for (size_t i = 0; i < runs.size(); ++i) runs[i].pid = 100 + static_cast<int64_t>(i);
+  Result pooled = pooled_runs(runs, "cpu_ms");
+  EXPECT_EQ(pooled.digest, "a");
+  ASSERT_TRUE(pooled.runs.has_value());
+  EXPECT_EQ(pooled.runs->count, 4u);
+  EXPECT_EQ(pooled.runs->median_ms.at("cpu_ms"), (std::vector<double>{2.0, 1.0, 3.0, 2.5}));
+  EXPECT_EQ(pooled.runs->pids, (std::vector<int64_t>{100, 101, 102, 103}));
+  EXPECT_FALSE(pooled.pid.has_value());
+  EXPECT_TRUE(pooled.runs->started_s.empty());  // no run had a start
   EXPECT_EQ(metric_display_name("cpu_ms"), "cpu");
   EXPECT_EQ(metric_display_name("frame_ms"), "frame");
 }

@@ -12,6 +12,7 @@
 #include "profile/chart_colours.h"
 #include "profile/compare_report.h"
 #include "profile/html_report.h"
+#include "profile/result_codec.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -28,7 +29,8 @@ size_t count(const std::string& text, const std::string& what) {
 // A run as a bench would describe it, made up from frame times.
 RunReport fake_bench(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
   RunReport run = test::fake_run(mode, characters, frame_ms, 0.25);
-  run.run.switches = json::object({{"culling", true}});
+  run.run.switches = ModeSwitches{};
+  run.run.switches.animation_culling = true;
   return run;
 }
 
@@ -140,7 +142,8 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
   options.metrics = {"frame_ms", "Animations", "Rasterizer"};
   HtmlReportInput input;
   add_result_document(input, current, "current");
-  input.check = CheckSection{check_results(base, current, options), options, "base.json"};
+  input.check = CheckSection{check_results(result_from_json(base, "base.json"), result_from_json(current, "current"), options),
+                             options, "base.json"};
   std::string html = html_report(input);
   EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"3\""), std::string::npos);
   EXPECT_EQ(count(html, "data-verdict=\"REGRESSION\""), 3u);

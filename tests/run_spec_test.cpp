@@ -7,6 +7,7 @@
 #include "asset/errors.h"
 #include "frame/bench_setup.h"
 #include "frame/run_spec.h"
+#include "profile/result.h"
 #include "frame/switch_table.h"
 #include "scene/scene_file.h"
 #include "test_support.h"
@@ -126,27 +127,25 @@ TEST(RunSpec, ASceneFileIsALayerUnderTheCommandLine) {
 }
 
 TEST(RunSpec, AResultRecordsEnoughToRunItAgain) {
-  json result = {{"frames", 30},
-                 {"warmup", 2},
-                 {"fps", 60.0},
-                 {"mode", "threaded+custom"},
-                 {"threads", 2},
-                 {"switches", switches_to_json([] {
-                    ModeSwitches s = find_mode("threaded")->switches;
-                    s.share_poses = true;
-                    return s;
-                  }())},
-                 {"environment", {{"backend", "none"}}},
-                 {"scene",
-                  {{"file", "hero.glb"},
-                   {"characters", 12},
-                   {"action_choice", "shared"},
-                   {"action", "dance"},
-                   {"seed", 1},
-                   {"camera", "default"},
-                   {"resolution", "640x360"},
-                   {"actions", 3},
-                   {"lens", {{"focal_mm", 50.0}}}}}};
+  Result result;
+  result.samples.frame_ms.assign(30, 1.0);
+  RunDescription& run = result.run;
+  run.warmup = 2;
+  run.fps = 60.0;
+  run.mode = "threaded+custom";
+  run.threads = 2;
+  run.switches = find_mode("threaded")->switches;
+  run.switches.share_poses = true;
+  run.backend = "none";
+  run.file = "hero.glb";
+  run.characters = 12;
+  run.action_choice = "shared";
+  run.action = "dance";
+  run.seed = 1;
+  run.camera = "default";
+  run.resolution = "640x360";
+  run.actions = 3;
+  run.lens = LensRecord{50.0, 32.0, 18.0, "auto"};
   RunSpec spec = resolve_run_spec(std::vector{recorded_layer(result, "b.json", "hero.glb")});
   EXPECT_EQ(spec.file, "hero.glb");
   EXPECT_EQ(spec.characters, 12u);

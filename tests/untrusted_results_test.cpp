@@ -22,6 +22,8 @@
 #include "profile/diff.h"
 #include "profile/html_report.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
+#include "profile/run_match.h"
 #include "test_support.h"
 
 namespace crowdprof::test {
@@ -135,9 +137,9 @@ void report_reader(const json& doc, const json&, const std::string& path) {
 
 void diff_reader(const json& doc, const json& intact, const std::string& path) {
   CheckOptions options;
-  std::vector<json> runs = bench_results_in(doc, path);
+  std::vector<Result> runs = bench_results_in(doc, path);
   // Against itself, and against the intact result both ways (A and B differ).
-  std::vector<json> other = bench_results_in(intact, "intact.json");
+  std::vector<Result> other = bench_results_in(intact, "intact.json");
   for (const auto& [a, b] : {std::pair{&runs, &runs}, {&runs, &other}, {&other, &runs}}) {
     try {
       Diff diff = diff_results(*a, path, *b, path, options);
@@ -154,10 +156,10 @@ void diff_reader(const json& doc, const json& intact, const std::string& path) {
 // check --result FILE (current) and check --baseline FILE: read_result, then
 // what cmd_check does with the two documents.
 void check_reader(const json& doc, const json& intact, const std::string& path, bool doc_is_baseline) {
-  validate_result(doc, path);
-  const json& baseline = doc_is_baseline ? doc : intact;
-  const json& current = doc_is_baseline ? intact : doc;
-  (void)baseline.at("samples").contains("cpu_ms");
+  Result read = result_from_json(doc, path);
+  Result whole = result_from_json(intact, "intact.json");
+  const Result& baseline = doc_is_baseline ? read : whole;
+  const Result& current = doc_is_baseline ? whole : read;
   try {
     require_same_run(baseline, current, path);
   } catch (const InputError& e) {
@@ -166,6 +168,7 @@ void check_reader(const json& doc, const json& intact, const std::string& path, 
   (void)comparison_notes(baseline, current);
   CheckOptions options;
   options.metrics = all_metrics();
+  if (metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms")) options.metrics.push_back("cpu_ms");
   CheckResult checked = check_results(baseline, current, options);
   (void)format_check(checked, options);
 }
@@ -303,10 +306,19 @@ TEST(UntrustedResults, HostileNamesAreEscapedInTheHtmlReport) {
     run["digest"] = "'" + script;
     run["environment"]["cpu"] = huge;
     run["environment"][script] = quote;
-    run["switches"][script] = quote;
     run["counters"][quote] = 1;
     run["crowdprof"]["version"] = script;
     run["gpu_time"] = {{"available", false}, {"reason", script + huge}};
+  }
+  // A switch no crowdprof has is refused, by name, before anything shows it.
+  json unknown_switch = doc;
+  unknown_switch["runs"][0]["switches"][script] = quote;
+  HtmlReportInput refused;
+  try {
+    add_result_document(refused, unknown_switch, "hostile.json");
+    ADD_FAILURE() << "a switch no crowdprof has was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no switch '" + script + "'"), std::string::npos) << e.what();
   }
   HtmlReportInput input;
   input.sources = {quote + script + ".json"};
@@ -333,7 +345,7 @@ TEST(UntrustedResults, OversizedClaimsAreRefused) {
   json sweep = result("compare");
   sweep["sweep"][0]["characters"] = uint64_t{1} << 63;
   for (const auto& [what, doc] : {std::pair<const char*, json>{"frames", frames}, {"runs.count", runs}}) {
-    EXPECT_THROW(validate_result(doc, "big.json"), InputError) << what;
+    EXPECT_THROW(result_from_json(doc, "big.json"), InputError) << what;
     EXPECT_EQ(read_with_every_reader(doc, result("bench"), "big.json"), "") << what;
   }
   EXPECT_EQ(read_with_every_reader(sweep, result("compare"), "big.json"), "");

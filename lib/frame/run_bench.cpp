@@ -89,29 +89,23 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.seed = config.crowd.seed;
   run.mode = config.mode_name;
   const ModeSwitches& s = config.mode;
-  run.switches = switches_to_json(s);
+  run.switches = s;
   run.threads = s.parallel ? config.threads : 1;
   run.fps = config.fps;
   run.camera = config.camera;
   run.resolution = config.resolution;
-  run.lens = {{"focal_mm", config.lens.focal_mm},
-              {"sensor_width_mm", config.lens.sensor_width_mm},
-              {"sensor_height_mm", config.lens.sensor_height_mm},
-              {"sensor_fit", to_string(config.lens.fit)}};
+  run.lens = LensRecord{config.lens.focal_mm, config.lens.sensor_width_mm, config.lens.sensor_height_mm,
+                        std::string(to_string(config.lens.fit))};
   run.gpu_timing_missing = bench.gpu_timing_missing();
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
   if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {
-    run.gpu_skinning = {{"skinning", to_string(s.skinning)},
-                        {"gpu_bytes", bench.animation_gpu_bytes()}};
+    GpuSkinningRecord g{std::string(to_string(s.skinning)), bench.animation_gpu_bytes(), std::nullopt};
     if (s.skinning == SkinningSite::Baked) {
       const CrowdBench::BakeSummary& b = bench.bake_summary();
-      run.gpu_skinning["rate_hz"] = b.rate_hz;
-      run.gpu_skinning["samples"] = b.samples;
-      run.gpu_skinning["bake_ms"] = b.bake_ms;
-      run.gpu_skinning["max_deviation"] = b.max_deviation;
-      run.gpu_skinning["max_deviation_fraction"] = b.max_deviation_fraction;
+      g.bake = BakeRecord{b.rate_hz, b.samples, b.bake_ms, b.max_deviation, b.max_deviation_fraction};
     }
+    run.gpu_skinning = g;
   }
   return run;
 }
@@ -127,13 +121,15 @@ void record_animation(const CrowdBench& bench, RunReport& report) {
   if (!s.share_poses && !s.update_lod && s.anim_budget_ms <= 0) return;
   AnimationFidelity fidelity = bench.measure_fidelity();
   const UpdateSchedule& schedule = bench.schedule();
-  report.animation = {{"copies_by_rate", schedule.copies_by_rate},
-                      {"longest_gap_frames", schedule.longest_gap},
-                      {"budget_demotions", schedule.demotions},
-                      {"max_deviation", fidelity.max_deviation},
-                      {"deviation_fraction_of_height", fidelity.deviation_fraction},
-                      {"copies_checked", fidelity.copies_checked},
-                      {"copies_deviating", fidelity.copies_deviating}};
+  AnimationRecord a;
+  a.copies_by_rate.assign(schedule.copies_by_rate.begin(), schedule.copies_by_rate.end());
+  a.longest_gap_frames = schedule.longest_gap;
+  a.budget_demotions = schedule.demotions;
+  a.max_deviation = fidelity.max_deviation;
+  a.deviation_fraction_of_height = fidelity.deviation_fraction;
+  a.copies_checked = fidelity.copies_checked;
+  a.copies_deviating = fidelity.copies_deviating;
+  report.animation = a;
 }
 
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {

@@ -208,38 +208,33 @@ SpecLayer scene_layer(const SceneFile& scene) {
   return layer;
 }
 
-SpecLayer recorded_layer(const json& result, const std::string& path, const std::string& file) {
+SpecLayer recorded_layer(const Result& result, const std::string& path, const std::string& file) {
   SpecLayer layer{SpecLayer::Source::Baseline, path, {}};
   auto& v = layer.values;
-  const json& scene = result.at("scene");
+  const RunDescription& run = result.run;
   v["file"] = file;
-  v["characters"] = text_of(scene.at("characters"));
-  v["frames"] = text_of(result.at("frames"));
-  v["warmup"] = text_of(result.at("warmup"));
-  v["fps"] = text_of(result.at("fps"));
-  v["actions"] = text_of(scene.at("action_choice"));
-  if (scene.contains("action") && scene["action"].is_string() && !scene["action"].get<std::string>().empty() &&
-      v["actions"] == "shared")
-    v["action"] = scene["action"].get<std::string>();
-  v["seed"] = text_of(scene.at("seed"));
-  v["camera"] = text_of(scene.at("camera"));
-  if (scene.contains("resolution") && scene["resolution"].is_string()) v["resolution"] = scene["resolution"];
-  std::string mode = result.at("mode").get<std::string>();
+  v["characters"] = std::to_string(run.characters);
+  v["frames"] = std::to_string(result.frames());
+  v["warmup"] = std::to_string(run.warmup);
+  v["fps"] = switch_text(json(run.fps));
+  v["actions"] = run.action_choice;
+  if (!run.action.empty() && run.action_choice == "shared") v["action"] = run.action;
+  v["seed"] = std::to_string(run.seed);
+  v["camera"] = run.camera;
+  if (!run.resolution.empty()) v["resolution"] = run.resolution;
+  std::string mode = run.mode;
   if (mode.ends_with("+custom")) mode.resize(mode.size() - 7);
   v["mode"] = mode;
-  const json& switches = result.at("switches");
+  // The switches as a result records them (those that differ from the plain
+  // ones, and those always recorded).
+  const json switches = switches_to_json(run.switches);
   for (const SwitchSpec& spec : switch_table())
     if (switches.contains(spec.name)) v[std::string(spec.name)] = text_of(switches[spec.name]);
   // Threads were chosen only for a parallel run; a run on one thread records 1.
-  if (switches.value("parallel", false) == true && result.contains("threads")) v["threads"] = text_of(result["threads"]);
-  if (result.contains("environment") && result["environment"].is_object()) {
-    const json& backend = result["environment"].value("backend", json());
-    if (backend.is_string()) v["backend"] = backend;
-  }
-  v["static"] = scene.at("actions").get<long long>() == 0 ? "on" : "off";
-  if (scene.contains("lens") && scene["lens"].is_object() && scene["lens"].contains("focal_mm") &&
-      scene["lens"]["focal_mm"].is_number() && scene["lens"]["focal_mm"].get<double>() != 0)
-    v["lens"] = text_of(scene["lens"]["focal_mm"]);
+  if (run.switches.parallel) v["threads"] = std::to_string(run.threads);
+  v["backend"] = run.backend;
+  v["static"] = run.actions == 0 ? "on" : "off";
+  if (run.lens && run.lens->focal_mm != 0) v["lens"] = switch_text(json(run.lens->focal_mm));
   return layer;
 }
 

@@ -17,6 +17,7 @@
 
 #include "asset/errors.h"
 #include "frame/modes.h"
+#include "profile/result.h"
 
 namespace crowdprof {
 
@@ -80,7 +81,7 @@ SpecLayer scene_layer(const SceneFile& scene);
 // What a result recorded (bench --json, a baseline): enough to run it again.
 // `file` is the scene file to use (recorded_scene_file). InputError naming
 // `path` when it records something crowdprof cannot run.
-SpecLayer recorded_layer(const nlohmann::json& result, const std::string& path, const std::string& file);
+SpecLayer recorded_layer(const Result& result, const std::string& path, const std::string& file);
 
 // Applies the layers in order over the defaults. Rules that make the order
 // mean what users expect:

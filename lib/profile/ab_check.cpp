@@ -3,21 +3,17 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "profile/result_codec.h"
 #include "profile/stats.h"
 
 namespace crowdprof {
 
-AbProcess ab_process(const nlohmann::json& result) {
+AbProcess ab_process(const Result& result) {
   AbProcess process;
-  for (const auto& [key, samples] : result.at("samples").items()) {
-    if (!samples.is_array()) continue;  // "gpu_ms" is null in a run that draws nothing
-    std::vector<double> values;  // and holds a null for a frame whose GPU time was not read back
-    for (const auto& value : samples)
-      if (value.is_number()) values.push_back(value.get<double>());
-    if (!values.empty()) process.median_ms[key] = quantile(values, 0.5);
-  }
-  process.digest = result.at("digest").get<std::string>();
-  process.counters = result.at("counters");
+  // A frame whose GPU time was not read back holds NaN, which the median skips.
+  for (const std::string& key : recorded_metrics(result)) process.median_ms[key] = metric_median(result, key);
+  process.digest = result.digest;
+  process.counters = result.counters;
   return process;
 }
 
@@ -36,6 +32,13 @@ double median_of(const AbProcess& process, const std::string& key) {
   return found->second;
 }
 
+bool same_counters(const RecordedCounters& a, const RecordedCounters& b) {
+  if (a.present != b.present) return false;
+  for (const CounterField& field : kCounterFields)
+    if (a.values.*field.member != b.values.*field.member) return false;
+  return true;
+}
+
 AbWork compare_work(const std::vector<AbGroup>& groups) {
   AbWork work;
   work.compared = true;
@@ -45,15 +48,16 @@ AbWork compare_work(const std::vector<AbGroup>& groups) {
   work.current_digest = current.digest;
   for (const AbGroup& group : groups)
     for (int i = 0; i < 2; ++i) {
-      if (group.base[i].digest != base.digest || group.base[i].counters != base.counters)
+      if (group.base[i].digest != base.digest || !same_counters(group.base[i].counters, base.counters))
         work.inconsistent = "base";
-      if (group.current[i].digest != current.digest || group.current[i].counters != current.counters)
+      if (group.current[i].digest != current.digest || !same_counters(group.current[i].counters, current.counters))
         work.inconsistent = "current";
     }
-  for (const auto& [name, value] : base.counters.items()) {
-    if (!value.is_number_unsigned() && !value.is_number_integer()) continue;
-    uint64_t now = current.counters.contains(name) ? current.counters[name].get<uint64_t>() : 0;
-    if (now != value.get<uint64_t>()) work.counters.push_back({name, value.get<uint64_t>(), now});
+  for (size_t i = 0; i < kCounterFields.size(); ++i) {
+    if (!base.counters.present[i]) continue;
+    uint64_t was = base.counters.values.*kCounterFields[i].member;
+    uint64_t now = current.counters.present[i] ? current.counters.values.*kCounterFields[i].member : 0;
+    if (now != was) work.counters.push_back({std::string(kCounterFields[i].name), was, now});
   }
   work.equal = work.base_digest == work.current_digest && work.counters.empty() && work.inconsistent.empty();
   return work;

@@ -16,6 +16,7 @@
 
 #include "profile/paired_test.h"
 #include "profile/regression.h"
+#include "profile/result.h"
 
 namespace crowdprof {
 
@@ -23,7 +24,7 @@ namespace crowdprof {
 struct AbProcess {
   std::map<std::string, double> median_ms;  // per samples key ("frame_ms", "cpu_ms", categories)
   std::string digest;
-  nlohmann::json counters;  // the result's "counters"
+  RecordedCounters counters;
 };
 
 // A B B A or B A A B: two processes of each build, taken in turns.
@@ -34,7 +35,7 @@ struct AbGroup {
 
 // From a bench result (bench --json, validated): the median of each samples
 // key, the digest and the counters.
-AbProcess ab_process(const nlohmann::json& result);
+AbProcess ab_process(const Result& result);
 
 // The A/B's defaults: the frame (wall clock) rather than CPU time, which counts
 // worker threads spinning as work; pairing, not the metric, is what absorbs the

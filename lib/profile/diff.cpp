@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "asset/errors.h"
+#include "frame/switch_table.h"
 #include "profile/category_clock.h"
+#include "profile/result_codec.h"
 #include "profile/environment.h"
 #include "profile/number_text.h"
 
@@ -22,8 +24,10 @@ std::string p_value(double p) {
   return text;
 }
 
-double median_of(const json& doc, const std::string& key) {
-  return summarize(doc["samples"][key].get<std::vector<double>>()).median;
+// A value as the notes show it: strings quoted, numbers bare.
+template <typename T>
+std::string shown(const T& value) {
+  return json(value).dump();
 }
 
 const char* verdict(const MetricCheck& m, const CheckOptions& options) {
@@ -34,58 +38,50 @@ const char* verdict(const MetricCheck& m, const CheckOptions& options) {
 
 }  // namespace
 
-std::vector<nlohmann::json> bench_results_in(const nlohmann::json& doc, const std::string& path) {
-  bool is_compare = doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() &&
-                    doc["crowdprof"].value("kind", json("bench")) == "compare";
-  if (!is_compare) {
-    validate_result(doc, path);
-    return {doc};
-  }
-  if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
-    throw InputError(path, "a compare result without \"runs\"");
-  std::vector<json> out;
-  for (size_t i = 0; i < doc["runs"].size(); ++i) {
-    validate_result(doc["runs"][i], path + " (runs[" + std::to_string(i) + "])");
-    out.push_back(doc["runs"][i]);
-  }
-  return out;
-}
-
 bool Diff::regressed() const {
   return std::any_of(pairs.begin(), pairs.end(), [](const DiffPair& p) { return p.check.regressed(); });
 }
 
-Diff diff_results(const std::vector<nlohmann::json>& a, const std::string& path_a,
-                  const std::vector<nlohmann::json>& b, const std::string& path_b, const CheckOptions& options) {
+Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const std::vector<Result>& b,
+                  const std::string& path_b, const CheckOptions& options) {
   Diff diff;
   diff.a = path_a;
   diff.b = path_b;
-  for (const json& ra : a) {
-    auto match = std::find_if(b.begin(), b.end(), [&](const json& rb) {
-      return rb["mode"] == ra["mode"] && rb["scene"]["characters"] == ra["scene"]["characters"];
+  for (const Result& ra : a) {
+    auto match = std::find_if(b.begin(), b.end(), [&](const Result& rb) {
+      return rb.run.mode == ra.run.mode && rb.run.characters == ra.run.characters;
     });
     if (match == b.end()) continue;
-    const json& rb = *match;
+    const Result& rb = *match;
     DiffPair pair;
-    pair.mode = ra["mode"].get<std::string>();
-    pair.characters = ra["scene"]["characters"].get<size_t>();
+    pair.mode = ra.run.mode;
+    pair.characters = ra.run.characters;
     CheckOptions mine = options;
     mine.metrics.clear();
-    if (ra["samples"].contains("cpu_ms") && rb["samples"].contains("cpu_ms")) mine.metrics.push_back("cpu_ms");
+    if (metric_samples(ra, "cpu_ms") && metric_samples(rb, "cpu_ms")) mine.metrics.push_back("cpu_ms");
     mine.metrics.push_back("frame_ms");
     for (size_t c = 0; c < kCategoryCount; ++c) {
       std::string key(category_name(static_cast<Category>(c)));
-      if (std::max(median_of(ra, key), median_of(rb, key)) >= 0.005) mine.metrics.push_back(key);
+      if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) mine.metrics.push_back(key);
     }
     pair.check = check_results(ra, rb, mine);
-    for (const char* key : {"file", "character", "joints", "vertices", "action_choice", "camera", "resolution"}) {
-      const json none = nullptr;
-      const json& va = ra["scene"].contains(key) ? ra["scene"][key] : none;
-      const json& vb = rb["scene"].contains(key) ? rb["scene"][key] : none;
-      if (va != vb) pair.notes.push_back("scene " + std::string(key) + " " + va.dump() + " in A, " + vb.dump() + " in B");
-    }
-    for (const char* key : {"switches", "threads", "frames", "warmup", "fps"})
-      if (ra[key] != rb[key]) pair.notes.push_back(std::string(key) + " " + ra[key].dump() + " in A, " + rb[key].dump() + " in B");
+    const RunDescription& sa = ra.run;
+    const RunDescription& sb = rb.run;
+    auto note = [&](const std::string& what, const std::string& va, const std::string& vb) {
+      if (va != vb) pair.notes.push_back(what + " " + va + " in A, " + vb + " in B");
+    };
+    note("scene file", shown(sa.file), shown(sb.file));
+    note("scene character", shown(sa.character), shown(sb.character));
+    note("scene joints", shown(sa.joints), shown(sb.joints));
+    note("scene vertices", shown(sa.vertices), shown(sb.vertices));
+    note("scene action_choice", shown(sa.action_choice), shown(sb.action_choice));
+    note("scene camera", shown(sa.camera), shown(sb.camera));
+    note("scene resolution", shown(sa.resolution), shown(sb.resolution));
+    note("switches", switches_to_json(sa.switches).dump(), switches_to_json(sb.switches).dump());
+    note("threads", shown(sa.threads), shown(sb.threads));
+    note("frames", shown(ra.frames()), shown(rb.frames()));
+    note("warmup", shown(sa.warmup), shown(sb.warmup));
+    note("fps", shown(sa.fps), shown(sb.fps));
     diff.pairs.push_back(std::move(pair));
   }
   if (diff.pairs.empty())

@@ -11,13 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "profile/regression.h"
+#include "profile/result.h"
 
 namespace crowdprof {
-
-// The bench results a file holds: itself for a bench or check result, one per
-// mode (and sweep point) for a compare result. Each is validated
-// (validate_result); InputError naming `path` otherwise.
-std::vector<nlohmann::json> bench_results_in(const nlohmann::json& doc, const std::string& path);
 
 // One mode at one crowd size present in both files.
 struct DiffPair {
@@ -37,8 +33,8 @@ struct Diff {
 // with `options` (its metrics are replaced by CPU time when both have it, the
 // frame, and every category whose median is at least 0.005 ms in either).
 // InputError when the files share no mode and crowd size.
-Diff diff_results(const std::vector<nlohmann::json>& a, const std::string& path_a,
-                  const std::vector<nlohmann::json>& b, const std::string& path_b, const CheckOptions& options);
+Diff diff_results(const std::vector<Result>& a, const std::string& path_a,
+                  const std::vector<Result>& b, const std::string& path_b, const CheckOptions& options);
 
 // The table for stdout: per pair a header, one row per metric (A and B
 // medians, change, p, Holm-corrected p, verdict), then counters and digest.

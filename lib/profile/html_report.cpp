@@ -8,7 +8,9 @@
 #include <set>
 
 #include "asset/errors.h"
+#include "frame/switch_table.h"
 #include "profile/report.h"
+#include "profile/result_codec.h"
 #include "profile/stats.h"
 
 namespace crowdprof {
@@ -37,7 +39,7 @@ std::string base64(const std::string& bytes) {
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
-// A comparison's sweep rows, checked as validate_result checks a bench's fields.
+// A comparison's sweep rows, each field checked before use.
 void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path) {
   if (!doc.contains("sweep")) return;
   const json& sweep = doc["sweep"];
@@ -61,9 +63,9 @@ void label_runs(std::vector<ReportRun>& all) {
   for (ReportRun& run : all)
     if (run.label.empty()) runs.push_back(&run);
   auto key = [](const ReportRun& r, int level) {
-    std::string mode = r.doc["mode"].get<std::string>();
+    std::string mode = r.result.run.mode;
     if (level == 0) return mode;
-    std::string sized = mode + " n=" + std::to_string(r.doc["scene"]["characters"].get<size_t>());
+    std::string sized = mode + " n=" + std::to_string(r.result.run.characters);
     return level == 1 ? sized : sized + " (" + file_name(r.source) + ")";
   };
   for (int level = 0; level < 3; ++level) {
@@ -146,25 +148,27 @@ window.addEventListener('load', function () {
 </script>
 )";
 
-std::string env_value(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
-
-// Rows of what a run was measured on: the result's environment as recorded
-// (whatever fields its version wrote), the threads and crowdprof's version.
-std::vector<std::pair<std::string, std::string>> environment_rows(const json& doc) {
-  std::vector<std::pair<std::string, std::string>> rows;
-  const json& tag = doc["crowdprof"];
-  rows.push_back({"crowdprof", env_value(tag.value("version", json("?"))) + " (" + env_value(tag.value("commit", json("?"))) + ")"});
-  if (doc.contains("environment") && doc["environment"].is_object())
-    for (const auto& [key, value] : doc["environment"].items()) rows.push_back({key, env_value(value)});
-  rows.push_back({"threads", env_value(doc["threads"])});
-  rows.push_back({"mode", doc["mode"].get<std::string>() + " " + doc["switches"].dump()});
-  return rows;
+// Rows of what a run was measured on: the machine and build the result recorded,
+// which GL drew, the threads, the mode and crowdprof's version.
+std::vector<std::pair<std::string, std::string>> environment_rows(const Result& result) {
+  const Environment& e = result.environment;
+  const RunDescription& run = result.run;
+  return {{"crowdprof", e.version + " (" + e.commit + ")"},
+          {"backend", run.backend},
+          {"build_type", e.build_type},
+          {"compiler", e.compiler},
+          {"cores", std::to_string(e.cores)},
+          {"cpu", e.cpu},
+          {"renderer", run.renderer},
+          {"simd", e.simd},
+          {"threads", std::to_string(run.threads)},
+          {"mode", run.mode + " " + switches_to_json(run.switches).dump()}};
 }
 
 std::string environment_section(const std::vector<ReportRun>& runs) {
   // One column when every run was measured alike, else one per run.
   std::vector<std::vector<std::pair<std::string, std::string>>> tables;
-  for (const ReportRun& run : runs) tables.push_back(environment_rows(run.doc));
+  for (const ReportRun& run : runs) tables.push_back(environment_rows(run.result));
   bool alike = std::all_of(tables.begin(), tables.end(), [&](const auto& t) {
     auto skip_mode = [](const auto& rows) {
       std::vector<std::pair<std::string, std::string>> out;
@@ -205,9 +209,13 @@ std::string environment_section(const std::vector<ReportRun>& runs) {
   return out + "</table></section>\n";
 }
 
-std::string counters_text(const json& counters) {
+// Every counter the result recorded, by name.
+std::string counters_text(const RecordedCounters& counters) {
+  std::map<std::string_view, uint64_t> by_name;
+  for (size_t i = 0; i < kCounterFields.size(); ++i)
+    if (counters.present[i]) by_name[kCounterFields[i].name] = counters.values.*kCounterFields[i].member;
   std::string out;
-  for (const auto& [name, value] : counters.items()) out += (out.empty() ? "" : ", ") + name + " " + env_value(value);
+  for (const auto& [name, value] : by_name) out += (out.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(value);
   return out;
 }
 
@@ -217,9 +225,9 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   std::vector<FrameTimes> medians;
   for (const ReportRun& run : runs) {
     out += "<th>" + h(run.label) + " ms</th><th>%</th>";
-    std::vector<FrameRecord> frames(run.doc["frames"].get<size_t>());
+    std::vector<FrameRecord> frames(run.result.frames());
     for (size_t c = 0; c < kCategoryCount; ++c) {
-      std::vector<double> ms = result_samples(run.doc, std::string(category_name(static_cast<Category>(c))));
+      const std::vector<double>& ms = run.result.samples.category_ms[c];
       for (size_t i = 0; i < frames.size(); ++i) frames[i].times.ms[c] = ms[i];
     }
     medians.push_back(frames[median_frame(frames)].times);
@@ -243,27 +251,26 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   // them: n/a with the reason where it was not measured, never 0.
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
-    // Optional and unchecked by validate_result: every field may be missing or of another type.
-    static const json kNotRecorded = json::object();
-    const json& gpu = run.doc.contains("gpu_time") && run.doc["gpu_time"].is_object() ? run.doc["gpu_time"] : kNotRecorded;
-    const json available = gpu.value("available", json(false)), median = gpu.value("median_ms", json()),
-               reason = gpu.value("reason", json());
-    if (gpu.value("below_resolution", json(false)) == true)
+    const RunDescription& described = run.result.run;
+    const std::vector<double>& gpu = run.result.samples.gpu_ms;
+    bool timed = std::any_of(gpu.begin(), gpu.end(), [](double ms) { return std::isfinite(ms); });
+    double median = metric_median(run.result, "gpu_ms");
+    if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
       out += "<td>-</td><td class=\"name\">below the timer's resolution</td>";
-    else if (available == true && median.is_number())
-      out += "<td>" + report_number(median.get<double>(), 2) + "</td><td class=\"name\">timer queries</td>";
+    else if (timed)
+      out += "<td>" + report_number(median, 2) + "</td><td class=\"name\">timer queries</td>";
     else
-      out += "<td>n/a</td><td class=\"name\">" + h(reason.is_string() ? reason.get<std::string>() : "not recorded") + "</td>";
+      out += "<td>n/a</td><td class=\"name\">" +
+             h(described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing) + "</td>";
   }
   out += "</tr>\n</table>\n";
   for (const ReportRun& run : runs) {
-    const json& scene = run.doc["scene"];
-    out += "<p>" + h(run.label) + ": " + std::to_string(scene["characters"].get<size_t>()) + " characters x " +
-           std::to_string(scene["joints"].get<size_t>()) + " joints, " + std::to_string(scene["vertices"].get<size_t>()) +
-           " vertices (" + h(scene["file"].get<std::string>()) + ") | " + std::to_string(run.doc["frames"].get<size_t>()) +
-           " frames after " + std::to_string(run.doc["warmup"].get<size_t>()) + " warm-up | actions " +
-           h(scene["action_choice"].get<std::string>()) + " | per frame: " + h(counters_text(run.doc["counters"])) + " | digest " +
-           h(run.doc["digest"].get<std::string>()) + "</p>\n";
+    const RunDescription& scene = run.result.run;
+    out += "<p>" + h(run.label) + ": " + std::to_string(scene.characters) + " characters x " +
+           std::to_string(scene.joints) + " joints, " + std::to_string(scene.vertices) + " vertices (" + h(scene.file) +
+           ") | " + std::to_string(run.result.frames()) + " frames after " + std::to_string(scene.warmup) +
+           " warm-up | actions " + h(scene.action_choice) + " | per frame: " + h(counters_text(run.result.counters)) +
+           " | digest " + h(run.result.digest) + "</p>\n";
   }
   return out + "</section>\n";
 }
@@ -272,7 +279,7 @@ std::string percentile_table(const std::vector<ReportRun>& runs) {
   std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>p50 ms</th><th>p95 ms</th><th>p99 ms</th>"
                     "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
   for (const ReportRun& run : runs) {
-    std::vector<double> ms = result_samples(run.doc, "frame_ms");
+    const std::vector<double>& ms = run.result.samples.frame_ms;
     auto over = [&](double budget) { return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; }); };
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(ms.size()) + "</td><td>" +
            report_number(quantile(ms, 0.5), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
@@ -287,13 +294,13 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
                     "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
   std::map<size_t, double> first;  // per crowd size: the first run's median
   for (const ReportRun& run : runs) {
-    size_t n = run.doc["scene"]["characters"].get<size_t>();
-    double median = quantile(result_samples(run.doc, "frame_ms"), 0.5);
+    size_t n = run.result.run.characters;
+    double median = quantile(run.result.samples.frame_ms, 0.5);
     double reference = first.emplace(n, median).first->second;
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(n) + "</td><td>" +
-           env_value(run.doc["threads"]) + "</td><td>" + report_number(median, 3) + "</td><td>" +
+           std::to_string(run.result.run.threads) + "</td><td>" + report_number(median, 3) + "</td><td>" +
            (median > 0 ? report_number(reference / median, 2) + "x" : "-") + "</td><td class=\"name\">" +
-           h(run.doc["digest"].get<std::string>()) + "</td></tr>\n";
+           h(run.result.digest) + "</td></tr>\n";
   }
   return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";
 }
@@ -348,29 +355,21 @@ void require_png(const std::string& bytes, const std::string& path) {
 }
 
 void add_result_document(HtmlReportInput& input, const json& doc, const std::string& source) {
-  std::string kind = "bench";
-  if (doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() && doc["crowdprof"].contains("kind") &&
-      doc["crowdprof"]["kind"].is_string())
-    kind = doc["crowdprof"]["kind"].get<std::string>();
+  std::string kind = document_kind(doc);
+  if (kind != "bench" && kind != "compare" && kind != "capacity")
+    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check, compare and capacity --json");
   // A capacity search holds a comparison's runs (one per mode, at its
   // capacity) and sweep (every size it tried).
-  if (kind == "compare" || kind == "capacity") {
-    if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
-      throw InputError(source, "a comparison without \"runs\": not a complete crowdprof result");
-    for (const json& run : doc["runs"]) {  // bench results only: a comparison does not nest
-      validate_result(run, source);
-      input.runs.push_back({"", run, source});
-    }
-    add_sweep(input, doc, source);
-    if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
-        doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
-      input.sweep_budget_ms = doc["budget_ms"].get<double>();
-  } else if (kind == "bench") {
-    validate_result(doc, source);
-    input.runs.push_back({"", doc, source});
-  } else {
-    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check, compare and capacity --json");
-  }
+  for (Result& run : bench_results_in(doc, source)) input.runs.push_back({"", std::move(run), source});
+  if (kind == "bench") return;
+  add_sweep(input, doc, source);
+  if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
+      doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
+    input.sweep_budget_ms = doc["budget_ms"].get<double>();
+}
+
+void add_result(HtmlReportInput& input, Result result, const std::string& source) {
+  input.runs.push_back({"", std::move(result), source});
 }
 
 void add_result_file(HtmlReportInput& input, const std::string& path) {
@@ -384,7 +383,7 @@ std::string html_report(const HtmlReportInput& given) {
   label_runs(input.runs);
   ModeColours colours(input.mode_order);
   for (const ReportRun& run : input.runs) colours.colour(run.label);  // in order, before any chart asks
-  const json& first = input.runs.front().doc;
+  const Result& first = input.runs.front().result;
   std::string caption = scene_caption(first);
   std::string title = "crowdprof report: " + caption +
                       (input.check ? ", " + input.check->command : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
@@ -396,7 +395,7 @@ std::string html_report(const HtmlReportInput& given) {
     for (size_t s = 0; s < input.sources.size(); ++s) body += (s ? ", " : "") + h(input.sources[s]);
     body += ". ";
   }
-  body += "Made by crowdprof " + h(env_value(first["crowdprof"].value("version", json("?")))) +
+  body += "Made by crowdprof " + h(first.environment.version) +
           "; one file, no network needed.</p>\n";
   if (input.check) body += check_section(*input.check, charts);
   body += profile_section(input.runs);
@@ -425,14 +424,13 @@ std::string html_report(const HtmlReportInput& given) {
 
   std::vector<SweepPoint> sweep = input.sweep;
   std::set<size_t> sizes;
-  for (const ReportRun& run : input.runs) sizes.insert(run.doc["scene"]["characters"].get<size_t>());
+  for (const ReportRun& run : input.runs) sizes.insert(run.result.run.characters);
   if (sweep.empty() && sizes.size() > 1)
     for (const ReportRun& run : input.runs)
-      sweep.push_back({run.doc["mode"].get<std::string>(), run.doc["scene"]["characters"].get<size_t>(),
-                       quantile(result_samples(run.doc, "frame_ms"), 0.5)});
+      sweep.push_back({run.result.run.mode, run.result.run.characters, quantile(run.result.samples.frame_ms, 0.5)});
   if (!sweep.empty()) {
     SvgDocument svg;
-    std::string character = first["scene"]["character"].get<std::string>();
+    std::string character = first.run.character;
     svg.add(sweep_chart(sweep, character, colours, input.sweep_budget_ms));
     charts += "s";
     body += "<section id=\"sweep\"><h2>Crowd size sweep</h2>\n" + svg.inline_svg() + "</section>\n";

@@ -26,7 +26,7 @@ struct CheckSection {
 
 struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
-  std::vector<ReportRun> runs;       // bench results (validate_result), in order; html_report labels those without
+  std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
   std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
@@ -43,6 +43,9 @@ void add_result_file(HtmlReportInput& input, const std::string& path);
 // The same for a document made in this process or read by the caller
 // (`source` names it in errors).
 void add_result_document(HtmlReportInput& input, const nlohmann::json& doc, const std::string& source);
+
+// A bench result already read (or made in this process).
+void add_result(HtmlReportInput& input, Result result, const std::string& source);
 
 // InputError naming `path` unless `bytes` are a PNG (its signature and IHDR).
 void require_png(const std::string& bytes, const std::string& path);

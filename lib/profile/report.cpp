@@ -8,6 +8,7 @@
 
 #include "profile/stats.h"
 #include "profile/number_text.h"
+#include "profile/result_codec.h"
 
 namespace crowdprof {
 
@@ -16,12 +17,6 @@ namespace {
 std::vector<double> frame_ms(const std::vector<FrameRecord>& frames) {
   std::vector<double> out;
   for (const FrameRecord& f : frames) out.push_back(f.times.total_ms());
-  return out;
-}
-
-std::vector<double> category_ms(const std::vector<FrameRecord>& frames, size_t category) {
-  std::vector<double> out;
-  for (const FrameRecord& f : frames) out.push_back(f.times.ms[category]);
   return out;
 }
 
@@ -51,11 +46,6 @@ std::string short_time(double ms) {
   if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
   else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
   return text;
-}
-
-nlohmann::json summary_json(const Summary& s) {
-  return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
-          {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
 }
 
 }  // namespace
@@ -129,15 +119,15 @@ std::string format_profile(const RunReport& report) {
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
     out << "\n";
   }
-  if (run.gpu_skinning.is_object()) {
-    const nlohmann::json& g = run.gpu_skinning;
-    out << "skinning " << g.value("skinning", "") << " | " << g.value("gpu_bytes", uint64_t{0}) << " bytes on the GPU";
-    if (g.contains("rate_hz")) {
+  if (run.gpu_skinning) {
+    const GpuSkinningRecord& g = *run.gpu_skinning;
+    out << "skinning " << g.skinning << " | " << g.gpu_bytes << " bytes on the GPU";
+    if (g.bake) {
       std::snprintf(line, sizeof line,
                     " | baked at %g Hz (%llu samples) in %.1f ms | largest vertex deviation from exact sampling %.3g "
                     "model units, %.3f%% of the character's height",
-                    g.value("rate_hz", 0.0), static_cast<unsigned long long>(g.value("samples", uint64_t{0})),
-                    g.value("bake_ms", 0.0), g.value("max_deviation", 0.0), 100.0 * g.value("max_deviation_fraction", 0.0));
+                    g.bake->rate_hz, static_cast<unsigned long long>(g.bake->samples), g.bake->bake_ms,
+                    g.bake->max_deviation, 100.0 * g.bake->max_deviation_fraction);
       out << line;
     }
     out << "\n";
@@ -166,14 +156,14 @@ std::string format_profile(const RunReport& report) {
   else if (!run.action.empty()) out << " (" << run.action << ")";
   out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
-  if (report.animation.is_object()) {
-    const nlohmann::json& a = report.animation;
+  if (report.animation) {
+    const AnimationRecord& a = *report.animation;
     out << "animation: " << k.poses_updated << " poses evaluated for " << k.copies_updated << " copies updated, "
         << k.copies_held << " held | rates (copies every 1/2/4/8/16/32/64 frames):";
-    for (const auto& count : a["copies_by_rate"]) out << " " << count.get<uint64_t>();
-    out << " | longest gap " << a["longest_gap_frames"].get<uint64_t>() << " frames | deviation "
-        << fixed(a["max_deviation"].get<double>(), 4) << " ("
-        << fixed(a["deviation_fraction_of_height"].get<double>() * 100.0, 2) << "% of height) over " << a["copies_checked"].get<uint64_t>() << " copies on screen\n";
+    for (uint64_t count : a.copies_by_rate) out << " " << count;
+    out << " | longest gap " << a.longest_gap_frames << " frames | deviation " << fixed(a.max_deviation, 4) << " ("
+        << fixed(a.deviation_fraction_of_height * 100.0, 2) << "% of height) over " << a.copies_checked
+        << " copies on screen\n";
   }
   if (report.partial)
     out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
@@ -212,101 +202,47 @@ void write_csv(const RunReport& report, std::ostream& out) {
   }
 }
 
-nlohmann::json to_json(const RunReport& report) {
-  const RunDescription& run = report.run;
-  const Environment& env = report.environment;
-  nlohmann::json j;
-  j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"format", 1}};
-  j["environment"] = {{"cpu", env.cpu},           {"cores", env.cores},       {"compiler", env.compiler},
-                      {"build_type", env.build_type}, {"simd", env.simd}, {"backend", run.backend}, {"renderer", run.renderer}};
-  j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
-                {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
-                {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},
-                {"camera", run.camera}, {"resolution", run.resolution}};
-  j["scene"]["lens"] = run.lens;
-  if (!run.scene_file.empty()) {
-    j["scene"]["scene_file"] = run.scene_file;
-    j["scene"]["scene_hash"] = run.scene_hash;
+Result make_result(const RunReport& report) {
+  Result r;
+  r.environment = report.environment;
+  r.run = report.run;
+  for (const FrameRecord& f : report.frames) {
+    r.samples.frame_ms.push_back(f.times.total_ms());
+    r.samples.cpu_ms.push_back(f.cpu_ms);
+    for (size_t c = 0; c < kCategoryCount; ++c) r.samples.category_ms[c].push_back(f.times.ms[c]);
   }
-  nlohmann::json crowd = nlohmann::json::array();
-  for (const CharacterRun& c : run.crowd) {
-    nlohmann::json counters;
-    for (const char* name : {"copies_visible", "copies_culled", "poses_updated", "vertices_skinned", "copies_fallback"})
-      for (const CounterField& field : kCounterFields)
-        if (field.name == name) counters[name] = c.counters.*field.member;
-    crowd.push_back({{"file", c.file},         {"character", c.character}, {"copies", c.copies},
-                     {"joints", c.joints},     {"vertices", c.vertices},   {"actions", c.actions},
-                     {"action_choice", c.action_choice}, {"counters", counters}});
-  }
-  j["crowd"] = crowd;
-  j["mode"] = run.mode;
-  j["switches"] = run.switches;
-  if (run.gpu_skinning.is_object()) j["gpu_skinning"] = run.gpu_skinning;
-  j["threads"] = run.threads;
-  j["frames"] = report.frames.size();
-  j["warmup"] = run.warmup;
-  j["fps"] = run.fps;
-  std::vector<double> totals = frame_ms(report.frames);
-  j["frame"] = summary_json(summarize(totals));
-  nlohmann::json samples = {{"frame_ms", totals}};
-  std::vector<double> cpu;
-  for (const FrameRecord& f : report.frames) cpu.push_back(f.cpu_ms);
-  j["cpu"] = summary_json(summarize(cpu));
-  samples["cpu_ms"] = cpu;
-  for (size_t c = 0; c < kCategoryCount; ++c) {
-    std::string name(category_name(static_cast<Category>(c)));
-    std::vector<double> values = category_ms(report.frames, c);
-    j["categories"][name] = summary_json(summarize(values));
-    samples[name] = values;
-  }
-  // GPU time per frame, when measured: null where a frame's was not read back,
-  // and no numbers at all without timer queries (never zeros).
-  std::vector<double> gpu = gpu_ms(report.frames);
-  nlohmann::json gpu_time = {{"available", !gpu.empty()}};
-  if (!gpu.empty()) {
-    gpu_time["source"] = "GL_TIME_ELAPSED timer queries";
-    gpu_time.update(summary_json(summarize(gpu)));
-    if (run.gpu_timer_resolution_ms > 0) gpu_time["resolution_ms"] = run.gpu_timer_resolution_ms;
-    gpu_time["below_resolution"] = below_timer_resolution(summarize(gpu).median, run);
-    nlohmann::json per_frame = nlohmann::json::array();
-    for (const FrameRecord& f : report.frames)
-      per_frame.push_back(std::isfinite(f.gpu_ms) ? nlohmann::json(f.gpu_ms) : nlohmann::json(nullptr));
-    samples["gpu_ms"] = per_frame;
-  } else {
-    gpu_time["reason"] = run.gpu_timing_missing.empty() ? "no timer query was read back" : run.gpu_timing_missing;
-    gpu_time["median_ms"] = nullptr;
-    samples["gpu_ms"] = nullptr;
-  }
-  j["gpu_time"] = gpu_time;
-  // Counters per frame: the median over frames (they rarely vary at all).
+  // GPU times only when a timer measured some frame: never a column of NaN.
+  if (!gpu_ms(report.frames).empty())
+    for (const FrameRecord& f : report.frames) r.samples.gpu_ms.push_back(f.gpu_ms);
   for (const CounterField& field : kCounterFields) {
     std::vector<double> values;
     for (const FrameRecord& f : report.frames) values.push_back(static_cast<double>(f.counters.*field.member));
-    j["counters"][std::string(field.name)] = static_cast<uint64_t>(quantile(values, 0.5));
+    r.counters.values.*field.member = static_cast<uint64_t>(quantile(values, 0.5));
   }
-  j["digest"] = report.digest;
-  if (!report.stores.empty()) j["stores"] = report.stores;
-  if (report.animation.is_object()) j["animation"] = report.animation;
+  r.counters.present.fill(true);
+  r.digest = report.digest;
+  r.stores = report.stores;
+  r.partial = report.partial;
+  r.frames_planned = report.frames_planned;
+  r.animation = report.animation;
   if (!report.instruction_source.empty()) {
     // What a stored instruction baseline must match to be compared.
-    nlohmann::json instructions = {{"source", report.instruction_source}, {"threads", run.threads},
-                                   {"simd", report.environment.simd}, {"compiler", report.environment.compiler}};
-    if (report.instruction_source == "perf_event") {
+    InstructionRecord i;
+    i.source = report.instruction_source;
+    i.threads = report.run.threads;
+    i.simd = report.environment.simd;
+    i.compiler = report.environment.compiler;
+    i.problem = report.instruction_problem;
+    if (i.source == "perf_event") {  // callgrind's is filled from its output by who ran it
       std::vector<double> counts;
       for (const FrameRecord& f : report.frames) counts.push_back(static_cast<double>(f.instructions));
-      instructions["per_frame"] = quantile(counts, 0.5);
-    } else {
-      instructions["per_frame"] = nullptr;  // callgrind: filled from its output by the caller
+      i.per_frame = quantile(counts, 0.5);
     }
-    if (!report.instruction_problem.empty()) instructions["problem"] = report.instruction_problem;
-    j["instructions"] = instructions;
+    r.instructions = i;
   }
-  if (report.partial) {
-    j["partial"] = true;
-    j["frames_planned"] = report.frames_planned;
-  }
-  j["samples"] = samples;
-  return j;
+  return r;
 }
+
+nlohmann::json to_json(const RunReport& report) { return result_to_json(make_result(report)); }
 
 }  // namespace crowdprof

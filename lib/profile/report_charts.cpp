@@ -3,18 +3,12 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "profile/result_codec.h"
 #include "profile/stats.h"
 
 namespace crowdprof {
 
 namespace {
-
-using nlohmann::json;
-
-std::string text_of(const json& section, const char* key, const char* otherwise) {
-  return section.is_object() && section.contains(key) && section[key].is_string() ? section[key].get<std::string>()
-                                                                                  : std::string(otherwise);
-}
 
 std::vector<double> frame_numbers(size_t count) {
   std::vector<double> x(count);
@@ -23,7 +17,7 @@ std::vector<double> frame_numbers(size_t count) {
 }
 
 std::string frames_axis(const std::vector<ReportRun>& runs) {
-  std::string warmup = runs.empty() ? "0" : std::to_string(runs.front().doc.value("warmup", size_t{0}));
+  std::string warmup = runs.empty() ? "0" : std::to_string(runs.front().result.run.warmup);
   return "frame (0 = the first measured, after " + warmup + " warm-up)";
 }
 
@@ -35,23 +29,22 @@ std::string report_number(double value, int decimals) {
   return text;
 }
 
-std::vector<double> result_samples(const json& doc, const std::string& key) {
-  return doc.at("samples").at(key).get<std::vector<double>>();
+std::vector<double> result_samples(const Result& result, const std::string& key) {
+  const std::vector<double>* values = metric_samples(result, key);
+  return values ? *values : std::vector<double>{};
 }
 
-std::string scene_caption(const json& doc) {
-  const json& scene = doc["scene"];
-  return text_of(scene, "character", "?") + " x " + std::to_string(scene.value("characters", size_t{0})) +
-         ", backend " + text_of(doc.contains("environment") ? doc["environment"] : json(), "backend", "none");
+std::string scene_caption(const Result& result) {
+  return result.run.character + " x " + std::to_string(result.run.characters) + ", backend " + result.run.backend;
 }
 
 LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
-  LineChart chart{"Frame time per frame: " + (runs.empty() ? std::string() : scene_caption(runs.front().doc)),
+  LineChart chart{"Frame time per frame: " + (runs.empty() ? std::string() : scene_caption(runs.front().result)),
                   frames_axis(runs), "frame time (ms)", {}, false};
   chart.id = "frame-time";
   double highest = 0;
   for (const ReportRun& run : runs) {
-    std::vector<double> ms = result_samples(run.doc, "frame_ms");
+    std::vector<double> ms = result_samples(run.result, "frame_ms");
     for (double v : ms) highest = std::max(highest, v);
     std::string colour = colours.colour(run.label);
     struct Mark {
@@ -80,13 +73,13 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
 }
 
 StackedArea categories_chart(const ReportRun& run) {
-  StackedArea chart{"Time per category per frame, " + run.label + ": " + scene_caption(run.doc),
+  StackedArea chart{"Time per category per frame, " + run.label + ": " + scene_caption(run.result),
                     frames_axis({run}), "time (ms), categories stacked", {}, {}};
   chart.id = "categories";
-  chart.x = frame_numbers(run.doc["frames"].get<size_t>());
+  chart.x = frame_numbers(run.result.frames());
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
-    std::vector<double> ms = result_samples(run.doc, std::string(category_name(category)));
+    std::vector<double> ms = result_samples(run.result, std::string(category_name(category)));
     if (std::none_of(ms.begin(), ms.end(), [](double v) { return v > 0; })) continue;
     chart.layers.push_back({std::string(category_name(category)), category_colour(category), std::move(ms)});
   }
@@ -98,10 +91,10 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs) {
   for (const ReportRun& run : runs) {
     medians.emplace_back();
     for (size_t c = 0; c < kCategoryCount; ++c)
-      medians.back()[c] = quantile(result_samples(run.doc, std::string(category_name(static_cast<Category>(c)))), 0.5);
+      medians.back()[c] = quantile(result_samples(run.result, std::string(category_name(static_cast<Category>(c)))), 0.5);
   }
   StackedBars chart{"Median time per category, modes side by side: " +
-                        (runs.empty() ? std::string() : scene_caption(runs.front().doc)),
+                        (runs.empty() ? std::string() : scene_caption(runs.front().result)),
                     "median time (ms)", {}, {}, {}};
   chart.id = "modes";
   std::vector<size_t> shown;

@@ -8,19 +8,18 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "profile/chart_colours.h"
 #include "profile/regression.h"
+#include "profile/result.h"
 #include "profile/svg_chart.h"
 
 namespace crowdprof {
 
-// One bench result (validate_result) and how the report names it: its mode,
+// One bench result and how the report names it: its mode,
 // or more when two results share a mode.
 struct ReportRun {
   std::string label;
-  nlohmann::json doc;
+  Result result;
   std::string source;  // the file it came from ("" when made in this process)
 };
 
@@ -38,10 +37,10 @@ inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};
 std::string report_number(double value, int decimals);
 
 // The samples of one metric ("frame_ms", "Animations") of a result.
-std::vector<double> result_samples(const nlohmann::json& doc, const std::string& key);
+std::vector<double> result_samples(const Result& result, const std::string& key);
 
 // "humanoid x 160, backend none": what every title names.
-std::string scene_caption(const nlohmann::json& doc);
+std::string scene_caption(const Result& result);
 
 // Frame time per frame, a line per run, the budgets and each run's p50, p95
 // and p99 as dashed lines.

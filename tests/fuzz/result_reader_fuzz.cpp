@@ -12,12 +12,20 @@
 #include "asset/json_assert.h"
 #include "fuzz_file.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
+#include "profile/run_match.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace crowdprof;
   const std::string path = crowdprof::fuzz::write_input(data, size, "result.json");
   try {
-    nlohmann::json doc = read_result(path);
+    Result doc = read_result(path);
+    // The codec reads back what it writes, to the same document.
+    nlohmann::json written = result_to_json(doc);
+    if (result_to_json(result_from_json(written, path)) != written) {
+      std::fprintf(stderr, "fuzz: a result written and read back changed\n");
+      std::abort();
+    }
     require_same_run(doc, doc, path);
     (void)comparison_notes(doc, doc);
     CheckOptions options;

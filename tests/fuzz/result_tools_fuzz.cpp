@@ -17,12 +17,13 @@
 #include "profile/diff.h"
 #include "profile/html_report.h"
 #include "profile/regression.h"
+#include "profile/result_codec.h"
 
 namespace {
 
 void run_diff(const nlohmann::json& doc, const std::string& path) {
   using namespace crowdprof;
-  std::vector<nlohmann::json> runs = bench_results_in(doc, path);
+  std::vector<Result> runs = bench_results_in(doc, path);
   CheckOptions options;
   Diff diff = diff_results(runs, path, runs, path, options);
   (void)format_diff(diff, options);

@@ -1,0 +1,541 @@
+#include "profile/result_codec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "asset/errors.h"
+#include "frame/switch_table.h"
+#include "profile/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+// More threads than any machine crowdprof runs on has.
+constexpr uint64_t kMaxRecordedThreads = 4096;
+
+// The counters every format-1 result has; later ones are optional.
+constexpr std::string_view kRequiredCounters[] = {"poses_updated",    "copies_culled",   "copies_visible",
+                                                  "vertices_skinned", "channel_lookups", "bytes_uploaded",
+                                                  "draw_calls"};
+
+// The counters a result stores per character of the crowd.
+constexpr std::string_view kCharacterCounters[] = {"copies_visible", "copies_culled", "poses_updated",
+                                                   "vertices_skinned", "copies_fallback"};
+
+const CounterField* counter_field(std::string_view name) {
+  for (const CounterField& field : kCounterFields)
+    if (field.name == name) return &field;
+  return nullptr;
+}
+
+// ---- writing ----
+
+json summary_json(const std::vector<double>& values) {
+  Summary s = summarize(values);
+  return {{"min_ms", s.min}, {"median_ms", s.median}, {"mean_ms", s.mean}, {"p50_ms", s.median},
+          {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
+}
+
+std::vector<double> finite(const std::vector<double>& values) {
+  std::vector<double> out;
+  for (double v : values)
+    if (std::isfinite(v)) out.push_back(v);
+  return out;
+}
+
+json lens_json(const std::optional<LensRecord>& lens) {
+  if (!lens) return nullptr;
+  return {{"focal_mm", lens->focal_mm},
+          {"sensor_width_mm", lens->sensor_width_mm},
+          {"sensor_height_mm", lens->sensor_height_mm},
+          {"sensor_fit", lens->sensor_fit}};
+}
+
+json gpu_skinning_json(const GpuSkinningRecord& g) {
+  json j = {{"skinning", g.skinning}, {"gpu_bytes", g.gpu_bytes}};
+  if (g.bake) {
+    j["rate_hz"] = g.bake->rate_hz;
+    j["samples"] = g.bake->samples;
+    j["bake_ms"] = g.bake->bake_ms;
+    j["max_deviation"] = g.bake->max_deviation;
+    j["max_deviation_fraction"] = g.bake->max_deviation_fraction;
+  }
+  return j;
+}
+
+json animation_json(const AnimationRecord& a) {
+  return {{"copies_by_rate", a.copies_by_rate},
+          {"longest_gap_frames", a.longest_gap_frames},
+          {"budget_demotions", a.budget_demotions},
+          {"max_deviation", a.max_deviation},
+          {"deviation_fraction_of_height", a.deviation_fraction_of_height},
+          {"copies_checked", a.copies_checked},
+          {"copies_deviating", a.copies_deviating}};
+}
+
+json instructions_json(const InstructionRecord& i) {
+  json j = {{"source", i.source}, {"threads", i.threads}, {"simd", i.simd}, {"compiler", i.compiler}};
+  j["per_frame"] = i.per_frame ? json(*i.per_frame) : json(nullptr);
+  if (!i.problem.empty()) j["problem"] = i.problem;
+  if (!i.runs.empty()) j["runs"] = i.runs;
+  return j;
+}
+
+json crowd_json(const std::vector<CharacterRun>& crowd) {
+  json out = json::array();
+  for (const CharacterRun& c : crowd) {
+    json counters = json::object();
+    for (std::string_view name : kCharacterCounters) counters[std::string(name)] = c.counters.*counter_field(name)->member;
+    out.push_back({{"file", c.file},         {"character", c.character}, {"copies", c.copies},
+                   {"joints", c.joints},     {"vertices", c.vertices},   {"actions", c.actions},
+                   {"action_choice", c.action_choice}, {"counters", counters}});
+  }
+  return out;
+}
+
+// "gpu_time" and samples.gpu_ms: numbers only where a GPU timer measured, never
+// made-up zeros.
+void write_gpu_time(const Result& r, json& j, json& samples) {
+  std::vector<double> gpu = finite(r.samples.gpu_ms);
+  json gpu_time = {{"available", !gpu.empty()}};
+  if (gpu.empty()) {
+    gpu_time["reason"] = r.run.gpu_timing_missing.empty() ? "no timer query was read back" : r.run.gpu_timing_missing;
+    gpu_time["median_ms"] = nullptr;
+    samples["gpu_ms"] = nullptr;
+  } else {
+    double median = summarize(gpu).median;
+    gpu_time["source"] = "GL_TIME_ELAPSED timer queries";
+    gpu_time.update(summary_json(gpu));
+    if (r.run.gpu_timer_resolution_ms > 0) gpu_time["resolution_ms"] = r.run.gpu_timer_resolution_ms;
+    gpu_time["below_resolution"] = r.run.gpu_timer_resolution_ms > 0 && median < r.run.gpu_timer_resolution_ms;
+    json per_frame = json::array();
+    for (double ms : r.samples.gpu_ms) per_frame.push_back(std::isfinite(ms) ? json(ms) : json(nullptr));
+    samples["gpu_ms"] = per_frame;
+  }
+  j["gpu_time"] = gpu_time;
+}
+
+// ---- reading: every field checked before use ----
+
+// "/scene/file" as users read it: "scene.file".
+std::string dotted(const std::string& pointer) {
+  std::string out = pointer.substr(1);
+  for (char& c : out)
+    if (c == '/') c = '.';
+  return out;
+}
+
+// Unsigned, or signed and not negative: nlohmann keeps the C++ type it was given.
+bool whole(const json& value) {
+  return value.is_number_unsigned() || (value.is_number_integer() && value.get<int64_t>() >= 0);
+}
+
+bool milliseconds(const json& value) {
+  return value.is_number() && std::isfinite(value.get<double>()) && value.get<double>() >= 0;
+}
+
+// Reads one document, naming `path` and the field in every error.
+class Reader {
+ public:
+  Reader(const json& doc, const std::string& path) : doc_(doc), path_(path) {}
+
+  [[noreturn]] void fail(const std::string& why) const { throw InputError(path_, why); }
+
+  void require(bool ok, const std::string& pointer, const char* expected) const {
+    if (!ok) fail("\"" + dotted(pointer) + "\" should be " + expected);
+  }
+
+  bool has(const std::string& pointer) const { return doc_.contains(json::json_pointer(pointer)); }
+
+  const json& at(const std::string& pointer) const {
+    if (!has(pointer)) fail("not a complete crowdprof result: no \"" + dotted(pointer) + "\"");
+    return doc_.at(json::json_pointer(pointer));
+  }
+
+  std::string text(const std::string& pointer) const {
+    const json& v = at(pointer);
+    require(v.is_string(), pointer, "a string");
+    return v.get<std::string>();
+  }
+  std::string text_or(const std::string& pointer, std::string otherwise) const {
+    return has(pointer) ? text(pointer) : otherwise;
+  }
+  uint64_t count(const std::string& pointer) const {
+    const json& v = at(pointer);
+    require(whole(v), pointer, "a whole number");
+    return v.get<uint64_t>();
+  }
+  uint64_t count_or(const std::string& pointer, uint64_t otherwise) const {
+    return has(pointer) ? count(pointer) : otherwise;
+  }
+  double number(const std::string& pointer) const {
+    const json& v = at(pointer);
+    require(v.is_number() && std::isfinite(v.get<double>()), pointer, "a number");
+    return v.get<double>();
+  }
+  double number_or(const std::string& pointer, double otherwise) const {
+    return has(pointer) ? number(pointer) : otherwise;
+  }
+  bool flag_or(const std::string& pointer, bool otherwise) const {
+    if (!has(pointer)) return otherwise;
+    const json& v = at(pointer);
+    require(v.is_boolean(), pointer, "true or false");
+    return v.get<bool>();
+  }
+  const json& object(const std::string& pointer) const {
+    const json& v = at(pointer);
+    require(v.is_object(), pointer, "an object");
+    return v;
+  }
+  // Milliseconds, one per frame; with `nulls`, null for a frame not measured (NaN).
+  std::vector<double> samples(const std::string& pointer, size_t frames, bool nulls = false) const {
+    const json& values = at(pointer);
+    require(values.is_array(), pointer, "an array of milliseconds");
+    if (values.size() != frames)
+      fail("\"" + dotted(pointer) + "\" has " + std::to_string(values.size()) + " values for " +
+           std::to_string(frames) + " frames");
+    std::vector<double> out;
+    out.reserve(values.size());
+    for (const json& v : values) {
+      if (nulls && v.is_null()) {
+        out.push_back(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      require(milliseconds(v), pointer, "finite, non-negative milliseconds");
+      out.push_back(v.get<double>());
+    }
+    return out;
+  }
+  template <typename T>
+  std::vector<T> array_of(const std::string& pointer, bool (*ok)(const json&), const char* expected) const {
+    const json& values = at(pointer);
+    require(values.is_array(), pointer, expected);
+    std::vector<T> out;
+    for (const json& v : values) {
+      require(ok(v), pointer, expected);
+      out.push_back(v.get<T>());
+    }
+    return out;
+  }
+
+ private:
+  const json& doc_;
+  const std::string& path_;
+};
+
+void read_header(const Reader& in, const json& doc, Result& r) {
+  if (!doc.is_object() || !doc.contains("crowdprof") || !doc["crowdprof"].is_object())
+    in.fail("not a crowdprof result (no \"crowdprof\" section)");
+  std::string kind = document_kind(doc);
+  if (kind != "bench") in.fail("a '" + kind + "' result; check compares results of bench --json");
+  if (!doc["crowdprof"].contains("format") || !doc["crowdprof"]["format"].is_number_integer())
+    in.fail("not a crowdprof result (no \"crowdprof.format\")");
+  int64_t format = doc["crowdprof"]["format"].get<int64_t>();
+  const json& version = doc["crowdprof"].contains("version") ? doc["crowdprof"]["version"] : json();
+  if (format != kResultFormat)
+    in.fail("result format " + std::to_string(format) + " (crowdprof " +
+            (version.is_string() ? version.get<std::string>() : std::string("?")) + "); this crowdprof reads format " +
+            std::to_string(kResultFormat) + ": record it again with this version");
+  r.format = static_cast<int>(format);
+  r.environment.version = in.text_or("/crowdprof/version", "?");
+  r.environment.commit = in.text_or("/crowdprof/commit", "?");
+}
+
+void read_environment(const Reader& in, Result& r) {
+  if (!in.has("/environment")) return;
+  in.object("/environment");
+  Environment& e = r.environment;
+  e.cpu = in.text_or("/environment/cpu", "");
+  e.cores = static_cast<unsigned>(std::min<uint64_t>(in.count_or("/environment/cores", 0), 1u << 20));
+  e.compiler = in.text_or("/environment/compiler", "");
+  e.build_type = in.text_or("/environment/build_type", "");
+  e.simd = in.text_or("/environment/simd", "");
+  r.run.backend = in.text_or("/environment/backend", "none");
+  r.run.renderer = in.text_or("/environment/renderer", "none");
+}
+
+// Sizes a scene records fit comfortably in these; larger ones are not results.
+size_t bounded(uint64_t value, const Reader& in, const char* pointer) {
+  in.require(value <= (uint64_t{1} << 40), pointer, "a plausible count");
+  return static_cast<size_t>(value);
+}
+
+void read_scene(const Reader& in, Result& r) {
+  RunDescription& run = r.run;
+  in.object("/scene");
+  run.file = in.text("/scene/file");
+  in.text("/digest");  // checked here so a truncated result is named by its first missing field
+  run.character = in.text("/scene/character");
+  run.action_choice = in.text("/scene/action_choice");
+  run.camera = in.text("/scene/camera");
+  run.characters = bounded(in.count("/scene/characters"), in, "/scene/characters");
+  run.joints = bounded(in.count("/scene/joints"), in, "/scene/joints");
+  run.vertices = bounded(in.count("/scene/vertices"), in, "/scene/vertices");
+  run.actions = bounded(in.count("/scene/actions"), in, "/scene/actions");
+  uint64_t seed = in.count("/scene/seed");
+  in.require(seed <= std::numeric_limits<uint32_t>::max(), "/scene/seed", "a 32-bit whole number");
+  run.seed = static_cast<uint32_t>(seed);
+  // Added within format 1: optional.
+  run.action = in.text_or("/scene/action", "");
+  run.resolution = in.text_or("/scene/resolution", "");
+  run.scene_file = in.text_or("/scene/scene_file", "");
+  run.scene_hash = in.text_or("/scene/scene_hash", "");
+  r.file_from_result = in.text_or("/scene/file_from", "") == "result";
+  if (in.has("/scene/lens") && !in.at("/scene/lens").is_null()) {
+    in.object("/scene/lens");
+    LensRecord lens;
+    lens.focal_mm = in.number_or("/scene/lens/focal_mm", 0);
+    lens.sensor_width_mm = in.number_or("/scene/lens/sensor_width_mm", 0);
+    lens.sensor_height_mm = in.number_or("/scene/lens/sensor_height_mm", 0);
+    lens.sensor_fit = in.text_or("/scene/lens/sensor_fit", "auto");
+    run.lens = lens;
+  }
+}
+
+void read_crowd(const Reader& in, Result& r) {
+  if (!in.has("/crowd")) return;
+  const json& crowd = in.at("/crowd");
+  in.require(crowd.is_array(), "/crowd", "an array of characters");
+  for (size_t k = 0; k < crowd.size(); ++k) {
+    std::string at = "/crowd/" + std::to_string(k);
+    in.object(at);
+    CharacterRun c;
+    c.file = in.text(at + "/file");
+    c.character = in.text(at + "/character");
+    c.copies = bounded(in.count(at + "/copies"), in, "/crowd");
+    c.joints = bounded(in.count(at + "/joints"), in, "/crowd");
+    c.vertices = bounded(in.count(at + "/vertices"), in, "/crowd");
+    c.actions = bounded(in.count(at + "/actions"), in, "/crowd");
+    c.action_choice = in.text_or(at + "/action_choice", "");
+    if (in.has(at + "/counters")) {
+      in.object(at + "/counters");
+      for (std::string_view name : kCharacterCounters)
+        c.counters.*counter_field(name)->member = in.count_or(at + "/counters/" + std::string(name), 0);
+    }
+    r.run.crowd.push_back(std::move(c));
+  }
+}
+
+void read_mode(const Reader& in, Result& r) {
+  r.run.mode = in.text("/mode");
+  const json& switches = in.object("/switches");
+  // Switches added since the result was recorded hold the value runs had before;
+  // one no run could have set is named as check names a bad baseline value.
+  const std::string cannot = "records a run that crowdprof cannot make: ";
+  for (const auto& [name, value] : switches.items()) {
+    const SwitchSpec* spec = find_switch(name);
+    if (!spec) in.fail(cannot + "no switch '" + name + "' (the switches are " + switch_names() + ")");
+    std::string text = value.is_string() || value.is_boolean() || value.is_number() ? switch_text(value) : value.dump();
+    if (std::string problem = spec->set(r.run.switches, text); !problem.empty())
+      in.fail(cannot + name + " '" + text + "': " + problem);
+  }
+  uint64_t threads = in.count("/threads");
+  if (threads > kMaxRecordedThreads)
+    in.fail(cannot + "threads '" + std::to_string(threads) + "': expected at most " + std::to_string(kMaxRecordedThreads));
+  r.run.threads = static_cast<int>(threads);
+  r.run.warmup = bounded(in.count("/warmup"), in, "/warmup");
+  r.run.fps = in.number("/fps");
+  if (in.has("/gpu_skinning")) {
+    in.object("/gpu_skinning");
+    GpuSkinningRecord g;
+    g.skinning = in.text_or("/gpu_skinning/skinning", "");
+    g.gpu_bytes = in.count_or("/gpu_skinning/gpu_bytes", 0);
+    if (in.has("/gpu_skinning/rate_hz")) {
+      BakeRecord b;
+      b.rate_hz = in.number("/gpu_skinning/rate_hz");
+      b.samples = in.count_or("/gpu_skinning/samples", 0);
+      b.bake_ms = in.number_or("/gpu_skinning/bake_ms", 0);
+      b.max_deviation = in.number_or("/gpu_skinning/max_deviation", 0);
+      b.max_deviation_fraction = in.number_or("/gpu_skinning/max_deviation_fraction", 0);
+      g.bake = b;
+    }
+    r.run.gpu_skinning = g;
+  }
+}
+
+void read_samples(const Reader& in, Result& r) {
+  uint64_t frames = in.count("/frames");
+  if (frames == 0) in.fail("a result of 0 frames");
+  in.object("/samples");
+  ResultSamples& s = r.samples;
+  s.frame_ms = in.samples("/samples/frame_ms", frames);
+  // CPU time per frame arrived within format 1: read when present.
+  if (in.has("/samples/cpu_ms")) s.cpu_ms = in.samples("/samples/cpu_ms", frames);
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    s.category_ms[c] = in.samples("/samples/" + std::string(category_name(static_cast<Category>(c))), frames);
+  if (in.has("/samples/gpu_ms") && !in.at("/samples/gpu_ms").is_null())
+    s.gpu_ms = in.samples("/samples/gpu_ms", frames, true);
+  // No frame timed reads as not timed, as it is written.
+  if (std::none_of(s.gpu_ms.begin(), s.gpu_ms.end(), [](double ms) { return std::isfinite(ms); })) s.gpu_ms.clear();
+  r.run.gpu_timing_missing = "";  // "not recorded", unless gpu_time says why
+  if (in.has("/gpu_time")) {
+    in.object("/gpu_time");
+    r.run.gpu_timing_missing = in.text_or("/gpu_time/reason", "");
+    r.run.gpu_timer_resolution_ms = in.number_or("/gpu_time/resolution_ms", 0);
+  }
+}
+
+void read_counters(const Reader& in, Result& r) {
+  const json& counters = in.object("/counters");
+  for (std::string_view name : kRequiredCounters) in.at("/counters/" + std::string(name));
+  for (const auto& [name, value] : counters.items())
+    in.require(whole(value), "/counters/" + name, "a whole number");
+  for (size_t i = 0; i < kCounterFields.size(); ++i) {
+    std::string key(kCounterFields[i].name);
+    if (!counters.contains(key)) continue;
+    r.counters.values.*kCounterFields[i].member = counters[key].get<uint64_t>();
+    r.counters.present[i] = true;
+  }
+}
+
+// "runs" (check --runs): a count and one median per run for metrics of "samples".
+void read_runs(const Reader& in, Result& r) {
+  if (!in.has("/runs")) return;
+  in.object("/runs");
+  PooledRuns pool;
+  pool.count = in.count("/runs/count");
+  if (pool.count == 0 || pool.count > kMaxRuns)
+    in.fail("\"runs.count\" should be 1 to " + std::to_string(kMaxRuns));
+  const json& medians = in.object("/runs/median_ms");
+  for (const auto& [key, values] : medians.items()) {
+    std::string where = "/runs/median_ms/" + key;
+    if (!metric_samples(r, key)) in.fail("\"runs.median_ms." + key + "\" is not a metric of \"samples\"");
+    in.require(values.is_array() && values.size() == pool.count, where, "an array of one median per run");
+    pool.median_ms[key] = in.samples(where, pool.count);
+  }
+  auto is_integer = [](const json& v) { return v.is_number_integer(); };
+  if (in.has("/runs/pids")) pool.pids = in.array_of<int64_t>("/runs/pids", is_integer, "an array of process ids");
+  if (in.has("/runs/started_s"))
+    pool.started_s = in.array_of<double>("/runs/started_s", milliseconds, "an array of seconds");
+  r.runs = std::move(pool);
+}
+
+void read_extras(const Reader& in, Result& r) {
+  r.digest = in.text("/digest");
+  r.stores = in.text_or("/stores", "");
+  r.partial = in.flag_or("/partial", false);
+  r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;
+  if (in.has("/animation")) {
+    in.object("/animation");
+    AnimationRecord a;
+    auto is_whole = [](const json& v) { return whole(v); };
+    a.copies_by_rate = in.array_of<uint64_t>("/animation/copies_by_rate", is_whole, "an array of copy counts");
+    a.longest_gap_frames = in.count_or("/animation/longest_gap_frames", 0);
+    a.budget_demotions = in.count_or("/animation/budget_demotions", 0);
+    a.max_deviation = in.number_or("/animation/max_deviation", 0);
+    a.deviation_fraction_of_height = in.number_or("/animation/deviation_fraction_of_height", 0);
+    a.copies_checked = in.count_or("/animation/copies_checked", 0);
+    a.copies_deviating = in.count_or("/animation/copies_deviating", 0);
+    r.animation = std::move(a);
+  }
+  if (in.has("/instructions")) {
+    in.object("/instructions");
+    InstructionRecord i;
+    i.source = in.text_or("/instructions/source", "");
+    if (in.has("/instructions/per_frame") && !in.at("/instructions/per_frame").is_null())
+      i.per_frame = in.number("/instructions/per_frame");
+    i.threads = static_cast<int>(std::min<uint64_t>(in.count_or("/instructions/threads", 1), 4096));
+    i.simd = in.text_or("/instructions/simd", "");
+    i.compiler = in.text_or("/instructions/compiler", "");
+    i.problem = in.text_or("/instructions/problem", "");
+    if (in.has("/instructions/runs"))
+      i.runs = in.array_of<double>("/instructions/runs", milliseconds, "an array of counts");
+    r.instructions = std::move(i);
+  }
+  if (in.has("/pid")) {
+    in.require(in.at("/pid").is_number_integer(), "/pid", "a process id");
+    r.pid = in.at("/pid").get<int64_t>();
+  }
+  if (in.has("/started_s")) r.started_s = in.number("/started_s");
+  if (in.has("/wall_s")) r.wall_s = in.number("/wall_s");
+}
+
+}  // namespace
+
+nlohmann::json environment_to_json(const Result& r) {
+  const Environment& env = r.environment;
+  return {{"cpu", env.cpu},         {"cores", env.cores},         {"compiler", env.compiler},
+          {"build_type", env.build_type}, {"simd", env.simd}, {"backend", r.run.backend}, {"renderer", r.run.renderer}};
+}
+
+nlohmann::json result_to_json(const Result& r) {
+  const RunDescription& run = r.run;
+  const Environment& env = r.environment;
+  json j;
+  j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"format", kResultFormat}};
+  j["environment"] = environment_to_json(r);
+  j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
+                {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
+                {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},
+                {"camera", run.camera}, {"resolution", run.resolution}};
+  j["scene"]["lens"] = lens_json(run.lens);
+  if (!run.scene_file.empty()) {
+    j["scene"]["scene_file"] = run.scene_file;
+    j["scene"]["scene_hash"] = run.scene_hash;
+  }
+  if (r.file_from_result) j["scene"]["file_from"] = "result";
+  j["crowd"] = crowd_json(run.crowd);
+  j["mode"] = run.mode;
+  j["switches"] = switches_to_json(run.switches);
+  if (run.gpu_skinning) j["gpu_skinning"] = gpu_skinning_json(*run.gpu_skinning);
+  j["threads"] = run.threads;
+  j["frames"] = r.frames();
+  j["warmup"] = run.warmup;
+  j["fps"] = run.fps;
+  const ResultSamples& s = r.samples;
+  j["frame"] = summary_json(s.frame_ms);
+  json samples = {{"frame_ms", s.frame_ms}};
+  if (!s.cpu_ms.empty()) {
+    j["cpu"] = summary_json(s.cpu_ms);
+    samples["cpu_ms"] = s.cpu_ms;
+  }
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    std::string name(category_name(static_cast<Category>(c)));
+    j["categories"][name] = summary_json(s.category_ms[c]);
+    samples[name] = s.category_ms[c];
+  }
+  write_gpu_time(r, j, samples);
+  j["counters"] = json::object();
+  for (size_t i = 0; i < kCounterFields.size(); ++i)
+    if (r.counters.present[i]) j["counters"][std::string(kCounterFields[i].name)] = r.counters.values.*kCounterFields[i].member;
+  j["digest"] = r.digest;
+  if (!r.stores.empty()) j["stores"] = r.stores;
+  if (r.animation) j["animation"] = animation_json(*r.animation);
+  if (r.instructions) j["instructions"] = instructions_json(*r.instructions);
+  if (r.partial) {
+    j["partial"] = true;
+    j["frames_planned"] = r.frames_planned;
+  }
+  if (r.runs) {
+    json runs = {{"count", r.runs->count}, {"median_ms", r.runs->median_ms}};
+    if (!r.runs->pids.empty()) runs["pids"] = r.runs->pids;
+    if (!r.runs->started_s.empty()) runs["started_s"] = r.runs->started_s;
+    j["runs"] = runs;
+  }
+  if (r.pid) j["pid"] = *r.pid;
+  if (r.started_s) j["started_s"] = *r.started_s;
+  if (r.wall_s) j["wall_s"] = *r.wall_s;
+  j["samples"] = samples;
+  return j;
+}
+
+Result result_from_json(const nlohmann::json& doc, const std::string& path) {
+  Reader in(doc, path);
+  Result r;
+  read_header(in, doc, r);
+  read_scene(in, r);
+  read_mode(in, r);
+  read_environment(in, r);
+  read_crowd(in, r);
+  read_samples(in, r);
+  read_counters(in, r);
+  read_extras(in, r);
+  read_runs(in, r);
+  return r;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,132 @@
+// The one reader and writer of results: what it writes it reads back to the
+// same document, it keeps reading every format it ever wrote, and it refuses
+// what it cannot read with an error naming the file and the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "asset/errors.h"
+#include "fake_run.h"
+#include "profile/report.h"
+#include "profile/result_codec.h"
+#include "test_support.h"
+
+namespace crowdprof {
+namespace {
+
+using nlohmann::json;
+
+std::filesystem::path results_dir() { return test::source_dir() / "tests" / "data" / "results"; }
+
+std::string refusal(const json& doc) {
+  try {
+    (void)result_from_json(doc, "r.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
+  RunReport report = test::fake_run("threaded", 40, {2.0, 2.5, 2.2, 2.1}, 0.25);
+  report.frames[1].gpu_ms = 0.5;  // one frame timed on the GPU, the others not read back
+  report.run.gpu_timer_resolution_ms = 0.001;
+  report.run.lens = LensRecord{35.0, 32.0, 18.0, "auto"};
+  report.run.gpu_skinning = GpuSkinningRecord{"baked", 4096, BakeRecord{30.0, 120, 1.5, 0.01, 0.002}};
+  report.animation = AnimationRecord{{40, 0, 0, 0, 0, 0, 0}, 1, 0, 0.25, 0.01, 40, 3};
+  report.partial = true;
+  report.frames_planned = 10;
+  json written = to_json(report);
+  Result read = result_from_json(written, "r.json");
+  EXPECT_EQ(result_to_json(read), written);
+  EXPECT_EQ(read.frames(), 4u);
+  EXPECT_EQ(read.run.mode, "threaded");
+  ASSERT_EQ(read.samples.gpu_ms.size(), 4u);
+  EXPECT_TRUE(std::isnan(read.samples.gpu_ms[0]));
+  EXPECT_DOUBLE_EQ(read.samples.gpu_ms[1], 0.5);
+  ASSERT_TRUE(read.run.gpu_skinning && read.run.gpu_skinning->bake);
+  EXPECT_EQ(read.run.gpu_skinning->bake->samples, 120u);
+  ASSERT_TRUE(read.animation);
+  EXPECT_EQ(read.animation->copies_deviating, 3u);
+  EXPECT_TRUE(read.partial);
+  EXPECT_EQ(read.frames_planned, 10u);
+}
+
+TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(results_dir())) {
+    if (entry.path().extension() != ".json") continue;
+    ++files;
+    SCOPED_TRACE(entry.path().filename().string());
+    Result read = read_result(entry.path().string());
+    EXPECT_EQ(read.format, 1);
+    EXPECT_EQ(read.run.characters, 4u);
+    EXPECT_EQ(read.run.mode, "culled");
+    EXPECT_TRUE(read.run.switches.animation_culling);
+    EXPECT_EQ(read.frames(), 3u);
+    EXPECT_FALSE(read.digest.empty());
+    // Written again, it reads back to the same document.
+    json again = result_to_json(read);
+    EXPECT_EQ(result_to_json(result_from_json(again, "again.json")), again);
+  }
+  EXPECT_EQ(files, 2u);
+  // The early one lacks what came later within format 1, and says so.
+  Result early = read_result((results_dir() / "format1-early.json").string());
+  EXPECT_EQ(metric_samples(early, "cpu_ms"), nullptr);
+  EXPECT_FALSE(early.counters.present[8]) << kCounterFields[8].name;
+  EXPECT_TRUE(early.counters.present[0]);
+  EXPECT_FALSE(early.run.lens.has_value());
+}
+
+TEST(ResultCodec, AnotherFormatIsRefusedWithTheFormatItReads) {
+  json doc = to_json(test::fake_run("culled", 4, {1.0, 1.0, 1.0}));
+  doc["crowdprof"]["format"] = 2;
+  EXPECT_NE(refusal(doc).find("result format 2"), std::string::npos) << refusal(doc);
+  EXPECT_NE(refusal(doc).find("this crowdprof reads format 1"), std::string::npos) << refusal(doc);
+}
+
+TEST(ResultCodec, ABadFieldIsNamed) {
+  json good = to_json(test::fake_run("culled", 4, {1.0, 1.0, 1.0}));
+  ASSERT_EQ(refusal(good), "");
+  struct Case {
+    const char* pointer;
+    json value;
+    const char* words;
+  };
+  const Case cases[] = {
+      {"/scene/characters", json(-4), "\"scene.characters\" should be a whole number"},
+      {"/samples/frame_ms", json::array({1.0, 1.0}), "has 2 values for 3 frames"},
+      {"/samples/Animations/0", json(-1.0), "finite, non-negative milliseconds"},
+      {"/counters/draw_calls", json("none"), "\"counters.draw_calls\" should be a whole number"},
+      {"/scene/lens", json("wide"), "\"scene.lens\" should be an object"},
+      {"/instructions", json::object({{"per_frame", "many"}}), "\"instructions.per_frame\" should be a number"},
+      {"/switches/culling", json(7), "culling '7'"},
+  };
+  for (const Case& c : cases) {
+    json bad = good;
+    bad[json::json_pointer(c.pointer)] = c.value;
+    std::string why = refusal(bad);
+    EXPECT_NE(why.find(c.words), std::string::npos) << c.pointer << ": " << why;
+    EXPECT_EQ(why.rfind("r.json: ", 0), 0u) << why;
+  }
+  json no_digest = good;
+  no_digest.erase("digest");
+  EXPECT_NE(refusal(no_digest).find("no \"digest\""), std::string::npos);
+}
+
+TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
+  Result r = result_from_json(to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
+  ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
+  ASSERT_NE(metric_samples(r, "Animations"), nullptr);
+  EXPECT_EQ(metric_samples(r, "gpu_ms"), nullptr);  // nothing timed on the GPU
+  EXPECT_EQ(metric_samples(r, "animations"), nullptr);  // keys, not the names users type
+  EXPECT_DOUBLE_EQ(metric_median(r, "frame_ms"), 2.0);
+  EXPECT_DOUBLE_EQ(metric_median(r, "Animations"), 1.0);
+  std::vector<std::string> keys = recorded_metrics(r);
+  EXPECT_EQ(keys.front(), "frame_ms");
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), "gpu_ms"), 0);
+}
+
+}  // namespace
+}  // namespace crowdprof
