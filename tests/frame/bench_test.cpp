@@ -10,15 +10,13 @@
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 BenchConfig config_for(const std::string& mode, int threads = 1, size_t copies = 24) {
   BenchConfig config;

@@ -18,15 +18,13 @@
 #include "skinning/simd_target.h"
 #include "skinning/skinning.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 BenchConfig threaded(size_t copies, int threads) {
   BenchConfig config;

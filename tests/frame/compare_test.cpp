@@ -10,16 +10,14 @@
 #include "profile/compare_report.h"
 #include "profile/trace.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 using crowdprof::test::fake_run;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 BenchConfig config_for(const std::string& mode, int threads = 1) {
   BenchConfig config;

@@ -19,16 +19,14 @@
 #include "render/gpu_timer.h"
 #include "render_support.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 using namespace crowdprof::test;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 BenchConfig config_for(const std::string& mode, FrameRenderer* renderer) {
   BenchConfig config;

@@ -17,15 +17,13 @@
 #include "profile/trace.h"
 #include "one_joint_character.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 // One joint that slides along +X at 1 unit per second for one second, and a
 // mesh 2 units tall bound rigidly to it: every vertex is displaced by exactly

@@ -226,23 +226,6 @@ TEST(GpuModes, UnknownFeaturesToHideAreRefused) {
             << real.max_storage_block_bytes << " bytes, timer bits " << real.timer_bits << "\n";
 }
 
-TEST(GpuModesCli, Generated300BonesRunInBufferModesWithNoFallback) {
-  if (!have_gl()) GTEST_SKIP() << "no GL backend on this machine";
-  auto dir = scratch_dir("gpu_modes_300");
-  std::string glb = (dir / "h300.glb").string();
-  ASSERT_EQ(run_cli("gen -o '" + glb + "' --bones 300 --vertices 2000").status, 0);
-  auto fallback = [&](const std::string& mode) {
-    std::string json = (dir / (mode + ".json")).string();
-    auto r = run_cli("bench '" + glb + "' -n 4 --camera all --mode " + mode +
-                     " --backend auto --resolution 160x90 --frames 2 --warmup 1 -q --json '" + json + "'");
-    EXPECT_EQ(r.status, 0) << mode << ": " << r.err;
-    return nlohmann::json::parse(std::ifstream(json))["counters"]["copies_fallback"].get<uint64_t>();
-  };
-  EXPECT_EQ(fallback("hwskin"), 4u);
-  EXPECT_EQ(fallback("buffer"), 0u);
-  EXPECT_EQ(fallback("instanced"), 0u);
-}
-
 TEST(GpuModesCli, AMissingFeatureIsOneLineAndExit4) {
   if (!have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   std::string scene = (source_dir() / "scenes" / "humanoid.glb").string();

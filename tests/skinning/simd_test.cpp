@@ -14,15 +14,13 @@
 #include "gen/humanoid.h"
 #include "skinning/simd_target.h"
 #include "test_support.h"
+#include "characters.h"
 
 using namespace crowdprof;
 
 namespace {
 
-const Character& small_humanoid() {
-  static const Character character = generate_humanoid({30, 800, 7});
-  return character;
-}
+using test::small_humanoid;
 
 // The humanoid with weights that are not short binary fractions, so that a
 // fused multiply-add on one target would round differently from the separate
