@@ -13,7 +13,7 @@
 // attributes: instance_buffer() bound at vertex binding kInstanceStream with
 // offset first x 80 and divisor 1, the model's columns at locations 4-7 and
 // (palette_base, colour, source0, source1) as a uvec4 at location 8, as the
-// renderer's own instanced VAOs do (render/crowd_renderer.cpp).
+// renderer's own instanced VAOs do (render/character_meshes.cpp).
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,97 @@
+#include "render/techniques/baked.h"
+
+#include <algorithm>
+
+#include "frame/crowd_bench.h"
+#include "render/gl_errors.h"
+
+namespace crowdprof {
+
+BakedSkinning::BakedSkinning() {
+  program_ = GlProgram(lit_stages("shaders/baked.vert", "", "#define INSTANCED\n"));
+  joint_count_ = program_.uniform("joint_count");
+  first_instance_ = program_.uniform("first_instance");
+}
+
+BakedSkinning::~BakedSkinning() {
+  GLuint buffers[] = {placements_, instances_};
+  glDeleteBuffers(2, buffers);
+  glDeleteBuffers(static_cast<GLsizei>(tables_.size()), tables_.data());
+}
+
+void BakedSkinning::prepare(const CrowdBench& bench, CharacterMeshes& meshes) {
+  tables_.resize(meshes.size(), 0);
+  uint64_t bytes = 0;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    const BakedCharacter* baked = bench.site_of_kind(k) == SkinningSite::Baked ? bench.baked(k) : nullptr;
+    if (!baked) continue;
+    meshes.upload_rest_mesh(k);
+    std::vector<glm::vec4> rows(3 * baked->matrices.size());
+    for (size_t m = 0; m < baked->matrices.size(); ++m) put_rows(baked->matrices[m], &rows[3 * m]);
+    glDeleteBuffers(1, &tables_[k]);
+    uint64_t table_bytes = rows.size() * sizeof(glm::vec4);
+    tables_[k] = make_buffer(GL_SHADER_STORAGE_BUFFER, table_bytes, rows.data(), GL_STATIC_DRAW);
+    bytes += table_bytes;
+  }
+  // Copies stand still: their placements go up once.
+  size_t copies = bench.crowd().size();
+  std::vector<glm::vec4> placements(5 * std::max<size_t>(copies, 1), glm::vec4(0));
+  for (size_t i = 0; i < copies; ++i) {
+    const glm::mat4& world = bench.crowd().world[i];
+    for (int c = 0; c < 4; ++c) placements[5 * i + static_cast<size_t>(c)] = world[c];
+    placements[5 * i + 4] = glm::vec4(copy_colour(i), 1.0f);
+  }
+  glDeleteBuffers(1, &placements_);
+  placements_ = make_buffer(GL_SHADER_STORAGE_BUFFER, placements.size() * sizeof(glm::vec4), placements.data(),
+                            GL_STATIC_DRAW);
+  if (instance_capacity_ < std::max<size_t>(copies, 1)) {
+    instance_capacity_ = std::max<size_t>(copies, 1);
+    glDeleteBuffers(1, &instances_);
+    instances_ = make_buffer(GL_SHADER_STORAGE_BUFFER, instance_capacity_ * sizeof(InstanceRecord), nullptr,
+                             GL_STREAM_DRAW);
+  }
+  records_.reserve(copies);
+  gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
+}
+
+void BakedSkinning::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+  const Crowd& crowd = bench.crowd();
+  // This frame's instances, grouped by character: one instanced draw each.
+  records_.clear();
+  first_.assign(meshes.size() + 1, 0);
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    first_[k] = records_.size();
+    if (bench.site_of_kind(k) != SkinningSite::Baked) continue;
+    if (k >= tables_.size() || !tables_[k]) throw GlError("baked skinning asked of a renderer not prepared for it");
+    for (size_t i = 0; i < crowd.size(); ++i) {
+      if (!bench.visible(i) || crowd.kind[i] != k) continue;
+      CrowdBench::BakedInstance b = bench.baked_instance(i);
+      records_.push_back({static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position});
+    }
+  }
+  first_[meshes.size()] = records_.size();
+  counters.gpu_palette_bytes = gpu_bytes_;
+  if (records_.empty()) return;
+  auto bytes = static_cast<GLsizeiptr>(records_.size() * sizeof(InstanceRecord));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, instances_);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(instance_capacity_ * sizeof(InstanceRecord)), nullptr,
+               GL_STREAM_DRAW);  // orphaned, as the CPU path's buffers
+  glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, records_.data());
+  counters.bytes_uploaded += static_cast<uint64_t>(bytes);
+  glUseProgram(program_.id());
+  set_frame_uniforms(program_, bench);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    auto count = static_cast<GLsizei>(first_[k + 1] - first_[k]);
+    if (count == 0) continue;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
+    glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
+    glUniform1ui(first_instance_, static_cast<GLuint>(first_[k]));
+    glBindVertexArray(meshes[k].rest_vao);
+    glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr, count);
+    ++counters.draw_calls;
+  }
+}
+
+}  // namespace crowdprof

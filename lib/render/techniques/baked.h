@@ -1,0 +1,46 @@
+// Skinning from palettes sampled at load (mode baked, --skinning baked): each
+// character's actions are baked into a table of palettes on the GPU once, every
+// copy's placement goes up once, and each frame sends one 16-byte record per
+// copy on screen (which sample, how far to the next) and draws each character
+// with one instanced draw; the vertex shader blends the two samples.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/character_meshes.h"
+#include "render/techniques/technique.h"
+
+namespace crowdprof {
+
+class BakedSkinning final : public Technique {
+ public:
+  BakedSkinning();
+  ~BakedSkinning() override;
+
+  // Uploads the baked tables of the characters the bench bakes, their rest
+  // meshes, and every copy's placement (copies stand still).
+  void prepare(const CrowdBench& bench, CharacterMeshes& meshes);
+  // GPU storage held: tables, placements and instance records.
+  uint64_t gpu_bytes() const { return gpu_bytes_; }
+
+  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+
+ private:
+  struct InstanceRecord {
+    uint32_t copy, first_sample, intervals;
+    float position;
+  };
+  static_assert(sizeof(InstanceRecord) == 16);
+
+  GlProgram program_;
+  GLint joint_count_ = -1, first_instance_ = -1;
+  std::vector<GLuint> tables_;  // per character: every sample's 3x4 rows, 48 bytes a joint (0: not baked)
+  GLuint placements_ = 0, instances_ = 0;
+  size_t instance_capacity_ = 0;
+  uint64_t gpu_bytes_ = 0;
+  std::vector<InstanceRecord> records_;  // scratch: this frame's, grouped by character
+  std::vector<size_t> first_;            // scratch: each character's first record, then the end
+};
+
+}  // namespace crowdprof

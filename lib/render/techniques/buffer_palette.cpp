@@ -1,0 +1,84 @@
+#include "render/techniques/buffer_palette.h"
+
+#include <algorithm>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frame/crowd_bench.h"
+#include "render/shader_sources.h"
+
+namespace crowdprof {
+
+namespace {
+
+// Skinned in the vertex shader from a palette the CPU computed (hwskin, buffer,
+// instanced), not by compute or from baked samples.
+bool palette_copy(const CrowdBench& bench, size_t copy) {
+  return bench.site_of_kind(bench.crowd().kind[copy]) == SkinningSite::Gpu;
+}
+
+}  // namespace
+
+std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
+  std::string defines =
+      instanced ? "#define INSTANCED\n#define COLOURS " + std::to_string(kCopyColours.size()) + "\n" : "";
+  defines += std::string(embedded_shader("shaders/instances.glsl"));
+  return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
+}
+
+uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+                       int64_t max_block_bytes, bool instanced) {
+  const Crowd& crowd = bench.crowd();
+  size_t copies = 0, rows = 0;
+  std::vector<uint32_t> on_screen(meshes.size(), 0);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!palette_copy(bench, i)) continue;
+    ++copies;
+    rows += 3 * meshes[crowd.kind[i]].joints;
+    on_screen[crowd.kind[i]] += bench.visible(i);
+  }
+  buffers.reserve(copies, rows, max_block_bytes);
+  buffers.begin(on_screen);
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !palette_copy(bench, i)) continue;
+    size_t k = crowd.kind[i];
+    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
+    std::span<glm::vec4> out = buffers.add(k, crowd.world[i], static_cast<uint32_t>(i % kCopyColours.size()),
+                                           3 * meshes[k].joints);
+    for (size_t j = 0; j < meshes[k].joints; ++j) put_rows(palette[j], &out[3 * j]);
+  }
+  return buffers.upload(instanced);
+}
+
+BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) : max_block_bytes_(max_block_bytes) {
+  program_ = GlProgram(buffer_palette_stages(false));
+  model_ = program_.uniform("model");
+  colour_ = program_.uniform("base_colour");
+  base_ = program_.uniform("palette_base");
+  for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);  // no bone limit
+  next_.resize(meshes.size());
+}
+
+void BufferPalette::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+  uint64_t sent = send_palettes(bench, meshes, buffers_, max_block_bytes_, false);
+  glUseProgram(program_.id());
+  set_frame_uniforms(program_, bench);
+  for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;
+  const Crowd& crowd = bench.crowd();
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || !palette_copy(bench, i)) continue;
+    size_t k = crowd.kind[i];
+    glBindVertexArray(meshes[k].rest_vao);
+    glUniform1ui(base_, buffers_.palette_base(next_[k]++));
+    glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+    glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
+    glDrawElements(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr);
+    counters.bytes_uploaded += kModelBytes;  // the palette went in `sent`
+    ++counters.draw_calls;
+  }
+  counters.bytes_uploaded += sent;
+  counters.gpu_palette_bytes = buffers_.palette_gpu_bytes();
+}
+
+}  // namespace crowdprof

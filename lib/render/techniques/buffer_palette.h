@@ -1,0 +1,43 @@
+// Skinning in the vertex shader with every copy's palette in one shader
+// storage buffer (mode buffer, --palettes buffer): no bone limit but the
+// storage block's size, one upload a frame, then a draw per copy that tells
+// the shader where its palette starts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/character_meshes.h"
+#include "render/gpu_frame_buffers.h"
+#include "render/techniques/technique.h"
+
+namespace crowdprof {
+
+// This frame's palettes (and instance records) of the copies on screen that
+// the vertex shader skins from a palette buffer, per character, into
+// `buffers`, sent to the GPU (records too when `instanced`). Room is made for
+// every such copy, on screen or not, so that the buffers never grow while the
+// crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
+// exceed one storage block (`max_block_bytes`).
+uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+                       int64_t max_block_bytes, bool instanced);
+
+class BufferPalette final : public Technique {
+ public:
+  // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
+  BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes);
+
+  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+
+ private:
+  int64_t max_block_bytes_;
+  GlProgram program_;
+  GLint model_ = -1, colour_ = -1, base_ = -1;
+  GpuFrameBuffers buffers_;
+  std::vector<uint32_t> next_;  // scratch: per character, the next record to draw
+};
+
+// shaders/buffer_skin.vert with shaders/instances.glsl ahead of it.
+std::vector<ShaderStage> buffer_palette_stages(bool instanced);
+
+}  // namespace crowdprof

@@ -1,0 +1,149 @@
+#include "render/techniques/compute.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frame/crowd_bench.h"
+#include "render/gl_errors.h"
+#include "render/shader_sources.h"
+
+namespace crowdprof {
+
+namespace {
+
+// The batch's vertex buffer holds at most this much.
+constexpr size_t kComputeBudgetBytes = size_t{64} << 20;
+constexpr GLuint kComputeGroup = 64;  // skin.comp's local_size_x
+
+}  // namespace
+
+ComputeSkinning::ComputeSkinning() {
+  std::string source(embedded_shader("shaders/skin.comp"));
+  ShaderStage stage{GL_COMPUTE_SHADER, "shaders/skin.comp", source};
+  skin_program_ = GlProgram(std::span(&stage, 1));
+  vertex_count_ = skin_program_.uniform("vertex_count");
+  joint_count_ = skin_program_.uniform("joint_count");
+  draw_program_ = GlProgram(lit_stages("shaders/crowd.vert", ""));
+  model_ = draw_program_.uniform("model");
+  colour_ = draw_program_.uniform("base_colour");
+  // Positions and normals interleaved, 32 bytes a vertex: attribute 1 is 16 bytes in.
+  glGenVertexArrays(1, &vao_);
+  glBindVertexArray(vao_);
+  for (GLuint attribute : {0u, 1u}) {
+    glEnableVertexAttribArray(attribute);
+    glVertexAttribFormat(attribute, 3, GL_FLOAT, GL_FALSE, attribute * 16);
+    glVertexAttribBinding(attribute, 0);
+  }
+  glBindVertexArray(0);
+}
+
+ComputeSkinning::~ComputeSkinning() {
+  glDeleteVertexArrays(1, &vao_);
+  GLuint buffers[] = {bones_, skinned_};
+  glDeleteBuffers(2, buffers);
+  glDeleteBuffers(static_cast<GLsizei>(rest_storage_.size()), rest_storage_.data());
+}
+
+void ComputeSkinning::prepare(const CrowdBench& bench, const CharacterMeshes& meshes) {
+  rest_storage_.resize(meshes.size(), 0);
+  uint64_t bytes = 0;
+  size_t vertices = 1, joints = 1;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    if (bench.site_of_kind(k) != SkinningSite::Compute) continue;
+    const CharacterMesh& m = meshes[k];
+    vertices = std::max(vertices, m.vertices);
+    joints = std::max(joints, m.joints);
+    if (!rest_storage_[k]) {
+      const SkinnedMesh& mesh = meshes.character(k).mesh;
+      std::vector<glm::vec4> rest(4 * m.vertices);
+      for (size_t v = 0; v < m.vertices; ++v) {
+        rest[4 * v] = glm::vec4(mesh.positions[v], 1.0f);
+        rest[4 * v + 1] = glm::vec4(mesh.normals[v], 0.0f);
+        glm::uvec4 j(mesh.joints[v]);
+        std::memcpy(&rest[4 * v + 2], &j, sizeof j);  // uvec4 in the shader: the bits, not the values
+        rest[4 * v + 3] = mesh.weights[v];
+      }
+      rest_storage_[k] =
+          make_buffer(GL_SHADER_STORAGE_BUFFER, rest.size() * sizeof(glm::vec4), rest.data(), GL_STATIC_DRAW);
+    }
+    bytes += m.vertices * 4 * sizeof(glm::vec4);
+  }
+  size_t copies = bench.crowd().size();
+  size_t batch = std::clamp<size_t>(kComputeBudgetBytes / (vertices * 2 * sizeof(glm::vec4)), 1, std::max<size_t>(copies, 1));
+  batch = std::min<size_t>(batch, 65535);  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT[1] GL promises
+  if (batch != batch_ || vertices != vertices_ || joints != joints_) {
+    glDeleteBuffers(1, &bones_);
+    glDeleteBuffers(1, &skinned_);
+    bones_ = make_buffer(GL_SHADER_STORAGE_BUFFER, batch * joints * 3 * sizeof(glm::vec4), nullptr, GL_STREAM_DRAW);
+    skinned_ = make_buffer(GL_SHADER_STORAGE_BUFFER, batch * vertices * 2 * sizeof(glm::vec4), nullptr, GL_STREAM_COPY);
+    batch_ = batch;
+    vertices_ = vertices;
+    joints_ = joints;
+    rows_.assign(batch * joints * 3, glm::vec4(0));
+  }
+  copies_.reserve(copies);
+  gpu_bytes_ = bytes + batch_ * (joints_ * 3 + vertices_ * 2) * sizeof(glm::vec4);
+}
+
+void ComputeSkinning::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+  for (size_t k = 0; k < meshes.size(); ++k)
+    if (bench.site_of_kind(k) == SkinningSite::Compute) {
+      draw_kind(bench, meshes[k], k, counters);
+      counters.gpu_palette_bytes = gpu_bytes_;
+    }
+}
+
+void ComputeSkinning::draw_kind(const CrowdBench& bench, const CharacterMesh& mesh, size_t k, Counters& counters) {
+  if (k >= rest_storage_.size() || !rest_storage_[k] || mesh.joints > joints_ || mesh.vertices > vertices_)
+    throw GlError("compute skinning asked of a renderer not prepared for it");
+  const Crowd& crowd = bench.crowd();
+  copies_.clear();
+  for (size_t i = 0; i < crowd.size(); ++i)
+    if (bench.visible(i) && crowd.kind[i] == k) copies_.push_back(i);
+  auto vertices = static_cast<GLuint>(mesh.vertices);
+  size_t copy_stride = mesh.vertices * 2 * sizeof(glm::vec4);
+  const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4) + kModelBytes;
+  for (size_t start = 0; start < copies_.size(); start += batch_) {
+    size_t count = std::min(batch_, copies_.size() - start);
+    for (size_t c = 0; c < count; ++c) {
+      std::span<const SkinMatrix> palette = bench.skinning_matrices(copies_[start + c]);
+      for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * (c * mesh.joints + j)]);
+    }
+    // Fresh storage for both buffers (orphaning): the last batch's draws may still read them.
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, bones_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * joints_ * 3 * sizeof(glm::vec4)), nullptr,
+                 GL_STREAM_DRAW);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * mesh.joints * 3 * sizeof(glm::vec4)),
+                    rows_.data());
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, skinned_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * vertices_ * 2 * sizeof(glm::vec4)),
+                 nullptr, GL_STREAM_COPY);
+    glUseProgram(skin_program_.id());
+    glUniform1ui(vertex_count_, vertices);
+    glUniform1ui(joint_count_, static_cast<GLuint>(mesh.joints));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rest_storage_[k]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bones_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, skinned_);
+    glDispatchCompute((vertices + kComputeGroup - 1) / kComputeGroup, static_cast<GLuint>(count), 1);
+    // The draws below read what the pass wrote as vertex attributes.
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    glUseProgram(draw_program_.id());
+    set_frame_uniforms(draw_program_, bench);
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
+    for (size_t c = 0; c < count; ++c) {
+      size_t i = copies_[start + c];
+      glBindVertexBuffer(0, skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
+      glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+      glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
+      glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+      counters.bytes_uploaded += palette_bytes;
+      ++counters.draw_calls;
+    }
+  }
+}
+
+}  // namespace crowdprof

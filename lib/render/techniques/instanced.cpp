@@ -1,0 +1,40 @@
+#include "render/techniques/instanced.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frame/crowd_bench.h"
+#include "render/techniques/buffer_palette.h"
+
+namespace crowdprof {
+
+Instanced::Instanced(CharacterMeshes& meshes, int64_t max_block_bytes) : max_block_bytes_(max_block_bytes) {
+  program_ = GlProgram(buffer_palette_stages(true));
+  for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);
+}
+
+uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
+  return mesh.joints * 3 * sizeof(glm::vec4) + sizeof(GpuInstance);
+}
+
+void Instanced::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+  uint64_t sent = send_palettes(bench, meshes, buffers_, max_block_bytes_, true);
+  glUseProgram(program_.id());
+  set_frame_uniforms(program_, bench);
+  glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
+               glm::value_ptr(kCopyColours[0]));
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    InstanceRun run = buffers_.run(k);
+    if (run.count == 0) continue;
+    glBindVertexArray(meshes[k].instanced_vao);
+    glBindVertexBuffer(kInstanceStream, buffers_.instance_buffer(),
+                       static_cast<GLintptr>(run.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
+                       sizeof(GpuInstance));
+    glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(run.count));
+    ++counters.draw_calls;
+  }
+  counters.bytes_uploaded += sent;
+  counters.gpu_palette_bytes = buffers_.gpu_bytes();
+}
+
+}  // namespace crowdprof

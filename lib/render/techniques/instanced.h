@@ -1,0 +1,31 @@
+// The buffer palettes drawn with one instanced draw per character (mode
+// instanced, --draw instanced): each instance reads its model matrix, colour
+// and palette offset from a record (render/gpu_frame_buffers.h) fetched as
+// per-instance vertex attributes.
+#pragma once
+
+#include <cstdint>
+
+#include "render/character_meshes.h"
+#include "render/gpu_frame_buffers.h"
+#include "render/techniques/technique.h"
+
+namespace crowdprof {
+
+class Instanced final : public Technique {
+ public:
+  // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
+  Instanced(CharacterMeshes& meshes, int64_t max_block_bytes);
+
+  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+
+  // Bytes one copy of `mesh` costs to send: its palette's rows and its record.
+  static uint64_t bytes_per_copy(const CharacterMesh& mesh);
+
+ private:
+  int64_t max_block_bytes_;
+  GlProgram program_;
+  GpuFrameBuffers buffers_;
+};
+
+}  // namespace crowdprof

@@ -1,0 +1,134 @@
+#include "render/techniques/software_upload.h"
+
+#include <algorithm>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frame/crowd_bench.h"
+#include "skinning/packed_vertex.h"
+
+namespace crowdprof {
+
+namespace {
+
+// The stream buffers hold at most this much: enough for every copy of the
+// thesis scene (160 x 119 KB), bounded for crowds of thousands.
+constexpr size_t kStreamBudgetBytes = size_t{64} << 20;
+
+}  // namespace
+
+SoftwareUpload::SoftwareUpload(const CharacterMeshes& meshes, size_t copies) {
+  float_program_ = GlProgram(lit_stages("shaders/crowd.vert", ""));
+  float_model_ = float_program_.uniform("model");
+  float_colour_ = float_program_.uniform("base_colour");
+  size_t copy_bytes = std::max<size_t>(2 * meshes.max_vertices() * sizeof(glm::vec3), 1);
+  stream_.resize(std::clamp<size_t>(kStreamBudgetBytes / copy_bytes, 1, std::max<size_t>(copies, 1)));
+  for (GLuint& buffer : stream_) buffer = make_buffer(GL_ARRAY_BUFFER, copy_bytes, nullptr, GL_STREAM_DRAW);
+  // Attributes 0 and 1 read bindings 0 and 1, which each draw points at its buffer.
+  glGenVertexArrays(1, &float_vao_);
+  glBindVertexArray(float_vao_);
+  for (GLuint attribute : {0u, 1u}) {
+    glEnableVertexAttribArray(attribute);
+    glVertexAttribFormat(attribute, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexAttribBinding(attribute, attribute);
+  }
+  // Packed vertices: positions as 3 normalised 16-bit codes, normals as one
+  // signed normalised 10:10:10:2 word (its 2-bit w unused by the shader).
+  packed_program_ = GlProgram(lit_stages("shaders/crowd.vert", "#define PACKED_POSITIONS 1\n"));
+  packed_model_ = packed_program_.uniform("model");
+  packed_colour_ = packed_program_.uniform("base_colour");
+  packed_min_ = packed_program_.uniform("position_min");
+  packed_extent_ = packed_program_.uniform("position_extent");
+  glGenVertexArrays(1, &packed_vao_);
+  glBindVertexArray(packed_vao_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribFormat(0, 3, GL_UNSIGNED_SHORT, GL_TRUE, 0);
+  glVertexAttribBinding(0, 0);
+  glEnableVertexAttribArray(1);
+  glVertexAttribFormat(1, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 0);
+  glVertexAttribBinding(1, 1);
+  glBindVertexArray(0);
+}
+
+SoftwareUpload::~SoftwareUpload() {
+  glDeleteVertexArrays(1, &float_vao_);
+  glDeleteVertexArrays(1, &packed_vao_);
+  glDeleteBuffers(static_cast<GLsizei>(stream_.size()), stream_.data());
+}
+
+uint64_t SoftwareUpload::bytes_per_copy(const CharacterMesh& mesh) {
+  return mesh.vertices * 2 * sizeof(glm::vec3) + kModelBytes;
+}
+
+void SoftwareUpload::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+  const bool packed = bench.packed_vertices();
+  const GlProgram& program = packed ? packed_program_ : float_program_;
+  glUseProgram(program.id());
+  set_frame_uniforms(program, bench);
+  glBindVertexArray(packed ? packed_vao_ : float_vao_);
+  const Crowd& crowd = bench.crowd();
+  size_t drawn = 0;
+  shown_storage_ = SIZE_MAX;
+  for (size_t i = 0; i < crowd.size(); ++i) {
+    if (!bench.visible(i) || bench.gpu_skinned_copy(i)) continue;
+    const CharacterMesh& mesh = meshes[crowd.kind[i]];
+    if (packed)
+      draw_packed(bench, mesh, i, drawn++, counters);
+    else
+      draw_float(bench, mesh, i, drawn++, counters);
+  }
+}
+
+void SoftwareUpload::draw_float(const CrowdBench& bench, const CharacterMesh& mesh, size_t i, size_t drawn,
+                                Counters& counters) {
+  auto half = static_cast<GLsizeiptr>(mesh.vertices * sizeof(glm::vec3));
+  // Animation sharing: a copy in the state the last draw uploaded draws that
+  // mesh again with its own transform (the thesis scene: one upload a frame).
+  bool same_mesh = bench.config().mode.share_poses && bench.storage_of(i) == shown_storage_;
+  GLuint buffer = same_mesh ? shown_buffer_ : stream_[drawn % stream_.size()];
+  if (!same_mesh) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    // Fresh storage (orphaning) before writing: writing into storage that a
+    // draw may still read makes the driver wait for it. llvmpipe waits even
+    // for the last frame's finished draws: 2.5x the Rasterizer time without.
+    glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
+    glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+    counters.bytes_uploaded += bytes_per_copy(mesh);
+    shown_storage_ = bench.storage_of(i);
+    shown_buffer_ = buffer;
+  }
+  glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
+  glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);  // part of the VAO: the copy's character's
+  glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniform3fv(float_colour_, 1, glm::value_ptr(copy_colour(i)));
+  glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+  ++counters.draw_calls;
+}
+
+void SoftwareUpload::draw_packed(const CrowdBench& bench, const CharacterMesh& mesh, size_t i, size_t drawn,
+                                 Counters& counters) {
+  auto positions = static_cast<GLsizeiptr>(mesh.vertices * kPackedPositionBytes);
+  auto normals = static_cast<GLsizeiptr>(mesh.vertices * kPackedNormalBytes);
+  GLuint buffer = stream_[drawn % stream_.size()];
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  // Normals start on a 4-byte boundary: the words are read whole.
+  GLintptr normals_at = (positions + 3) / 4 * 4;
+  glBufferData(GL_ARRAY_BUFFER, normals_at + normals, nullptr, GL_STREAM_DRAW);  // orphaned, as above
+  glBufferSubData(GL_ARRAY_BUFFER, 0, positions, bench.packed_positions(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, bench.packed_normals(i).data());
+  glBindVertexBuffer(0, buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
+  glBindVertexBuffer(1, buffer, normals_at, static_cast<GLsizei>(kPackedNormalBytes));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
+  const PositionQuantisation& q = bench.character_quantisation(bench.crowd().kind[i]);
+  glUniform3fv(packed_min_, 1, glm::value_ptr(q.min));
+  glUniform3fv(packed_extent_, 1, glm::value_ptr(q.extent));
+  glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniform3fv(packed_colour_, 1, glm::value_ptr(copy_colour(i)));
+  glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+  counters.bytes_uploaded += mesh.vertices * kPackedVertexBytes + kModelBytes;
+  ++counters.draw_calls;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,47 @@
+// Copies skinned on the CPU (modes master, culled, threaded; copies over the
+// GPU's bone limit): each copy's skinned vertices go up every frame into a
+// buffer of their own, as the BGE gave each mesh its own, then one draw. With
+// --vertex-format packed the vertices are 16-bit position codes and
+// 10:10:10:2 normals that the vertex shader decodes.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/character_meshes.h"
+#include "render/techniques/technique.h"
+
+namespace crowdprof {
+
+class SoftwareUpload final : public Technique {
+ public:
+  // Stream buffers for up to `copies` copies of the largest character, within
+  // a budget (buffers serve several copies beyond it).
+  SoftwareUpload(const CharacterMeshes& meshes, size_t copies);
+  ~SoftwareUpload() override;
+
+  // The copies on screen that the CPU skinned.
+  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+
+  // Bytes one float copy of `mesh` costs to send: positions, normals, model.
+  static uint64_t bytes_per_copy(const CharacterMesh& mesh);
+
+ private:
+  void draw_float(const CrowdBench& bench, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  void draw_packed(const CrowdBench& bench, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+
+  GlProgram float_program_, packed_program_;
+  GLint float_model_ = -1, float_colour_ = -1;
+  GLint packed_model_ = -1, packed_colour_ = -1, packed_min_ = -1, packed_extent_ = -1;
+  GLuint float_vao_ = 0, packed_vao_ = 0;
+  // A buffer per drawn copy (positions, then normals), orphaned and refilled
+  // every frame.
+  std::vector<GLuint> stream_;
+  // With animation sharing, the storage (bench.storage_of) whose mesh the last
+  // draw uploaded, and the buffer holding it: copies in the same state after it
+  // draw that buffer with their own transform, uploading nothing.
+  size_t shown_storage_ = SIZE_MAX;
+  GLuint shown_buffer_ = 0;
+};
+
+}  // namespace crowdprof

@@ -1,0 +1,65 @@
+// One way of getting skinned copies onto the screen (docs/rendering.md). Each
+// technique owns its GL programs and buffers; the renderer picks the ones the
+// frame's copies need from the mode's switches and each draws its copies:
+//   software_upload  CPU-skinned vertices uploaded every frame (float or packed)
+//   uniform_palette  vertex-shader skinning, the palette as a uniform array (hwskin)
+//   buffer_palette   vertex-shader skinning, palettes in a storage buffer, a draw per copy
+//   instanced        the same palettes, one instanced draw per character
+//   compute          a compute pass skins into a buffer the draws read
+//   baked            palettes sampled at load, one instanced draw per character
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "animation/skin_matrix.h"
+#include "profile/counters.h"
+#include "render/gl.h"
+#include "render/gl_program.h"
+
+namespace crowdprof {
+
+class CrowdBench;
+class CharacterMeshes;
+
+// A few colours so that neighbours in the crowd can be told apart.
+inline constexpr std::array<glm::vec3, 6> kCopyColours = {{{0.80f, 0.45f, 0.30f},
+                                                           {0.35f, 0.55f, 0.80f},
+                                                           {0.55f, 0.75f, 0.40f},
+                                                           {0.85f, 0.75f, 0.35f},
+                                                           {0.65f, 0.45f, 0.75f},
+                                                           {0.75f, 0.75f, 0.75f}}};
+
+inline const glm::vec3& copy_colour(size_t copy) { return kCopyColours[copy % kCopyColours.size()]; }
+
+// A new buffer bound at `target`, of `bytes` (from `data` when not null).
+GLuint make_buffer(GLenum target, size_t bytes, const void* data, GLenum usage);
+
+// The 3x4 upper part of a column-major matrix, as rows (the fourth row of an
+// affine matrix is always 0 0 0 1): how every palette goes to the GPU.
+void put_rows(const SkinMatrix& m, glm::vec4* rows);
+
+// A lit program's stages: shaders `vertex` with `defines`, then shaders/lit.frag.
+std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defines,
+                                    const std::string& fragment_defines = {});
+
+// What every lit program takes each frame: the camera and the light.
+void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench);
+
+// Bytes a copy's world matrix costs to send.
+inline constexpr uint64_t kModelBytes = sizeof(glm::mat4);
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  // Draws this frame's copies on screen that use the technique, and adds what
+  // it sent and drew to `counters` (gpu_palette_bytes: what it holds there).
+  virtual void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) = 0;
+};
+
+}  // namespace crowdprof
