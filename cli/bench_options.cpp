@@ -34,20 +34,32 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
     if (o.defaults.has(name)) default_text = o.defaults.values.at(name);  // the command's own
     if (!default_text.empty()) help += " (default: " + default_text + ")";
     if (name == "static") {
-      cmd.add_flag("--static", o.allow_static, help);
+      cmd.add_flag("--static", o.allow_static, help)->group(std::string(setting.group));
       continue;
     }
     if (name == "mode") help = "Preset of switches: " + mode_names() + help.substr(help.find(" ("));
     std::string flags = name == "characters" ? "-n,--characters" : option_spelling(name);
-    cmd.add_option(flags, o.typed[name], help)->type_name(std::string(setting.value));
+    cmd.add_option(flags, o.typed[name], help)->type_name(std::string(setting.value))->group(std::string(setting.group));
   }
   for (const SwitchSpec& spec : switch_table()) {
     std::string name(spec.name);
     cmd.add_option(option_spelling(name), o.typed[name],
                    std::string(spec.help) + " (overrides the mode's: " + preset_values(spec) + ")")
-        ->type_name(std::string(spec.value));
+        ->type_name(std::string(spec.value))
+        ->group(kModeSwitchesGroup);
   }
-  cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)");
+  cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)")->group(kOutputsGroup);
+}
+
+void group_options(CLI::App& cmd, const std::string& group, std::initializer_list<const char*> names) {
+  for (const char* name : names)
+    if (CLI::Option* option = cmd.get_option_no_throw(name)) option->group(group);
+}
+
+void group_outputs(CLI::App& cmd) {
+  group_options(cmd, kOutputsGroup,
+                {"--csv", "--summary-csv", "--json", "--gbench-json", "--trace", "--screenshot", "--svg", "--html",
+                 "--junit", "--markdown", "--count-instructions", "--quiet"});
 }
 
 crowdprof::SpecLayer command_line_layer(const BenchCliOptions& o) {

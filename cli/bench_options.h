@@ -49,6 +49,18 @@ void resolve_bench_spec(BenchCliOptions& options, const crowdprof::SpecLayer* ba
 // "--share-quantum".
 std::string option_name(const std::string& setting);
 
+// The headings --help lists options under: the settings' own (Crowd, Run,
+// View, GPU; frame/run_spec.h), then these.
+inline const std::string kModeSwitchesGroup = "Mode switches";
+inline const std::string kOutputsGroup = "Outputs";
+inline const std::string kGateGroup = "Gate";
+
+// Puts the options named (those the command has) under `group` in --help.
+void group_options(CLI::App& cmd, const std::string& group, std::initializer_list<const char*> names);
+
+// The output options every command that runs a bench may have: under Outputs.
+void group_outputs(CLI::App& cmd);
+
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 
 // The files a bench reads: the character file, or a scene file and every

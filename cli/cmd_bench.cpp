@@ -136,5 +136,6 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--html", options->html,
                   "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
                   "opens in any browser");
+  group_outputs(*cmd);
   cmd->callback([&run, options, outputs] { run = [options, outputs] { return bench(*options, *outputs); }; });
 }

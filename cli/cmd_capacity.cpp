@@ -198,5 +198,7 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--svg", options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
   cmd->add_option("--html", options->bench.html,
                   "Write an HTML report: each mode's run at its capacity, and the median frame against the crowd size");
+  group_outputs(*cmd);
+  group_options(*cmd, "Search", {"--budget", "--modes", "--metric", "--start", "--max-characters", "--precision", "--block"});
   cmd->callback([&run, options] { run = [options] { return capacity(*options); }; });
 }

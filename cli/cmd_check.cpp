@@ -624,5 +624,9 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--svg", options->svg, "Write a chart of the metric per frame, baseline against current");
   cmd->add_option("--html", options->bench.html,
                   "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
+  group_outputs(*cmd);
+  group_options(*cmd, kGateGroup,
+                {"--baseline", "--against", "--groups", "--result", "--metric", "--tolerance", "--floor", "--runs",
+                 "--spread", "--alpha", "--timings-only", "--update-baseline"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

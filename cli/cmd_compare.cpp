@@ -265,5 +265,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--html", options->bench.html,
                   "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
   cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
+  group_outputs(*cmd);
+  group_options(*cmd, "Comparison", {"--modes", "--block", "--sweep"});
   cmd->callback([&run, options] { run = [options] { return compare(*options); }; });
 }

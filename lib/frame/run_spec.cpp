@@ -65,7 +65,7 @@ const std::array kSettings = {
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.characters, t, 1, 10'000'000, "a crowd needs at least 1 copy",
                                    "at most 10,000,000 copies");
-                }},
+                }, "Crowd"},
     SettingSpec{"actions", "shared|random",
                 "shared: every copy plays one action in phase (the thesis scene); random: a random action and phase "
                 "per copy (the thesis's -random)",
@@ -74,21 +74,21 @@ const std::array kSettings = {
                   if (t != "shared" && t != "random" && t != "scene") return "expected one of shared, random";
                   s.actions = std::string(t);
                   return {};
-                }},
+                }, "Crowd"},
     SettingSpec{"action", "NAME", "With shared actions: the action's name", "the first",
-                [](RunSpec& s, std::string_view t) { return set_text(s.action, t); }},
+                [](RunSpec& s, std::string_view t) { return set_text(s.action, t); }, "Crowd"},
     SettingSpec{"seed", "N", "Seed for random actions", "1, or the scene's",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.seed, t, 0, 0xffffffffLL, "expected 0 to 4294967295", "expected 0 to 4294967295");
-                }},
+                }, "Crowd"},
     SettingSpec{"frames", "N", "Frames measured", "120",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.frames, t, 1, 10'000'000, "at least 1 frame is measured", "at most 10,000,000");
-                }},
+                }, "Run"},
     SettingSpec{"warmup", "N", "Frames run before measuring", "10",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.warmup, t, 0, 10'000'000, "cannot be negative", "at most 10,000,000");
-                }},
+                }, "Run"},
     SettingSpec{"fps", "FPS",
                 "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible", "60",
                 [](RunSpec& s, std::string_view t) -> std::string {
@@ -97,7 +97,7 @@ const std::array kSettings = {
                   if (!(*v > 0) || *v > 100000) return "expected a rate between 0 and 100000";
                   s.fps = *v;
                   return {};
-                }},
+                }, "Run"},
     SettingSpec{"bake_rate", "HZ", "Skinning baked: samples per second each action is baked at (see docs/modes.md)",
                 "30",
                 [](RunSpec& s, std::string_view t) -> std::string {
@@ -106,17 +106,17 @@ const std::array kSettings = {
                   if (!(*v > 0) || !(*v <= 10000)) return "expected 0 to 10000 samples per second";
                   s.bake_rate = *v;
                   return {};
-                }},
+                }, "GPU"},
     SettingSpec{"mode", "MODE", "Preset of switches (the first four are the thesis's; see docs/modes.md)", "threaded",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   if (!find_mode(t)) return "expected one of " + mode_names();
                   s.mode = std::string(t);
                   return {};
-                }},
+                }, "Run"},
     SettingSpec{"threads", "N", "Worker threads for parallel modes", "all cores",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.threads, t, 1, 1024, "expected 1 to 1024", "expected 1 to 1024");
-                }},
+                }, "Run"},
     SettingSpec{"camera", "VIEW",
                 "default (thesis framing, part of the crowd off-screen), all, close (a few copies at the front), or "
                 "EX,EY,EZ,TX,TY,TZ",
@@ -129,7 +129,7 @@ const std::array kSettings = {
                   }
                   s.camera = std::string(t);
                   return {};
-                }},
+                }, "View"},
     SettingSpec{"lens", "MM",
                 "Focal length in mm on Blender's 32 mm sensor fitted to the larger side (35 is Blender's, 49.1 "
                 "degrees across)",
@@ -140,7 +140,7 @@ const std::array kSettings = {
                   if (*v != 0 && !(*v >= 1 && *v <= 5000)) return "expected a focal length of 1 to 5000 mm";
                   s.lens = *v;
                   return {};
-                }},
+                }, "View"},
     SettingSpec{"backend", "auto|egl|osmesa|none",
                 "Where frames are drawn: egl (a GPU, else Mesa's surfaceless llvmpipe), osmesa, auto (egl, then "
                 "osmesa, then none) or none (CPU only, nothing drawn)",
@@ -149,15 +149,15 @@ const std::array kSettings = {
                   if (!parse_backend(t)) return "expected auto, egl, osmesa or none";
                   s.backend = std::string(t);
                   return {};
-                }},
+                }, "GPU"},
     SettingSpec{"resolution", "WxH", "Frame size in pixels, and the camera's aspect", "1600x900, or the scene's",
-                set_resolution},
+                set_resolution, "View"},
     SettingSpec{"static", "on|off", "Accept a character without actions: a crowd in its rest pose", "off",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   if (t != "on" && t != "off") return "expected on or off";
                   s.allow_static = t == "on";
                   return {};
-                }},
+                }, "Crowd"},
 };
 
 // A bad value from `layer`: the command line's is a usage error, a file's an

@@ -59,6 +59,9 @@ struct SettingSpec {
   std::string_view default_text;  // in help, "" for none
   // Sets the setting in `spec`; returns "" or what is wrong with the text.
   std::string (*set)(RunSpec& spec, std::string_view text);
+  // The heading help lists it under: Crowd, Run, View or GPU (the switches
+  // are "Mode switches").
+  std::string_view group;
 };
 
 std::span<const SettingSpec> setting_table();

@@ -81,3 +81,30 @@ TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
   EXPECT_EQ(lines[1].rfind("master,2,", 0), 0u) << lines[1];
   EXPECT_EQ(lines[2].rfind("culled,2,", 0), 0u) << lines[2];
 }
+
+// --help lists options under headings (issue 24 item 2, issue 27 item 3): the
+// settings by the group their table gives, every switch under Mode switches,
+// the files written under Outputs, check's gate under Gate.
+TEST(CliGuidance, HelpGroupsOptionsUnderHeadings) {
+  auto under = [](const std::string& help, const std::string& heading, const std::string& option) {
+    size_t at = help.find("\n" + heading + ":\n");
+    if (at == std::string::npos) return false;
+    size_t end = help.find("\n\n", at + heading.size() + 3);
+    size_t found = help.find("  " + option + " ", at);
+    return found != std::string::npos && found < end;
+  };
+  auto bench = run_cli("bench --help");
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  EXPECT_TRUE(under(bench.out, "Crowd", "-n,--characters")) << bench.out;
+  EXPECT_TRUE(under(bench.out, "Run", "--mode")) << bench.out;
+  EXPECT_TRUE(under(bench.out, "GPU", "--backend")) << bench.out;
+  EXPECT_TRUE(under(bench.out, "View", "--camera")) << bench.out;
+  for (const char* option : {"--culling", "--skinning", "--share", "--anim-budget"})
+    EXPECT_TRUE(under(bench.out, "Mode switches", option)) << option;
+  for (const char* option : {"--json", "--html", "--csv"}) EXPECT_TRUE(under(bench.out, "Outputs", option)) << option;
+  auto check = run_cli("check --help");
+  ASSERT_EQ(check.status, 0) << check.err;
+  for (const char* option : {"--baseline", "--against", "--tolerance", "--metric"})
+    EXPECT_TRUE(under(check.out, "Gate", option)) << option;
+  EXPECT_TRUE(under(check.out, "Outputs", "--junit")) << check.out;
+}
