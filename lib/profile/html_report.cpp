@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "asset/errors.h"
 #include "frame/switch_table.h"
@@ -53,6 +54,71 @@ void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path)
     input.sweep.push_back({row["mode"].get<std::string>(), row["characters"].get<size_t>(),
                            row["frame_median_ms"].get<double>()});
   }
+}
+
+// A capacity result's search and outcome per mode, each field checked before use.
+CapacitySection read_capacity(const json& doc, const std::string& path) {
+  auto bad = [&](const std::string& what) { return InputError(path, "a capacity result whose " + what); };
+  auto number = [&](const json& v, const char* what) {
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+      throw bad(std::string(what) + " is not a non-negative number");
+    return v.get<double>();
+  };
+  auto count = [&](const json& v, const char* what) {
+    if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<int64_t>() >= 0))
+      throw bad(std::string(what) + " is not a whole number");
+    return v.get<size_t>();
+  };
+  CapacitySection c;
+  c.budget_ms = number(doc.value("budget_ms", json()), "\"budget_ms\"");
+  const json metric = doc.value("metric", json());
+  if (!metric.is_string()) throw bad("\"metric\" is not a string");
+  c.metric = metric.get<std::string>();
+  const json search = doc.value("search", json::object());
+  if (!search.is_object()) throw bad("\"search\" is not an object");
+  c.start = count(search.value("start", json(0)), "\"search.start\"");
+  c.precision = number(search.value("resolution", json(0.0)), "\"search.resolution\"");
+  c.frames_per_point = count(doc.value("frames_per_point", json(0)), "\"frames_per_point\"");
+  c.warmup = count(doc.value("warmup_frames", json(0)), "\"warmup_frames\"");
+  const json modes = doc.value("modes", json());
+  if (!modes.is_array()) throw bad("\"modes\" is not an array");
+  for (const json& m : modes) {
+    if (!m.is_object() || !m.value("mode", json()).is_string()) throw bad("mode has no name");
+    CapacitySection::Row row;
+    row.mode = m["mode"].get<std::string>();
+    row.threads = count(m.value("threads", json(0)), "\"threads\"");
+    row.cap = count(m.value("cap", json(0)), "\"cap\"");
+    for (auto [key, n, ms] : {std::tuple{"largest_fit", &row.fits, &row.fits_ms}, {"first_over", &row.over, &row.over_ms}}) {
+      const json point = m.value(key, json());
+      if (point.is_null()) continue;
+      if (!point.is_object()) throw bad(std::string("\"") + key + "\" is not a point");
+      *n = count(point.value("characters", json()), "point's \"characters\"");
+      *ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
+    }
+    c.rows.push_back(std::move(row));
+  }
+  return c;
+}
+
+// The lead of a capacity page: per mode, the largest crowd within the budget.
+std::string capacity_section(const CapacitySection& c) {
+  std::string out = "<section id=\"capacity\"><h2>Capacity: the largest crowd whose median " + h(c.metric) +
+                    " time fits " + report_number(c.budget_ms, 3) + " ms</h2>\n<table><tr><th class=\"name\">mode</th>"
+                    "<th>threads</th><th>capacity (characters)</th><th>its median ms</th><th>first over</th>"
+                    "<th>its median ms</th></tr>\n";
+  for (const CapacitySection::Row& row : c.rows) {
+    out += "<tr><td class=\"name\">" + h(row.mode) + "</td><td>" + std::to_string(row.threads) + "</td><td><b>" +
+           (row.fits ? std::to_string(*row.fits) : std::string("none")) + "</b></td><td>" +
+           (row.fits ? report_number(row.fits_ms, 3) : std::string("-")) + "</td><td>" +
+           (row.over ? std::to_string(*row.over) : "over " + std::to_string(row.cap) + " (the cap fits)") + "</td><td>" +
+           (row.over ? report_number(row.over_ms, 3) : std::string("-")) + "</td></tr>\n";
+  }
+  out += "</table>\n<p>Search: from " + std::to_string(c.start) +
+         " characters, doubling while the median fits, then halving the gap until the first crowd over is within " +
+         report_number(c.precision * 100, 1) + "% of the capacity (or 1 character); " +
+         std::to_string(c.frames_per_point) + " frames per size after " + std::to_string(c.warmup) +
+         " warm-up. The runs below are each mode's at its capacity.</p></section>\n";
+  return out;
 }
 
 // Labels of runs the caller did not name: the mode; with the crowd size when
@@ -363,6 +429,7 @@ void add_result_document(HtmlReportInput& input, const json& doc, const std::str
   for (Result& run : bench_results_in(doc, source)) input.runs.push_back({"", std::move(run), source});
   if (kind == "bench") return;
   add_sweep(input, doc, source);
+  if (kind == "capacity") input.capacity = read_capacity(doc, source);
   if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
       doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
     input.sweep_budget_ms = doc["budget_ms"].get<double>();
@@ -386,7 +453,11 @@ std::string html_report(const HtmlReportInput& given) {
   const Result& first = input.runs.front().result;
   std::string caption = scene_caption(first);
   std::string title = "crowdprof report: " + caption +
-                      (input.check ? ", " + input.check->command : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs" : ", " + input.runs.front().label);
+                      (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
+                                            input.capacity->metric
+                       : input.check  ? ", " + input.check->command
+                       : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs"
+                                               : ", " + input.runs.front().label);
   std::string charts;  // one letter per chart, for the count the page checks
   std::string body;
   body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";
@@ -397,6 +468,7 @@ std::string html_report(const HtmlReportInput& given) {
   }
   body += "Made by crowdprof " + h(first.environment.version) +
           "; one file, no network needed.</p>\n";
+  if (input.capacity) body += capacity_section(*input.capacity);
   if (input.check) body += check_section(*input.check, charts);
   body += profile_section(input.runs);
 

@@ -24,12 +24,32 @@ struct CheckSection {
   std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
 };
 
+// What a capacity search found (capacity --json), the page's lead.
+struct CapacitySection {
+  double budget_ms = 0;
+  std::string metric;  // "frame" or a category
+  size_t start = 0;
+  double precision = 0;  // the search stops when over - fits <= max(1, precision x fits)
+  size_t frames_per_point = 0, warmup = 0;
+  struct Row {
+    std::string mode;
+    size_t threads = 0;
+    std::optional<size_t> fits;  // the largest crowd within the budget (none: not even the smallest)
+    double fits_ms = 0;
+    std::optional<size_t> over;  // the smallest crowd found over it (none: the cap fits)
+    double over_ms = 0;
+    size_t cap = 0;
+  };
+  std::vector<Row> rows;
+};
+
 struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
   std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
   std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
+  std::optional<CapacitySection> capacity;
   std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
   // Modes whose colour is fixed, in order (the presets): ModeColours.
   std::vector<std::string> mode_order;

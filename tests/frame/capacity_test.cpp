@@ -337,6 +337,15 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   EXPECT_NE(page.find("data-chart=\"sweep\""), std::string::npos);
   EXPECT_EQ(count(page, "<g class=\"budget\" data-value=\"100000"), 1u);
   EXPECT_NE(page.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"3\""), std::string::npos);
+  // It leads with the capacity: budget, metric, and each mode's largest crowd
+  // (capped here, so none was found over).
+  size_t lead = page.find("<section id=\"capacity\">");
+  ASSERT_NE(lead, std::string::npos);
+  EXPECT_LT(lead, page.find("<section id=\"profile\">"));
+  EXPECT_NE(page.find("fits 100000.000 ms</h2>", lead), std::string::npos);
+  EXPECT_EQ(count(page, "<td><b>16</b></td>"), 2u);
+  EXPECT_EQ(count(page, "over 16 (the cap fits)"), 2u);
+  EXPECT_NE(page.find("capacity within 100000.000 ms of frame</title>"), std::string::npos);
   std::string again = (dir / "again.html").string();
   r = test::run_cli("report '" + js + "' -o '" + again + "'");
   ASSERT_EQ(r.status, 0) << r.err;
