@@ -46,6 +46,7 @@ int diff(const DiffCliOptions& o) {
     HtmlReportInput input;
     add_result_file(input, o.a);
     add_result_file(input, o.b);
+    input.command = "diff";
     if (result.pairs.size() == 1) input.check = CheckSection{result.pairs.front().check, options, o.a, "diff"};
     write_html_report(o.html, std::move(input));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <sstream>
 
 #include "asset/errors.h"
@@ -47,14 +48,32 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
   Diff diff;
   diff.a = path_a;
   diff.b = path_b;
+  // Results of another character are refused, as check refuses them.
+  auto characters = [](const std::vector<Result>& results) {
+    std::set<std::string> names;
+    for (const Result& r : results) names.insert(r.run.character);
+    std::string joined;
+    for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+    return joined;
+  };
+  if (characters(a) != characters(b))
+    throw InputError(path_b, "of another character than " + path_a + ": " + shown(characters(a)) + " in A, " +
+                                 shown(characters(b)) + " in B (diff compares results of one character)");
+  // Pairs by mode and crowd size; two single results of the character are a
+  // pair whatever their modes and sizes, with what differs noted.
+  std::vector<std::pair<const Result*, const Result*>> pairs;
   for (const Result& ra : a) {
     auto match = std::find_if(b.begin(), b.end(), [&](const Result& rb) {
       return rb.run.mode == ra.run.mode && rb.run.characters == ra.run.characters;
     });
-    if (match == b.end()) continue;
-    const Result& rb = *match;
+    if (match != b.end()) pairs.emplace_back(&ra, &*match);
+  }
+  if (pairs.empty() && a.size() == 1 && b.size() == 1) pairs.emplace_back(&a.front(), &b.front());
+  for (const auto& [pa, pb] : pairs) {
+    const Result& ra = *pa;
+    const Result& rb = *pb;
     DiffPair pair;
-    pair.mode = ra.run.mode;
+    pair.mode = ra.run.mode == rb.run.mode ? ra.run.mode : ra.run.mode + " (A) against " + rb.run.mode + " (B)";
     pair.characters = ra.run.characters;
     CheckOptions mine = options;
     mine.metrics.clear();
@@ -77,6 +96,8 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
     note("scene action_choice", shown(sa.action_choice), shown(sb.action_choice));
     note("scene camera", shown(sa.camera), shown(sb.camera));
     note("scene resolution", shown(sa.resolution), shown(sb.resolution));
+    note("mode", shown(sa.mode), shown(sb.mode));
+    note("characters", shown(sa.characters), shown(sb.characters));
     note("switches", switches_to_json(sa.switches).dump(), switches_to_json(sb.switches).dump());
     note("threads", shown(sa.threads), shown(sb.threads));
     note("frames", shown(ra.frames()), shown(rb.frames()));

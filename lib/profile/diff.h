@@ -29,10 +29,12 @@ struct Diff {
   bool regressed() const;
 };
 
-// Pairs the results of A and B by mode and crowd size and judges each pair
+// Pairs the results of A and B by mode and crowd size (two single results
+// whatever their modes and sizes, noting what differs) and judges each pair
 // with `options` (its metrics are replaced by CPU time when both have it, the
 // frame, and every category whose median is at least 0.005 ms in either).
-// InputError when the files share no mode and crowd size.
+// InputError when B is of another character than A, or when the files share
+// no mode and crowd size.
 Diff diff_results(const std::vector<Result>& a, const std::string& path_a,
                   const std::vector<Result>& b, const std::string& path_b, const CheckOptions& options);
 

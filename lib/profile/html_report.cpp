@@ -456,6 +456,7 @@ std::string html_report(const HtmlReportInput& given) {
                       (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
                                             input.capacity->metric
                        : input.check  ? ", " + input.check->command
+                       : !input.command.empty() ? ", " + input.command
                        : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs"
                                                : ", " + input.runs.front().label);
   std::string charts;  // one letter per chart, for the count the page checks

@@ -50,6 +50,7 @@ struct HtmlReportInput {
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
   std::optional<CapacitySection> capacity;
+  std::string command;  // what made the page ("diff"), named in its title when no check or capacity is
   std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
   // Modes whose colour is fixed, in order (the presets): ModeColours.
   std::vector<std::string> mode_order;

@@ -105,12 +105,28 @@ TEST(Diff, CompareResultsArePairedByMode) {
   r = run_cli("diff '" + c + "' '" + t + "' --tolerance 900%");
   EXPECT_NE(r.out.find("\nthreaded, 6 characters"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("\nmaster"), std::string::npos) << r.out;
-  // Nothing in common.
+  // Two single results of the character: compared whatever their modes and
+  // sizes, with what differs said, and other work is other work.
   std::string m = (dir / "m.json").string();
   ASSERT_EQ(run_cli("bench '" + scene() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'").status, 0);
   r = run_cli("diff '" + t + "' '" + m + "'");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("\nthreaded (A) against master (B), 6 characters"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("note: mode \"threaded\" in A, \"master\" in B"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("note: characters 6 in A, 7 in B"), std::string::npos) << r.out;
+  // A compare and a bench with nothing in common: refused.
+  r = run_cli("diff '" + c + "' '" + m + "'");
   EXPECT_EQ(r.status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find("no mode and crowd size in common"), std::string::npos) << r.err;
+  // Another character: refused, as check refuses it.
+  std::string fox = (dir / "fox.json").string();
+  nlohmann::json other = nlohmann::json::parse(std::ifstream(t));
+  other["scene"]["character"] = "Fox";
+  std::ofstream(fox) << other.dump();
+  r = run_cli("diff '" + t + "' '" + fox + "'");
+  EXPECT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find("of another character than"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 TEST(Diff, BadFilesAndOutputs) {
