@@ -9,6 +9,7 @@
 #include <chrono>
 #include <thread>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -60,6 +61,10 @@ struct CheckCliOptions {
   std::string svg;
   std::string against;  // the base build's binary: an A/B instead of a stored baseline
   long long groups = static_cast<long long>(kAbGroups);
+  // A timed failure with the work unchanged is measured this many times more
+  // before it fails (each the same runs): a machine that slowed for seconds
+  // rarely does so twice.
+  long long confirm = 1;
   std::string junit, markdown;
   CLI::App* command = nullptr;  // to tell options given from defaults
   bool action_from_baseline = false;
@@ -435,7 +440,22 @@ int gate_instructions(const CheckCliOptions& o, CheckPlan plan, const Result& ba
 }
 
 // Step 5b: the gate, then its outputs.
-int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, const Result& current) {
+// Slower beyond the gate, but the same work: what a confirmation may clear.
+bool only_timings_regressed(const CheckResult& result) {
+  return result.regressed() && result.counters.empty() && result.counters_missing.empty() && !result.digest_differs();
+}
+
+std::string slower_metrics(const CheckResult& result) {
+  std::string names;
+  for (const MetricCheck& m : result.metrics)
+    if (m.regressed) names += (names.empty() ? "" : ", ") + m.metric + " " + percent(m.change);
+  return names;
+}
+
+// `remeasure` runs the check's runs again (empty when the result was read from
+// a file): a timed failure with the work unchanged must repeat o.confirm times.
+int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, Result current,
+         const std::function<std::optional<Result>()>& remeasure) {
   if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
   // A baseline from before CPU time was recorded is checked on the frame, when
@@ -455,6 +475,19 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, const
         throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
                                "check another --metric");
   CheckResult result = check_results(baseline, current, options);
+  for (long long round = 1; remeasure && round <= o.confirm && only_timings_regressed(result); ++round) {
+    std::cerr << "crowdprof: note: slower than the baseline (" << slower_metrics(result)
+              << ") with the same work: measuring again to confirm (" << round << " of " << o.confirm << ", --confirm)\n";
+    std::optional<Result> again = remeasure();
+    if (!again) return kExitInterrupted;
+    current = std::move(*again);
+    result = check_results(baseline, current, options);
+    if (!result.regressed())
+      std::cerr << "crowdprof: note: not confirmed: measured again, it is within the gate (a slow moment of the "
+                   "machine, not of the build)\n";
+    else if (round == o.confirm)
+      std::cerr << "crowdprof: note: confirmed: slower again (" << slower_metrics(result) << ")\n";
+  }
   if (!o.bench.json.empty()) write_result_file(o.bench.json, "JSON", current);
   if (!o.svg.empty()) write_svg(o.svg, baseline, current, options.metrics.front());
   if (!o.bench.html.empty()) {
@@ -483,8 +516,8 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, const
 // check --against BASE: the A/B of two builds (cli/check_against.h). Its
 // defaults differ from a stored baseline's: the frame, and a 5% tolerance.
 int check_ab(CheckCliOptions& o, CheckPlan plan) {
-  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--svg", "--csv",
-                             "--trace", "--screenshot"})
+  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--confirm", "--svg",
+                             "--csv", "--trace", "--screenshot"})
     if (const CLI::Option* given = o.command->get_option_no_throw(option); given && given->count() > 0)
       throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
   if (plan.gate.metrics.front() == kInstructionsMetric)
@@ -545,7 +578,9 @@ int check(CheckCliOptions& o) {
   std::optional<Result> current = o.result.empty() ? measure(o, plan, baseline) : read_result(o.result);
   if (!current) return kExitInterrupted;
   if (o.update) return write_baseline(o, plan, *current);
-  return gate(o, std::move(plan), *baseline, *current);
+  std::function<std::optional<Result>()> remeasure;
+  if (o.result.empty()) remeasure = [&] { return measure(o, plan, baseline); };
+  return gate(o, plan, *baseline, std::move(*current), remeasure);
 }
 
 }  // namespace
@@ -615,6 +650,11 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "after an idle wait starts slow: measure first); 0: back to back")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
+  cmd->add_option("--confirm", options->confirm,
+                  "When a timed metric fails and the work is the same, measure again this many times and fail only if "
+                  "each fails too (a machine shared with other jobs is slow for seconds at a time); 0: fail at once")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
                 "(tests/scripts/measure_gate.sh); counters and digest are not compared");
@@ -627,6 +667,6 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   group_outputs(*cmd);
   group_options(*cmd, kGateGroup,
                 {"--baseline", "--against", "--groups", "--result", "--metric", "--tolerance", "--floor", "--runs",
-                 "--spread", "--alpha", "--timings-only", "--update-baseline"});
+                 "--spread", "--alpha", "--confirm", "--timings-only", "--update-baseline"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

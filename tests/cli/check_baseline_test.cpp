@@ -148,3 +148,36 @@ TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
 }
 
 }  // namespace
+
+// A timed failure with the same work is measured again before it fails
+// (--confirm, issue 25 item 3): a baseline a hundred times faster than any run
+// fails twice, and says so; --confirm 0 fails at once; a result read from a
+// file is never measured again.
+TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
+  auto dir = crowdprof::test::scratch_dir("check_confirm");
+  std::string base = (dir / "base.json").string();
+  auto r = run_cli("check --spread 0 '" + scene() + "' -n 6 --frames 8 --warmup 1 --runs 2 --baseline '" + base +
+                   "' --update-baseline -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json fast = read_json(base);
+  for (const char* key : {"cpu_ms", "frame_ms"})
+    for (json& v : fast["samples"][key]) v = v.get<double>() * 0.01;
+  fast.erase("runs");
+  std::string fast_base = write_json(dir / "fast.json", fast);
+  r = run_cli("check --spread 0 --baseline '" + fast_base + "' --runs 2 -q");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("with the same work: measuring again to confirm (1 of 1, --confirm)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("confirmed: slower again (cpu +"), std::string::npos) << r.err;
+  r = run_cli("check --spread 0 --baseline '" + fast_base + "' --runs 2 --confirm 0 -q");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+  r = run_cli("check --baseline '" + fast_base + "' --result '" + base + "' -q");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+  // Other work is never measured again: it is not a slow moment.
+  json more = read_json(base);
+  more["counters"]["vertices_skinned"] = more["counters"]["vertices_skinned"].get<uint64_t>() + 1;
+  r = run_cli("check --spread 0 --baseline '" + write_json(dir / "more.json", more) + "' --runs 2 -q");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
+}
