@@ -31,8 +31,14 @@ timed "coverage build" build_coverage >/dev/null
 
 # Counts from an earlier run would add to this one's.
 find "$dir" -name '*.gcda' -delete
+# Two tests cannot pass on an instrumented build, and do not run lib/ in a
+# way the rest do not: install.tree builds a consumer without --coverage against
+# the installed, instrumented libcrowdprof.a (the link lacks gcov's symbols),
+# and gpu_bundle.llvmpipe refuses the bundle of instrumented -O0 binaries as over
+# the 64 MiB a GPU machine's call carries.
+not_here='^(install\.tree|gpu_bundle\.llvmpipe)$'
 status=0
-timed "coverage test suite" ctest --test-dir "$dir" -j"$jobs" --output-on-failure >"$dir/ctest.log" 2>&1 ||
+timed "coverage test suite" ctest --test-dir "$dir" -j"$jobs" -E "$not_here" --output-on-failure >"$dir/ctest.log" 2>&1 ||
   { status=$?; tail -n 60 "$dir/ctest.log"; echo "coverage: the test suite failed; the figures below are of a failing suite" >&2; }
 tail -n 3 "$dir/ctest.log"
 
@@ -42,7 +48,7 @@ tail -n 3 "$dir/ctest.log"
 rm -rf "$report"
 mkdir -p "$report"
 cd "$root"
-timed "gcovr" gcovr --root "$root" --filter "lib/" --object-directory "$dir" -j "$jobs" \
+timed "gcovr" gcovr --root "$root" --filter "lib/" --object-directory "$dir" -j "$jobs" --gcov-ignore-parse-errors \
   --json-summary "$report/summary.json" --txt "$report/lines.txt" \
   --html-details "$report/index.html" --html-title "crowdprof: lib/ line coverage" "$dir"
 python3 - "$report/summary.json" <<'EOF'
