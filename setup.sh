@@ -7,6 +7,7 @@
 #   ./setup.sh sanitize              ASan+UBSan and TSan builds, tests and a short fuzz (CI's second stage)
 #   ./setup.sh fuzz [SECONDS]        run each fuzz target SECONDS (default 60) on the ASan build
 #   ./setup.sh valgrind              memcheck of a short bench and of info on a Draco file
+#   ./setup.sh coverage              line coverage of lib/ by the test suite (GCC, gcovr)
 #   ./setup.sh gpu-bundle DIR        a folder to carry to a GPU machine: the binary, its libraries,
 #                                    scenes and run.sh, which measures every GPU mode (docs/gpu.md)
 # The build goes to ./build (override with CROWDPROF_BUILD_DIR).
@@ -17,9 +18,9 @@ action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
-  run | test | build | bench | sanitize | fuzz | valgrind) ;;
+  run | test | build | bench | sanitize | fuzz | valgrind | coverage) ;;
   gpu-bundle) [[ $# -eq 1 ]] || { echo "usage: ./setup.sh gpu-bundle DIR" >&2; exit 2; } ;;
-  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|gpu-bundle DIR] [options]" >&2; exit 2 ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|coverage|gpu-bundle DIR] [options]" >&2; exit 2 ;;
 esac
 
 # valgrind is built against too: its callgrind.h lets the frames toggle
@@ -33,14 +34,19 @@ packages=(build-essential cmake ninja-build git pkg-config
 case "$action" in
   sanitize) packages+=(clang libclang-rt-14-dev dpkg-dev) ;;
   fuzz) packages+=(clang libclang-rt-14-dev) ;;
+  # gcovr over lcov: one command reads gcov's data, filters to lib/ and writes
+  # the summary, the JSON the per-folder table is made from, and the HTML.
+  coverage) packages+=(gcovr) ;;
 esac
 # The tests load the HTML report in a real browser (tests/browser/) and parse
 # docs/ci.md's workflow as YAML and run Google Benchmark's compare.py on
 # crowdprof's results (tests/ci/); only the
-# test action needs it, and it is large.
-[[ $action == test ]] && packages+=(chromium python3-yaml libbenchmark-tools python3-scipy)
+# actions that run the suite (test, coverage) need it, and it is large.
+runs_suite=false
+[[ $action == test || $action == coverage ]] && runs_suite=true
+$runs_suite && packages+=(chromium python3-yaml libbenchmark-tools python3-scipy)
 # The .deb's test installs it into a clean Debian 12 root (tests/install/).
-[[ $action == test ]] && packages+=(debootstrap)
+$runs_suite && packages+=(debootstrap)
 
 missing=()
 for package in "${packages[@]}"; do
@@ -56,7 +62,7 @@ if ((${#missing[@]})); then
 fi
 
 case "$action" in
-  sanitize | fuzz | valgrind) exec tests/sanitizers/"$action".sh "$@" ;;
+  sanitize | fuzz | valgrind | coverage) exec tests/sanitizers/"$action".sh "$@" ;;
 esac
 
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
