@@ -16,7 +16,12 @@
 #              vertices skinned per frame are at least 10% above N's)
 # Environment: SCENE (scenes/humanoid.glb), MODE (threaded), FRAMES (120),
 #   WARMUP (10), RUNS (50), DETECT (20), OUT (a new temporary folder; kept),
-#   CHECK_ARGS (extra options for every check, e.g. "--tolerance 10%").
+#   CHECK_ARGS (extra options for every check, e.g. "--tolerance 10%"),
+#   ALTERNATE (seconds; issue 25 6c): while the checks run, one core compiles for
+#   ALTERNATE seconds, then rests as long, over and over, and the unchanged checks
+#   are spread over at least SPAN seconds (600),
+#   INSTRUCTIONS (1: each unchanged check is followed by one of --metric
+#   instructions against its own stored baseline; needs valgrind or perf_event).
 # Needs jq. Prints one line per phase and a summary; per-run results are in
 # $OUT/runs.csv (phase, run, exit, runs per check, the medians of the baseline's and the
 # check's runs, the check's fastest and slowest run).
@@ -58,6 +63,30 @@ echo "measure_gate: scene $scene, mode $mode, $frames frames after $warmup warm-
 echo "measure_gate: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; files in $out"
 "$crowdprof" check "$scene" -n "$n" --mode "$mode" --frames "$frames" --warmup "$warmup" \
   --baseline "$base" --update-baseline -q
+instructions=${INSTRUCTIONS:-0}
+if ((instructions)); then
+  "$crowdprof" --simd AVX2 check "$scene" -n "$n" --mode "$mode" --frames 20 --warmup 2 --metric instructions \
+    --baseline "$out/instructions.json" --update-baseline -q
+fi
+# A load that comes and goes: one core compiling (a C++ file that includes
+# <regex>, over and over) for ALTERNATE seconds, then quiet as long.
+load_pid=
+if [[ -n ${ALTERNATE:-} ]]; then
+  (
+    while :; do
+      end=$((SECONDS + ALTERNATE))
+      while ((SECONDS < end)); do
+        printf '#include <regex>\n#include <iostream>\nint main() { std::regex r("a+b"); return 0; }\n' |
+          g++ -std=c++20 -O2 -x c++ -c -o /dev/null - 2>/dev/null || true
+      done
+      sleep "$ALTERNATE"
+    done
+  ) &
+  load_pid=$!
+  trap 'kill $load_pid 2>/dev/null; pkill -P $load_pid 2>/dev/null || true' EXIT
+  echo "measure_gate: a compile on one core for ${ALTERNATE} s, then ${ALTERNATE} s quiet, for as long as the checks run"
+fi
+span=${SPAN:-600}
 echo "phase,run,exit,runs,baseline_cpu_ms,current_cpu_ms,current_cpu_min_ms,current_cpu_max_ms,baseline_frame_ms,current_frame_ms" >"$out/runs.csv"
 
 # CPU and frame time of a result: the median of its runs' medians (check pools
@@ -86,11 +115,27 @@ one_check() {
   echo "$status"
 }
 
-false_alarms=0
+false_alarms=0 instruction_alarms=0 confirmations=0
+phase_start=$SECONDS
 for ((i = 1; i <= runs; ++i)); do
+  # With a load that comes and goes, the checks are spread over the span.
+  if [[ -n ${ALTERNATE:-} ]]; then
+    due=$((phase_start + (i - 1) * span / runs))
+    ((SECONDS < due)) && sleep $((due - SECONDS))
+  fi
   [[ $(one_check unchanged "$i") == 1 ]] && false_alarms=$((false_alarms + 1))
+  grep -q "measuring again to confirm" "$out/stderr" && confirmations=$((confirmations + 1))
+  if ((instructions)); then
+    status=0
+    "$crowdprof" --simd AVX2 check "$scene" -n "$n" --mode "$mode" --frames 20 --warmup 2 --metric instructions \
+      --baseline "$out/instructions.json" -q 2>>"$out/instructions.err" || status=$?
+    ((status > 1)) && { echo "measure_gate: instruction check failed with exit $status" >&2; exit 3; }
+    ((status == 1)) && instruction_alarms=$((instruction_alarms + 1))
+  fi
 done
-echo "false alarms: $false_alarms of $runs unchanged checks (goal: at most 1)"
+echo "false alarms: $false_alarms of $runs unchanged checks (goal: at most 1); $confirmations measured again to confirm," \
+  "over $((SECONDS - phase_start)) s"
+((instructions)) && echo "instruction metric: $instruction_alarms false alarms of $runs unchanged checks (goal: at most 1)"
 
 detected=0
 for ((i = 1; i <= detect; ++i)); do
