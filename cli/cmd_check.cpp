@@ -65,6 +65,9 @@ struct CheckCliOptions {
   // before it fails (each the same runs): a machine that slowed for seconds
   // rarely does so twice.
   long long confirm = 1;
+  // Seconds a confirmation spreads its runs over: a slow spell of the machine
+  // lasts seconds to a minute, and runs spread over one sample both sides of it.
+  double confirm_spread = 60;
   std::string junit, markdown;
   CLI::App* command = nullptr;  // to tell options given from defaults
   bool action_from_baseline = false;
@@ -516,8 +519,8 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, Resul
 // check --against BASE: the A/B of two builds (cli/check_against.h). Its
 // defaults differ from a stored baseline's: the frame, and a 5% tolerance.
 int check_ab(CheckCliOptions& o, CheckPlan plan) {
-  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--confirm", "--svg",
-                             "--csv", "--trace", "--screenshot"})
+  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--confirm",
+                             "--confirm-spread", "--svg", "--csv", "--trace", "--screenshot"})
     if (const CLI::Option* given = o.command->get_option_no_throw(option); given && given->count() > 0)
       throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
   if (plan.gate.metrics.front() == kInstructionsMetric)
@@ -579,7 +582,9 @@ int check(CheckCliOptions& o) {
   if (!current) return kExitInterrupted;
   if (o.update) return write_baseline(o, plan, *current);
   std::function<std::optional<Result>()> remeasure;
-  if (o.result.empty()) remeasure = [&] { return measure(o, plan, baseline); };
+  CheckPlan confirming = plan;
+  confirming.spread_s = std::max(plan.spread_s, o.confirm_spread);
+  if (o.result.empty()) remeasure = [&] { return measure(o, confirming, baseline); };
   return gate(o, plan, *baseline, std::move(*current), remeasure);
 }
 
@@ -655,6 +660,11 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "each fails too (a machine shared with other jobs is slow for seconds at a time); 0: fail at once")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
+  cmd->add_option("--confirm-spread", options->confirm_spread,
+                  "Seconds a confirmation spreads its runs over, so that they sample the machine before, during and "
+                  "after a slow spell (at least --spread)")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
                 "(tests/scripts/measure_gate.sh); counters and digest are not compared");
@@ -667,6 +677,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   group_outputs(*cmd);
   group_options(*cmd, kGateGroup,
                 {"--baseline", "--against", "--groups", "--result", "--metric", "--tolerance", "--floor", "--runs",
-                 "--spread", "--alpha", "--confirm", "--timings-only", "--update-baseline"});
+                 "--spread", "--alpha", "--confirm", "--confirm-spread", "--timings-only",
+                 "--update-baseline"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

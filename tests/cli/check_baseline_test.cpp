@@ -164,7 +164,7 @@ TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
     for (json& v : fast["samples"][key]) v = v.get<double>() * 0.01;
   fast.erase("runs");
   std::string fast_base = write_json(dir / "fast.json", fast);
-  r = run_cli("check --spread 0 --baseline '" + fast_base + "' --runs 2 -q");
+  r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + fast_base + "' --runs 2 -q");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("with the same work: measuring again to confirm (1 of 1, --confirm)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("confirmed: slower again (cpu +"), std::string::npos) << r.err;
@@ -177,7 +177,7 @@ TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   // Other work is never measured again: it is not a slow moment.
   json more = read_json(base);
   more["counters"]["vertices_skinned"] = more["counters"]["vertices_skinned"].get<uint64_t>() + 1;
-  r = run_cli("check --spread 0 --baseline '" + write_json(dir / "more.json", more) + "' --runs 2 -q");
+  r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + write_json(dir / "more.json", more) + "' --runs 2 -q");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
 }

@@ -130,6 +130,7 @@ for ((i = 1; i <= runs; ++i)); do
     "$crowdprof" --simd AVX2 check "$scene" -n "$n" --mode "$mode" --frames 20 --warmup 2 --metric instructions \
       --baseline "$out/instructions.json" -q 2>>"$out/instructions.err" || status=$?
     ((status > 1)) && { echo "measure_gate: instruction check failed with exit $status" >&2; exit 3; }
+    echo "$i,$status" >>"$out/instructions.csv"
     ((status == 1)) && instruction_alarms=$((instruction_alarms + 1))
   fi
 done
