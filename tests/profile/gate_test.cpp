@@ -190,11 +190,11 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
     for (auto& v : values) v = v.get<double>() / 10.0;
   std::ofstream(dir / "fast.json") << fast.dump();
   std::string fast_path = (dir / "fast.json").string();
-  r = test::run_cli("check --spread 0 --baseline '" + fast_path + "' --floor 0ms");
+  r = test::run_cli("check --spread 0 --confirm 0 --baseline '" + fast_path + "' --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_EQ(r.out.rfind("REGRESSION cpu", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("8 vs 8 runs"), std::string::npos) << r.out;
-  r = test::run_cli("check --spread 0 --baseline '" + fast_path + "' --runs 1 --floor 0ms");
+  r = test::run_cli("check --spread 0 --confirm 0 --baseline '" + fast_path + "' --runs 1 --floor 0ms");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("10 vs 10 frames"), std::string::npos) << r.out;
   // A floor larger than any slowdown passes it, even ten times slower.
