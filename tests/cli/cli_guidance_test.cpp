@@ -108,3 +108,23 @@ TEST(CliGuidance, HelpGroupsOptionsUnderHeadings) {
     EXPECT_TRUE(under(check.out, "Gate", option)) << option;
   EXPECT_TRUE(under(check.out, "Outputs", "--junit")) << check.out;
 }
+
+// One style in every --help (issue 27 item 3): values named by what they are,
+// defaults as "(default: X)" after the text, never CLI11's INT=10 or
+// "INT:INT in [0 - 10]".
+TEST(CliGuidance, HelpHasOneStyleOfValuesAndDefaults) {
+  for (const char* command : {"info", "gen", "bench", "compare", "capacity", "check", "diff", "render", "report"}) {
+    auto r = run_cli(std::string(command) + " --help");
+    ASSERT_EQ(r.status, 0) << command << ": " << r.err;
+    for (const char* raw : {" INT", " UINT", " FLOAT", " TEXT", "=["})
+      EXPECT_EQ(r.out.find(raw), std::string::npos) << command << " --help shows '" << raw << "':\n" << r.out;
+    for (size_t at = r.out.find("\n  -"); at != std::string::npos; at = r.out.find("\n  -", at + 1)) {
+      std::string head = r.out.substr(at, r.out.find("  ", at + 4) - at);  // the option and its value name
+      EXPECT_EQ(head.find('='), std::string::npos) << command << ": " << head;
+    }
+  }
+  auto check = run_cli("check --help");
+  EXPECT_NE(check.out.find("--groups N "), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("(default: 20)"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("--baseline FILE"), std::string::npos) << check.out;
+}
