@@ -111,7 +111,8 @@ std::string fnv1a64_hex(std::string_view bytes) {
 SceneFile load_scene_file(const std::string& path) {
   Reader r{path};
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::filesystem::exists(path) ? "cannot be read" : "no such file");
+  std::error_code missing;
+  if (!in) throw InputError(path, std::filesystem::exists(path, missing) ? "cannot be read" : "no such file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   std::string bytes = buffer.str();
@@ -142,7 +143,9 @@ SceneFile load_scene_file(const std::string& path) {
     if (name.empty()) r.fail(key + ".file", "empty");
     c.path = std::filesystem::path(name).is_absolute() ? c.file : folder + c.file;
     std::string on_disk = c.path.substr(0, c.path.find('#'));
-    if (!std::filesystem::is_regular_file(on_disk))
+    // With an error code: a path too long for the system is a missing file, not an exception.
+    std::error_code unreadable;
+    if (!std::filesystem::is_regular_file(on_disk, unreadable))
       r.fail(key + ".file", "no such file '" + c.file + "' (looked for " + on_disk + ")");
     if (!entry.contains("count")) r.fail(key + ".count", "missing: how many copies of this character");
     c.count = static_cast<size_t>(r.whole(entry["count"], key + ".count", 0, 10'000'000));
