@@ -28,10 +28,10 @@ std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
 }
 
 uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       int64_t max_block_bytes, bool instanced) {
+                       std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced) {
   const Crowd& crowd = bench.crowd();
   size_t copies = 0, rows = 0;
-  std::vector<uint32_t> on_screen(meshes.size(), 0);
+  on_screen.assign(meshes.size(), 0);
   for (size_t i = 0; i < crowd.size(); ++i) {
     if (!palette_copy(bench, i)) continue;
     ++copies;
@@ -61,7 +61,7 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) :
 }
 
 void BufferPalette::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(bench, meshes, buffers_, max_block_bytes_, false);
+  uint64_t sent = send_palettes(bench, meshes, buffers_, on_screen_, max_block_bytes_, false);
   glUseProgram(program_.id());
   set_frame_uniforms(program_, bench);
   for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;

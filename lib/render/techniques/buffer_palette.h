@@ -19,8 +19,9 @@ namespace crowdprof {
 // every such copy, on screen or not, so that the buffers never grow while the
 // crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
 // exceed one storage block (`max_block_bytes`).
+// `on_screen` is scratch, kept by the caller so that frames allocate nothing.
 uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       int64_t max_block_bytes, bool instanced);
+                       std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced);
 
 class BufferPalette final : public Technique {
  public:
@@ -34,7 +35,8 @@ class BufferPalette final : public Technique {
   GlProgram program_;
   GLint model_ = -1, colour_ = -1, base_ = -1;
   GpuFrameBuffers buffers_;
-  std::vector<uint32_t> next_;  // scratch: per character, the next record to draw
+  std::vector<uint32_t> on_screen_;  // scratch: per character, copies on screen
+  std::vector<uint32_t> next_;       // scratch: per character, the next record to draw
 };
 
 // shaders/buffer_skin.vert with shaders/instances.glsl ahead of it.

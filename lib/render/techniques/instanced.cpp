@@ -17,7 +17,7 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
 }
 
 void Instanced::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(bench, meshes, buffers_, max_block_bytes_, true);
+  uint64_t sent = send_palettes(bench, meshes, buffers_, on_screen_, max_block_bytes_, true);
   glUseProgram(program_.id());
   set_frame_uniforms(program_, bench);
   glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "render/character_meshes.h"
 #include "render/gpu_frame_buffers.h"
@@ -26,6 +27,7 @@ class Instanced final : public Technique {
   int64_t max_block_bytes_;
   GlProgram program_;
   GpuFrameBuffers buffers_;
+  std::vector<uint32_t> on_screen_;  // scratch: per character, copies on screen
 };
 
 }  // namespace crowdprof
