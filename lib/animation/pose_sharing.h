@@ -31,6 +31,8 @@ class PoseSharing {
 
   // The storage copy `copy` shows.
   uint32_t shown(size_t copy) const { return shown_[copy]; }
+  // The storage each copy shows.
+  std::span<const uint32_t> shown_storages() const { return shown_; }
   // How many copies show storage s.
   uint32_t viewers(uint32_t storage) const { return refs_[storage]; }
 

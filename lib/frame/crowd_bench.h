@@ -1,34 +1,30 @@
 // The frame loop: a crowd of copies of one or more characters, stepped one
 // frame at a time through the BGE's stages in the BGE's order, each charged to
-// its profile category by one clock.
+// its profile category by one clock. The loop owns the frame's data and calls
+// jobs on it: the characters prepared once (prepared_character.h), the copies'
+// arrays (copy_store.h), who is updated (update_plan.h), the pose updates
+// (pose_update.h); the renderer draws a FrameView of it (frame_view.h).
 #pragma once
 
 #include <array>
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "animation/bake.h"
-#include "animation/binding.h"
-#include "animation/local_pose.h"
-#include "animation/pose_sharing.h"
-#include "animation/update_rates.h"
-#include "animation/sampling.h"
-#include "animation/skin_matrix.h"
 #include "asset/character.h"
-#include "frame/bench_threads.h"
+#include "frame/copy_store.h"
 #include "frame/frame_renderer.h"
+#include "frame/frame_view.h"
 #include "frame/modes.h"
+#include "frame/pose_update.h"
+#include "frame/prepared_character.h"
+#include "frame/update_plan.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
-#include "skinning/output_buffer.h"
-#include "skinning/packed_vertex.h"
-#include "skinning/skinning_plan.h"
 
 namespace crowdprof {
 
@@ -74,23 +70,10 @@ struct AnimationFidelity {
   size_t copies_deviating = 0;     // of those, copies whose time drawn was not their exact time
 };
 
-// How the run scheduled pose updates (issue 13), over every frame run.
-struct UpdateSchedule {
-  uint64_t longest_gap = 0;  // most frames between two updates of one copy (0: none updated twice)
-  // Copies posed in the last frame, by period: copies[s] are updated every 2^s frames.
-  std::array<uint64_t, kRateCount> copies_by_rate{};
-  uint64_t demotions = 0;  // the budget's doublings in the last frame
-};
-
 // Empty when a bench of this config can run, else why not: switches that
 // conflict, skinning on the GPU without a renderer, a bake rate that is not a
 // positive number.
 std::string why_cannot_run(const BenchConfig& config);
-
-// Bytes a crowd would allocate, to refuse a scene before trying.
-uint64_t estimate_bench_bytes(const Character& character, size_t copies, const ModeSwitches& mode);
-uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
-                              const ModeSwitches& mode);
 
 class CrowdBench {
  public:
@@ -138,202 +121,90 @@ class CrowdBench {
   // characters()); draw calls and bytes are only counted in all.
   std::span<const Counters> character_counters() const { return character_counters_; }
   const BenchConfig& config() const { return config_; }
+  // What the renderer draws: the crowd as the last frame left it.
+  const FrameView& view() const { return view_; }
   // The pose storage copy `copy` draws: its own, or with animation sharing
   // that of the state it shows (copies in one state draw one storage).
-  size_t storage_of(size_t copy) const { return config_.mode.share_poses ? sharing_.shown(copy) : copy; }
+  size_t storage_of(size_t copy) const { return planner_->storage_of(copy); }
   // Share of the screen's height the copy's box spans (screen_size.h).
-  float screen_fraction(size_t copy) const { return screen_fraction_[copy]; }
+  float screen_fraction(size_t copy) const { return planner_->screen_fraction(copy); }
   // Exact times against what the last frame drew; skins every copy on screen
   // twice, so it is for the end of a run (allocates, takes time).
   AnimationFidelity measure_fidelity() const;
-  const UpdateSchedule& schedule() const { return schedule_; }
+  const UpdateSchedule& schedule() const { return planner_->schedule(); }
   size_t frames_run() const { return frame_; }
-  bool visible(size_t copy) const { return visible_[copy] != 0; }
-  // True when the renderer skins this character (mode hwskin and the character
-  // within its bone limit, or compute, or baked): its copies' skinned_positions()
-  // stay in the rest pose.
-  bool gpu_skinned_kind(size_t kind) const { return skins_on_gpu(kinds_[kind].site); }
+  bool visible(size_t copy) const { return store_->visible[copy] != 0; }
   // Where this character's copies are skinned: the mode's site, or the CPU for
   // a character over hwskin's bone limit.
-  SkinningSite site_of_kind(size_t kind) const { return kinds_[kind].site; }
-  bool gpu_skinned_copy(size_t copy) const { return gpu_skinned_kind(crowd_.kind[copy]); }
+  SkinningSite site_of_kind(size_t kind) const { return prepared_[kind].site; }
+  // True when the renderer skins this copy's character (mode hwskin and the
+  // character within its bone limit, or compute, or baked): its
+  // skinned_positions() stay in the rest pose.
+  bool gpu_skinned_copy(size_t copy) const { return skins_on_gpu(site_of_kind(crowd_.kind[copy])); }
   // Every character skinned by the renderer.
-  bool gpu_skinned() const;
-  std::span<const SkinMatrix> skinning_matrices(size_t copy) const;
+  bool gpu_skinned() const { return view_.gpu_skinned(); }
+  std::span<const SkinMatrix> skinning_matrices(size_t copy) const { return view_.palette(copy); }
   // Float vertices skinned on the CPU are written with streaming stores: the
   // frame's output is larger than the caches (skinning/output_stores.h). Each
   // copy's skinned_positions() and skinned_normals() start on a cache line.
-  bool streams_output() const { return stream_output_; }
-  std::span<const glm::vec3> skinned_positions(size_t copy) const;
-  std::span<const glm::vec3> skinned_normals(size_t copy) const;
+  bool streams_output() const { return store_->stream_output; }
+  // Empty with packed vertices (packed_positions(), packed_normals()).
+  std::span<const glm::vec3> skinned_positions(size_t copy) const { return view_.skinned_positions(copy); }
+  std::span<const glm::vec3> skinned_normals(size_t copy) const { return view_.skinned_normals(copy); }
   // This frame's time of a copy on its action's clock (from the Logic stage).
-  float action_time(size_t copy) const { return times_[copy]; }
-
-  // Mode baked: each character's actions baked at load (a character without
-  // actions: its rest palette twice, one interval), null in other modes.
-  const BakedCharacter* baked(size_t kind) const { return kinds_[kind].baked.joints ? &kinds_[kind].baked : nullptr; }
-  // Where a copy reads its baked samples this frame: the action's first sample,
-  // its interval count and the position among them (baked_position).
-  struct BakedInstance {
-    uint32_t first_sample = 0, intervals = 1;
-    float position = 0.0f;
-  };
-  BakedInstance baked_instance(size_t copy) const;
+  float action_time(size_t copy) const { return store_->times[copy]; }
   // What baking cost and how far it strays (mode baked; zeros otherwise).
-  struct BakeSummary {
-    float rate_hz = 0.0f;
-    double bake_ms = 0.0;            // BakeJob over every action of every character
-    float max_deviation = 0.0f;      // model units, the worst character
-    float max_deviation_fraction = 0.0f;  // of that character's height, the worst character
-    uint64_t samples = 0;            // baked palettes, all characters
-  };
   const BakeSummary& bake_summary() const { return bake_summary_; }
   // What the renderer said it holds on the GPU for this bench's mode when it
   // prepared for it (FrameRenderer::animation_gpu_bytes); 0 without one.
   uint64_t animation_gpu_bytes() const { return animation_gpu_bytes_; }
   // With --vertex-format packed (skinned_positions() and skinned_normals() are
   // then empty): 3 position codes and one normal word per vertex
-  // (skinning/packed_vertex.h), quantised in character_quantisation(kind).
-  bool packed_vertices() const { return config_.mode.vertex_format == VertexFormat::Packed; }
-  std::span<const uint16_t> packed_positions(size_t copy) const;
-  std::span<const uint32_t> packed_normals(size_t copy) const;
-  // The box a character's positions are packed in: its animated bounds
-  // (every pose of every action, padded), the culling box.
-  const PositionQuantisation& character_quantisation(size_t kind) const { return kinds_[kind].quantisation; }
+  // (skinning/packed_vertex.h), quantised in the character's animated box.
+  bool packed_vertices() const { return store_->packed; }
+  std::span<const uint16_t> packed_positions(size_t copy) const { return view_.packed_positions_of(copy); }
+  std::span<const uint32_t> packed_normals(size_t copy) const { return view_.packed_normals_of(copy); }
 
  private:
   // The clock's switch to `category`, recording the stage it leaves when tracing.
   void enter(Category category);
+  // Logic: each copy's time on its action's clock.
   void update_logic();
-  void update_scenegraph(Counters& counters);
+  // Animations: the plan, then its evaluations.
   void update_poses(Counters& counters);
-  // Who takes a new pose this frame (LOD, budget), at which time (quantum), and
-  // which states must be evaluated into which storage: jobs_. Sequential.
-  void plan_updates(Counters& counters);
-  // The budget's doublings for this frame, from the last frame's time.
-  void run_budget();
-  void skin_copies();
-  // The frame's work by character and in all, from who was posed and where
-  // each character is skinned.
+  // Scenegraph: who is inside the frustum.
+  void update_scenegraph(Counters& counters);
+  // Rasterizer, mode baked: where each copy on screen reads its baked table.
+  void place_baked_instances();
+  BakedInstance baked_instance(size_t copy) const;
+  // Overhead: the frame's work by character and in all, from who was posed
+  // and where each character is skinned.
   void count_work(Counters& counters);
-  // Pose (and, when its character is skinned in Animations, vertices) of one
-  // copy; `slot` picks the pose storage.
-  // One evaluation: the pose of job.leader's action at job.time, built in pose
-  // slot `slot`, written to the job's storage.
-  struct StateJob {
-    uint32_t leader = 0, storage = 0;
-    float time = 0;
-  };
-  // `skin`: also skin the job's storage when its character is skinned in
-  // Animations (else the caller skins it, in parts: skin_range).
-  void update_state(const StateJob& job, size_t slot, uint64_t* lookups, bool skin);
-  // How many parts update_poses skins each of this frame's states in: 1, or
-  // with fewer states than threads (on a parallel mode skinning in
-  // Animations) two parts a thread, so that one state keeps every thread busy.
-  size_t skin_parts() const;
-  // The calling thread's index in the bench's arena (0 without one): which
-  // per-thread scratch (model_) a pose update uses.
-  size_t worker_index() const;
-  void skin_storage(size_t storage);
-  // Part `part` of `parts` of a storage's mesh (whole kernel batches).
-  void skin_range(size_t storage, size_t part, size_t parts);
-  // While `posed` says the state's pose is not built yet, prefetches for
-  // writing the skinned vertices from this part to the mesh's end.
-  void prefetch_while(size_t storage, size_t part, size_t parts, const std::atomic<uint8_t>& posed) const;
-  void skin_vertices(size_t storage, size_t first, size_t count);
-  // Mode baked, at load: bakes every character and measures the deviation.
-  void bake_characters();
-  bool animates(size_t copy) const { return !config_.mode.animation_culling || visible_[copy]; }
-  // Animated this frame: not culled, and its character has actions to play
-  // (one without stands in its rest pose).
-  // Baked copies are never posed on the CPU: the GPU reads their baked samples.
-  bool poses(size_t copy) const { return animates(copy) && kind_poses_[crowd_.kind[copy]]; }
-  // The pose storage a copy is built in: its own, or its character's scratch.
-  size_t slot_of(size_t copy) const {
-    return config_.mode.pose == PoseStorage::SharedScratch ? crowd_.kind[copy] : copy;
-  }
-  // `task` names the spans of its tasks in a trace.
-  template <typename Body>
-  void for_each_copy(std::string_view task, const Body& body) { for_each_index(task, crowd_.size(), body); }
-  template <typename Body>
-  void for_each_index(std::string_view task, size_t count, const Body& body);
-
-  // What a character's copies share: its sizes, where it is skinned (the
-  // mode's site, except that a character over the GPU's bone limit falls back
-  // to the CPU, in Animations) and its actions' bindings, resolved once.
-  struct Kind {
-    size_t joints = 0, vertices = 0, max_channels = 0;
-    SkinningSite site = SkinningSite::CpuInAnimations;
-    std::vector<ActionBindings> bindings;  // per action
-    SkinningPlan skinning_plan;            // the mesh prepared for skinning, once
-    BakedCharacter baked;                  // mode baked only
-    PositionQuantisation quantisation;     // packed vertices: the character's box
-  };
+  // Animated this frame: not culled (a character without actions, or baked,
+  // is never posed on the CPU all the same).
+  bool animates(size_t copy) const { return !config_.mode.animation_culling || store_->visible[copy]; }
 
   std::vector<const Character*> characters_;
   BenchConfig config_;
   Crowd crowd_;
   Camera camera_;
   Frustum frustum_;
+  std::vector<PreparedCharacter> prepared_;  // per character; immutable once made
+  BakeSummary bake_summary_;
+  std::unique_ptr<CopyStore> store_;
+  std::unique_ptr<UpdatePlanner> planner_;
+  std::unique_ptr<PoseUpdater> poser_;
+  std::vector<CharacterView> character_views_;
+  std::vector<BakedInstance> baked_instances_;  // per copy, mode baked
+  FrameView view_;
   CategoryClock clock_;
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer
   size_t frame_ = 0;
-  std::vector<Kind> kinds_;                   // per character
-  std::vector<uint8_t> kind_poses_;           // per character: has actions and is posed on the CPU (not baked)
-  bool skins_in_animations_ = false;          // some character is skinned on the CPU in Animations
-  // Per state when its mesh is skinned in parts (fewer states than threads):
-  // whether its pose is built yet.
-  static constexpr uint8_t kNotPosed = 0, kPosing = 1, kPosed = 2;
-  std::unique_ptr<std::atomic<uint8_t>[]> posed_;
   std::vector<Counters> character_counters_;  // per character, the last frame's
-  BakeSummary bake_summary_;
+  double last_animations_ms_ = 0;
   uint64_t animation_gpu_bytes_ = 0;
   std::array<GpuTime, kGpuTimesInFlight> gpu_times_{};
   size_t gpu_time_count_ = 0;
-
-  std::vector<float> times_;                  // per copy: where in its action
-  std::vector<uint8_t> visible_;              // per copy, from the last scenegraph stage
-  std::vector<SamplingCursor> cursors_;       // per copy
-  std::vector<size_t> joint_offset_, vertex_offset_;  // per copy, into palettes_ and positions_/normals_
-  std::vector<LocalPose> poses_;              // per pose slot (one per character when shared)
-  std::vector<size_t> slot_channels_;         // per pose slot, offsets into targets_
-  // Model-space matrices, per thread of the bench x the most joints of a
-  // character: an evaluation's intermediate (local-to-model, then the skinning
-  // matrices), used at once. Per copy they were 4.4 KiB of the default
-  // character's 130 written and read back from memory every frame at 10,000
-  // copies. Cache-line aligned (a mat4 is one line), so that no two threads'
-  // regions share a line.
-  std::vector<glm::mat4, CacheLineAllocator<glm::mat4>> model_;
-  size_t model_joints_ = 0, model_threads_ = 1;
-  std::vector<int32_t> targets_;              // per pose slot x its channels (string lookups)
-  std::vector<SkinMatrix, CacheLineAllocator<SkinMatrix>> palettes_;  // per copy x its joints
-  // Per copy x its vertices (float format). Each copy's run starts on a cache
-  // line (offsets in whole batches of kSkinBatch vertices, 192 bytes), so that
-  // skinning can stream whole lines (stream_output_). Large arrays on huge
-  // pages (output_buffer.h).
-  std::vector<glm::vec3, CacheLineAllocator<glm::vec3>> positions_, normals_;
-  bool stream_output_ = false;  // skinned with streaming stores (output_stores.h)
-  std::vector<uint16_t, CacheLineAllocator<uint16_t>> packed_positions_;  // per copy x its vertices x 3 (packed format)
-  std::vector<uint32_t, CacheLineAllocator<uint32_t>> packed_normals_;    // per copy x its vertices (packed format)
-  // Issue 13: sharing, update rates, the budget.
-  std::vector<StateJob> jobs_;                // this frame's evaluations (capacity: one per copy)
-  // Sharing, room for every copy: this frame's copies taking a new state, and its key.
-  std::vector<uint32_t> changing_copies_;
-  std::vector<uint64_t> changing_keys_;
-  PoseSharing sharing_;
-  std::vector<float> storage_time_;           // per storage: the time it was evaluated at (NaN: rest)
-  std::vector<float> screen_fraction_;        // per copy
-  std::vector<uint8_t> shift_;                // per copy: updated every 2^shift frames
-  std::vector<uint8_t> updated_;              // per copy: took a new pose this frame
-  std::vector<int64_t> last_update_;          // per copy: the frame it last took a pose (-1: never)
-  BudgetPlan budget_plan_;
-  uint64_t last_updates_ = 0;                 // copy updates of the last frame, for the budget
-  double last_animations_ms_ = 0;
-  UpdateSchedule schedule_;
-  // The process's threads for this bench's thread count (bench_threads.h),
-  // and their arena; both null when the mode runs on the calling thread alone.
-  std::shared_ptr<BenchThreads> threads_;
-  tbb::task_arena* arena_ = nullptr;
 };
 
 }  // namespace crowdprof

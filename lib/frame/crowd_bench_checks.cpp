@@ -31,19 +31,19 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
   std::vector<SkinMatrix> palette;
   std::vector<glm::vec3> drawn, drawn_normals, exact, exact_normals;
   for (size_t i = 0; i < crowd_.size(); ++i) {
-    if (!visible_[i] || !poses(i)) continue;
+    if (!store_->visible[i] || !planner_->poses(i, store_->visible)) continue;
     ++fidelity.copies_checked;
     // Drawn at its exact time (same action: a copy's storage holds its own action).
-    if (storage_time_[storage_of(i)] == times_[i]) continue;
+    if (store_->storage_time[storage_of(i)] == store_->times[i]) continue;
     ++fidelity.copies_deviating;
     const Character& character = character_of(i);
-    const Kind& kind = kinds_[crowd_.kind[i]];
+    const PreparedCharacter& kind = prepared_[crowd_.kind[i]];
     const Action& action = character.actions[crowd_.action[i]];
     reset_to_rest(character.skeleton, &pose);
     reset_cursor(action, &cursor);
     model.resize(kind.joints);
     palette.resize(kind.joints);
-    run_job(SamplingJob{&action, times_[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}, "SamplingJob");
+    run_job(SamplingJob{&action, store_->times[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}, "SamplingJob");
     run_job(LocalToModelJob{&character.skeleton, &pose, model}, "LocalToModelJob");
     run_job(SkinningMatricesJob{&character.skeleton, model, palette}, "SkinningMatricesJob");
     for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
@@ -71,10 +71,10 @@ void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
 std::string CrowdBench::digest() const {
   uint64_t hash = 0xcbf29ce484222325ull;
   for (size_t i = 0; i < crowd_.size(); ++i) {
-    if (!visible_[i]) continue;
+    if (!store_->visible[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
-    if (kinds_[crowd_.kind[i]].site == SkinningSite::Baked) {
+    if (prepared_[crowd_.kind[i]].site == SkinningSite::Baked) {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
       BakedInstance instance = baked_instance(i);
       fnv1a(hash, &instance, sizeof instance);

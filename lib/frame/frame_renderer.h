@@ -1,5 +1,6 @@
 // What the frame loop asks of a renderer (lib/render/ implements it with GL).
-// The frame loop knows nothing of GL: it calls these in the BGE's stages.
+// The frame loop knows nothing of GL: it calls these in the BGE's stages, and
+// the renderer draws from the FrameView it is given, calling nothing back.
 #pragma once
 
 #include <cstddef>
@@ -7,16 +8,15 @@
 #include <span>
 #include <string>
 
+#include "frame/frame_view.h"
 #include "frame/modes.h"
 #include "profile/counters.h"
 
 namespace crowdprof {
 
-class CrowdBench;
-
 // The GPU's time for one frame of a bench, from a timer query read later.
 struct GpuTime {
-  uint64_t frame = 0;  // the bench's frame number (CrowdBench::frames_run() when it was drawn)
+  uint64_t frame = 0;  // the frame's number (FrameView::frame when it was drawn)
   double ms = 0;
 };
 // Frames whose GPU time may be awaited at once: a renderer keeps this many queries.
@@ -36,11 +36,11 @@ class FrameRenderer {
   // vertex stage for --palettes buffer).
   virtual void require(const ModeSwitches& mode) const = 0;
 
-  // At load, from the bench's constructor (the bench is complete): upload what
-  // its mode needs and never changes (baked tables, per-copy placements) and
-  // make the buffers its frames fill. Throws GlUnavailable (gl_errors.h) when
-  // the context lacks a feature the mode needs, naming it.
-  virtual void prepare(const CrowdBench& bench) = 0;
+  // At load, from the bench's constructor (its view complete, frame 0 not
+  // run): upload what the mode needs and never changes (baked tables, per-copy
+  // placements) and make the buffers its frames fill. Throws GlUnavailable
+  // (gl_errors.h) when the context lacks a feature the mode needs, naming it.
+  virtual void prepare(const FrameView& view) = 0;
 
   // Bytes the renderer holds on the GPU for animation and skinning data: baked
   // tables, palette, placement and instance buffers, compute output buffers
@@ -48,10 +48,11 @@ class FrameRenderer {
   virtual uint64_t animation_gpu_bytes() const = 0;
 
   // Rasterizer stage: send this frame's data and submit one draw per copy on
-  // screen (or per character kind, drawn instanced): skinned vertices when
-  // bench.gpu_skinned() is false, else skinning matrices. Adds to counters.bytes_uploaded and counters.draw_calls. Throws
+  // screen (or per character kind, drawn instanced): skinned vertices of the
+  // copies skinned on the CPU, skinning matrices (or baked positions) of the
+  // others. Adds to counters.bytes_uploaded and counters.draw_calls. Throws
   // (std::runtime_error) on a GL error, naming it and the stage.
-  virtual void draw(const CrowdBench& bench, Counters& counters) = 0;
+  virtual void draw(const FrameView& view, Counters& counters) = 0;
 
   // GPU Latency stage: wait until the frame is drawn (the BGE's SwapBuffers).
   virtual void finish() = 0;
@@ -59,11 +60,11 @@ class FrameRenderer {
   // Empty when draw() times each frame on the GPU (GL timer queries), else
   // why not, for the report ("... has no GL_TIME_ELAPSED timer").
   virtual std::string gpu_timing_missing() const = 0;
-  // The GPU times of `owner`'s frames before `frame` whose queries have
+  // The GPU times of the frames drawn from `owner` (a view) before `frame` whose queries have
   // finished (never waiting for one, so never stalling), oldest first, at most
   // out.size(); with `wait`, every frame still in flight, waiting for them.
   // Returns how many were written.
-  virtual size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) = 0;
+  virtual size_t take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) = 0;
   // The smallest GPU time the timer tells from nothing, in ms (GpuTimer::
   // resolution_ms); 0 when not known.
   virtual double gpu_timer_resolution_ms() const { return 0; }

@@ -102,7 +102,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {
     GpuSkinningRecord g{std::string(to_string(s.skinning)), bench.animation_gpu_bytes(), std::nullopt};
     if (s.skinning == SkinningSite::Baked) {
-      const CrowdBench::BakeSummary& b = bench.bake_summary();
+      const BakeSummary& b = bench.bake_summary();
       g.bake = BakeRecord{b.rate_hz, b.samples, b.bake_ms, b.max_deviation, b.max_deviation_fraction};
     }
     run.gpu_skinning = g;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/gl_errors.h"
 
 namespace crowdprof {
@@ -85,33 +85,33 @@ void GlCrowdRenderer::require(const ModeSwitches& mode) const {
                         "uniforms (mode hwskin)");
 }
 
-void GlCrowdRenderer::prepare(const CrowdBench& bench) {
+void GlCrowdRenderer::prepare(const FrameView& view) {
   bool any_compute = false, any_baked = false;
   for (size_t k = 0; k < meshes_.size(); ++k) {
-    any_compute |= bench.site_of_kind(k) == SkinningSite::Compute;
-    any_baked |= bench.site_of_kind(k) == SkinningSite::Baked;
+    any_compute |= view.characters[k].site == SkinningSite::Compute;
+    any_baked |= view.characters[k].site == SkinningSite::Baked;
   }
-  require(bench.config().mode);
+  require(view.mode);
   uint64_t bytes = 0;
   if (any_compute) {
     if (!compute_) compute_ = std::make_unique<ComputeSkinning>();
-    compute_->prepare(bench, meshes_);
+    compute_->prepare(view, meshes_);
     bytes += compute_->gpu_bytes();
   }
   if (any_baked) {
     if (!baked_) baked_ = std::make_unique<BakedSkinning>();
-    baked_->prepare(bench, meshes_);
+    baked_->prepare(view, meshes_);
     bytes += baked_->gpu_bytes();
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   glBindVertexArray(0);
   animation_gpu_bytes_ = bytes;
-  check_gl("renderer set-up for skinning " + std::string(to_string(bench.config().mode.skinning)));
+  check_gl("renderer set-up for skinning " + std::string(to_string(view.mode.skinning)));
 }
 
-void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
+void GlCrowdRenderer::draw(const FrameView& view, Counters& counters) {
   // The GPU's time for everything the frame asks of it, clear to last draw.
-  if (features_.timer_queries()) timer_.begin(&bench, bench.frames_run());
+  if (features_.timer_queries()) timer_.begin(&view, view.frame);
   framebuffer_.bind();
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -120,13 +120,13 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
   // whatever the mix.
   bool any_cpu = false, any_gpu = false, any_compute = false, any_baked = false;
   for (size_t k = 0; k < meshes_.size(); ++k) {
-    SkinningSite site = bench.site_of_kind(k);
-    any_cpu |= !bench.gpu_skinned_kind(k);
+    SkinningSite site = view.characters[k].site;
+    any_cpu |= !skins_on_gpu(view.characters[k].site);
     any_gpu |= site == SkinningSite::Gpu;
     any_compute |= site == SkinningSite::Compute;
     any_baked |= site == SkinningSite::Baked;
   }
-  const ModeSwitches& mode = bench.config().mode;
+  const ModeSwitches& mode = view.mode;
   std::array<Technique*, 4> techniques{};
   size_t count = 0;
   if (any_cpu) techniques[count++] = software_.get();
@@ -139,14 +139,14 @@ void GlCrowdRenderer::draw(const CrowdBench& bench, Counters& counters) {
     techniques[count++] = mode.draw == DrawMethod::Instanced ? static_cast<Technique*>(instanced_.get())
                                                              : static_cast<Technique*>(buffer_palette_.get());
   }
-  for (size_t t = 0; t < count; ++t) techniques[t]->draw(bench, meshes_, counters);
+  for (size_t t = 0; t < count; ++t) techniques[t]->draw(view, meshes_, counters);
   if (any_compute) {
     if (!compute_) throw GlError("compute skinning asked of a renderer not prepared for it");
-    compute_->draw(bench, meshes_, counters);
+    compute_->draw(view, meshes_, counters);
   }
   if (any_baked) {
     if (!baked_) throw GlError("baked skinning asked of a renderer not prepared for it");
-    baked_->draw(bench, meshes_, counters);
+    baked_->draw(view, meshes_, counters);
   }
   glBindVertexArray(0);
   if (features_.timer_queries()) timer_.end();
@@ -163,9 +163,9 @@ std::string GlCrowdRenderer::gpu_timing_missing() const {
   return context_.renderer() + " has no GL_TIME_ELAPSED timer (0 counter bits)";
 }
 
-size_t GlCrowdRenderer::take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) {
+size_t GlCrowdRenderer::take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) {
   if (!features_.timer_queries()) return 0;
-  size_t taken = timer_.take(&owner, frame, out, wait);
+  size_t taken = timer_.take(owner, frame, out, wait);
   check_gl("Overhead (reading GPU timer queries)");
   return taken;
 }

@@ -73,15 +73,15 @@ class GlCrowdRenderer final : public FrameRenderer {
   const GlFeatures& features() const { return features_; }
   // Modes compute and baked: builds their programs and buffers, and uploads
   // the baked tables and every copy's placement.
-  void prepare(const CrowdBench& bench) override;
+  void prepare(const FrameView& view) override;
   uint64_t animation_gpu_bytes() const override { return animation_gpu_bytes_; }
-  // Uploads and draws every copy that bench.visible() says is on screen.
+  // Uploads and draws every copy that view.visible says is on screen.
   // Throws GlError "GL error ... during Rasterizer".
-  void draw(const CrowdBench& bench, Counters& counters) override;
+  void draw(const FrameView& view, Counters& counters) override;
   // glFinish. Throws GlError "GL error ... during GPU Latency".
   void finish() override;
   std::string gpu_timing_missing() const override;
-  size_t take_gpu_times(const CrowdBench& owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;
+  size_t take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;
   double gpu_timer_resolution_ms() const override { return features_.timer_queries() ? timer_.resolution_ms() : 0; }
 
   // The last frame drawn, RGBA8, rows top to bottom.

@@ -5,7 +5,7 @@
 # apart from noise where timings cannot (issue 13: the thesis scene under mode
 # `shared`). Everything timed under Animations runs inside
 # CrowdBench::update_poses on the frame's thread; with more than one thread,
-# the work that workers take (update_state, skin_range) is added, never the
+# the work that workers take (PoseUpdater's update_state, skin_range) is added, never the
 # time a thread spends waiting (callgrind runs one thread at a time, so waits
 # spin a number of times that depends on its scheduling).
 #   Prints: instructions per frame under Animations, then the largest parts.
@@ -54,7 +54,7 @@ inclusive() {
 total=0
 for file in "$out"/cg.out-*; do
   if [[ $file == *-01 ]]; then pattern=':crowdprof::CrowdBench::update_poses\('
-  else pattern=':crowdprof::CrowdBench::(update_state|skin_range)\('; fi
+  else pattern=':crowdprof::PoseUpdater::(update_state|skin_range)\('; fi
   total=$((total + $(inclusive "$file" "$pattern")))
 done
 main=$out/cg.out-01
@@ -62,9 +62,9 @@ echo "callgrind_animations: ${options[*]}: $((total / stepped)) instructions per
 # Parts called only from the frame (the skinning and pose jobs are also run
 # at load, for the crowd's bounds, so they are told apart by their callers).
 per_frame() { echo $(($(inclusive "$main" ":crowdprof::$1") / stepped)); }
-plan=$(per_frame 'CrowdBench::plan_updates\(')
-state=$(per_frame 'CrowdBench::update_state\(')
-skin=$(per_frame 'CrowdBench::skin_vertices\(')
-echo "  on the frame's thread, per frame: plan_updates $plan (PoseSharing::take $(per_frame 'PoseSharing::take\('), release $(per_frame 'PoseSharing::release\(')),"
-echo "    evaluations $((state + $(per_frame 'CrowdBench::skin_range\('))) (skinning $skin, the rest: sampling, model and skinning matrices)"
+plan=$(per_frame 'UpdatePlanner::plan\(')
+state=$(per_frame 'PoseUpdater::update_state\(')
+skin=$(per_frame 'PoseUpdater::skin_vertices\(')
+echo "  on the frame's thread, per frame: the plan $plan (PoseSharing::take $(per_frame 'PoseSharing::take\('), release $(per_frame 'PoseSharing::release\(')),"
+echo "    evaluations $((state + $(per_frame 'PoseUpdater::skin_range\('))) (skinning $skin, the rest: sampling, model and skinning matrices)"
 echo "  callgrind's files: $out"

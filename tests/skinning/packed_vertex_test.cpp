@@ -196,7 +196,7 @@ TEST(PackedVertex, ACrowdsPackedVerticesAreItsFloatVerticesWithinTheStatedError)
   EXPECT_TRUE(floats.packed_positions(0).empty());
   EXPECT_LT(estimate_bench_bytes(character, 1000, config.mode),
             estimate_bench_bytes(character, 1000, find_mode("threaded")->switches));
-  const PositionQuantisation& q = packed.character_quantisation(0);
+  const PositionQuantisation& q = packed.view().characters[0].quantisation;
   glm::vec3 worst(0.0f);
   double worst_degrees = 0;
   for (int frame = 0; frame < 12; ++frame) {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/gl_errors.h"
 
 namespace crowdprof {
@@ -19,11 +19,11 @@ BakedSkinning::~BakedSkinning() {
   glDeleteBuffers(static_cast<GLsizei>(tables_.size()), tables_.data());
 }
 
-void BakedSkinning::prepare(const CrowdBench& bench, CharacterMeshes& meshes) {
+void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   tables_.resize(meshes.size(), 0);
   uint64_t bytes = 0;
   for (size_t k = 0; k < meshes.size(); ++k) {
-    const BakedCharacter* baked = bench.site_of_kind(k) == SkinningSite::Baked ? bench.baked(k) : nullptr;
+    const BakedCharacter* baked = view.characters[k].site == SkinningSite::Baked ? view.characters[k].baked : nullptr;
     if (!baked) continue;
     meshes.upload_rest_mesh(k);
     std::vector<glm::vec4> rows(3 * baked->matrices.size());
@@ -34,10 +34,10 @@ void BakedSkinning::prepare(const CrowdBench& bench, CharacterMeshes& meshes) {
     bytes += table_bytes;
   }
   // Copies stand still: their placements go up once.
-  size_t copies = bench.crowd().size();
+  size_t copies = view.copies();
   std::vector<glm::vec4> placements(5 * std::max<size_t>(copies, 1), glm::vec4(0));
   for (size_t i = 0; i < copies; ++i) {
-    const glm::mat4& world = bench.crowd().world[i];
+    const glm::mat4& world = view.world[i];
     for (int c = 0; c < 4; ++c) placements[5 * i + static_cast<size_t>(c)] = world[c];
     placements[5 * i + 4] = glm::vec4(copy_colour(i), 1.0f);
   }
@@ -54,18 +54,17 @@ void BakedSkinning::prepare(const CrowdBench& bench, CharacterMeshes& meshes) {
   gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
 }
 
-void BakedSkinning::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  const Crowd& crowd = bench.crowd();
+void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   // This frame's instances, grouped by character: one instanced draw each.
   records_.clear();
   first_.assign(meshes.size() + 1, 0);
   for (size_t k = 0; k < meshes.size(); ++k) {
     first_[k] = records_.size();
-    if (bench.site_of_kind(k) != SkinningSite::Baked) continue;
+    if (view.characters[k].site != SkinningSite::Baked) continue;
     if (k >= tables_.size() || !tables_[k]) throw GlError("baked skinning asked of a renderer not prepared for it");
-    for (size_t i = 0; i < crowd.size(); ++i) {
-      if (!bench.visible(i) || crowd.kind[i] != k) continue;
-      CrowdBench::BakedInstance b = bench.baked_instance(i);
+    for (size_t i = 0; i < view.copies(); ++i) {
+      if (!view.visible[i] || view.kind[i] != k) continue;
+      const BakedInstance& b = view.baked[i];
       records_.push_back({static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position});
     }
   }
@@ -79,7 +78,7 @@ void BakedSkinning::draw(const CrowdBench& bench, const CharacterMeshes& meshes,
   glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, records_.data());
   counters.bytes_uploaded += static_cast<uint64_t>(bytes);
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, bench);
+  set_frame_uniforms(program_, view);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
   for (size_t k = 0; k < meshes.size(); ++k) {

@@ -20,11 +20,11 @@ class BakedSkinning final : public Technique {
 
   // Uploads the baked tables of the characters the bench bakes, their rest
   // meshes, and every copy's placement (copies stand still).
-  void prepare(const CrowdBench& bench, CharacterMeshes& meshes);
+  void prepare(const FrameView& view, CharacterMeshes& meshes);
   // GPU storage held: tables, placements and instance records.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
-  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
 
  private:
   struct InstanceRecord {

@@ -5,7 +5,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/shader_sources.h"
 
 namespace crowdprof {
@@ -14,8 +14,8 @@ namespace {
 
 // Skinned in the vertex shader from a palette the CPU computed (hwskin, buffer,
 // instanced), not by compute or from baked samples.
-bool palette_copy(const CrowdBench& bench, size_t copy) {
-  return bench.site_of_kind(bench.crowd().kind[copy]) == SkinningSite::Gpu;
+bool palette_copy(const FrameView& view, size_t copy) {
+  return view.site_of(copy) == SkinningSite::Gpu;
 }
 
 }  // namespace
@@ -27,24 +27,23 @@ std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
   return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
 
-uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced) {
-  const Crowd& crowd = bench.crowd();
   size_t copies = 0, rows = 0;
   on_screen.assign(meshes.size(), 0);
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!palette_copy(bench, i)) continue;
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!palette_copy(view, i)) continue;
     ++copies;
-    rows += 3 * meshes[crowd.kind[i]].joints;
-    on_screen[crowd.kind[i]] += bench.visible(i);
+    rows += 3 * meshes[view.kind[i]].joints;
+    on_screen[view.kind[i]] += view.visible[i];
   }
   buffers.reserve(copies, rows, max_block_bytes);
   buffers.begin(on_screen);
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!bench.visible(i) || !palette_copy(bench, i)) continue;
-    size_t k = crowd.kind[i];
-    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
-    std::span<glm::vec4> out = buffers.add(k, crowd.world[i], static_cast<uint32_t>(i % kCopyColours.size()),
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!view.visible[i] || !palette_copy(view, i)) continue;
+    size_t k = view.kind[i];
+    std::span<const SkinMatrix> palette = view.palette(i);
+    std::span<glm::vec4> out = buffers.add(k, view.world[i], static_cast<uint32_t>(i % kCopyColours.size()),
                                            3 * meshes[k].joints);
     for (size_t j = 0; j < meshes[k].joints; ++j) put_rows(palette[j], &out[3 * j]);
   }
@@ -60,18 +59,17 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) :
   next_.resize(meshes.size());
 }
 
-void BufferPalette::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(bench, meshes, buffers_, on_screen_, max_block_bytes_, false);
+void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  uint64_t sent = send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, false);
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, bench);
+  set_frame_uniforms(program_, view);
   for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;
-  const Crowd& crowd = bench.crowd();
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!bench.visible(i) || !palette_copy(bench, i)) continue;
-    size_t k = crowd.kind[i];
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!view.visible[i] || !palette_copy(view, i)) continue;
+    size_t k = view.kind[i];
     glBindVertexArray(meshes[k].rest_vao);
     glUniform1ui(base_, buffers_.palette_base(next_[k]++));
-    glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+    glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElements(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr);
     counters.bytes_uploaded += kModelBytes;  // the palette went in `sent`

@@ -20,7 +20,7 @@ namespace crowdprof {
 // crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
 // exceed one storage block (`max_block_bytes`).
 // `on_screen` is scratch, kept by the caller so that frames allocate nothing.
-uint64_t send_palettes(const CrowdBench& bench, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced);
 
 class BufferPalette final : public Technique {
@@ -28,7 +28,7 @@ class BufferPalette final : public Technique {
   // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
   BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes);
 
-  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
 
  private:
   int64_t max_block_bytes_;

@@ -6,7 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/gl_errors.h"
 #include "render/shader_sources.h"
 
@@ -47,12 +47,12 @@ ComputeSkinning::~ComputeSkinning() {
   glDeleteBuffers(static_cast<GLsizei>(rest_storage_.size()), rest_storage_.data());
 }
 
-void ComputeSkinning::prepare(const CrowdBench& bench, const CharacterMeshes& meshes) {
+void ComputeSkinning::prepare(const FrameView& view, const CharacterMeshes& meshes) {
   rest_storage_.resize(meshes.size(), 0);
   uint64_t bytes = 0;
   size_t vertices = 1, joints = 1;
   for (size_t k = 0; k < meshes.size(); ++k) {
-    if (bench.site_of_kind(k) != SkinningSite::Compute) continue;
+    if (view.characters[k].site != SkinningSite::Compute) continue;
     const CharacterMesh& m = meshes[k];
     vertices = std::max(vertices, m.vertices);
     joints = std::max(joints, m.joints);
@@ -71,7 +71,7 @@ void ComputeSkinning::prepare(const CrowdBench& bench, const CharacterMeshes& me
     }
     bytes += m.vertices * 4 * sizeof(glm::vec4);
   }
-  size_t copies = bench.crowd().size();
+  size_t copies = view.copies();
   size_t batch = std::clamp<size_t>(kComputeBudgetBytes / (vertices * 2 * sizeof(glm::vec4)), 1, std::max<size_t>(copies, 1));
   batch = std::min<size_t>(batch, 65535);  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT[1] GL promises
   if (batch != batch_ || vertices != vertices_ || joints != joints_) {
@@ -88,28 +88,27 @@ void ComputeSkinning::prepare(const CrowdBench& bench, const CharacterMeshes& me
   gpu_bytes_ = bytes + batch_ * (joints_ * 3 + vertices_ * 2) * sizeof(glm::vec4);
 }
 
-void ComputeSkinning::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   for (size_t k = 0; k < meshes.size(); ++k)
-    if (bench.site_of_kind(k) == SkinningSite::Compute) {
-      draw_kind(bench, meshes[k], k, counters);
+    if (view.characters[k].site == SkinningSite::Compute) {
+      draw_kind(view, meshes[k], k, counters);
       counters.gpu_palette_bytes = gpu_bytes_;
     }
 }
 
-void ComputeSkinning::draw_kind(const CrowdBench& bench, const CharacterMesh& mesh, size_t k, Counters& counters) {
+void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t k, Counters& counters) {
   if (k >= rest_storage_.size() || !rest_storage_[k] || mesh.joints > joints_ || mesh.vertices > vertices_)
     throw GlError("compute skinning asked of a renderer not prepared for it");
-  const Crowd& crowd = bench.crowd();
   copies_.clear();
-  for (size_t i = 0; i < crowd.size(); ++i)
-    if (bench.visible(i) && crowd.kind[i] == k) copies_.push_back(i);
+  for (size_t i = 0; i < view.copies(); ++i)
+    if (view.visible[i] && view.kind[i] == k) copies_.push_back(i);
   auto vertices = static_cast<GLuint>(mesh.vertices);
   size_t copy_stride = mesh.vertices * 2 * sizeof(glm::vec4);
   const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4) + kModelBytes;
   for (size_t start = 0; start < copies_.size(); start += batch_) {
     size_t count = std::min(batch_, copies_.size() - start);
     for (size_t c = 0; c < count; ++c) {
-      std::span<const SkinMatrix> palette = bench.skinning_matrices(copies_[start + c]);
+      std::span<const SkinMatrix> palette = view.palette(copies_[start + c]);
       for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * (c * mesh.joints + j)]);
     }
     // Fresh storage for both buffers (orphaning): the last batch's draws may still read them.
@@ -131,13 +130,13 @@ void ComputeSkinning::draw_kind(const CrowdBench& bench, const CharacterMesh& me
     // The draws below read what the pass wrote as vertex attributes.
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
     glUseProgram(draw_program_.id());
-    set_frame_uniforms(draw_program_, bench);
+    set_frame_uniforms(draw_program_, view);
     glBindVertexArray(vao_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
     for (size_t c = 0; c < count; ++c) {
       size_t i = copies_[start + c];
       glBindVertexBuffer(0, skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
-      glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+      glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
       glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
       glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
       counters.bytes_uploaded += palette_bytes;

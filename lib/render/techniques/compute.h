@@ -19,15 +19,15 @@ class ComputeSkinning final : public Technique {
 
   // Uploads the rest mesh of each character the bench skins by compute and
   // sizes the batch buffers for its crowd.
-  void prepare(const CrowdBench& bench, const CharacterMeshes& meshes);
+  void prepare(const FrameView& view, const CharacterMeshes& meshes);
   // GPU storage held: rest meshes and batch buffers.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
   // The copies on screen whose character the bench skins by compute.
-  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
 
  private:
-  void draw_kind(const CrowdBench& bench, const CharacterMesh& mesh, size_t kind, Counters& counters);
+  void draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t kind, Counters& counters);
 
   GlProgram skin_program_, draw_program_;
   GLint vertex_count_ = -1, joint_count_ = -1, model_ = -1, colour_ = -1;

@@ -2,7 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/techniques/buffer_palette.h"
 
 namespace crowdprof {
@@ -16,10 +16,10 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.joints * 3 * sizeof(glm::vec4) + sizeof(GpuInstance);
 }
 
-void Instanced::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(bench, meshes, buffers_, on_screen_, max_block_bytes_, true);
+void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  uint64_t sent = send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, true);
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, bench);
+  set_frame_uniforms(program_, view);
   glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
                glm::value_ptr(kCopyColours[0]));
   for (size_t k = 0; k < meshes.size(); ++k) {

@@ -4,7 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "skinning/packed_vertex.h"
 
 namespace crowdprof {
@@ -60,31 +60,30 @@ uint64_t SoftwareUpload::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.vertices * 2 * sizeof(glm::vec3) + kModelBytes;
 }
 
-void SoftwareUpload::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
-  const bool packed = bench.packed_vertices();
+void SoftwareUpload::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  const bool packed = view.packed();
   const GlProgram& program = packed ? packed_program_ : float_program_;
   glUseProgram(program.id());
-  set_frame_uniforms(program, bench);
+  set_frame_uniforms(program, view);
   glBindVertexArray(packed ? packed_vao_ : float_vao_);
-  const Crowd& crowd = bench.crowd();
   size_t drawn = 0;
   shown_storage_ = SIZE_MAX;
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    if (!bench.visible(i) || bench.gpu_skinned_copy(i)) continue;
-    const CharacterMesh& mesh = meshes[crowd.kind[i]];
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!view.visible[i] || skins_on_gpu(view.site_of(i))) continue;
+    const CharacterMesh& mesh = meshes[view.kind[i]];
     if (packed)
-      draw_packed(bench, mesh, i, drawn++, counters);
+      draw_packed(view, mesh, i, drawn++, counters);
     else
-      draw_float(bench, mesh, i, drawn++, counters);
+      draw_float(view, mesh, i, drawn++, counters);
   }
 }
 
-void SoftwareUpload::draw_float(const CrowdBench& bench, const CharacterMesh& mesh, size_t i, size_t drawn,
+void SoftwareUpload::draw_float(const FrameView& view, const CharacterMesh& mesh, size_t i, size_t drawn,
                                 Counters& counters) {
   auto half = static_cast<GLsizeiptr>(mesh.vertices * sizeof(glm::vec3));
   // Animation sharing: a copy in the state the last draw uploaded draws that
   // mesh again with its own transform (the thesis scene: one upload a frame).
-  bool same_mesh = bench.config().mode.share_poses && bench.storage_of(i) == shown_storage_;
+  bool same_mesh = view.mode.share_poses && view.storage_of(i) == shown_storage_;
   GLuint buffer = same_mesh ? shown_buffer_ : stream_[drawn % stream_.size()];
   if (!same_mesh) {
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -92,22 +91,22 @@ void SoftwareUpload::draw_float(const CrowdBench& bench, const CharacterMesh& me
     // draw may still read makes the driver wait for it. llvmpipe waits even
     // for the last frame's finished draws: 2.5x the Rasterizer time without.
     glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, half, bench.skinned_positions(i).data());
-    glBufferSubData(GL_ARRAY_BUFFER, half, half, bench.skinned_normals(i).data());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, half, view.skinned_positions(i).data());
+    glBufferSubData(GL_ARRAY_BUFFER, half, half, view.skinned_normals(i).data());
     counters.bytes_uploaded += bytes_per_copy(mesh);
-    shown_storage_ = bench.storage_of(i);
+    shown_storage_ = view.storage_of(i);
     shown_buffer_ = buffer;
   }
   glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
   glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);  // part of the VAO: the copy's character's
-  glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
   glUniform3fv(float_colour_, 1, glm::value_ptr(copy_colour(i)));
   glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   ++counters.draw_calls;
 }
 
-void SoftwareUpload::draw_packed(const CrowdBench& bench, const CharacterMesh& mesh, size_t i, size_t drawn,
+void SoftwareUpload::draw_packed(const FrameView& view, const CharacterMesh& mesh, size_t i, size_t drawn,
                                  Counters& counters) {
   auto positions = static_cast<GLsizeiptr>(mesh.vertices * kPackedPositionBytes);
   auto normals = static_cast<GLsizeiptr>(mesh.vertices * kPackedNormalBytes);
@@ -116,15 +115,15 @@ void SoftwareUpload::draw_packed(const CrowdBench& bench, const CharacterMesh& m
   // Normals start on a 4-byte boundary: the words are read whole.
   GLintptr normals_at = (positions + 3) / 4 * 4;
   glBufferData(GL_ARRAY_BUFFER, normals_at + normals, nullptr, GL_STREAM_DRAW);  // orphaned, as above
-  glBufferSubData(GL_ARRAY_BUFFER, 0, positions, bench.packed_positions(i).data());
-  glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, bench.packed_normals(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, positions, view.packed_positions_of(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, view.packed_normals_of(i).data());
   glBindVertexBuffer(0, buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
   glBindVertexBuffer(1, buffer, normals_at, static_cast<GLsizei>(kPackedNormalBytes));
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
-  const PositionQuantisation& q = bench.character_quantisation(bench.crowd().kind[i]);
+  const PositionQuantisation& q = view.character_of(i).quantisation;
   glUniform3fv(packed_min_, 1, glm::value_ptr(q.min));
   glUniform3fv(packed_extent_, 1, glm::value_ptr(q.extent));
-  glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(bench.crowd().world[i]));
+  glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
   glUniform3fv(packed_colour_, 1, glm::value_ptr(copy_colour(i)));
   glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   counters.bytes_uploaded += mesh.vertices * kPackedVertexBytes + kModelBytes;

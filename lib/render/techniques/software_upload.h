@@ -21,14 +21,14 @@ class SoftwareUpload final : public Technique {
   ~SoftwareUpload() override;
 
   // The copies on screen that the CPU skinned.
-  void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
 
   // Bytes one float copy of `mesh` costs to send: positions, normals, model.
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);
 
  private:
-  void draw_float(const CrowdBench& bench, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
-  void draw_packed(const CrowdBench& bench, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  void draw_float(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  void draw_packed(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
 
   GlProgram float_program_, packed_program_;
   GLint float_model_ = -1, float_colour_ = -1;
@@ -37,7 +37,7 @@ class SoftwareUpload final : public Technique {
   // A buffer per drawn copy (positions, then normals), orphaned and refilled
   // every frame.
   std::vector<GLuint> stream_;
-  // With animation sharing, the storage (bench.storage_of) whose mesh the last
+  // With animation sharing, the storage (FrameView::storage_of) whose mesh the last
   // draw uploaded, and the buffer holding it: copies in the same state after it
   // draw that buffer with their own transform, uploading nothing.
   size_t shown_storage_ = SIZE_MAX;

@@ -24,7 +24,7 @@
 
 namespace crowdprof {
 
-class CrowdBench;
+struct FrameView;
 class CharacterMeshes;
 
 // A few colours so that neighbours in the crowd can be told apart.
@@ -49,7 +49,7 @@ std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defin
                                     const std::string& fragment_defines = {});
 
 // What every lit program takes each frame: the camera and the light.
-void set_frame_uniforms(const GlProgram& program, const CrowdBench& bench);
+void set_frame_uniforms(const GlProgram& program, const FrameView& view);
 
 // Bytes a copy's world matrix costs to send.
 inline constexpr uint64_t kModelBytes = sizeof(glm::mat4);
@@ -59,7 +59,7 @@ class Technique {
   virtual ~Technique() = default;
   // Draws this frame's copies on screen that use the technique, and adds what
   // it sent and drew to `counters` (gpu_palette_bytes: what it holds there).
-  virtual void draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) = 0;
+  virtual void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) = 0;
 };
 
 }  // namespace crowdprof

@@ -5,7 +5,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/crowd_bench.h"
+#include "frame/frame_view.h"
 #include "render/gl_errors.h"
 
 namespace crowdprof {
@@ -28,21 +28,20 @@ uint64_t UniformPalette::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.joints * 3 * sizeof(glm::vec4) + kModelBytes;
 }
 
-void UniformPalette::draw(const CrowdBench& bench, const CharacterMeshes& meshes, Counters& counters) {
+void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, bench);
-  const Crowd& crowd = bench.crowd();
-  for (size_t i = 0; i < crowd.size(); ++i) {
-    size_t k = crowd.kind[i];
-    if (!bench.visible(i) || bench.site_of_kind(k) != SkinningSite::Gpu) continue;
+  set_frame_uniforms(program_, view);
+  for (size_t i = 0; i < view.copies(); ++i) {
+    size_t k = view.kind[i];
+    if (!view.visible[i] || view.characters[k].site != SkinningSite::Gpu) continue;
     const CharacterMesh& mesh = meshes[k];
     if (!mesh.rest_vao || mesh.joints > bone_limit_)
       throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
     glBindVertexArray(mesh.rest_vao);
-    std::span<const SkinMatrix> palette = bench.skinning_matrices(i);
+    std::span<const SkinMatrix> palette = view.palette(i);
     for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * j]);
     if (mesh.joints > 0) glUniform4fv(bones_, static_cast<GLsizei>(3 * mesh.joints), glm::value_ptr(rows_[0]));
-    glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(crowd.world[i]));
+    glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
     counters.bytes_uploaded += bytes_per_copy(mesh);

@@ -1,0 +1,111 @@
+#include "frame/copy_store.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "animation/pose.h"
+#include "skinning/output_stores.h"
+#include "skinning/packed_vertex.h"
+#include "skinning/skinning.h"
+
+namespace crowdprof {
+
+namespace {
+
+size_t whole_batches(size_t vertices) { return (vertices + kSkinBatch - 1) / kSkinBatch * kSkinBatch; }
+
+// What one copy and one pose slot of a character cost.
+uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
+  uint64_t channels = 0;
+  for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  const uint64_t vertex_bytes = mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes : kFloatVertexBytes;
+  return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
+         channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
+}
+uint64_t slot_bytes(const Character& c) {
+  uint64_t channels = 0;
+  for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  // Model-space matrices are per thread, not per slot: a few KiB in all.
+  return c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4;
+}
+
+}  // namespace
+
+uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
+  uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies;
+  return c.shared_bytes() + copies * copy_bytes(c, mode) + slots * slot_bytes(c);
+}
+
+uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
+                              const ModeSwitches& mode) {
+  uint64_t bytes = 0;
+  std::vector<size_t> copies(characters.size(), 0);
+  for (const CrowdGroup& group : crowd_groups(crowd))
+    if (group.character < copies.size()) copies[group.character] += group.copies;
+  for (size_t k = 0; k < characters.size(); ++k) {
+    uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies[k];
+    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode) + slots * slot_bytes(*characters[k]);
+  }
+  return bytes;
+}
+
+CopyStore::CopyStore(std::span<const Character* const> characters, std::span<const PreparedCharacter> prepared,
+                     const Crowd& crowd, const ModeSwitches& mode) {
+  const size_t n = crowd.size();
+  times.assign(n, 0.0f);
+  visible.assign(n, 0);
+  cursors.resize(n);
+  joint_offset.resize(n);
+  vertex_offset.resize(n);
+  storage_time.assign(n, std::numeric_limits<float>::quiet_NaN());
+  size_t joints = 0, vertices = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const PreparedCharacter& p = prepared[crowd.kind[i]];
+    joint_offset[i] = joints;
+    vertex_offset[i] = vertices;
+    joints += p.joints;
+    vertices += whole_batches(p.vertices);
+    const Character& character = *characters[crowd.kind[i]];
+    if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
+  }
+  const bool shared = mode.pose == PoseStorage::SharedScratch;
+  const size_t slots = shared ? characters.size() : n;
+  poses.resize(slots);
+  slot_channels.resize(slots);
+  size_t channels = 0;
+  for (size_t s = 0; s < slots; ++s) {
+    const size_t k = shared ? s : crowd.kind[s];
+    reset_to_rest(characters[k]->skeleton, &poses[s]);
+    slot_channels[s] = channels;
+    channels += prepared[k].max_channels;
+  }
+  targets.assign(channels, -1);
+  palettes.resize(joints);
+  packed = mode.vertex_format == VertexFormat::Packed;
+  stream_output = !packed && stream_skinned_output(vertices * kFloatVertexBytes);
+  positions.resize(packed ? 0 : vertices);
+  normals.resize(packed ? 0 : vertices);
+  packed_positions.resize(packed ? 3 * vertices : 0);
+  packed_normals.resize(packed ? vertices : 0);
+  // Until a pose is computed, copies show the rest pose.
+  std::vector<std::vector<SkinMatrix>> rest_palettes;
+  for (const Character* character : characters) rest_palettes.push_back(rest_palette(*character));
+  for (size_t i = 0; i < n; ++i) {
+    const SkinnedMesh& mesh = characters[crowd.kind[i]]->mesh;
+    const std::vector<SkinMatrix>& rest = rest_palettes[crowd.kind[i]];
+    std::copy(rest.begin(), rest.end(), palettes.begin() + static_cast<std::ptrdiff_t>(joint_offset[i]));
+    const size_t v0 = vertex_offset[i];
+    if (packed) {
+      const PositionQuantisation& q = prepared[crowd.kind[i]].quantisation;
+      for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        quantise_position(q, mesh.positions[v], &packed_positions[3 * (v0 + v)]);
+        packed_normals[v0 + v] = pack_normal(mesh.normals[v]);
+      }
+      continue;
+    }
+    std::copy(mesh.positions.begin(), mesh.positions.end(), positions.begin() + static_cast<std::ptrdiff_t>(v0));
+    std::copy(mesh.normals.begin(), mesh.normals.end(), normals.begin() + static_cast<std::ptrdiff_t>(v0));
+  }
+}
+
+}  // namespace crowdprof

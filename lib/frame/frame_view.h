@@ -1,0 +1,87 @@
+// What a frame hands its renderer: spans of the crowd's data as the frame
+// left it, read-only. The renderer draws from these and calls nothing back;
+// the bench owns the arrays (they never move while it lives) and sets the
+// per-frame fields before each draw.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "animation/bake.h"
+#include "animation/skin_matrix.h"
+#include "frame/modes.h"
+#include "skinning/packed_vertex.h"
+
+namespace crowdprof {
+
+// What a character's copies share, as a renderer needs it.
+struct CharacterView {
+  SkinningSite site = SkinningSite::CpuInAnimations;  // the mode's, or the CPU over the GPU's bone limit
+  size_t joints = 0, vertices = 0;
+  const BakedCharacter* baked = nullptr;  // mode baked only
+  PositionQuantisation quantisation;      // packed vertices: the box positions are packed in
+};
+
+// Where a copy drawn with a baked table reads it this frame: its action's
+// first sample, the action's interval count and the position among them.
+struct BakedInstance {
+  uint32_t first_sample = 0, intervals = 1;
+  float position = 0.0f;
+};
+
+struct FrameView {
+  uint64_t frame = 0;  // the bench's frame number (0 for the first)
+  ModeSwitches mode;
+  glm::mat4 view_projection{1.0f};
+  std::span<const CharacterView> characters;  // per character
+  // Per copy.
+  std::span<const uint16_t> kind;          // index into characters
+  std::span<const glm::mat4> world;
+  std::span<const uint8_t> visible;        // inside the frustum this frame
+  std::span<const uint32_t> shown;         // the pose storage it draws (sharing), empty: its own
+  std::span<const BakedInstance> baked;    // mode baked: this frame's, for copies on screen
+  // Per pose storage (one per copy): where its palette and vertices start.
+  std::span<const size_t> joint_offset, vertex_offset;
+  std::span<const SkinMatrix> palettes;    // every storage's skinning matrices
+  std::span<const glm::vec3> positions, normals;  // float vertices skinned on the CPU
+  std::span<const uint16_t> packed_positions;     // packed: 3 codes a vertex
+  std::span<const uint32_t> packed_normals;
+
+  size_t copies() const { return kind.size(); }
+  const CharacterView& character_of(size_t copy) const { return characters[kind[copy]]; }
+  SkinningSite site_of(size_t copy) const { return character_of(copy).site; }
+  // Every character skinned on the GPU (vertex shader, compute or baked).
+  bool gpu_skinned() const;
+  bool packed() const { return mode.vertex_format == VertexFormat::Packed; }
+  size_t storage_of(size_t copy) const { return shown.empty() ? copy : shown[copy]; }
+  std::span<const SkinMatrix> palette(size_t copy) const {
+    return palettes.subspan(joint_offset[storage_of(copy)], character_of(copy).joints);
+  }
+  std::span<const glm::vec3> skinned_positions(size_t copy) const { return float_span(positions, copy); }
+  std::span<const glm::vec3> skinned_normals(size_t copy) const { return float_span(normals, copy); }
+  std::span<const uint16_t> packed_positions_of(size_t copy) const {
+    if (!packed()) return {};
+    return packed_positions.subspan(3 * vertex_offset[storage_of(copy)], 3 * character_of(copy).vertices);
+  }
+  std::span<const uint32_t> packed_normals_of(size_t copy) const {
+    if (!packed()) return {};
+    return packed_normals.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
+  }
+
+ private:
+  std::span<const glm::vec3> float_span(std::span<const glm::vec3> all, size_t copy) const {
+    if (packed()) return {};
+    return all.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
+  }
+};
+
+inline bool FrameView::gpu_skinned() const {
+  for (const CharacterView& c : characters)
+    if (!skins_on_gpu(c.site)) return false;
+  return true;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,84 @@
+#include "frame/prepared_character.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "animation/local_pose.h"
+#include "animation/pose.h"
+#include "animation/run_job.h"
+#include "skinning/bake_deviation.h"
+
+namespace crowdprof {
+
+std::vector<PreparedCharacter> prepare_characters(std::span<const Character* const> characters,
+                                                  std::span<const Aabb> boxes, const ModeSwitches& mode,
+                                                  size_t max_gpu_joints) {
+  std::vector<PreparedCharacter> prepared;
+  prepared.reserve(characters.size());
+  for (size_t k = 0; k < characters.size(); ++k) {
+    const Character& character = *characters[k];
+    PreparedCharacter p;
+    p.joints = character.skeleton.joint_count();
+    p.vertices = character.mesh.vertex_count();
+    p.site = mode.skinning;
+    if (p.site == SkinningSite::Gpu && p.joints > max_gpu_joints) p.site = SkinningSite::CpuInAnimations;
+    if (std::string why = build_skinning_plan(character.mesh, p.joints, &p.skinning_plan); !why.empty())
+      throw std::runtime_error("skinning plan: " + why);  // the loader checked the same: a bug if reached
+    for (const Action& action : character.actions) {
+      p.bindings.push_back(bind_action(character.skeleton, action));
+      p.max_channels = std::max(p.max_channels, action.channels.size());
+    }
+    p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
+    p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
+    prepared.push_back(std::move(p));
+  }
+  return prepared;
+}
+
+std::vector<SkinMatrix> rest_palette(const Character& character) {
+  LocalPose rest;
+  reset_to_rest(character.skeleton, &rest);
+  std::vector<glm::mat4> model(character.skeleton.joint_count());
+  run_job(LocalToModelJob{&character.skeleton, &rest, model}, "LocalToModelJob");
+  std::vector<SkinMatrix> palette(model.size());
+  run_job(SkinningMatricesJob{&character.skeleton, model, palette}, "SkinningMatricesJob");
+  return palette;
+}
+
+BakeSummary bake_characters(std::span<const Character* const> characters, float rate_hz,
+                            std::span<PreparedCharacter> prepared) {
+  BakeSummary summary;
+  summary.rate_hz = rate_hz;
+  for (size_t k = 0; k < characters.size(); ++k) {
+    const Character& character = *characters[k];
+    PreparedCharacter& p = prepared[k];
+    std::vector<std::span<const int32_t>> targets;
+    for (const ActionBindings& b : p.bindings) targets.emplace_back(b.targets);
+    auto start = std::chrono::steady_clock::now();
+    if (!bake_character(character, targets, rate_hz, &p.baked))
+      throw std::runtime_error("baking " + character.name + " failed");  // bindings sized by the loader: a bug
+    summary.bake_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (character.actions.empty()) {
+      p.baked.first_sample = {0};
+      p.baked.intervals = {1};
+      std::vector<SkinMatrix> rest = rest_palette(character);
+      p.baked.matrices = rest;
+      p.baked.matrices.insert(p.baked.matrices.end(), rest.begin(), rest.end());
+    }
+    summary.samples += p.baked.samples();
+    BakeDeviation d = measure_bake_deviation(character, targets, p.baked, p.skinning_plan);
+    summary.max_deviation = std::max(summary.max_deviation, d.model_units);
+    summary.max_deviation_fraction = std::max(summary.max_deviation_fraction, d.fraction_of_height());
+  }
+  return summary;
+}
+
+std::vector<CharacterView> character_views(std::span<const PreparedCharacter> prepared) {
+  std::vector<CharacterView> views;
+  for (const PreparedCharacter& p : prepared)
+    views.push_back({p.site, p.joints, p.vertices, p.baked.joints ? &p.baked : nullptr, p.quantisation});
+  return views;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,65 @@
+// What a bench prepares once per character and never changes while it runs:
+// sizes, where the character's copies are skinned, its actions' bindings, its
+// mesh prepared for skinning, and (mode baked) its baked actions. Shared by
+// every copy of the character (ozz-animation's runtime data).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "animation/bake.h"
+#include "animation/binding.h"
+#include "asset/character.h"
+#include "frame/frame_view.h"
+#include "frame/modes.h"
+#include "scene/bounds.h"
+#include "skinning/packed_vertex.h"
+#include "skinning/skinning_plan.h"
+
+namespace crowdprof {
+
+struct PreparedCharacter {
+  size_t joints = 0, vertices = 0, max_channels = 0;
+  // The mode's site, except that a character over the GPU's bone limit is
+  // skinned on the CPU, in Animations (thesis §4.4).
+  SkinningSite site = SkinningSite::CpuInAnimations;
+  // Has actions and is posed on the CPU (baked copies never are: the GPU reads
+  // their samples); a character without actions stands in its rest pose.
+  bool posed_on_cpu = false;
+  std::vector<ActionBindings> bindings;  // per action
+  SkinningPlan skinning_plan;            // the mesh prepared for skinning
+  BakedCharacter baked;                  // mode baked only
+  PositionQuantisation quantisation;     // packed vertices: the character's animated box
+};
+
+// Prepares each character for `mode`; `boxes` are the characters' animated
+// bounds (Crowd::character_boxes), `max_gpu_joints` the renderer's bone limit
+// for the mode (0 without a renderer). Allocates; a load-time step.
+std::vector<PreparedCharacter> prepare_characters(std::span<const Character* const> characters,
+                                                  std::span<const Aabb> boxes, const ModeSwitches& mode,
+                                                  size_t max_gpu_joints);
+
+// What baking cost and how far it strays (mode baked; zeros otherwise).
+struct BakeSummary {
+  float rate_hz = 0.0f;
+  double bake_ms = 0.0;                 // BakeJob over every action of every character
+  float max_deviation = 0.0f;           // model units, the worst character
+  float max_deviation_fraction = 0.0f;  // of that character's height, the worst character
+  uint64_t samples = 0;                 // baked palettes, all characters
+};
+
+// Mode baked, at load: bakes every character's actions at `rate_hz` into
+// prepared[k].baked (a character without actions: its rest palette twice, one
+// interval, so the shader's table has one shape) and measures the deviation.
+BakeSummary bake_characters(std::span<const Character* const> characters, float rate_hz,
+                            std::span<PreparedCharacter> prepared);
+
+// A character's skinning matrices in its rest pose. Allocates.
+std::vector<SkinMatrix> rest_palette(const Character& character);
+
+// The renderer's view of each prepared character.
+std::vector<CharacterView> character_views(std::span<const PreparedCharacter> prepared);
+
+}  // namespace crowdprof

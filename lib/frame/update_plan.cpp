@@ -1,0 +1,131 @@
+#include "frame/update_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "animation/run_job.h"
+#include "scene/screen_size.h"
+
+namespace crowdprof {
+
+UpdatePlanner::UpdatePlanner(std::span<const Character* const> characters, const Crowd& crowd,
+                             const glm::mat4& view_projection, const ModeSwitches& mode,
+                             std::vector<uint8_t> posed_on_cpu)
+    : characters_(characters), crowd_(crowd), mode_(mode), posed_on_cpu_(std::move(posed_on_cpu)) {
+  const size_t n = crowd.size();
+  jobs_.reserve(n);
+  updated_.assign(n, 0);
+  last_update_.assign(n, -1);
+  screen_fraction_.resize(n);
+  shift_.assign(n, 0);
+  const LodThresholds& lod = mode.lod;
+  for (size_t i = 0; i < n; ++i) {
+    screen_fraction_[i] = screen_height_fraction(view_projection, crowd.world_boxes[i]);
+    if (mode.update_lod) shift_[i] = lod_shift(screen_fraction_[i], lod.every_1, lod.every_2, lod.every_4);
+  }
+  if (mode.share_poses) {
+    sharing_.reset(crowd.kind, characters.size());
+    changing_copies_.resize(n);
+    changing_keys_.resize(n);
+  }
+}
+
+void UpdatePlanner::start_budget(std::span<const uint8_t> visible) {
+  if (mode_.anim_budget_ms <= 0) return;
+  std::vector<uint8_t> eligible(crowd_.size());
+  for (size_t i = 0; i < eligible.size(); ++i) eligible[i] = poses(i, visible);
+  budget_plan_ = make_budget_plan(screen_fraction_, shift_, eligible);
+}
+
+void UpdatePlanner::run_budget(const PlanInput& input) {
+  if (mode_.anim_budget_ms <= 0 || input.frame == 0) return;
+  run_job(AnimBudgetJob{&budget_plan_, mode_.anim_budget_ms, input.animations_ms, last_updates_, &schedule_.demotions},
+          "AnimBudgetJob");
+  for (size_t r = 0; r < budget_plan_.size(); ++r)
+    shift_[budget_plan_.order[r]] = budget_plan_.demoted_shift(r, schedule_.demotions);
+}
+
+std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& counters) {
+  run_budget(input);
+  jobs_.clear();
+  size_t changes = 0;  // copies taking a new state: changing_copies_, changing_keys_
+  const bool share = mode_.share_poses;
+  const double quantum = mode_.share_quantum_s;
+  const bool culling = mode_.animation_culling;
+  const uint64_t frame_number = input.frame;
+  const auto frame = static_cast<int64_t>(frame_number);
+  const std::span<const uint8_t> visible = input.visible;
+  // Tallied in locals and stored once: the loop runs per copy, every frame.
+  std::array<uint64_t, kRateCount> by_rate{}, updates_by_rate{};
+  uint64_t held = 0, longest_gap = schedule_.longest_gap, every_frame = 0, updated_every_frame = 0;
+  const size_t n = crowd_.size();
+  for (size_t i = 0; i < n; ++i) {
+    updated_[i] = 0;
+    // poses(i), with the character's part read from one byte.
+    if (!posed_on_cpu_[crowd_.kind[i]] || (culling && !visible[i])) continue;
+    const uint8_t shift = shift_[i];
+    // Most copies are updated every frame: that count lives in a register.
+    if (shift == 0) ++every_frame; else ++by_rate[shift];
+    // Copy i takes its turn at offset i: neighbours of one period alternate.
+    const int64_t last = last_update_[i];
+    if (!update_due(frame_number, last, shift, i)) {
+      ++held;
+      continue;
+    }
+    if (last >= 0) longest_gap = std::max<uint64_t>(longest_gap, frame - last);
+    last_update_[i] = frame;
+    updated_[i] = 1;
+    if (shift == 0) ++updated_every_frame; else ++updates_by_rate[shift];
+    float time = input.times[i];
+    if (quantum > 0) {
+      // The nearest multiple of the quantum from the action's start, never past its end.
+      const Action& action = characters_[crowd_.kind[i]]->actions[crowd_.action[i]];
+      double steps = std::nearbyint(static_cast<double>(time - action.start) / quantum);
+      time = std::min(action.end, action.start + static_cast<float>(steps * quantum));
+    }
+    if (!share) {
+      jobs_.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(i), time});
+      continue;
+    }
+    uint32_t bits;
+    std::memcpy(&bits, &time, sizeof bits);
+    uint64_t key = state_key(crowd_.kind[i], crowd_.action[i], bits);
+    if (sharing_.key_of(sharing_.shown(i)) == key) continue;  // still in the state it shows
+    changing_copies_[changes] = static_cast<uint32_t>(i);
+    changing_keys_[changes++] = key;
+  }
+  by_rate[0] = every_frame;
+  updates_by_rate[0] = updated_every_frame;
+  schedule_.copies_by_rate = by_rate;
+  schedule_.longest_gap = longest_gap;
+  counters.copies_held += held;
+  uint64_t updates = 0;
+  for (size_t r = 0; r < kRateCount; ++r) {
+    updates += updates_by_rate[r];
+    counters.*kUpdatesByShift[r] += updates_by_rate[r];
+  }
+  counters.copies_updated += updates;
+  last_updates_ = updates;
+  if (!share) return jobs_;
+  // Every release before any take: a state that one copy leaves and another
+  // enters this frame keeps its storage, and there is always room.
+  std::span<const uint32_t> copies = std::span(changing_copies_).first(changes);
+  sharing_.release(copies);
+  for (size_t c = 0; c < changes;) {
+    // Copies taking one key one after another (a shared action: all of them).
+    const uint64_t key = changing_keys_[c];
+    size_t end = c + 1;
+    while (end < changes && changing_keys_[end] == key) ++end;
+    bool evaluate = false;
+    uint32_t storage = sharing_.take(copies.subspan(c, end - c), key, &evaluate);
+    float time;
+    auto bits = static_cast<uint32_t>(key);
+    std::memcpy(&time, &bits, sizeof time);
+    if (evaluate) jobs_.push_back({copies[c], storage, time});
+    c = end;
+  }
+  return jobs_;
+}
+
+}  // namespace crowdprof
