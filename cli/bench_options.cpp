@@ -21,6 +21,10 @@ std::string option_name(const std::string& setting) {
   return crowdprof::option_spelling(setting);
 }
 
+std::string as_options(const crowdprof::SettingText& text) {
+  return text.str([](std::string_view setting) { return option_name(std::string(setting)); });
+}
+
 void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   using namespace crowdprof;
   o.command = &cmd;
@@ -110,10 +114,10 @@ crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const c
   RendererConfig renderer;
   std::tie(renderer.width, renderer.height) = resolution_size(o.spec.resolution);
   renderer.hide_features = gl_hide_from_environment();
-  std::string warning;
+  SettingText warning;
   BenchRendering rendering =
       open_rendering(*parse_backend(o.spec.backend), scene.characters, config.crowd.copies, renderer, &warning);
-  if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
+  if (!warning.empty()) std::cerr << "crowdprof: warning: " << as_options(warning) << "\n";
   config.renderer = rendering.renderer.get();
   return rendering;
 }

@@ -48,6 +48,9 @@ void resolve_bench_spec(BenchCliOptions& options, const crowdprof::SpecLayer* ba
 // The command-line spelling of a setting or switch: "-n/--characters",
 // "--share-quantum".
 std::string option_name(const std::string& setting);
+// A library text that names settings, each as the option the user types
+// (lib/ spells "share_quantum", the command line "--share-quantum").
+std::string as_options(const crowdprof::SettingText& text);
 
 // The headings --help lists options under: the settings' own (Crowd, Run,
 // View, GPU; frame/run_spec.h), then these.

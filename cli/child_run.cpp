@@ -26,13 +26,22 @@ std::string current_command;
 
 void set_current_command(const std::string& command) { current_command = command; }
 
+namespace {
+// An error's text with the settings it names spelled as the options the user typed.
+std::string as_typed(const std::exception& e) {
+  if (const auto* names = dynamic_cast<const NamesSettings*>(&e))
+    return names->spelled([](std::string_view setting) { return option_name(std::string(setting)); });
+  return e.what();
+}
+}  // namespace
+
 int report_current_exception() {
   try {
     throw;
   } catch (const ChildFailed& e) {
     return e.status;  // the child said why
   } catch (const InputError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
     return kExitBadInput;
   } catch (const SettingError& e) {
     // lib/ names the setting; the user typed its option.
@@ -41,13 +50,13 @@ int report_current_exception() {
               << (current_command.empty() ? "" : " (see crowdprof " + current_command + " --help)") << "\n";
     return kExitUsage;
   } catch (const UsageError& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
     return kExitUsage;
   } catch (const std::bad_alloc&) {
     std::cerr << "crowdprof: out of memory\n";
     return kExitRuntime;
   } catch (const std::exception& e) {
-    std::cerr << "crowdprof: " << e.what() << "\n";
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
     return kExitRuntime;
   }
 }

@@ -61,8 +61,8 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
     tracer->name_process(1, "mode " + config.mode_name);
     config.tracer = tracer.get();
     // Said before a long run, not after it.
-    std::string warning = trace_length_warning(spec.frames + spec.warmup, tracer->max_spans());
-    if (!warning.empty()) std::cerr << "crowdprof: warning: " << warning << "\n";
+    SettingText warning = trace_length_warning(spec.frames + spec.warmup, tracer->max_spans());
+    if (!warning.empty()) std::cerr << "crowdprof: warning: " << as_options(warning) << "\n";
   }
   CrowdBench crowd(scene.characters, config);
   RunOptions run;

@@ -65,7 +65,7 @@ int capacity(CapacityCliOptions& o) {
     throw UsageError("--max-characters " + std::to_string(o.max_characters) + ": expected 1 to 10000000");
   rule.start = static_cast<size_t>(o.start);
   rule.cap = static_cast<size_t>(o.max_characters);
-  if (std::string why = rule.Validate(); !why.empty()) throw UsageError(why);
+  if (SettingText why = rule.Validate(); !why.empty()) throw SettingsUsageError(why);
   std::optional<CapacityMetric> metric = parse_capacity_metric(o.metric);
   if (!metric)
     throw UsageError("--metric '" + o.metric + "': expected frame or a category (Animations, Rasterizer, ...)");
@@ -87,10 +87,10 @@ int capacity(CapacityCliOptions& o) {
   std::vector<BenchConfig> runnable;
   for (BenchConfig& config : configs) {
     config.renderer = rendering.renderer.get();
-    std::string why = why_cannot_run(config);
+    SettingText why = why_cannot_run(config);
     if (!why.empty()) {
-      if (named) throw UsageError(why);
-      std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
+      if (named) throw SettingsUsageError(why);
+      std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << as_options(why) << "\n";
       continue;
     }
     runnable.push_back(config);

@@ -95,10 +95,10 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
   ModeRun run;
   for (BenchConfig& config : configs) {
     config.crowd.copies = copies;
-    std::string why = why_cannot_run(config);
+    SettingText why = why_cannot_run(config);
     if (why.empty()) run.configs.push_back(config);
-    else if (named) throw UsageError(why);
-    else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << why << "\n";
+    else if (named) throw SettingsUsageError(why);
+    else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << as_options(why) << "\n";
   }
   if (run.configs.empty()) throw UsageError("none of the modes can run here");
   check_fits_in_memory(scene.characters, run.configs);  // only the modes that will run

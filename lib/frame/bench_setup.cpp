@@ -68,7 +68,8 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
   config.files = loaded.files;
   for (const Character* character : loaded.characters)
     if (character->actions.empty() && !spec.allow_static)
-      throw UsageError(character->name + " has no actions: its crowd would stand still (pass --static to bench that)");
+      throw SettingsUsageError(" has no actions: its crowd would stand still (pass {static} to bench that)",
+                               character->name);
   // The index of the action named in each character.
   auto action_index = [&](const Character& character, const std::string& file) {
     std::string names;

@@ -37,12 +37,12 @@ std::string lower(std::string text) {
 
 }  // namespace
 
-std::string CapacityRule::Validate() const {
-  if (!(budget_ms > 0) || !std::isfinite(budget_ms)) return "--budget must be a number of milliseconds above 0";
-  if (start < 1) return "--start must be at least 1";
-  if (cap < 1) return "--max-characters must be at least 1";
-  if (start > cap) return "--start must not exceed --max-characters (" + std::to_string(cap) + ")";
-  if (!(resolution >= 0 && resolution < 1)) return "--precision must be a fraction from 0 to below 1";
+SettingText CapacityRule::Validate() const {
+  if (!(budget_ms > 0) || !std::isfinite(budget_ms)) return "{budget} must be a number of milliseconds above 0";
+  if (start < 1) return "{start} must be at least 1";
+  if (cap < 1) return "{max_characters} must be at least 1";
+  if (start > cap) return "{start} must not exceed {max_characters} (" + std::to_string(cap) + ")";
+  if (!(resolution >= 0 && resolution < 1)) return "{precision} must be a fraction from 0 to below 1";
   return {};
 }
 

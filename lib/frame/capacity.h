@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "asset/errors.h"
+
 #include "profile/report.h"
 
 namespace crowdprof {
@@ -29,8 +31,9 @@ struct CapacityRule {
   size_t cap = 100'000;      // the largest N tried
   double resolution = 0.05;  // the bracket's width at which the search stops, relative to the fit
 
-  // Empty when the rule can run, else why not: "--budget must be above 0 ms".
-  std::string Validate() const;
+  // Empty when the rule can run, else why not, naming the setting: "{budget}
+  // must be a number of milliseconds above 0" (cli/ spells it --budget).
+  SettingText Validate() const;
 };
 
 // One crowd size measured for one mode.

@@ -11,14 +11,14 @@
 
 namespace crowdprof {
 
-std::string why_cannot_run(const BenchConfig& config) {
-  std::string conflict = conflicts(config.mode);
+SettingText why_cannot_run(const BenchConfig& config) {
+  SettingText conflict = conflicts(config.mode);
   if (!conflict.empty()) return conflict;
   if (skins_on_gpu(config.mode.skinning) && !config.renderer)
     return "skinning on the GPU (skinning " + std::string(to_string(config.mode.skinning)) +
-           ") needs a GL backend: --backend auto, egl or osmesa";
+           ") needs a GL backend: {backend} auto, egl or osmesa";
   if (config.mode.skinning == SkinningSite::Baked && !(config.bake_rate_hz > 0.0f && config.bake_rate_hz <= 10000.0f))
-    return "--bake-rate " + std::to_string(config.bake_rate_hz) + ": expected 0 to 10000 samples per second";
+    return "{bake_rate} " + std::to_string(config.bake_rate_hz) + ": expected 0 to 10000 samples per second";
   return {};
 }
 
@@ -27,7 +27,7 @@ CrowdBench::CrowdBench(const Character& character, const BenchConfig& config)
 
 CrowdBench::CrowdBench(std::span<const Character* const> characters, const BenchConfig& config)
     : characters_(characters.begin(), characters.end()), config_(config) {
-  if (std::string why = why_cannot_run(config); !why.empty()) throw UsageError(why);
+  if (SettingText why = why_cannot_run(config); !why.empty()) throw SettingsUsageError(why);
   if (config.renderer) config.renderer->require(config.mode);
   if (characters_.empty()) throw UsageError("a crowd needs at least one character");
   for (const CrowdGroup& group : crowd_groups(config.crowd)) {

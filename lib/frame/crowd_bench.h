@@ -73,7 +73,7 @@ struct AnimationFidelity {
 // Empty when a bench of this config can run, else why not: switches that
 // conflict, skinning on the GPU without a renderer, a bake rate that is not a
 // positive number.
-std::string why_cannot_run(const BenchConfig& config);
+SettingText why_cannot_run(const BenchConfig& config);
 
 class CrowdBench {
  public:

@@ -87,28 +87,28 @@ std::string mode_names() {
   return names;
 }
 
-std::string conflicts(const ModeSwitches& s) {
+SettingText conflicts(const ModeSwitches& s) {
   if (s.parallel && s.pose == PoseStorage::SharedScratch)
-    return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use --pose per-copy";
+    return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use {pose} per-copy";
   if (s.palettes == PaletteStorage::Buffer && !skins_on_gpu(s.skinning))
-    return "--palettes buffer holds the palettes the GPU skins with: it needs --skinning gpu, compute or baked";
+    return "{palettes} buffer holds the palettes the GPU skins with: it needs {skinning} gpu, compute or baked";
   if ((s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) && s.palettes != PaletteStorage::Buffer)
-    return "--skinning " + std::string(to_string(s.skinning)) +
-           " reads its matrices from shader storage buffers: it needs --palettes buffer";
+    return "{skinning} " + std::string(to_string(s.skinning)) +
+           " reads its matrices from shader storage buffers: it needs {palettes} buffer";
   if (s.skinning == SkinningSite::Compute && s.draw == DrawMethod::Instanced)
-    return "--skinning compute draws each copy from its own skinned vertices: it needs --draw per-copy";
+    return "{skinning} compute draws each copy from its own skinned vertices: it needs {draw} per-copy";
   if (s.skinning == SkinningSite::Baked && s.draw == DrawMethod::PerCopy)
-    return "--skinning baked draws every copy of a character in one instanced draw: it needs --draw instanced";
+    return "{skinning} baked draws every copy of a character in one instanced draw: it needs {draw} instanced";
   if (s.draw == DrawMethod::Instanced && s.skinning != SkinningSite::Gpu && s.skinning != SkinningSite::Baked)
-    return "--draw instanced draws copies that the GPU skins (CPU-skinned copies each have their own vertices): "
-           "it needs --skinning gpu or baked";
+    return "{draw} instanced draws copies that the GPU skins (CPU-skinned copies each have their own vertices): "
+           "it needs {skinning} gpu or baked";
   if (s.draw == DrawMethod::Instanced && s.palettes != PaletteStorage::Buffer)
-    return "--draw instanced reads each instance's palette from a buffer: it needs --palettes buffer";
+    return "{draw} instanced reads each instance's palette from a buffer: it needs {palettes} buffer";
   if (s.share_poses && (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked))
-    return "--share on shares the poses the CPU builds: skinning " + std::string(to_string(s.skinning)) +
+    return "{share} on shares the poses the CPU builds: skinning " + std::string(to_string(s.skinning)) +
            " is not measured with it";
   if (s.share_quantum_s > 0 && !s.share_poses)
-    return "--share-quantum snaps times so that copies share poses: it needs --share on";
+    return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
   return {};
 }
 

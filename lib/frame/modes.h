@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "asset/errors.h"
+
 namespace crowdprof {
 
 // How sampling finds the joint each channel drives (§4.2).
@@ -104,8 +106,8 @@ const ModePreset* find_mode(std::string_view name);
 std::string mode_names();
 
 // Empty when the switches can run together, else why not (e.g. a shared scratch
-// pose cannot be filled by several threads at once).
-std::string conflicts(const ModeSwitches& switches);
+// pose cannot be filled by several threads at once), naming the switches.
+SettingText conflicts(const ModeSwitches& switches);
 
 std::string_view to_string(Lookups lookups);
 std::string_view to_string(PoseStorage pose);

@@ -31,7 +31,7 @@ CheckPlan plan_check(const CheckRequest& r) {
     plan.gate.metrics = {kInstructionsMetric};
     return plan;
   }
-  if (r.timings_only && r.update_baseline) throw UsageError("--timings-only compares; it cannot record a baseline");
+  if (r.timings_only && r.update_baseline) throw SettingsUsageError("{timings_only} compares; it cannot record a baseline");
   plan.gate.metrics.clear();
   auto add = [&](const std::string& key) {
     if (std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), key) == plan.gate.metrics.end())

@@ -24,8 +24,8 @@ std::string shown(const T& value) {
 void require_same_run(const Result& baseline, const Result& current, const std::string& path) {
   auto differ = [&](const std::string& what, const std::string& a, const std::string& b) {
     if (a == b) return;
-    throw InputError(path, "the baseline is of another run: " + what + " " + a + " there, " + b +
-                               " here (rerun with the baseline's options, or record it again with --update-baseline)");
+    throw SettingsInputError(path, "the baseline is of another run: " + what + " " + a + " there, " + b + " here ",
+                             "(rerun with the baseline's options, or record it again with {update_baseline})");
   };
   const RunDescription& b = baseline.run;
   const RunDescription& c = current.run;

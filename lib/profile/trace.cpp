@@ -25,10 +25,10 @@ double microseconds(int64_t ns) { return static_cast<double>(ns) / 1000.0; }
 
 }  // namespace
 
-std::string trace_length_warning(size_t frames, size_t max_spans) {
+SettingText trace_length_warning(size_t frames, size_t max_spans) {
   constexpr size_t kMainSpansPerFrame = 1 + kCategoryCount;
   if (frames <= max_spans / kMainSpansPerFrame) return "";
-  return "--trace keeps " + std::to_string(max_spans) + " spans, about the first " +
+  return "{trace} keeps " + std::to_string(max_spans) + " spans, about the first " +
          std::to_string(max_spans / kMainSpansPerFrame) + " of these " + std::to_string(frames) +
          " frames; later spans are counted, not written";
 }

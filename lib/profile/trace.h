@@ -17,6 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "asset/errors.h"
+
 namespace crowdprof {
 
 struct TraceArg {
@@ -43,7 +45,7 @@ inline constexpr size_t kMaxTraceSpans = 1'000'000;
 // What to say before a traced run of `frames` frames (warm-up included) that
 // will pass `max_spans`: the main thread alone records a span per frame and one
 // per stage, so the estimate is low, never high. Empty when it fits.
-std::string trace_length_warning(size_t frames, size_t max_spans);
+SettingText trace_length_warning(size_t frames, size_t max_spans);
 
 class Tracer {
  public:

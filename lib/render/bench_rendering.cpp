@@ -12,7 +12,7 @@ std::string BenchRendering::renderer_name() const {
 }
 
 BenchRendering open_rendering(BackendChoice choice, std::span<const Character* const> characters, size_t copies,
-                              const RendererConfig& config, std::string* warning) {
+                              const RendererConfig& config, SettingText* warning) {
   BenchRendering rendering;
   rendering.context = open_backend(choice, warning);
   if (rendering.context)
@@ -21,7 +21,7 @@ BenchRendering open_rendering(BackendChoice choice, std::span<const Character* c
 }
 
 BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
-                              const RendererConfig& config, std::string* warning) {
+                              const RendererConfig& config, SettingText* warning) {
   const Character* one[] = {&character};
   return open_rendering(choice, one, copies, config, warning);
 }

@@ -26,8 +26,8 @@ struct BenchRendering {
 // GlUnavailable for an explicit backend that fails, UsageError for a
 // resolution the GL cannot render, GlError for shaders.
 BenchRendering open_rendering(BackendChoice choice, std::span<const Character* const> characters, size_t copies,
-                              const RendererConfig& config, std::string* warning);
+                              const RendererConfig& config, SettingText* warning);
 BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
-                              const RendererConfig& config, std::string* warning);
+                              const RendererConfig& config, SettingText* warning);
 
 }  // namespace crowdprof

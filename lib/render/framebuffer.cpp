@@ -19,7 +19,7 @@ int max_framebuffer_size() {
 Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height) {
   int limit = max_framebuffer_size();
   if (width < 1 || height < 1 || width > limit || height > limit)
-    throw UsageError("--resolution " + std::to_string(width) + "x" + std::to_string(height) +
+    throw SettingsUsageError("{resolution} " + std::to_string(width) + "x" + std::to_string(height) +
                      ": this GL renders 1 to " + std::to_string(limit) + " pixels each way");
   glGenFramebuffers(1, &framebuffer_);
   glGenRenderbuffers(1, &colour_);

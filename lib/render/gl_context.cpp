@@ -59,7 +59,7 @@ std::unique_ptr<GlContext> create_context(GlBackend backend) {
   return backend == GlBackend::Egl ? create_egl_context() : create_osmesa_context();
 }
 
-std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning, const BackendOpeners& openers) {
+std::unique_ptr<GlContext> open_backend(BackendChoice choice, SettingText* warning, const BackendOpeners& openers) {
   switch (choice) {
     case BackendChoice::None: return nullptr;
     case BackendChoice::Egl: return openers.egl();
@@ -70,12 +70,12 @@ std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warni
   try {
     return openers.egl();
   } catch (const GlUnavailable& e) {
-    egl_failure = e.what();
+    egl_failure = e.marked();
   }
   try {
     return openers.osmesa();
   } catch (const GlUnavailable& e) {
-    if (warning) *warning = "no usable GL (" + egl_failure + "; " + e.what() + "): running with --backend none";
+    if (warning) *warning = "no usable GL (" + egl_failure + "; " + e.marked() + "): running with {backend} none";
   }
   return nullptr;
 }

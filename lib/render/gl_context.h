@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "asset/errors.h"
+
 namespace crowdprof {
 
 enum class GlBackend : uint8_t { Egl, OsMesa };
@@ -73,7 +75,7 @@ struct BackendOpeners {
 // The context `choice` asks for, current. None gives null. Auto tries EGL, then
 // OSMesa, and when neither works gives null and says why in *warning (one
 // line); an explicit backend that fails throws GlUnavailable.
-std::unique_ptr<GlContext> open_backend(BackendChoice choice, std::string* warning,
+std::unique_ptr<GlContext> open_backend(BackendChoice choice, SettingText* warning,
                                         const BackendOpeners& openers = {});
 
 }  // namespace crowdprof

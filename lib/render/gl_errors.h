@@ -5,12 +5,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "asset/errors.h"
+
 namespace crowdprof {
 
-// No usable GL: no EGL display or OSMesa, or no OpenGL 4.3 core context.
-class GlUnavailable : public std::runtime_error {
+// No usable GL: no EGL display or OSMesa, or no OpenGL 4.3 core context, or
+// a feature a mode needs. With a SettingText, the text ends naming the
+// setting that would do without it.
+class GlUnavailable : public std::runtime_error, public NamesSettings {
  public:
-  using std::runtime_error::runtime_error;
+  explicit GlUnavailable(const std::string& literal) : std::runtime_error(literal), NamesSettings(literal, {}) {}
+  GlUnavailable(const std::string& literal, const SettingText& text)
+      : std::runtime_error(literal + text.str()), NamesSettings(literal, text) {}
 };
 
 // A GL error during a frame (names the error and the stage), a shader that does

@@ -25,9 +25,9 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, int64_t max_block_b
   uint64_t instance_bytes = std::max<uint64_t>(instances, 1) * sizeof(GpuInstance);
   if (palette_bytes > static_cast<uint64_t>(max_block_bytes) || instance_bytes > static_cast<uint64_t>(max_block_bytes))
     throw GlUnavailable("the palettes of this crowd need " + mib(std::max(palette_bytes, instance_bytes)) +
-                        " in one shader storage buffer; this GL allows " +
-                        mib(static_cast<uint64_t>(max_block_bytes)) +
-                        " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE): use fewer copies or --palettes uniforms");
+                            " in one shader storage buffer; this GL allows " +
+                            mib(static_cast<uint64_t>(max_block_bytes)) + " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE): ",
+                        "use fewer copies or {palettes} uniforms");
   if (instances > instances_.size()) instances_.resize(instances);
   if (rows > rows_.size()) rows_.resize(rows);
   if (!palette_buffer_) glGenBuffers(1, &palette_buffer_);

@@ -30,6 +30,7 @@ struct OsMesaApi {
   decltype(&OSMesaGetCurrentContext) get_current_context = nullptr;
   decltype(&OSMesaGetProcAddress) get_proc_address = nullptr;
   std::string problem;  // empty when every entry point was found
+  SettingText fix;      // what to do instead, naming the setting
 };
 
 template <typename Function>
@@ -42,8 +43,8 @@ OsMesaApi open_osmesa() {
   OsMesaApi api;
   void* library = dlopen(kOsMesaLibrary, RTLD_NOW | RTLD_LOCAL);
   if (!library) {
-    api.problem = std::string("OSMesa: cannot open ") + kOsMesaLibrary +
-                  " (on Debian: apt-get install libosmesa6), or use --backend egl";
+    api.problem = std::string("OSMesa: cannot open ") + kOsMesaLibrary + " (on Debian: apt-get install libosmesa6), ";
+    api.fix = "or use {backend} egl";
     return api;
   }
   // Never closed: contexts may outlive any one caller, and the process ends soon after.
@@ -58,7 +59,7 @@ OsMesaApi open_osmesa() {
 
 const OsMesaApi& osmesa() {
   static const OsMesaApi api = open_osmesa();
-  if (!api.problem.empty()) throw GlUnavailable(api.problem);
+  if (!api.problem.empty()) throw GlUnavailable(api.problem, api.fix);
   return api;
 }
 

@@ -167,15 +167,15 @@ TEST(CapacitySearch, PartialPointsAreLeftOut) {
 }
 
 TEST(CapacitySearch, RulesAndMetrics) {
-  EXPECT_EQ(rule_of(16.6, 10, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(0, 10, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(-1, 10, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(NAN, 10, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(INFINITY, 10, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(16.6, 0, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(16.6, 200, 100, 0.05).Validate(), "");
-  EXPECT_NE(rule_of(16.6, 10, 100, 1.0).Validate(), "");
-  EXPECT_NE(rule_of(16.6, 10, 100, -0.1).Validate(), "");
+  EXPECT_EQ(rule_of(16.6, 10, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(0, 10, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(-1, 10, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(NAN, 10, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(INFINITY, 10, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(16.6, 0, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(16.6, 200, 100, 0.05).Validate().str(), "");
+  EXPECT_NE(rule_of(16.6, 10, 100, 1.0).Validate().str(), "");
+  EXPECT_NE(rule_of(16.6, 10, 100, -0.1).Validate().str(), "");
 
   EXPECT_FALSE(parse_capacity_metric("frame")->category);
   EXPECT_EQ(parse_capacity_metric("Animations")->category, Category::Animations);

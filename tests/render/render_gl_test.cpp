@@ -153,8 +153,8 @@ TEST(RenderGl, FramebufferSizeLimits) {
   try {
     Framebuffer too_big(limit + 1, 90);
     FAIL() << "a framebuffer past GL_MAX_RENDERBUFFER_SIZE";
-  } catch (const UsageError& e) {
-    EXPECT_TRUE(contains(e.what(), "--resolution")) << e.what();
+  } catch (const SettingsUsageError& e) {
+    EXPECT_TRUE(contains(e.what(), "resolution")) << e.what();  // the setting: cli/ spells --resolution
     EXPECT_TRUE(contains(e.what(), std::to_string(limit))) << e.what();
   }
   Framebuffer small(17, 5);
@@ -172,16 +172,18 @@ TEST(RenderGl, AutoFallsBackToNoneSayingWhy) {
   BackendOpeners broken;
   broken.egl = []() -> std::unique_ptr<GlContext> { throw GlUnavailable("EGL: no display here"); };
   broken.osmesa = []() -> std::unique_ptr<GlContext> { throw GlUnavailable("OSMesa: no context here"); };
-  std::string warning;
-  EXPECT_EQ(open_backend(BackendChoice::Auto, &warning, broken), nullptr);
+  SettingText marked;
+  EXPECT_EQ(open_backend(BackendChoice::Auto, &marked, broken), nullptr);
+  std::string warning = marked.str();  // the library's terms: the setting, not the option
   EXPECT_TRUE(contains(warning, "EGL: no display here")) << warning;
   EXPECT_TRUE(contains(warning, "OSMesa: no context here")) << warning;
-  EXPECT_TRUE(contains(warning, "--backend none")) << warning;
+  EXPECT_TRUE(contains(warning, "backend none")) << warning;
+  EXPECT_FALSE(contains(warning, "--backend")) << warning;
   EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;  // one line
   // Asked for by name, a backend that fails is an error, not a fallback.
-  EXPECT_THROW(open_backend(BackendChoice::Egl, &warning, broken), GlUnavailable);
-  EXPECT_THROW(open_backend(BackendChoice::OsMesa, &warning, broken), GlUnavailable);
-  warning.clear();
-  EXPECT_EQ(open_backend(BackendChoice::None, &warning, broken), nullptr);
-  EXPECT_TRUE(warning.empty());
+  EXPECT_THROW(open_backend(BackendChoice::Egl, &marked, broken), GlUnavailable);
+  EXPECT_THROW(open_backend(BackendChoice::OsMesa, &marked, broken), GlUnavailable);
+  marked = {};
+  EXPECT_EQ(open_backend(BackendChoice::None, &marked, broken), nullptr);
+  EXPECT_TRUE(marked.empty());
 }

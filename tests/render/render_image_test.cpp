@@ -247,7 +247,7 @@ TEST(RenderImage, HardwareSkinningNeedsARenderer) {
   try {
     CrowdBench bench(humanoid(), config);
     FAIL() << "hwskin ran without a renderer";
-  } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("--backend"), std::string::npos) << e.what();
+  } catch (const SettingsUsageError& e) {
+    EXPECT_NE(e.marked().find("needs a GL backend: {backend} auto"), std::string::npos) << e.marked();
   }
 }
