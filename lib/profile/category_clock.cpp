@@ -12,6 +12,8 @@ constexpr std::array<std::string_view, kCategoryCount> kColumns = {
 }  // namespace
 
 std::string_view category_name(Category category) { return kNames[static_cast<size_t>(category)]; }
+std::string series_name(Category category) { return std::string(category_column(category)) + "_ms"; }
+
 std::string_view category_column(Category category) { return kColumns[static_cast<size_t>(category)]; }
 
 double FrameTimes::total_ms() const {

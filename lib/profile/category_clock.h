@@ -27,9 +27,12 @@ inline constexpr size_t kCategoryCount = 10;
 
 // "Physics", ..., "GPU Latency": the names the BGE printed.
 std::string_view category_name(Category category);
-// Names as used in CSV/JSON keys: the same, with the space of "GPU Latency" kept
-// in JSON and made "gpu_latency" in CSV columns (see docs/formats.md).
+// The name in lower case, "GPU Latency" as "gpu_latency".
 std::string_view category_column(Category category);
+// The category's series of per-frame milliseconds, one name in CSV columns,
+// JSON keys and metric names alike (result format 2): "animations_ms",
+// "gpu_latency_ms". Format 1 keyed JSON by category_name().
+std::string series_name(Category category);
 
 // Milliseconds per category for one frame; their sum is the frame time.
 struct FrameTimes {

@@ -89,12 +89,16 @@ double floor_ms(const Floor& floor, double frame_ms) {
 }
 
 std::string metric_display_name(const std::string& key) {
-  return key == "frame_ms" ? "frame" : key == "cpu_ms" ? "cpu" : key;
+  if (key == "frame_ms") return "frame";
+  if (key == "cpu_ms") return "cpu";
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (key == series_name(static_cast<Category>(c))) return std::string(category_name(static_cast<Category>(c)));
+  return key;
 }
 
 std::vector<std::string> all_metrics() {
   std::vector<std::string> keys = {"frame_ms"};
-  for (size_t c = 0; c < kCategoryCount; ++c) keys.emplace_back(category_name(static_cast<Category>(c)));
+  for (size_t c = 0; c < kCategoryCount; ++c) keys.emplace_back(series_name(static_cast<Category>(c)));
   return keys;
 }
 
@@ -105,8 +109,9 @@ std::string resolve_metric(std::string_view name) {
   std::string choices = "frame, cpu";
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
-    if (wanted == lower(category_name(category)) || wanted == category_column(category))
-      return std::string(category_name(category));
+    if (wanted == lower(category_name(category)) || wanted == category_column(category) ||
+        wanted == series_name(category))
+      return series_name(category);
     choices += ", " + std::string(category_name(category));
   }
   throw SettingError("metric", std::string(name), "expected one of " + choices);

@@ -25,7 +25,7 @@ std::vector<double> frame_ms(const RunReport& run) {
 nlohmann::json medians_json(const ModeMedians& m, const RunReport& run) {
   nlohmann::json categories;
   for (size_t c = 0; c < kCategoryCount; ++c)
-    categories[std::string(category_name(static_cast<Category>(c)))] = m.category_ms[c];
+    categories[series_name(static_cast<Category>(c))] = m.category_ms[c];
   nlohmann::json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
                       {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
                       {"speedup", m.speedup}, {"digest", run.digest}};

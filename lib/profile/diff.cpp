@@ -80,7 +80,7 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
     if (metric_samples(ra, "cpu_ms") && metric_samples(rb, "cpu_ms")) mine.metrics.push_back("cpu_ms");
     mine.metrics.push_back("frame_ms");
     for (size_t c = 0; c < kCategoryCount; ++c) {
-      std::string key(category_name(static_cast<Category>(c)));
+      const std::string key = series_name(static_cast<Category>(c));
       if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) mine.metrics.push_back(key);
     }
     pair.check = check_results(ra, rb, mine);

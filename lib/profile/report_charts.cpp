@@ -79,7 +79,7 @@ StackedArea categories_chart(const ReportRun& run) {
   chart.x = frame_numbers(run.result.frames());
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
-    std::vector<double> ms = result_samples(run.result, std::string(category_name(category)));
+    std::vector<double> ms = result_samples(run.result, series_name(category));
     if (std::none_of(ms.begin(), ms.end(), [](double v) { return v > 0; })) continue;
     chart.layers.push_back({std::string(category_name(category)), category_colour(category), std::move(ms)});
   }
@@ -91,7 +91,7 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs) {
   for (const ReportRun& run : runs) {
     medians.emplace_back();
     for (size_t c = 0; c < kCategoryCount; ++c)
-      medians.back()[c] = quantile(result_samples(run.result, std::string(category_name(static_cast<Category>(c)))), 0.5);
+      medians.back()[c] = quantile(result_samples(run.result, series_name(static_cast<Category>(c))), 0.5);
   }
   StackedBars chart{"Median time per category, modes side by side: " +
                         (runs.empty() ? std::string() : scene_caption(runs.front().result)),

@@ -23,14 +23,14 @@ const std::vector<double>* metric_samples(const Result& result, std::string_view
   if (key == "cpu_ms") return s.cpu_ms.empty() ? nullptr : &s.cpu_ms;
   if (key == "gpu_ms") return s.gpu_ms.empty() ? nullptr : &s.gpu_ms;
   for (size_t c = 0; c < kCategoryCount; ++c)
-    if (key == category_name(static_cast<Category>(c))) return &s.category_ms[c];
+    if (key == series_name(static_cast<Category>(c))) return &s.category_ms[c];
   return nullptr;
 }
 
 std::vector<std::string> recorded_metrics(const Result& result) {
   std::vector<std::string> keys = {"frame_ms"};
   if (!result.samples.cpu_ms.empty()) keys.emplace_back("cpu_ms");
-  for (size_t c = 0; c < kCategoryCount; ++c) keys.emplace_back(category_name(static_cast<Category>(c)));
+  for (size_t c = 0; c < kCategoryCount; ++c) keys.emplace_back(series_name(static_cast<Category>(c)));
   if (!finite(result.samples.gpu_ms).empty()) keys.emplace_back("gpu_ms");
   return keys;
 }

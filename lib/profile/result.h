@@ -20,9 +20,13 @@
 
 namespace crowdprof {
 
-// The "crowdprof.format" this version writes; the codec reads it and refuses
-// any other with a line saying which it reads.
-inline constexpr int kResultFormat = 1;
+// The "crowdprof.format" this version writes; the codec reads it and the
+// older ones below, and refuses any other with a line saying which it reads.
+inline constexpr int kResultFormat = 2;
+// Format 1 (crowdprof before 2026-11-26) keyed categories by the BGE's names
+// ("Animations", "GPU Latency"); format 2 by their series ("animations_ms"),
+// as CSV columns and metrics are. Both are read.
+inline constexpr int kOldestResultFormat = 1;
 
 // Most runs a result may pool (check --runs).
 inline constexpr size_t kMaxRuns = 100;

@@ -236,10 +236,11 @@ void read_header(const Reader& in, const json& doc, Result& r) {
     in.fail("not a crowdprof result (no \"crowdprof.format\")");
   int64_t format = doc["crowdprof"]["format"].get<int64_t>();
   const json& version = doc["crowdprof"].contains("version") ? doc["crowdprof"]["version"] : json();
-  if (format != kResultFormat)
+  if (format < kOldestResultFormat || format > kResultFormat)
     in.fail("result format " + std::to_string(format) + " (crowdprof " +
-            (version.is_string() ? version.get<std::string>() : std::string("?")) + "); this crowdprof reads format " +
-            std::to_string(kResultFormat) + ": record it again with this version");
+            (version.is_string() ? version.get<std::string>() : std::string("?")) + "); this crowdprof reads formats " +
+            std::to_string(kOldestResultFormat) + " to " + std::to_string(kResultFormat) +
+            ": record it again with this version");
   r.format = static_cast<int>(format);
   r.environment.version = in.text_or("/crowdprof/version", "?");
   r.environment.commit = in.text_or("/crowdprof/commit", "?");
@@ -357,6 +358,19 @@ void read_mode(const Reader& in, Result& r) {
   }
 }
 
+// A category's key in "samples" (and "categories", "runs"): format 1 wrote
+// the BGE's name ("GPU Latency"), format 2 the series' ("gpu_latency_ms").
+std::string series_key(int format, Category category) {
+  return format < 2 ? std::string(category_name(category)) : series_name(category);
+}
+
+// A format-1 metric key as format 2 names it ("Animations" -> "animations_ms").
+std::string series_of_format1_key(const std::string& key) {
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (key == category_name(static_cast<Category>(c))) return series_name(static_cast<Category>(c));
+  return key;
+}
+
 void read_samples(const Reader& in, Result& r) {
   uint64_t frames = in.count("/frames");
   if (frames == 0) in.fail("a result of 0 frames");
@@ -366,7 +380,7 @@ void read_samples(const Reader& in, Result& r) {
   // CPU time per frame arrived within format 1: read when present.
   if (in.has("/samples/cpu_ms")) s.cpu_ms = in.samples("/samples/cpu_ms", frames);
   for (size_t c = 0; c < kCategoryCount; ++c)
-    s.category_ms[c] = in.samples("/samples/" + std::string(category_name(static_cast<Category>(c))), frames);
+    s.category_ms[c] = in.samples("/samples/" + series_key(r.format, static_cast<Category>(c)), frames);
   if (in.has("/samples/gpu_ms") && !in.at("/samples/gpu_ms").is_null())
     s.gpu_ms = in.samples("/samples/gpu_ms", frames, true);
   // No frame timed reads as not timed, as it is written.
@@ -401,9 +415,10 @@ void read_runs(const Reader& in, Result& r) {
   if (pool.count == 0 || pool.count > kMaxRuns)
     in.fail("\"runs.count\" should be 1 to " + std::to_string(kMaxRuns));
   const json& medians = in.object("/runs/median_ms");
-  for (const auto& [key, values] : medians.items()) {
-    std::string where = "/runs/median_ms/" + key;
-    if (!metric_samples(r, key)) in.fail("\"runs.median_ms." + key + "\" is not a metric of \"samples\"");
+  for (const auto& [written, values] : medians.items()) {
+    std::string where = "/runs/median_ms/" + written;
+    const std::string key = r.format < 2 ? series_of_format1_key(written) : written;
+    if (!metric_samples(r, key)) in.fail("\"runs.median_ms." + written + "\" is not a metric of \"samples\"");
     in.require(values.is_array() && values.size() == pool.count, where, "an array of one median per run");
     pool.median_ms[key] = in.samples(where, pool.count);
   }
@@ -494,7 +509,7 @@ nlohmann::json result_to_json(const Result& r) {
     samples["cpu_ms"] = s.cpu_ms;
   }
   for (size_t c = 0; c < kCategoryCount; ++c) {
-    std::string name(category_name(static_cast<Category>(c)));
+    const std::string name = series_name(static_cast<Category>(c));
     j["categories"][name] = summary_json(s.category_ms[c]);
     samples[name] = s.category_ms[c];
   }

@@ -16,9 +16,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "profile/category_clock.h"
 #include "test_support.h"
 
 using nlohmann::json;
+using crowdprof::Category;
+using crowdprof::kCategoryCount;
+using crowdprof::category_name;
+using crowdprof::series_name;
 namespace fs = std::filesystem;
 
 namespace {
@@ -114,9 +119,9 @@ void expect_clean_page(const std::string& dom, const std::string& what) {
 
 std::vector<std::string> categories_with_time(const json& run) {
   std::vector<std::string> out;
-  for (const char* name : {"Physics", "Logic", "Animations", "Network", "Scenegraph", "Rasterizer", "Services",
-                           "Overhead", "Outside", "GPU Latency"}) {
-    const json& samples = run["samples"][name];
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    const std::string name(category_name(static_cast<Category>(c)));
+    const json& samples = run["samples"][series_name(static_cast<Category>(c))];
     if (std::any_of(samples.begin(), samples.end(), [](const json& v) { return v.get<double>() > 0; }))
       out.push_back(name);
   }

@@ -196,8 +196,8 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   EXPECT_EQ(j["scene"]["characters"], 12);
   EXPECT_EQ(j["scene"]["joints"], 30);
   EXPECT_EQ(j["categories"].size(), kCategoryCount);
-  for (const char* name : {"Physics", "Logic", "Animations", "Network", "Scenegraph", "Rasterizer", "Services",
-                           "Overhead", "Outside", "GPU Latency"})
+  for (const char* name : {"physics_ms", "logic_ms", "animations_ms", "network_ms", "scenegraph_ms", "rasterizer_ms",
+                           "services_ms", "overhead_ms", "outside_ms", "gpu_latency_ms"})
     for (const char* field : {"min_ms", "median_ms", "mean_ms", "p95_ms", "max_ms", "stddev_ms"})
       EXPECT_TRUE(j["categories"][name].contains(field)) << name << " " << field;
   EXPECT_EQ(j["counters"]["poses_updated"], 12);

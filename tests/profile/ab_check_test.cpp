@@ -157,7 +157,7 @@ TEST(AbGate, MetricsAreHolmCorrectedTogether) {
   ASSERT_EQ(result.metrics.size(), 2u);
   EXPECT_GE(result.metrics[0].p_adjusted, result.metrics[0].test.p);
   EXPECT_THROW(judge_ab({}, options), std::invalid_argument);
-  options.metrics = {"Animations"};
+  options.metrics = {"animations_ms"};
   EXPECT_THROW(judge_ab(groups(1.0), options), std::invalid_argument);
 }
 

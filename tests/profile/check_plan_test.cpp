@@ -26,7 +26,7 @@ TEST(CheckPlan, Defaults) {
 TEST(CheckPlan, MetricsResolveOnceEach) {
   CheckRequest request;
   request.metrics = {"frame", "Animations", "frame_ms", "animations"};
-  EXPECT_EQ(plan_check(request).gate.metrics, (std::vector<std::string>{"frame_ms", "Animations"}));
+  EXPECT_EQ(plan_check(request).gate.metrics, (std::vector<std::string>{"frame_ms", "animations_ms"}));
   request.metrics = {"all", "frame"};
   CheckPlan all = plan_check(request);
   EXPECT_EQ(all.gate.metrics, all_metrics());

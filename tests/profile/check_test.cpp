@@ -68,9 +68,10 @@ TEST(Check, ToleranceParsesPercentagesAndFractions) {
 
 TEST(Check, MetricsByCategoryOrColumnName) {
   EXPECT_EQ(resolve_metric("frame"), "frame_ms");
-  EXPECT_EQ(resolve_metric("Animations"), "Animations");
-  EXPECT_EQ(resolve_metric("rasterizer"), "Rasterizer");
-  EXPECT_EQ(resolve_metric("gpu_latency"), "GPU Latency");
+  EXPECT_EQ(resolve_metric("Animations"), "animations_ms");
+  EXPECT_EQ(resolve_metric("rasterizer"), "rasterizer_ms");
+  EXPECT_EQ(resolve_metric("gpu_latency"), "gpu_latency_ms");
+  EXPECT_EQ(resolve_metric("gpu_latency_ms"), "gpu_latency_ms");
   EXPECT_THROW(resolve_metric("Anim"), UsageError);
 }
 
@@ -132,7 +133,7 @@ TEST(Check, EitherConditionAloneDoesNotFail) {
 TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
   Result baseline = result_from_json(small_result(), "fresh");
   CheckOptions options;
-  options.metrics = {"frame_ms", "Animations"};
+  options.metrics = {"frame_ms", "animations_ms"};
   CheckResult same = check_results(baseline, baseline, options);
   EXPECT_FALSE(same.regressed());
   EXPECT_NE(format_check(same, options).find("counters and digest match"), std::string::npos);
@@ -178,9 +179,9 @@ TEST(Check, BrokenBaselinesAreInputErrors) {
   std::ofstream(dir / "words.json") << "baseline: fast";
   std::ofstream(dir / "empty.json") << "";
   json future = good;
-  future["crowdprof"]["format"] = 2;
+  future["crowdprof"]["format"] = 3;
   json short_samples = good;
-  short_samples["samples"]["Animations"].erase(0);
+  short_samples["samples"]["animations_ms"].erase(0);
   json negative = good;
   negative["samples"]["frame_ms"][0] = -1.0;
   json no_digest = good;

@@ -52,10 +52,10 @@ TEST(Gate, AMicrosecondCategoryCannotFailOverTheFloor) {
   // and significant, in a frame of 1 ms.
   std::vector<double> before = spread_around(0.003, 120), after = spread_around(0.004, 120);
   CheckOptions options;
-  MetricCheck no_floor = check_metric("Scenegraph", before, after, options, 0.0);
+  MetricCheck no_floor = check_metric("scenegraph_ms", before, after, options, 0.0);
   EXPECT_TRUE(no_floor.significant);
   EXPECT_TRUE(no_floor.regressed);
-  MetricCheck floored = check_metric("Scenegraph", before, after, options, floor_ms(options.floor, 1.0));
+  MetricCheck floored = check_metric("scenegraph_ms", before, after, options, floor_ms(options.floor, 1.0));
   EXPECT_TRUE(floored.significant);
   EXPECT_TRUE(floored.beyond_tolerance);
   EXPECT_FALSE(floored.beyond_floor);

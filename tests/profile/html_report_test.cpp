@@ -139,7 +139,7 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
   std::vector<double> slower(30, 3.0);
   json current = fake_result("threaded", 40, slower);
   CheckOptions options;
-  options.metrics = {"frame_ms", "Animations", "Rasterizer"};
+  options.metrics = {"frame_ms", "animations_ms", "rasterizer_ms"};
   HtmlReportInput input;
   add_result_document(input, current, "current");
   input.check = CheckSection{check_results(result_from_json(base, "base.json"), result_from_json(current, "current"), options),

@@ -19,9 +19,9 @@ TEST(Percentiles, TheTableShowsTheSlowFramesInOneLine) {
   EXPECT_DOUBLE_EQ(j["frame"]["p50_ms"].get<double>(), 50.5);
   EXPECT_NEAR(j["frame"]["p99_ms"].get<double>(), 99.01, 1e-9);
   EXPECT_DOUBLE_EQ(j["frame"]["max_ms"].get<double>(), 100.0);
-  EXPECT_NEAR(j["categories"]["Animations"]["p95_ms"].get<double>(), 0.75 * 95.05, 1e-9);
-  EXPECT_NEAR(j["categories"]["Rasterizer"]["p99_ms"].get<double>(), 0.25 * 99.01, 1e-9);
-  EXPECT_DOUBLE_EQ(j["categories"]["Animations"]["max_ms"].get<double>(), 75.0);
+  EXPECT_NEAR(j["categories"]["animations_ms"]["p95_ms"].get<double>(), 0.75 * 95.05, 1e-9);
+  EXPECT_NEAR(j["categories"]["rasterizer_ms"]["p99_ms"].get<double>(), 0.25 * 99.01, 1e-9);
+  EXPECT_DOUBLE_EQ(j["categories"]["animations_ms"]["max_ms"].get<double>(), 75.0);
   ASSERT_TRUE(j.contains("cpu"));
   EXPECT_TRUE(j["cpu"].contains("p99_ms"));
 }

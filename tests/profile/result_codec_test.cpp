@@ -60,7 +60,10 @@ TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
     ++files;
     SCOPED_TRACE(entry.path().filename().string());
     Result read = read_result(entry.path().string());
-    EXPECT_EQ(read.format, 1);
+    EXPECT_EQ(read.format, entry.path().filename().string().starts_with("format2") ? 2 : 1);
+    // Either format's categories are found by their series.
+    ASSERT_NE(metric_samples(read, "animations_ms"), nullptr);
+    EXPECT_GT(metric_median(read, "animations_ms"), 0.0);
     EXPECT_EQ(read.run.characters, 4u);
     EXPECT_EQ(read.run.mode, "culled");
     EXPECT_TRUE(read.run.switches.animation_culling);
@@ -70,7 +73,7 @@ TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
     json again = result_to_json(read);
     EXPECT_EQ(result_to_json(result_from_json(again, "again.json")), again);
   }
-  EXPECT_EQ(files, 2u);
+  EXPECT_EQ(files, 3u);
   // The early one lacks what came later within format 1, and says so.
   Result early = read_result((results_dir() / "format1-early.json").string());
   EXPECT_EQ(metric_samples(early, "cpu_ms"), nullptr);
@@ -81,9 +84,11 @@ TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
 
 TEST(ResultCodec, AnotherFormatIsRefusedWithTheFormatItReads) {
   json doc = to_json(test::fake_run("culled", 4, {1.0, 1.0, 1.0}));
-  doc["crowdprof"]["format"] = 2;
-  EXPECT_NE(refusal(doc).find("result format 2"), std::string::npos) << refusal(doc);
-  EXPECT_NE(refusal(doc).find("this crowdprof reads format 1"), std::string::npos) << refusal(doc);
+  doc["crowdprof"]["format"] = 3;
+  EXPECT_NE(refusal(doc).find("result format 3"), std::string::npos) << refusal(doc);
+  EXPECT_NE(refusal(doc).find("this crowdprof reads formats 1 to 2"), std::string::npos) << refusal(doc);
+  doc["crowdprof"]["format"] = 0;
+  EXPECT_NE(refusal(doc).find("result format 0"), std::string::npos) << refusal(doc);
 }
 
 TEST(ResultCodec, ABadFieldIsNamed) {
@@ -97,7 +102,7 @@ TEST(ResultCodec, ABadFieldIsNamed) {
   const Case cases[] = {
       {"/scene/characters", json(-4), "\"scene.characters\" should be a whole number"},
       {"/samples/frame_ms", json::array({1.0, 1.0}), "has 2 values for 3 frames"},
-      {"/samples/Animations/0", json(-1.0), "finite, non-negative milliseconds"},
+      {"/samples/animations_ms/0", json(-1.0), "finite, non-negative milliseconds"},
       {"/counters/draw_calls", json("none"), "\"counters.draw_calls\" should be a whole number"},
       {"/scene/lens", json("wide"), "\"scene.lens\" should be an object"},
       {"/instructions", json::object({{"per_frame", "many"}}), "\"instructions.per_frame\" should be a number"},
@@ -118,11 +123,11 @@ TEST(ResultCodec, ABadFieldIsNamed) {
 TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
-  ASSERT_NE(metric_samples(r, "Animations"), nullptr);
+  ASSERT_NE(metric_samples(r, "animations_ms"), nullptr);
   EXPECT_EQ(metric_samples(r, "gpu_ms"), nullptr);  // nothing timed on the GPU
-  EXPECT_EQ(metric_samples(r, "animations"), nullptr);  // keys, not the names users type
+  EXPECT_EQ(metric_samples(r, "Animations"), nullptr);  // series, not the names users type
   EXPECT_DOUBLE_EQ(metric_median(r, "frame_ms"), 2.0);
-  EXPECT_DOUBLE_EQ(metric_median(r, "Animations"), 1.0);
+  EXPECT_DOUBLE_EQ(metric_median(r, "animations_ms"), 1.0);
   std::vector<std::string> keys = recorded_metrics(r);
   EXPECT_EQ(keys.front(), "frame_ms");
   EXPECT_EQ(std::count(keys.begin(), keys.end(), "gpu_ms"), 0);

@@ -51,7 +51,7 @@ for n in $sizes; do
     fi
     jq -r --arg mode "$mode" --arg n "$n" '
       def ms: if . == null then "n/a" else (. * 100 | round / 100 | tostring) end;
-      "| \($mode) | \($n) | \(.frame.median_ms | ms) | \(.categories.Animations.median_ms | ms) | \(.categories.Rasterizer.median_ms | ms) | \(.categories["GPU Latency"].median_ms | ms) | \(.cpu.median_ms | ms) | \(if .gpu_time.available then (.gpu_time.median_ms | ms) else "n/a (" + .gpu_time.reason + ")" end) | \(.counters.draw_calls) | \(.counters.bytes_uploaded) | \(.counters.gpu_palette_bytes // 0) | \(.counters.copies_fallback) |"' "$json"
+      "| \($mode) | \($n) | \(.frame.median_ms | ms) | \(.categories.animations_ms.median_ms | ms) | \(.categories.rasterizer_ms.median_ms | ms) | \(.categories.gpu_latency_ms.median_ms | ms) | \(.cpu.median_ms | ms) | \(if .gpu_time.available then (.gpu_time.median_ms | ms) else "n/a (" + .gpu_time.reason + ")" end) | \(.counters.draw_calls) | \(.counters.bytes_uploaded) | \(.counters.gpu_palette_bytes // 0) | \(.counters.copies_fallback) |"' "$json"
   done
 done
 echo

@@ -36,8 +36,8 @@ for copies in copies_list:
         gpu = r.get("gpu_time", {}).get("median_ms") if isinstance(r.get("gpu_time"), dict) else None
         dev = (f'{g["max_deviation"]:.4g} ({100 * g["max_deviation_fraction"]:.3f}% of height)'
                if "max_deviation" in g else "")
-        print(f'| {mode} | {copies} | {r["frame"]["median_ms"]:.1f} | {c["Animations"]["median_ms"]:.1f} | '
-              f'{c["Rasterizer"]["median_ms"]:.1f} | {c["GPU Latency"]["median_ms"]:.1f} | '
+        print(f'| {mode} | {copies} | {r["frame"]["median_ms"]:.1f} | {c["animations_ms"]["median_ms"]:.1f} | '
+              f'{c["rasterizer_ms"]["median_ms"]:.1f} | {c["gpu_latency_ms"]["median_ms"]:.1f} | '
               f'{"n/a" if gpu is None else f"{gpu:.2f}"} | {k["draw_calls"]} | {k["bytes_uploaded"]} | '
               f'{g.get("gpu_bytes", "")} | {g.get("bake_ms", "") and round(g["bake_ms"], 1)} | {dev} |')
 print(f"renderer: {r['environment']['renderer']}; JSON in {out}")
