@@ -659,13 +659,13 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
   cmd->add_option("--confirm", options->confirm,
                   "When a timed metric fails and the work is the same, measure again this many times and fail only if "
-                  "each fails too (a machine shared with other jobs is slow for seconds at a time); 0: fail at once")
-      ->check(CLI::Range(0, 10))
+                  "each fails too (a machine shared with other jobs is slow for seconds at a time); 0 to 10, 0: fail at once")
+      ->check(CLI::Range(0, 10).description(""))
       ->capture_default_str();
   cmd->add_option("--confirm-spread", options->confirm_spread,
                   "Seconds a confirmation spreads its runs over, so that they sample the machine before, during and "
-                  "after a slow spell (at least --spread)")
-      ->check(CLI::Range(0.0, 3600.0))
+                  "after a slow spell (at least --spread); 0 to 3600")
+      ->check(CLI::Range(0.0, 3600.0).description(""))
       ->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "

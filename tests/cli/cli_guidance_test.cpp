@@ -116,7 +116,7 @@ TEST(CliGuidance, HelpHasOneStyleOfValuesAndDefaults) {
   for (const char* command : {"info", "gen", "bench", "compare", "capacity", "check", "diff", "render", "report"}) {
     auto r = run_cli(std::string(command) + " --help");
     ASSERT_EQ(r.status, 0) << command << ": " << r.err;
-    for (const char* raw : {" INT", " UINT", " FLOAT", " TEXT", "=["})
+    for (const char* raw : {" INT", " UINT", " FLOAT", " TEXT", ":INT", ":UINT", ":FLOAT", ":TEXT", "=[", " in ["})
       EXPECT_EQ(r.out.find(raw), std::string::npos) << command << " --help shows '" << raw << "':\n" << r.out;
     for (size_t at = r.out.find("\n  -"); at != std::string::npos; at = r.out.find("\n  -", at + 1)) {
       std::string head = r.out.substr(at, r.out.find("  ", at + 4) - at);  // the option and its value name
