@@ -143,6 +143,10 @@ int run_command(int argc, char** argv) {
     return crowdprof::kExitUsage;
   }
   crowdprof::set_current_command(command_word(app, std::vector<std::string>(argv + 1, argv + argc)));
+  // The command line parses: with CROWDPROF_PARSE_ONLY set, that is all (the
+  // test that runs every command quoted in README and docs/ asks only this).
+  if (const char* parse_only = std::getenv("CROWDPROF_PARSE_ONLY"); parse_only && *parse_only)
+    return crowdprof::kExitOk;
   try {
     return run();
   } catch (...) {
