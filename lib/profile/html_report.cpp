@@ -12,6 +12,7 @@
 #include "frame/switch_table.h"
 #include "profile/report.h"
 #include "profile/result_codec.h"
+#include "profile/number_text.h"
 #include "profile/stats.h"
 
 namespace crowdprof {
@@ -156,6 +157,7 @@ th{background:#f4f4f4}td.name,th.name{text-align:left}.sources{color:#555;font-s
 svg{max-width:100%;height:auto;display:block;margin:8px 0}.bar{display:inline-block;height:10px;background:#4E79A7}
 .regression{color:#B00020;font-weight:bold}.ok{color:#1B7F3B;font-weight:bold}pre{background:#f7f7f7;padding:8px}
 img.screenshot{max-width:100%;border:1px solid #ccc}.swatch{display:inline-block;width:10px;height:10px;margin-right:4px}
+table.headline td,table.headline th{font-size:1.25em;padding:4px 14px}table.headline td.key{font-weight:bold}
 )";
 
 // Records script errors where a reader (and the browser test) finds them.
@@ -275,22 +277,45 @@ std::string environment_section(const std::vector<ReportRun>& runs) {
   return out + "</table></section>\n";
 }
 
-// Every counter the result recorded, by name.
-std::string counters_text(const RecordedCounters& counters) {
-  std::map<std::string_view, uint64_t> by_name;
-  for (size_t i = 0; i < kCounterFields.size(); ++i)
-    if (counters.present[i]) by_name[kCounterFields[i].name] = counters.values.*kCounterFields[i].member;
-  std::string out;
-  for (const auto& [name, value] : by_name) out += (out.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(value);
-  return out;
+// Every counter the runs recorded, a row each in the counters' own order, a
+// column per run (blank where a run did not record it).
+std::string counters_table(const std::vector<ReportRun>& runs) {
+  std::set<size_t> rows;  // fields
+  for (const ReportRun& run : runs)
+    for (size_t i = 0; i < kCounterFields.size(); ++i)
+      if (run.result.counters.present[i]) rows.insert(i);
+  std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (last frame)</th>";
+  for (const ReportRun& run : runs) out += "<th>" + h(run.label) + "</th>";
+  out += "</tr>\n";
+  for (size_t i : rows) {
+    out += "<tr><td class=\"name\">" + h(std::string(kCounterFields[i].name)) + "</td>";
+    for (const ReportRun& run : runs)
+      out += "<td>" + (run.result.counters.present[i] ? with_thousands(run.result.counters.values.*kCounterFields[i].member)
+                                                      : std::string()) + "</td>";
+    out += "</tr>\n";
+  }
+  return out + "</table>\n";
 }
 
-// The BGE's overlay for each run's median frame: ms and share per category.
-std::string profile_section(const std::vector<ReportRun>& runs) {
-  std::string out = "<section id=\"profile\"><h2>Profile (the BGE's table, median frame)</h2>\n<table><tr><th class=\"name\">category</th>";
+// The headline a reader looks for first: per run the median frame, p95, p99
+// and fps, to 3 significant digits, in µs below 1 ms.
+std::string headline_section(const std::vector<ReportRun>& runs) {
+  std::string out = "<section id=\"headline\"><table class=\"headline\"><tr><th class=\"name\">run</th>"
+                    "<th>median frame</th><th>p95</th><th>p99</th><th>fps (median)</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    const std::vector<double>& ms = run.result.samples.frame_ms;
+    const double median = quantile(ms, 0.5);
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"key\">" + duration_text(median) + "</td><td>" +
+           duration_text(quantile(ms, 0.95)) + "</td><td>" + duration_text(quantile(ms, 0.99)) + "</td><td>" +
+           (median > 0 ? significant(1000.0 / median, 3) : "-") + "</td></tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
+// Each run's median frame (the frame whose total is the median), by category.
+std::vector<FrameTimes> median_frames(const std::vector<ReportRun>& runs) {
   std::vector<FrameTimes> medians;
   for (const ReportRun& run : runs) {
-    out += "<th>" + h(run.label) + " ms</th><th>%</th>";
     std::vector<FrameRecord> frames(run.result.frames());
     for (size_t c = 0; c < kCategoryCount; ++c) {
       const std::vector<double>& ms = run.result.samples.category_ms[c];
@@ -298,14 +323,37 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
     }
     medians.push_back(frames[median_frame(frames)].times);
   }
+  return medians;
+}
+
+// The GPU's own time (GL timer queries), beside the categories and not one of
+// them: n/a with the reason where it was not measured, never 0. {value, how}.
+std::pair<std::string, std::string> gpu_time_cells(const ReportRun& run) {
+  const RunDescription& described = run.result.run;
+  const std::vector<double>& gpu = run.result.samples.gpu_ms;
+  bool timed = std::any_of(gpu.begin(), gpu.end(), [](double ms) { return std::isfinite(ms); });
+  double median = metric_median(run.result, "gpu_ms");
+  if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
+    return {"-", "below the timer's resolution"};
+  if (timed) return {report_number(median, 2), "timer queries"};
+  return {"n/a", described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing};
+}
+
+std::string swatch(Category category) {
+  return "<span class=\"swatch\" style=\"background:" + std::string(category_colour(category)) + "\"></span>";
+}
+
+// The BGE's overlay, a column pair (ms, share) per run: for a few runs.
+std::string profile_by_category(const std::vector<ReportRun>& runs, const std::vector<FrameTimes>& medians) {
+  std::string out = "<table><tr><th class=\"name\">category</th>";
+  for (const ReportRun& run : runs) out += "<th>" + h(run.label) + " ms</th><th>%</th>";
   out += "</tr>\n<tr><td class=\"name\"><b>Frametime</b></td>";
   for (const FrameTimes& t : medians)
     out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
   out += "</tr>\n";
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
-    out += "<tr><td class=\"name\"><span class=\"swatch\" style=\"background:" + std::string(category_colour(category)) +
-           "\"></span>" + h(std::string(category_name(category))) + "</td>";
+    out += "<tr><td class=\"name\">" + swatch(category) + h(std::string(category_name(category))) + "</td>";
     for (const FrameTimes& t : medians) {
       double share = t.total_ms() > 0 ? t.ms[c] / t.total_ms() : 0.0;
       out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) + "% <span class=\"bar\" style=\"width:" +
@@ -313,32 +361,60 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
     }
     out += "</tr>\n";
   }
-  // The GPU's own time (GL timer queries), beside the categories and not one of
-  // them: n/a with the reason where it was not measured, never 0.
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
-    const RunDescription& described = run.result.run;
-    const std::vector<double>& gpu = run.result.samples.gpu_ms;
-    bool timed = std::any_of(gpu.begin(), gpu.end(), [](double ms) { return std::isfinite(ms); });
-    double median = metric_median(run.result, "gpu_ms");
-    if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
-      out += "<td>-</td><td class=\"name\">below the timer's resolution</td>";
-    else if (timed)
-      out += "<td>" + report_number(median, 2) + "</td><td class=\"name\">timer queries</td>";
-    else
-      out += "<td>n/a</td><td class=\"name\">" +
-             h(described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing) + "</td>";
+    auto [value, how] = gpu_time_cells(run);
+    out += "<td>" + h(value) + "</td><td class=\"name\">" + h(how) + "</td>";
   }
-  out += "</tr>\n</table>\n";
+  return out + "</tr>\n</table>\n";
+}
+
+// The same, a row per run and a column per category that took time: for more
+// runs than fit side by side at 1280 px (a compare of every mode).
+std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector<FrameTimes>& medians) {
+  std::vector<size_t> shown;
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (std::any_of(medians.begin(), medians.end(), [c](const FrameTimes& t) { return t.ms[c] >= 0.005; }))
+      shown.push_back(c);
+  std::string out = "<table class=\"by-run\"><tr><th class=\"name\">run</th><th>Frametime ms</th><th>fps</th>";
+  for (size_t c : shown)
+    out += "<th>" + swatch(static_cast<Category>(c)) + h(std::string(category_name(static_cast<Category>(c)))) + "</th>";
+  out += "<th>GPU time</th></tr>\n";
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const FrameTimes& t = medians[r];
+    out += "<tr><td class=\"name\">" + h(runs[r].label) + "</td><td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" +
+           (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
+    for (size_t c : shown) out += "<td>" + report_number(t.ms[c], 2) + "</td>";
+    auto [value, how] = gpu_time_cells(runs[r]);
+    out += "<td title=\"" + h(how) + "\">" + h(value) + "</td></tr>\n";
+  }
+  return out + "</table>\n<p>ms of each run's median frame; categories under 0.005 ms in every run are left out.</p>\n";
+}
+
+// What each run was: its crowd, frames and digest.
+std::string runs_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table class=\"runs\"><tr><th class=\"name\">run</th><th>characters</th><th>joints</th>"
+                    "<th>vertices</th><th>frames</th><th>warm-up</th><th class=\"name\">actions</th>"
+                    "<th class=\"name\">scene</th><th class=\"name\">digest</th></tr>\n";
   for (const ReportRun& run : runs) {
     const RunDescription& scene = run.result.run;
-    out += "<p>" + h(run.label) + ": " + std::to_string(scene.characters) + " characters x " +
-           std::to_string(scene.joints) + " joints, " + std::to_string(scene.vertices) + " vertices (" + h(scene.file) +
-           ") | " + std::to_string(run.result.frames()) + " frames after " + std::to_string(scene.warmup) +
-           " warm-up | actions " + h(scene.action_choice) + " | per frame: " + h(counters_text(run.result.counters)) +
-           " | digest " + h(run.result.digest) + "</p>\n";
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(scene.characters) + "</td><td>" +
+           std::to_string(scene.joints) + "</td><td>" + std::to_string(scene.vertices) + "</td><td>" +
+           std::to_string(run.result.frames()) + "</td><td>" + std::to_string(scene.warmup) + "</td><td class=\"name\">" +
+           h(scene.action_choice) + "</td><td class=\"name\">" + h(scene.file) + "</td><td class=\"name\">" +
+           h(run.result.digest) + "</td></tr>\n";
   }
-  return out + "</section>\n";
+  return out + "</table>\n";
+}
+
+// Runs whose profile columns fit side by side at 1280 px.
+constexpr size_t kRunsSideBySide = 4;
+
+std::string profile_section(const std::vector<ReportRun>& runs) {
+  const std::vector<FrameTimes> medians = median_frames(runs);
+  return "<section id=\"profile\"><h2>Profile (the BGE's table, median frame)</h2>\n" +
+         (runs.size() > kRunsSideBySide ? profile_by_run(runs, medians) : profile_by_category(runs, medians)) +
+         runs_table(runs) + counters_table(runs) + "</section>\n";
 }
 
 std::string percentile_table(const std::vector<ReportRun>& runs) {
@@ -471,6 +547,7 @@ std::string html_report(const HtmlReportInput& given) {
           "; one file, no network needed.</p>\n";
   if (input.capacity) body += capacity_section(*input.capacity);
   if (input.check) body += check_section(*input.check, charts);
+  body += headline_section(input.runs);
   body += profile_section(input.runs);
 
   SvgDocument frame_svg;

@@ -1,5 +1,6 @@
 #include "profile/number_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -33,6 +34,30 @@ std::optional<double> parse_number(std::string_view text) {
   }
   if (used != copy.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+std::string significant(double value, int digits) {
+  if (!std::isfinite(value)) return "n/a";
+  if (value == 0) return "0";
+  const int magnitude = static_cast<int>(std::floor(std::log10(std::fabs(value))));
+  const int decimals = std::max(0, digits - 1 - magnitude);
+  const double scale = std::pow(10.0, digits - 1 - magnitude);
+  const double rounded = std::round(value * scale) / scale;  // 1370.4 at 3 digits: 1370
+  return fixed(rounded, decimals);
+}
+
+std::string duration_text(double ms) {
+  if (!std::isfinite(ms)) return "n/a";
+  return ms < 1.0 ? significant(ms * 1000.0, 3) + " µs" : significant(ms, 3) + " ms";
+}
+
+std::string with_thousands(uint64_t count) {
+  std::string digits = std::to_string(count), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
 }
 
 }  // namespace crowdprof

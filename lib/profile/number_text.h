@@ -1,6 +1,7 @@
 // Numbers as text: as the tables print them, and as users type them.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,6 +14,17 @@ std::string fixed(double value, int decimals);
 // A relative change as a signed percentage with one decimal: 0.071 → "+7.1%";
 // +infinity (a change from zero) → "+inf%", NaN → "n/a".
 std::string percent(double fraction);
+
+// `value` to `digits` significant digits, never in exponent form: 1370.4 ->
+// "1370", 0.7314 -> "0.731", 86 -> "86.0".
+std::string significant(double value, int digits);
+
+// A duration for a reader: 3 significant digits, in µs below 1 ms
+// ("731 µs", "1.01 ms", "16.7 ms").
+std::string duration_text(double ms);
+
+// A count with thousands separated by commas: 168334 -> "168,334".
+std::string with_thousands(uint64_t count);
 
 // A finite number that is the whole text ("0.05", "1e3"; not "5ms" or ""),
 // else nullopt.

@@ -36,7 +36,7 @@ inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};
 // `value` with `decimals` decimals, as the report's tables and labels print it.
 std::string report_number(double value, int decimals);
 
-// The samples of one metric ("frame_ms", "Animations") of a result.
+// The samples of one metric ("frame_ms", "animations_ms") of a result.
 std::vector<double> result_samples(const Result& result, const std::string& key);
 
 // "humanoid x 160, backend none": what every title names.

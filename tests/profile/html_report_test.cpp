@@ -56,6 +56,26 @@ std::string series_colour(const std::string& html, const std::string& name) {
 
 }  // namespace
 
+TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
+  HtmlReportInput two;
+  add_result_document(two, fake_result("threaded", 40, {0.7, 0.8, 0.9}), "a.json");
+  add_result_document(two, fake_result("master", 40, {10, 12, 11}), "b.json");
+  std::string html = html_report(two);
+  const size_t headline = html.find("id=\"headline\""), profile = html.find("id=\"profile\"");
+  ASSERT_NE(headline, std::string::npos);
+  EXPECT_LT(headline, profile) << "the headline comes first";
+  EXPECT_NE(html.find("<td class=\"key\">800 µs</td>"), std::string::npos) << "3 digits, µs below 1 ms";
+  EXPECT_NE(html.find("<td class=\"key\">11.0 ms</td>"), std::string::npos);
+  EXPECT_EQ(html.find("class=\"by-run\""), std::string::npos) << "two runs: side by side";
+  EXPECT_NE(html.find("<table class=\"counters\">"), std::string::npos) << "counters as a table";
+  HtmlReportInput six;
+  for (const char* mode : {"master", "culled", "threaded", "shared", "budget", "hwskin"})
+    add_result_document(six, fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json");
+  html = html_report(six);
+  EXPECT_NE(html.find("class=\"by-run\""), std::string::npos) << "six runs: a row each";
+  EXPECT_EQ(count(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
+}
+
 TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   HtmlReportInput input;
   add_result_document(input, fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json");
