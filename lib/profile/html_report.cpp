@@ -208,6 +208,14 @@ window.addEventListener('load', function () {
   });
   var images = document.querySelectorAll('img');
   images.forEach(function (img) { if (!img.complete || img.naturalWidth === 0) problems.push('an image that does not decode'); });
+  // Nothing wider than the page's column: a table or chart past it is cut off
+  // or scrolls sideways (a compare of every mode at 1280 px).
+  var column = document.body.getBoundingClientRect();
+  var right = column.right - parseFloat(getComputedStyle(document.body).paddingRight) + 1;
+  document.querySelectorAll('table, svg, img, pre, p, h1, h2').forEach(function (e) {
+    var box = e.getBoundingClientRect();
+    if (box.right > right) problems.push(e.tagName.toLowerCase() + (e.id ? '#' + e.id : e.className && e.className.baseVal === undefined && e.className ? '.' + e.className : '') + ' overflows the page by ' + Math.round(box.right - right) + ' px');
+  });
   var expected = document.body.getAttribute('data-charts');
   if (String(charts.length) !== expected) problems.push(charts.length + ' charts drawn, ' + expected + ' made');
   document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') :
@@ -401,7 +409,8 @@ std::string runs_table(const std::vector<ReportRun>& runs) {
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(scene.characters) + "</td><td>" +
            std::to_string(scene.joints) + "</td><td>" + std::to_string(scene.vertices) + "</td><td>" +
            std::to_string(run.result.frames()) + "</td><td>" + std::to_string(scene.warmup) + "</td><td class=\"name\">" +
-           h(scene.action_choice) + "</td><td class=\"name\">" + h(scene.file) + "</td><td class=\"name\">" +
+           h(scene.action_choice) + "</td><td class=\"name\" title=\"" + h(scene.file) + "\">" + h(file_name(scene.file)) +
+           "</td><td class=\"name\">" +
            h(run.result.digest) + "</td></tr>\n";
   }
   return out + "</table>\n";

@@ -60,7 +60,7 @@ std::string slurp(const fs::path& path) {
 std::string dump_dom(const fs::path& page) {
   fs::path dir = page.parent_path();
   fs::path out = dir / (page.filename().string() + ".dom"), err = dir / (page.filename().string() + ".err");
-  std::string command = "timeout 120 '" + find_chromium() + "' --headless --disable-gpu --no-sandbox --no-first-run " +
+  std::string command = "timeout 120 '" + find_chromium() + "' --headless --disable-gpu --no-sandbox --no-first-run --window-size=1280,2000 " +
                         "--user-data-dir='" + (dir / "chromium-profile").string() + "' --dump-dom 'file://" +
                         fs::absolute(page).string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
   int raw = std::system(command.c_str());
@@ -203,7 +203,8 @@ TEST(ReportInBrowser, SeveralResultsSideBySideAndTheirSweep) {
 TEST(ReportInBrowser, ACompareReportWithASweep) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_compare")};
-  f.run("compare '" + f.scene + "' " + f.small + " --modes master,culled,threaded --sweep n=1,2,4 --json '" +
+  // Five modes: more than fit side by side (the page must stay within 1280 px).
+  f.run("compare '" + f.scene + "' " + f.small + " --modes master,culled,threaded,shared,budget --sweep n=1,2,4 --json '" +
         f.path("c.json") + "' --html '" + f.path("c.html") + "'");
   json doc = json::parse(std::ifstream(f.path("c.json")));
   // The page compare wrote and the one report makes of its JSON.
