@@ -208,6 +208,20 @@ window.addEventListener('load', function () {
   });
   var images = document.querySelectorAll('img');
   images.forEach(function (img) { if (!img.complete || img.naturalWidth === 0) problems.push('an image that does not decode'); });
+  // No two labels of a chart on top of each other.
+  charts.forEach(function (chart) {
+    var boxes = [];
+    chart.querySelectorAll('text').forEach(function (t) {
+      var b = t.getBoundingClientRect();
+      if (b.width > 0 && b.height > 0) boxes.push({b: b, text: t.textContent});
+    });
+    for (var i = 0; i < boxes.length; ++i)
+      for (var j = i + 1; j < boxes.length; ++j) {
+        var a = boxes[i].b, c = boxes[j].b;
+        var w = Math.min(a.right, c.right) - Math.max(a.left, c.left), h = Math.min(a.bottom, c.bottom) - Math.max(a.top, c.top);
+        if (w > 2 && h > 2) problems.push((chart.getAttribute('data-chart') || '?') + ': labels overlap: "' + boxes[i].text + '" and "' + boxes[j].text + '"');
+      }
+  });
   // Nothing wider than the page's column: a table or chart past it is cut off
   // or scrolls sideways (a compare of every mode at 1280 px).
   var column = document.body.getBoundingClientRect();
