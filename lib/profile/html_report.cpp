@@ -551,7 +551,13 @@ std::string html_report(const HtmlReportInput& given) {
   for (const ReportRun& run : input.runs) colours.colour(run.label);  // in order, before any chart asks
   const Result& first = input.runs.front().result;
   std::string caption = scene_caption(first);
-  std::string title = "crowdprof report: " + caption +
+  // Named by the files it was made from, so that several reports open side
+  // by side (tabs, a CI's artifacts) tell themselves apart.
+  std::string from;
+  for (size_t s = 0; s < std::min<size_t>(input.sources.size(), 2); ++s)
+    from += (s ? ", " : " of ") + file_name(input.sources[s]);
+  if (input.sources.size() > 2) from += " and " + std::to_string(input.sources.size() - 2) + " more";
+  std::string title = "crowdprof report" + from + ": " + caption +
                       (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
                                             input.capacity->metric
                        : input.check  ? ", " + input.check->command

@@ -187,11 +187,19 @@ void SvgDocument::add(const LineChart& chart) {
       if (std::isfinite(g.y) && g.y <= y.hi && !g.label.empty() && g.label_left == left) order.push_back(i);
     }
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return chart.guides[a].y < chart.guides[b].y; });
+    constexpr double kLineHeight = 13;
     double previous = 1e9;
     for (size_t i : order) {
-      constexpr double kLineHeight = 13;
       label_y[i] = std::min(p.py(y, chart.guides[i].y) - 3, previous - kLineHeight);
       previous = label_y[i];
+    }
+    // Stacked past the plot's top (into the title): pushed back down, each a
+    // line below the one above it.
+    const double highest = p.top + kTop + 12;
+    previous = highest - kLineHeight;
+    for (auto i = order.rbegin(); i != order.rend(); ++i) {
+      label_y[*i] = std::max(label_y[*i], previous + kLineHeight);
+      previous = label_y[*i];
     }
   }
   size_t above = 0;
