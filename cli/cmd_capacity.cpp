@@ -169,11 +169,11 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CapacityCliOptions>();
   auto* cmd = app.add_subcommand("capacity", "Find, per mode, the largest crowd whose median frame (or one category) "
                                              "fits a time budget, by a search over the crowd size");
-  cmd->footer("Examples:\n  crowdprof capacity scenes/humanoid.glb --budget 16.6 --modes threaded,shared");
+  cmd->footer("Examples:\n  crowdprof capacity scenes/humanoid.glb --budget 16.7 --modes threaded,shared");
   add_bench_options(*cmd, options->bench);
   cmd->remove_option(cmd->get_option("--mode"));        // --modes instead
   cmd->remove_option(cmd->get_option("--characters"));  // the search picks the sizes
-  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.6 (60 fps)")->required();
+  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps, as the reports draw it)")->required();
   cmd->add_option("--modes", options->modes,
                   "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
                   "preset, e.g. master+lookups=bundled")

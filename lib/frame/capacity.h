@@ -26,7 +26,7 @@
 namespace crowdprof {
 
 struct CapacityRule {
-  double budget_ms = 16.6;   // a point fits when its median is <= this
+  double budget_ms = 1000.0 / 60.0;  // a point fits when its median is <= this; 60 fps, as the charts draw it
   size_t start = 10;         // the first N tried
   size_t cap = 100'000;      // the largest N tried
   double resolution = 0.05;  // the bracket's width at which the search stops, relative to the fit

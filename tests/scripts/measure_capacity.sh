@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13, item 5: the capacity of the default character at a 16.6 ms budget
+# Issue 13, item 5: the capacity of the default character at a 16.7 ms budget
 # (60 fps), per mode, with `crowdprof capacity` (not run by CI: its numbers
 # depend on the machine and its load). --backend none: the CPU's side of a frame.
 # Two cameras: the default one (the thesis's framing: most of a large crowd is
@@ -7,7 +7,7 @@
 # every copy is posed and skinned).
 # Usage: tests/scripts/measure_capacity.sh CROWDPROF
 #   CROWDPROF  the crowdprof binary (e.g. build/crowdprof)
-# Environment: SCENE (scenes/humanoid.glb), BUDGET (16.6), MODES (default:
+# Environment: SCENE (scenes/humanoid.glb), BUDGET (16.7), MODES (default:
 #   master, threaded and those of shared, budget that this build has), CAMERAS
 #   ("default"; "default all" adds every copy on screen), FRAMES (60), WARMUP (10), PRECISION (0.05), MAX (100000),
 #   OUT (a new temporary folder; kept: capacity-CAMERA.json and .svg).
@@ -18,7 +18,7 @@ set -euo pipefail
 
 crowdprof=${1:?usage: measure_capacity.sh CROWDPROF}
 scene=${SCENE:-$(cd "$(dirname "$0")/../.." && pwd)/scenes/humanoid.glb}
-budget=${BUDGET:-16.6}
+budget=${BUDGET:-16.7}
 frames=${FRAMES:-60}
 warmup=${WARMUP:-10}
 precision=${PRECISION:-0.05}
