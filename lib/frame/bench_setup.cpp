@@ -1,5 +1,8 @@
 #include "frame/bench_setup.h"
 
+#include <fstream>
+#include <iterator>
+
 #include <algorithm>
 #include <thread>
 
@@ -9,6 +12,17 @@
 
 namespace crowdprof {
 
+namespace {
+// The hash of a character's file (FILE#skin=N: FILE's), read again after
+// the loader took it; empty when it cannot be read.
+std::string content_hash(const std::string& spec) {
+  const std::string path = spec.substr(0, spec.find("#skin="));
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return in.bad() || bytes.empty() ? std::string() : fnv1a64_hex(bytes);
+}
+}  // namespace
+
 BenchScene load_bench_scene(const RunSpec& spec) {
   BenchScene loaded;
   if (!is_scene_file(spec.file)) {
@@ -16,6 +30,7 @@ BenchScene load_bench_scene(const RunSpec& spec) {
     loaded.owned.push_back(std::make_unique<Character>(load_character(spec.file)));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(spec.file);
+    loaded.content_hashes.push_back(content_hash(spec.file));
     return loaded;
   }
   SceneFile scene = load_scene_file(spec.file);
@@ -23,6 +38,7 @@ BenchScene load_bench_scene(const RunSpec& spec) {
     loaded.owned.push_back(std::make_unique<Character>(load_character(c.path)));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(c.file);
+    loaded.content_hashes.push_back(content_hash(c.path));
   }
   loaded.scene = std::move(scene);
   return loaded;
@@ -66,6 +82,7 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
   if (!config.actions_from_scene)
     config.crowd.actions = spec.actions == "random" ? ActionChoice::Random : ActionChoice::Shared;
   config.files = loaded.files;
+  config.content_hashes = loaded.content_hashes;
   for (const Character* character : loaded.characters)
     if (character->actions.empty() && !spec.allow_static)
       throw SettingsUsageError(" has no actions: its crowd would stand still (pass {static} to bench that)",

@@ -22,6 +22,9 @@ struct BenchScene {
   std::vector<std::unique_ptr<Character>> owned;
   std::vector<const Character*> characters;
   std::vector<std::string> files;  // per character, as the user or the scene names it
+  // Per character: FNV-1a 64 (hex) of its file's bytes, what diff tells
+  // characters apart by (a name says nothing of what changed in the asset).
+  std::vector<std::string> content_hashes;
   const Character& first() const { return *characters.front(); }
 };
 

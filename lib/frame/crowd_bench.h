@@ -52,6 +52,7 @@ struct BenchConfig {
   // For reports only: each character's file as the user named it, and the
   // scene file the run came from (empty for a character given directly).
   std::vector<std::string> files;
+  std::vector<std::string> content_hashes;  // per character: of its file's bytes (bench_setup.h)
   std::string scene_file, scene_hash;
   bool actions_from_scene = false;  // each group's actions as its scene file says
   // For tests of the animation budget: when not empty, the budget's controller

@@ -72,6 +72,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
     CharacterRun entry;
     entry.file = k < config.files.size() ? config.files[k] : file;
     entry.character = character.name;
+    if (k < config.content_hashes.size()) entry.content_hash = config.content_hashes[k];
     entry.joints = character.skeleton.joint_count();
     entry.vertices = character.mesh.vertex_count();
     entry.actions = character.actions.size();

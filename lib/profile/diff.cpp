@@ -48,17 +48,42 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
   Diff diff;
   diff.a = path_a;
   diff.b = path_b;
-  // Results of another character are refused, as check refuses them.
-  auto characters = [](const std::vector<Result>& results) {
-    std::set<std::string> names;
-    for (const Result& r : results) names.insert(r.run.character);
+  // Results of another character are refused, as check refuses them. A
+  // character is its file's content where both sides recorded it (a renamed
+  // file is the same character; an edited one is another, whatever its
+  // name), else its name (results before asset hashes).
+  auto join = [](const std::set<std::string>& items) {
     std::string joined;
-    for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+    for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
     return joined;
   };
-  if (characters(a) != characters(b))
-    throw InputError(path_b, "of another character than " + path_a + ": " + shown(characters(a)) + " in A, " +
-                                 shown(characters(b)) + " in B (diff compares results of one character)");
+  auto names = [&](const std::vector<Result>& results) {
+    std::set<std::string> out;
+    for (const Result& r : results) out.insert(r.run.character);
+    return join(out);
+  };
+  // Every character's content hash, or empty when any is missing.
+  auto contents = [&](const std::vector<Result>& results) {
+    std::set<std::string> out;
+    for (const Result& r : results) {
+      if (r.run.crowd.empty()) return std::string();
+      for (const CharacterRun& c : r.run.crowd) {
+        if (c.content_hash.empty()) return std::string();
+        out.insert(c.content_hash);
+      }
+    }
+    return join(out);
+  };
+  const std::string content_a = contents(a), content_b = contents(b);
+  if (!content_a.empty() && !content_b.empty()) {
+    if (content_a != content_b)
+      throw InputError(path_b, "of another character than " + path_a + ": asset " + content_a + " (" +
+                                   shown(names(a)) + ") in A, " + content_b + " (" + shown(names(b)) +
+                                   ") in B (diff compares results of one character, by its file's content)");
+  } else if (names(a) != names(b)) {
+    throw InputError(path_b, "of another character than " + path_a + ": " + shown(names(a)) + " in A, " +
+                                 shown(names(b)) + " in B (diff compares results of one character)");
+  }
   // Pairs by mode and crowd size; two single results of the character are a
   // pair whatever their modes and sizes, with what differs noted.
   std::vector<std::pair<const Result*, const Result*>> pairs;

@@ -37,6 +37,7 @@ inline constexpr size_t kMaxRuns = 100;
 struct CharacterRun {
   std::string file;       // as the scene names it
   std::string character;  // its name
+  std::string content_hash;  // FNV-1a 64 of its file's bytes ("asset_hash"); empty in older results
   size_t copies = 0, joints = 0, vertices = 0, actions = 0;
   std::string action_choice;  // shared, random or weighted
   Counters counters;

@@ -93,6 +93,7 @@ json crowd_json(const std::vector<CharacterRun>& crowd) {
     out.push_back({{"file", c.file},         {"character", c.character}, {"copies", c.copies},
                    {"joints", c.joints},     {"vertices", c.vertices},   {"actions", c.actions},
                    {"action_choice", c.action_choice}, {"counters", counters}});
+    if (!c.content_hash.empty()) out.back()["asset_hash"] = c.content_hash;
   }
   return out;
 }
@@ -307,6 +308,7 @@ void read_crowd(const Reader& in, Result& r) {
     CharacterRun c;
     c.file = in.text(at + "/file");
     c.character = in.text(at + "/character");
+    c.content_hash = in.text_or(at + "/asset_hash", "");
     c.copies = bounded(in.count(at + "/copies"), in, "/crowd");
     c.joints = bounded(in.count(at + "/joints"), in, "/crowd");
     c.vertices = bounded(in.count(at + "/vertices"), in, "/crowd");

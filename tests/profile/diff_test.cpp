@@ -9,6 +9,7 @@
 
 #include "asset/errors.h"
 #include "profile/diff.h"
+#include "profile/result_codec.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -121,7 +122,8 @@ TEST(Diff, CompareResultsArePairedByMode) {
   // Another character: refused, as check refuses it.
   std::string fox = (dir / "fox.json").string();
   nlohmann::json other = nlohmann::json::parse(std::ifstream(t));
-  other["scene"]["character"] = "Fox";
+  other["scene"]["character"] = other["crowd"][0]["character"] = "Fox";
+  other["crowd"][0]["asset_hash"] = "0123456789abcdef";  // another file's content
   std::ofstream(fox) << other.dump();
   r = run_cli("diff '" + t + "' '" + fox + "'");
   EXPECT_EQ(r.status, 3) << r.out << r.err;
@@ -146,4 +148,31 @@ TEST(Diff, BadFilesAndOutputs) {
   EXPECT_EQ(read_json(a).dump(), before);
   r = run_cli("diff '" + a + "' '" + a + "' --tolerance ten");
   EXPECT_EQ(r.status, 2) << r.err;
+}
+
+// A character is its file's content where both results recorded it: a renamed
+// file is the same character, an edited one another whatever its name.
+TEST(Diff, TheSameCharacterIsTheSameFileContent) {
+  const auto dir = test::scratch_dir("diff_content");
+  auto r = run_cli("bench '" + scene() + "' -n 4 --frames 3 --warmup 0 -q --json '" + (dir / "a.json").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json a = read_json((dir / "a.json").string());
+  ASSERT_TRUE(a["crowd"][0].contains("asset_hash")) << a["crowd"];
+  auto diff_of = [&](const json& b_doc) {
+    std::vector<Result> ra{result_from_json(a, "a.json")}, rb{result_from_json(b_doc, "b.json")};
+    return diff_results(ra, "a.json", rb, "b.json", CheckOptions{});
+  };
+  json renamed = a;
+  renamed["scene"]["character"] = renamed["crowd"][0]["character"] = "hero";
+  EXPECT_NO_THROW(diff_of(renamed));
+  json edited = a;
+  edited["crowd"][0]["asset_hash"] = "0123456789abcdef";
+  EXPECT_THROW(diff_of(edited), InputError);
+  // Results without hashes (recorded before them) compare by name.
+  json old_a = a, old_renamed = renamed;
+  old_a["crowd"][0].erase("asset_hash");
+  old_renamed["crowd"][0].erase("asset_hash");
+  a = old_a;
+  EXPECT_THROW(diff_of(old_renamed), InputError);
+  EXPECT_NO_THROW(diff_of(old_a));
 }
