@@ -326,7 +326,7 @@ std::string headline_section(const std::vector<ReportRun>& runs) {
                     "<th>median frame</th><th>p95</th><th>p99</th><th>fps (median)</th></tr>\n";
   for (const ReportRun& run : runs) {
     const std::vector<double>& ms = run.result.samples.frame_ms;
-    const double median = quantile(ms, 0.5);
+    const double median = median_frame_ms(ms);
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"key\">" + duration_text(median) + "</td><td>" +
            duration_text(quantile(ms, 0.95)) + "</td><td>" + duration_text(quantile(ms, 0.99)) + "</td><td>" +
            (median > 0 ? significant(1000.0 / median, 3) : "-") + "</td></tr>\n";
@@ -349,7 +349,8 @@ std::vector<FrameTimes> median_frames(const std::vector<ReportRun>& runs) {
 }
 
 // The GPU's own time (GL timer queries), beside the categories and not one of
-// them: n/a with the reason where it was not measured, never 0. {value, how}.
+// them: n/a with the reason where it was not measured, never 0. {value, how},
+// as HTML (the reason, read from the result, escaped).
 std::pair<std::string, std::string> gpu_time_cells(const ReportRun& run) {
   const RunDescription& described = run.result.run;
   const std::vector<double>& gpu = run.result.samples.gpu_ms;
@@ -358,7 +359,7 @@ std::pair<std::string, std::string> gpu_time_cells(const ReportRun& run) {
   if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
     return {"-", "below the timer's resolution"};
   if (timed) return {report_number(median, 2), "timer queries"};
-  return {"n/a", described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing};
+  return {"n/a", h(described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing)};
 }
 
 std::string swatch(Category category) {
@@ -386,7 +387,7 @@ std::string profile_by_category(const std::vector<ReportRun>& runs, const std::v
   out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
   for (const ReportRun& run : runs) {
     auto [value, how] = gpu_time_cells(run);
-    out += "<td>" + h(value) + "</td><td class=\"name\">" + h(how) + "</td>";
+    out += "<td>" + value + "</td><td class=\"name\">" + how + "</td>";
   }
   return out + "</tr>\n</table>\n";
 }
@@ -408,7 +409,7 @@ std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector
            (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
     for (size_t c : shown) out += "<td>" + report_number(t.ms[c], 2) + "</td>";
     auto [value, how] = gpu_time_cells(runs[r]);
-    out += "<td title=\"" + h(how) + "\">" + h(value) + "</td></tr>\n";
+    out += "<td title=\"" + how + "\">" + value + "</td></tr>\n";
   }
   return out + "</table>\n<p>ms of each run's median frame; categories under 0.005 ms in every run are left out.</p>\n";
 }
@@ -441,13 +442,13 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
 }
 
 std::string percentile_table(const std::vector<ReportRun>& runs) {
-  std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>p50 ms</th><th>p95 ms</th><th>p99 ms</th>"
+  std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
                     "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
   for (const ReportRun& run : runs) {
     const std::vector<double>& ms = run.result.samples.frame_ms;
     auto over = [&](double budget) { return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; }); };
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(ms.size()) + "</td><td>" +
-           report_number(quantile(ms, 0.5), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
+           report_number(median_frame_ms(ms), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
            report_number(quantile(ms, 0.99), 3) + "</td><td>" + report_number(*std::max_element(ms.begin(), ms.end()), 3) + "</td><td>" +
            std::to_string(over(kBudgetsMs[0])) + "</td><td>" + std::to_string(over(kBudgetsMs[1])) + "</td></tr>\n";
   }

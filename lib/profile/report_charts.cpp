@@ -8,6 +8,13 @@
 
 namespace crowdprof {
 
+double median_frame_ms(const std::vector<double>& frame_ms) {
+  if (frame_ms.empty()) return 0;
+  std::vector<double> sorted = frame_ms;
+  std::sort(sorted.begin(), sorted.end());
+  return sorted[(sorted.size() - 1) / 2];
+}
+
 namespace {
 
 std::vector<double> frame_numbers(size_t count) {
@@ -52,8 +59,8 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
       double q;
       const char* dash;
     };
-    for (Mark mark : {Mark{"p50", 0.5, "2,3"}, Mark{"p95", 0.95, "6,3"}, Mark{"p99", 0.99, "12,3"}}) {
-      double value = quantile(ms, mark.q);
+    for (Mark mark : {Mark{"median", 0.5, "2,3"}, Mark{"p95", 0.95, "6,3"}, Mark{"p99", 0.99, "12,3"}}) {
+      double value = mark.q == 0.5 ? median_frame_ms(ms) : quantile(ms, mark.q);
       std::string label = std::string(mark.name) + (runs.size() > 1 ? " " + run.label : "") + " " + report_number(value, 2) + " ms";
       chart.guides.push_back({value, label, colour, mark.dash, std::string("percentile ") + mark.name, true, true});
     }

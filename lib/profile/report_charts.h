@@ -33,6 +33,11 @@ struct SweepPoint {
 // Frame budgets drawn on frame-time charts: 60 and 30 frames a second.
 inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};
 
+// A run's median frame time as every report says it: the frame at the lower
+// middle of the sorted frame times, the one whose categories the BGE table
+// shows (report.h's median_frame), so that a page has one median per run.
+double median_frame_ms(const std::vector<double>& frame_ms);
+
 // `value` with `decimals` decimals, as the report's tables and labels print it.
 std::string report_number(double value, int decimals);
 

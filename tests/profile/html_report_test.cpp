@@ -92,12 +92,12 @@ TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   EXPECT_NE(html.find("Test CPU &lt;9000&gt;"), std::string::npos) << "the environment, escaped";
   EXPECT_NE(html.find("data-charts=\"2\""), std::string::npos);
   // Frame time: one series of 10 points; the 16.7 ms budget drawn (a frame of
-  // 20 ms), p50/p95/p99 marked; categories: Animations and Rasterizer.
+  // 20 ms), median/p95/p99 marked; categories: Animations and Rasterizer.
   EXPECT_NE(html.find("data-chart=\"frame-time\" data-series=\"1\""), std::string::npos);
   EXPECT_NE(html.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"10\""), std::string::npos);
   EXPECT_NE(html.find("<g class=\"budget\" data-value=\"16.6667\""), std::string::npos);
   EXPECT_NE(html.find("<g class=\"budget\" data-value=\"33.3333\""), std::string::npos);
-  for (const char* mark : {"percentile p50", "percentile p95", "percentile p99"})
+  for (const char* mark : {"percentile median", "percentile p95", "percentile p99"})
     EXPECT_EQ(count(html, "<g class=\"" + std::string(mark) + "\""), 1u) << mark;
   EXPECT_NE(html.find("data-chart=\"categories\" data-series=\"2\""), std::string::npos);
   EXPECT_EQ(count(html, "data-geometry=\"area\" data-points=\"10\""), 2u);
