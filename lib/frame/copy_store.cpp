@@ -14,17 +14,22 @@ namespace {
 
 size_t whole_batches(size_t vertices) { return (vertices + kSkinBatch - 1) / kSkinBatch * kSkinBatch; }
 
-// What one copy and one pose slot of a character cost.
-uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
+// The most channels of any of the character's actions: a pose slot's lookups.
+uint64_t max_channels(const Character& c) {
   uint64_t channels = 0;
   for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  return channels;
+}
+
+// What one copy and one pose slot of a character cost.
+uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
+  const uint64_t channels = max_channels(c);
   const uint64_t vertex_bytes = mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes : kFloatVertexBytes;
   return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
 }
 uint64_t slot_bytes(const Character& c) {
-  uint64_t channels = 0;
-  for (const Action& a : c.actions) channels = std::max<uint64_t>(channels, a.channels.size());
+  const uint64_t channels = max_channels(c);
   // Model-space matrices are per thread, not per slot: a few KiB in all.
   return c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4;
 }

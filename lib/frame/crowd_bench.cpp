@@ -7,7 +7,6 @@
 
 #include "asset/errors.h"
 #include "profile/trace.h"
-#include "scene/screen_size.h"
 
 namespace crowdprof {
 
