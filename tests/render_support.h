@@ -49,6 +49,7 @@ struct Frame {
   bool gpu_skinned = false;
   std::string digest;
   std::vector<glm::vec2> pixels_of_vertices;  // copy 0's skinned vertices on screen, when CPU-skinned
+  std::vector<GpuTime> gpu_times;  // every frame's that was read back
 };
 
 struct Shot {
@@ -61,6 +62,7 @@ struct Shot {
   std::string hide_features;  // gl_features.h
   float bake_rate = kDefaultBakeRateHz;  // skinning baked
   VertexFormat vertex_format = VertexFormat::Float;
+  uint32_t passes = 1;  // modes.h
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -76,6 +78,7 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   BenchConfig config;
   config.mode = find_mode(shot.mode)->switches;
   config.mode.vertex_format = shot.vertex_format;
+  config.mode.passes = shot.passes;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;
@@ -98,6 +101,8 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   frame.rgba = renderer.read_pixels();
   frame.gpu_skinned = bench.gpu_skinned();
   frame.digest = bench.digest();
+  bench.collect_gpu_times();
+  frame.gpu_times.assign(bench.gpu_times().begin(), bench.gpu_times().end());
   if (!bench.gpu_skinned_copy(0) && !bench.packed_vertices()) {
     glm::mat4 to_clip = bench.camera().view_projection() * bench.crowd().world[0];
     for (const glm::vec3& p : bench.skinned_positions(0)) {

@@ -7,6 +7,7 @@
 
 #include "asset/errors.h"
 #include "profile/trace.h"
+#include "scene/shadow_cascades.h"
 
 namespace crowdprof {
 
@@ -16,6 +17,9 @@ SettingText why_cannot_run(const BenchConfig& config) {
   if (skins_on_gpu(config.mode.skinning) && !config.renderer)
     return "skinning on the GPU (skinning " + std::string(to_string(config.mode.skinning)) +
            ") needs a GL backend: {backend} auto, egl or osmesa";
+  if (config.mode.passes > 1 && !config.renderer)
+    return "{passes} " + std::to_string(config.mode.passes) +
+           " draws the crowd several times a frame, which needs a GL backend: {backend} auto, egl or osmesa";
   if (config.mode.skinning == SkinningSite::Baked && !(config.bake_rate_hz > 0.0f && config.bake_rate_hz <= 10000.0f))
     return "{bake_rate} " + std::to_string(config.bake_rate_hz) + ": expected 0 to 10000 samples per second";
   return {};
@@ -55,6 +59,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   character_views_ = character_views(prepared_);
   view_.mode = mode;
   view_.view_projection = camera_.view_projection();
+  shadow_cameras_ = shadow_cascades(camera_, crowd_.crowd_box, kLightDirection, mode.passes > 2 ? mode.passes - 2 : 0);
+  view_.shadow_view_projections = shadow_cameras_;
   view_.characters = character_views_;
   view_.kind = crowd_.kind;
   view_.world = crowd_.world;
@@ -148,6 +154,10 @@ FrameRecord CrowdBench::step() {
 
 void CrowdBench::collect_gpu_times() {
   gpu_time_count_ = config_.renderer ? config_.renderer->take_gpu_times(&view_, frame_, gpu_times_, true) : 0;
+}
+
+std::string CrowdBench::pipeline_statistics_missing() const {
+  return config_.renderer ? config_.renderer->pipeline_statistics_missing() : "no GL backend (--backend none)";
 }
 
 std::string CrowdBench::gpu_timing_missing() const {

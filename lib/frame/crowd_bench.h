@@ -99,6 +99,7 @@ class CrowdBench {
   void collect_gpu_times();
   // Empty when the renderer times frames on the GPU, else why not ("no GL backend").
   std::string gpu_timing_missing() const;
+  std::string pipeline_statistics_missing() const;
   // The GPU timer's resolution in ms (FrameRenderer); 0 without one.
   double gpu_timer_resolution_ms() const;
 
@@ -190,6 +191,7 @@ class CrowdBench {
   Crowd crowd_;
   Camera camera_;
   Frustum frustum_;
+  std::vector<glm::mat4> shadow_cameras_;  // passes > 2: one per cascade
   std::vector<PreparedCharacter> prepared_;  // per character; immutable once made
   BakeSummary bake_summary_;
   std::unique_ptr<CopyStore> store_;

@@ -18,6 +18,7 @@ namespace crowdprof {
 struct GpuTime {
   uint64_t frame = 0;  // the frame's number (FrameView::frame when it was drawn)
   double ms = 0;
+  GpuPassFigures passes;  // the same time by pass, when the GL could split it
 };
 // Frames whose GPU time may be awaited at once: a renderer keeps this many queries.
 inline constexpr size_t kGpuTimesInFlight = 8;
@@ -60,6 +61,8 @@ class FrameRenderer {
   // Empty when draw() times each frame on the GPU (GL timer queries), else
   // why not, for the report ("... has no GL_TIME_ELAPSED timer").
   virtual std::string gpu_timing_missing() const = 0;
+  // Empty when each pass's GPU time comes with its pipeline statistics, else why not.
+  virtual std::string pipeline_statistics_missing() const = 0;
   // The GPU times of the frames drawn from `owner` (a view) before `frame` whose queries have
   // finished (never waiting for one, so never stalling), oldest first, at most
   // out.size(); with `wait`, every frame still in flight, waiting for them.

@@ -36,6 +36,8 @@ struct FrameView {
   uint64_t frame = 0;  // the bench's frame number (0 for the first)
   ModeSwitches mode;
   glm::mat4 view_projection{1.0f};
+  // mode.passes > 2: each shadow cascade's camera (scene/shadow_cascades.h).
+  std::span<const glm::mat4> shadow_view_projections;
   std::span<const CharacterView> characters;  // per character
   // Per copy.
   std::span<const uint16_t> kind;          // index into characters

@@ -67,6 +67,9 @@ struct LodThresholds {
   bool operator==(const LodThresholds&) const = default;
 };
 
+// Most draws of the crowd a frame (--passes): a prepass, 8 shadow cascades, colour.
+inline constexpr uint32_t kMaxPasses = 10;
+
 struct ModeSwitches {
   Lookups lookups = Lookups::Bundled;
   bool animation_culling = false;  // §4.1: no pose or skinning for copies off-screen
@@ -87,6 +90,9 @@ struct ModeSwitches {
   // updating the copies smallest on screen less often (lib/animation/update_rates.h).
   double anim_budget_ms = 0.0;
   VertexFormat vertex_format = VertexFormat::Float;  // no preset packs; --vertex-format
+  // Times the crowd is drawn a frame (issue 30): 1, colour only; 2, a depth
+  // prepass then colour; N > 2, the prepass, N - 2 shadow cascades, colour.
+  uint32_t passes = 1;
 
   bool operator==(const ModeSwitches&) const = default;
 };

@@ -98,6 +98,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.lens = LensRecord{config.lens.focal_mm, config.lens.sensor_width_mm, config.lens.sensor_height_mm,
                         std::string(to_string(config.lens.fit))};
   run.gpu_timing_missing = bench.gpu_timing_missing();
+  run.pipeline_statistics_missing = bench.pipeline_statistics_missing();
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
   if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {
@@ -135,7 +136,10 @@ void record_animation(const CrowdBench& bench, RunReport& report) {
 
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
   for (const GpuTime& t : bench.gpu_times())
-    if (t.frame >= warmup && t.frame - warmup < frames.size()) frames[t.frame - warmup].gpu_ms = t.ms;
+    if (t.frame >= warmup && t.frame - warmup < frames.size()) {
+      frames[t.frame - warmup].gpu_ms = t.ms;
+      frames[t.frame - warmup].gpu_passes = t.passes;
+    }
 }
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {

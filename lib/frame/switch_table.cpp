@@ -97,6 +97,15 @@ std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
   return {};
 }
 
+std::string set_passes(ModeSwitches& s, std::string_view text) {
+  std::optional<double> value = parse_number(text);
+  if (!value || *value != static_cast<double>(static_cast<uint32_t>(*value)) || *value < 1 || *value > kMaxPasses)
+    return "expected 1 to " + std::to_string(kMaxPasses) + " (1: colour; 2: depth prepass and colour; more: " +
+           "shadow cascades between them)";
+  s.passes = static_cast<uint32_t>(*value);
+  return {};
+}
+
 std::string set_anim_budget(ModeSwitches& s, std::string_view text) {
   std::optional<double> value = parse_number(text);
   if (!value || *value < 0 || *value > 10000) return "expected milliseconds from 0 (no budget) to 10000";
@@ -161,6 +170,11 @@ const std::array kSwitches = {
                "Keep the Animations category's p95 at or under this many milliseconds by updating the copies "
                "smallest on screen less often (at least every 64 frames); 0: no budget",
                [](const ModeSwitches& s) { return json(s.anim_budget_ms); }, set_anim_budget, false},
+    SwitchSpec{"passes", "N",
+               "Draws of the crowd a frame, each into its own target: 1, colour only; 2, a depth prepass and "
+               "colour; N > 2, the prepass, N-2 shadow cascades (2048x2048 depth maps) and colour. Vertex-shader "
+               "skinning repeats per pass, compute skinning does not. Needs a GL backend",
+               [](const ModeSwitches& s) { return json(s.passes); }, set_passes, false},
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "profile/category_clock.h"
+#include "profile/gpu_passes.h"
 
 namespace crowdprof {
 
@@ -76,6 +77,8 @@ struct FrameRecord {
   // NaN when not measured (no GL backend, no timer, or not read back). Not a
   // category: the GPU runs beside the CPU's frame, not in it.
   double gpu_ms = std::numeric_limits<double>::quiet_NaN();
+  // The same GPU time split by pass, with pipeline statistics (gpu_passes.h).
+  GpuPassFigures gpu_passes;
   // Instructions the frame's thread retired (profile/instruction_counter.h,
   // perf_event); 0 when not counted or counted by callgrind.
   uint64_t instructions = 0;

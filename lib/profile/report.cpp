@@ -9,6 +9,7 @@
 #include "profile/stats.h"
 #include "profile/number_text.h"
 #include "profile/result_codec.h"
+#include "profile/text_table.h"
 
 namespace crowdprof {
 
@@ -46,6 +47,56 @@ std::string short_time(double ms) {
   if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
   else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
   return text;
+}
+
+// The frame's GPU time by pass (median of the frames split), the passes'
+// sum against the median GPU time, and each pass's pipeline statistics.
+std::string format_gpu_passes(const RunReport& report, const std::vector<double>& gpu) {
+  const RunDescription& run = report.run;
+  std::array<std::vector<double>, kGpuPassCount> ms;
+  std::array<std::array<std::vector<double>, kPipelineStatCount>, kGpuPassCount> stats;
+  for (const FrameRecord& f : report.frames) {
+    if (!f.gpu_passes.timed()) continue;
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      ms[p].push_back(f.gpu_passes.ms[p]);
+      for (size_t s = 0; f.gpu_passes.has_stats() && s < kPipelineStatCount; ++s)
+        stats[p][s].push_back(f.gpu_passes.stats[p][s]);
+    }
+  }
+  if (ms[0].empty()) return {};
+  const uint32_t passes = run.switches.passes;
+  std::string out = "GPU passes : ";
+  double sum = 0;
+  for (size_t p = 0; p < kGpuPassCount; ++p) {
+    if (!pass_drawn(static_cast<GpuPass>(p), passes)) continue;
+    double median = quantile(ms[p], 0.5);
+    sum += median;
+    out += std::string(p == 0 ? "" : " | ") + std::string(kGpuPassNames[p]) + " " + short_time(median);
+  }
+  double gpu_median = gpu.empty() ? 0 : summarize(gpu).median;
+  if (gpu_median > 0 && !below_timer_resolution(gpu_median, run))
+    out += "   medians; together " + fixed(100.0 * sum / gpu_median, 0) + "% of the GPU time";
+  else
+    out += "   medians; the GPU time is below the timer's resolution: not a measurement";
+  out += "\n";
+  if (stats[0][0].empty()) {
+    out += "Pipeline statistics: unavailable (" +
+           (run.pipeline_statistics_missing.empty() ? std::string("not read back") : run.pipeline_statistics_missing) +
+           ")\n";
+    return out;
+  }
+  std::vector<std::vector<std::string>> rows = {{"per frame (median)"}};
+  for (size_t p = 0; p < kGpuPassCount; ++p)
+    if (pass_drawn(static_cast<GpuPass>(p), passes)) rows[0].emplace_back(kGpuPassNames[p]);
+  for (size_t s = 0; s < kPipelineStatCount; ++s) {
+    std::string name(kPipelineStatNames[s]);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    rows.push_back({name});
+    for (size_t p = 0; p < kGpuPassCount; ++p)
+      if (pass_drawn(static_cast<GpuPass>(p), passes))
+        rows.back().push_back(with_thousands(static_cast<uint64_t>(quantile(stats[p][s], 0.5))));
+  }
+  return out + "Pipeline statistics (ARB_pipeline_statistics_query):\n" + align_columns(rows, {0});
 }
 
 }  // namespace
@@ -94,6 +145,7 @@ std::string format_profile(const RunReport& report) {
                   (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
                                                    : run.gpu_timing_missing).c_str());
   out << line;
+  out << format_gpu_passes(report, gpu);
   // The slow frames, which a median hides: a game stutters on its p99.
   std::vector<double> totals = frame_ms(report.frames);
   Summary s = summarize(totals);
@@ -215,6 +267,21 @@ Result make_result(const RunReport& report) {
   // GPU times only when a timer measured some frame: never a column of NaN.
   if (!gpu_ms(report.frames).empty())
     for (const FrameRecord& f : report.frames) r.samples.gpu_ms.push_back(f.gpu_ms);
+  bool split = std::any_of(report.frames.begin(), report.frames.end(),
+                           [](const FrameRecord& f) { return f.gpu_passes.timed(); });
+  for (size_t p = 0; split && p < kGpuPassCount; ++p)
+    for (const FrameRecord& f : report.frames) r.samples.gpu_pass_ms[p].push_back(f.gpu_passes.ms[p]);
+  if (std::any_of(report.frames.begin(), report.frames.end(),
+                  [](const FrameRecord& f) { return f.gpu_passes.has_stats(); })) {
+    auto& medians = r.pipeline_statistics.emplace();
+    for (size_t p = 0; p < kGpuPassCount; ++p)
+      for (size_t s = 0; s < kPipelineStatCount; ++s) {
+        std::vector<double> values;
+        for (const FrameRecord& f : report.frames)
+          if (f.gpu_passes.has_stats()) values.push_back(f.gpu_passes.stats[p][s]);
+        medians[p][s] = quantile(values, 0.5);
+      }
+  }
   for (const CounterField& field : kCounterFields) {
     std::vector<double> values;
     for (const FrameRecord& f : report.frames) values.push_back(static_cast<double>(f.counters.*field.member));

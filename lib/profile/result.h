@@ -17,6 +17,7 @@
 #include "profile/category_clock.h"
 #include "profile/counters.h"
 #include "profile/environment.h"
+#include "profile/gpu_passes.h"
 
 namespace crowdprof {
 
@@ -95,6 +96,8 @@ struct RunDescription {
   // The GPU timer's resolution (render/gpu_timer.h): a median GPU time below it
   // is shown as such, not as a number. 0: not known.
   double gpu_timer_resolution_ms = 0;
+  // Empty when each pass's pipeline statistics were read, else why not.
+  std::string pipeline_statistics_missing = "no GL backend (--backend none)";
   size_t warmup = 0;
   double fps = 60.0;
   std::string camera;
@@ -112,6 +115,8 @@ struct ResultSamples {
   std::vector<double> cpu_ms;  // empty in results recorded before CPU time was
   std::array<std::vector<double>, kCategoryCount> category_ms;
   std::vector<double> gpu_ms;  // NaN where a frame's was not read back; empty when not timed
+  // The same by pass (gpu_passes.h); each empty when the frame was not split.
+  std::array<std::vector<double>, kGpuPassCount> gpu_pass_ms;
 };
 
 // The median counters per frame; results recorded before a counter existed
@@ -153,6 +158,8 @@ struct Result {
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;
+  // Median per frame of each pass's pipeline statistics, when the GL had them.
+  std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
   std::optional<InstructionRecord> instructions;
   std::optional<PooledRuns> runs;
   // The process that measured it, when several were (check --runs, the A/B).

@@ -98,6 +98,36 @@ json crowd_json(const std::vector<CharacterRun>& crowd) {
   return out;
 }
 
+std::string pass_samples_key(size_t pass) { return "gpu_" + std::string(kGpuPassNames[pass]) + "_ms"; }
+
+// gpu_time.passes (each pass drawn: its median, and pipeline statistics when
+// read), the passes' coverage of the GPU time, and samples.gpu_<pass>_ms.
+void write_gpu_passes(const Result& r, double gpu_median, json& gpu_time, json& samples) {
+  json passes = json::array();
+  double sum = 0;
+  for (size_t p = 0; p < kGpuPassCount; ++p) {
+    if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
+    std::vector<double> ms = finite(r.samples.gpu_pass_ms[p]);
+    json pass = {{"pass", kGpuPassNames[p]}, {"median_ms", ms.empty() ? json(nullptr) : json(summarize(ms).median)}};
+    if (!ms.empty()) sum += summarize(ms).median;
+    if (r.pipeline_statistics) {
+      json statistics = json::object();
+      for (size_t s = 0; s < kPipelineStatCount; ++s)
+        statistics[std::string(kPipelineStatNames[s])] = std::llround((*r.pipeline_statistics)[p][s]);
+      pass["statistics"] = statistics;
+    }
+    passes.push_back(pass);
+    json per_frame = json::array();
+    for (double v : r.samples.gpu_pass_ms[p]) per_frame.push_back(std::isfinite(v) ? json(v) : json(nullptr));
+    samples[pass_samples_key(p)] = per_frame;
+  }
+  gpu_time["passes"] = passes;
+  gpu_time["pass_coverage"] = gpu_median > 0 ? json(sum / gpu_median) : json(nullptr);
+  if (!r.pipeline_statistics)
+    gpu_time["statistics_reason"] =
+        r.run.pipeline_statistics_missing.empty() ? "not read back" : r.run.pipeline_statistics_missing;
+}
+
 // "gpu_time" and samples.gpu_ms: numbers only where a GPU timer measured, never
 // made-up zeros.
 void write_gpu_time(const Result& r, json& j, json& samples) {
@@ -116,6 +146,7 @@ void write_gpu_time(const Result& r, json& j, json& samples) {
     json per_frame = json::array();
     for (double ms : r.samples.gpu_ms) per_frame.push_back(std::isfinite(ms) ? json(ms) : json(nullptr));
     samples["gpu_ms"] = per_frame;
+    if (!r.samples.gpu_pass_ms[0].empty()) write_gpu_passes(r, median, gpu_time, samples);
   }
   j["gpu_time"] = gpu_time;
 }
@@ -373,6 +404,33 @@ std::string series_of_format1_key(const std::string& key) {
   return key;
 }
 
+// Per-pass GPU times (samples.gpu_<pass>_ms: a pass not drawn took none) and
+// pipeline statistics (gpu_time.passes[].statistics), when written.
+void read_gpu_passes(const Reader& in, Result& r, size_t frames) {
+  bool split = false;
+  for (size_t p = 0; p < kGpuPassCount; ++p) split |= in.has("/samples/" + pass_samples_key(p));
+  if (!split) return;
+  for (size_t p = 0; p < kGpuPassCount; ++p)
+    r.samples.gpu_pass_ms[p] = in.has("/samples/" + pass_samples_key(p))
+                                   ? in.samples("/samples/" + pass_samples_key(p), frames, true)
+                                   : std::vector<double>(frames, 0.0);
+  if (!in.has("/gpu_time/passes")) return;
+  const json& passes = in.at("/gpu_time/passes");
+  in.require(passes.is_array(), "/gpu_time/passes", "an array");
+  for (size_t i = 0; i < passes.size(); ++i) {
+    std::string at = "/gpu_time/passes/" + std::to_string(i);
+    std::string name = in.text(at + "/pass");
+    auto known = std::find(kGpuPassNames.begin(), kGpuPassNames.end(), name);
+    if (known == kGpuPassNames.end()) in.fail("\"gpu_time.passes\" names no pass '" + name + "'");
+    if (!in.has(at + "/statistics")) continue;
+    in.object(at + "/statistics");
+    auto& medians = r.pipeline_statistics ? *r.pipeline_statistics : r.pipeline_statistics.emplace();
+    for (size_t s = 0; s < kPipelineStatCount; ++s)
+      medians[static_cast<size_t>(known - kGpuPassNames.begin())][s] =
+          static_cast<double>(in.count(at + "/statistics/" + std::string(kPipelineStatNames[s])));
+  }
+}
+
 void read_samples(const Reader& in, Result& r) {
   uint64_t frames = in.count("/frames");
   if (frames == 0) in.fail("a result of 0 frames");
@@ -388,11 +446,14 @@ void read_samples(const Reader& in, Result& r) {
   // No frame timed reads as not timed, as it is written.
   if (std::none_of(s.gpu_ms.begin(), s.gpu_ms.end(), [](double ms) { return std::isfinite(ms); })) s.gpu_ms.clear();
   r.run.gpu_timing_missing = "";  // "not recorded", unless gpu_time says why
+  r.run.pipeline_statistics_missing = "";
   if (in.has("/gpu_time")) {
     in.object("/gpu_time");
     r.run.gpu_timing_missing = in.text_or("/gpu_time/reason", "");
     r.run.gpu_timer_resolution_ms = in.number_or("/gpu_time/resolution_ms", 0);
+    r.run.pipeline_statistics_missing = in.text_or("/gpu_time/statistics_reason", "");
   }
+  read_gpu_passes(in, r, frames);
 }
 
 void read_counters(const Reader& in, Result& r) {

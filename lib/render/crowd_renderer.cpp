@@ -103,21 +103,36 @@ void GlCrowdRenderer::prepare(const FrameView& view) {
     baked_->prepare(view, meshes_);
     bytes += baked_->gpu_bytes();
   }
+  shadow_maps_.reserve(view.shadow_view_projections.size());
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   glBindVertexArray(0);
+  framebuffer_.bind();
   animation_gpu_bytes_ = bytes;
   check_gl("renderer set-up for skinning " + std::string(to_string(view.mode.skinning)));
 }
 
+void GlCrowdRenderer::bind_pass(const DrawPass& pass, bool after_prepass) {
+  if (pass.kind == GpuPass::Shadows)
+    shadow_maps_.bind_and_clear(pass.cascade);
+  else
+    framebuffer_.bind();
+  GLboolean colour = pass.colour() ? GL_TRUE : GL_FALSE;
+  glColorMask(colour, colour, colour, colour);
+  // After a prepass the colour pass meets the depth it wrote: equal passes.
+  glDepthFunc(pass.colour() && after_prepass ? GL_LEQUAL : GL_LESS);
+}
+
 void GlCrowdRenderer::draw(const FrameView& view, Counters& counters) {
-  // The GPU's time for everything the frame asks of it, clear to last draw.
-  if (features_.timer_queries()) timer_.begin(&view, view.frame);
+  // The GPU's time for everything the frame asks of it, clear to last draw,
+  // and each pass's share of it.
+  const bool timed = features_.timer_queries();
+  if (timed) timer_.begin(&view, view.frame, features_.pipeline_statistics);
   framebuffer_.bind();
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   // Copies skinned on the CPU first, then those the vertex shader skins, then
-  // the compute and baked passes: one program switch a frame (per technique),
-  // whatever the mix.
+  // the compute and baked passes: one program switch a frame (per technique
+  // and pass), whatever the mix.
   bool any_cpu = false, any_gpu = false, any_compute = false, any_baked = false;
   for (size_t k = 0; k < meshes_.size(); ++k) {
     SkinningSite site = view.characters[k].site;
@@ -127,7 +142,7 @@ void GlCrowdRenderer::draw(const FrameView& view, Counters& counters) {
     any_baked |= site == SkinningSite::Baked;
   }
   const ModeSwitches& mode = view.mode;
-  std::array<Technique*, 4> techniques{};
+  std::array<Technique*, 3> techniques{};
   size_t count = 0;
   if (any_cpu) techniques[count++] = software_.get();
   if (any_gpu && mode.palettes == PaletteStorage::Uniforms) {
@@ -139,17 +154,37 @@ void GlCrowdRenderer::draw(const FrameView& view, Counters& counters) {
     techniques[count++] = mode.draw == DrawMethod::Instanced ? static_cast<Technique*>(instanced_.get())
                                                              : static_cast<Technique*>(buffer_palette_.get());
   }
-  for (size_t t = 0; t < count; ++t) techniques[t]->draw(view, meshes_, counters);
+  passes_ = draw_passes(view);
+  if (view.shadow_view_projections.size() > shadow_maps_.count())
+    throw GlError("shadow cascades asked of a renderer not prepared for them");
+  const bool prepass = mode.passes >= 2;
+  auto begin_pass = [&](const DrawPass* pass) {
+    if (pass) bind_pass(*pass, prepass);
+    if (timed) timer_.mark(pass ? pass->kind : GpuPass::Skinning);
+  };
+  auto run = [&](std::span<Technique* const> list) {
+    begin_pass(nullptr);
+    for (Technique* t : list) t->upload(view, meshes_, counters);
+    for (const DrawPass& pass : passes_) {
+      begin_pass(&pass);
+      for (Technique* t : list) t->draw(view, meshes_, pass, counters);
+    }
+  };
+  if (count > 0) run(std::span<Technique* const>(techniques.data(), count));
   if (any_compute) {
     if (!compute_) throw GlError("compute skinning asked of a renderer not prepared for it");
-    compute_->draw(view, meshes_, counters);
+    compute_->draw(view, meshes_, passes_, begin_pass, counters);
   }
   if (any_baked) {
     if (!baked_) throw GlError("baked skinning asked of a renderer not prepared for it");
-    baked_->draw(view, meshes_, counters);
+    Technique* baked = baked_.get();
+    run(std::span<Technique* const>(&baked, 1));
   }
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LESS);
+  framebuffer_.bind();
   glBindVertexArray(0);
-  if (features_.timer_queries()) timer_.end();
+  if (timed) timer_.end();
   check_gl("Rasterizer");
 }
 
@@ -161,6 +196,12 @@ void GlCrowdRenderer::finish() {
 std::string GlCrowdRenderer::gpu_timing_missing() const {
   if (features_.timer_queries()) return {};
   return context_.renderer() + " has no GL_TIME_ELAPSED timer (0 counter bits)";
+}
+
+std::string GlCrowdRenderer::pipeline_statistics_missing() const {
+  if (!features_.timer_queries()) return gpu_timing_missing();
+  if (features_.pipeline_statistics) return {};
+  return context_.renderer() + " lacks ARB_pipeline_statistics_query";
 }
 
 size_t GlCrowdRenderer::take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) {

@@ -16,6 +16,7 @@
 #include "asset/character.h"
 #include "frame/frame_renderer.h"
 #include "frame/modes.h"
+#include "render/draw_passes.h"
 #include "render/framebuffer.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
@@ -81,6 +82,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   // glFinish. Throws GlError "GL error ... during GPU Latency".
   void finish() override;
   std::string gpu_timing_missing() const override;
+  std::string pipeline_statistics_missing() const override;
   size_t take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;
   double gpu_timer_resolution_ms() const override { return features_.timer_queries() ? timer_.resolution_ms() : 0; }
 
@@ -98,6 +100,9 @@ class GlCrowdRenderer final : public FrameRenderer {
   size_t max_joints_ = 0;  // the uniform array's bone limit
   CharacterMeshes meshes_;
   GpuTimer timer_;  // when features_.timer_queries()
+  ShadowMaps shadow_maps_;  // passes > 2: one per cascade, kept for later benches
+  std::vector<DrawPass> passes_;  // scratch: this frame's
+  void bind_pass(const DrawPass& pass, bool after_prepass);
   // The techniques: made when the GL and the characters allow them
   // (compute and baked when a bench first asks for them).
   std::unique_ptr<SoftwareUpload> software_;

@@ -21,6 +21,12 @@ GlFeatures read_gl_features(std::string_view hide) {
   value = 0;
   glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &value);
   f.timer_bits = value;
+  GLint extensions = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+  for (GLint e = 0; e < extensions; ++e) {
+    const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(e)));
+    if (name && std::string_view(name) == "GL_ARB_pipeline_statistics_query") f.pipeline_statistics = true;
+  }
   glGetError();  // a GL without one of these may flag the query; absence is the answer
   while (!hide.empty()) {
     size_t comma = hide.find(',');
@@ -34,6 +40,8 @@ GlFeatures read_gl_features(std::string_view hide) {
       f.timer_bits = 0;
     else if (name == "compute")
       f.compute_storage_blocks = 0;
+    else if (name == "pipeline-statistics")
+      f.pipeline_statistics = false;
     else if (!name.empty())
       throw UsageError("CROWDPROF_GL_HIDE '" + std::string(name) + "': expected some of " +
                        std::string(kHideableGlFeatures));

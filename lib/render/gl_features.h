@@ -20,6 +20,9 @@ struct GlFeatures {
   int64_t compute_storage_blocks = 0;
   // Bits of GL_TIME_ELAPSED's counter; 0 means timer queries do not work.
   int64_t timer_bits = 0;
+  // ARB_pipeline_statistics_query (core in 4.6): vertices, primitives and
+  // shader invocations per pass.
+  bool pipeline_statistics = false;
 
   bool storage_buffers() const { return vertex_storage_blocks > 0 && max_storage_block_bytes > 0; }
   bool timer_queries() const { return timer_bits > 0; }
@@ -27,7 +30,7 @@ struct GlFeatures {
 
 // The names `hide` understands, comma-separated: "vertex-ssbo", "timer-query",
 // "compute".
-inline constexpr std::string_view kHideableGlFeatures = "vertex-ssbo, timer-query, compute";
+inline constexpr std::string_view kHideableGlFeatures = "vertex-ssbo, timer-query, compute, pipeline-statistics";
 
 // Reads the current context's features, then acts as if it lacked those that
 // `hide` names (CROWDPROF_GL_HIDE: to see what crowdprof does on a GL without

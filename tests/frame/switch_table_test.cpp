@@ -30,7 +30,7 @@ TEST(SwitchTable, EverySwitchChangesTheSwitches) {
       {"lookups", "string"},  {"culling", "on"},         {"pose", "shared"},      {"parallel", "on"},
       {"skinning", "gpu"},    {"palettes", "buffer"},    {"draw", "instanced"},   {"vertex_format", "packed"},
       {"share", "on"},        {"share_quantum", "1/30"}, {"update_lod", "on"},    {"lod_thresholds", "0.5,0.25,0.1"},
-      {"anim_budget", "2"}};
+      {"anim_budget", "2"},   {"passes", "3"}};
   ASSERT_EQ(other.size(), switch_table().size());
   for (const SwitchSpec& spec : switch_table()) {
     ModeSwitches s;
@@ -49,6 +49,8 @@ TEST(SwitchTable, BadValuesAreSaidWithoutTheCommandLine) {
   EXPECT_NE(find_switch("share_quantum")->set(s, "-1"), "");
   EXPECT_NE(find_switch("lod_thresholds")->set(s, "0.1,0.2,0.3"), "");
   EXPECT_NE(find_switch("anim_budget")->set(s, "lots"), "");
+  for (const char* passes : {"0", "11", "2.5", "-1", "two"})
+    EXPECT_EQ(find_switch("passes")->set(s, passes).rfind("expected 1 to 10", 0), 0u) << passes;
   for (const SwitchSpec& spec : switch_table()) EXPECT_EQ(spec.set(s, "nonsense").find("--"), std::string::npos);
   EXPECT_EQ(find_switch("no_such"), nullptr);
   EXPECT_EQ(option_spelling("share_quantum"), "--share-quantum");

@@ -53,6 +53,45 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   EXPECT_EQ(read.frames_planned, 10u);
 }
 
+TEST(ResultCodec, GpuPassesAndPipelineStatisticsReadBack) {
+  RunReport report = test::fake_run("hwskin", 40, {2.0, 2.5, 2.2}, 0.25);
+  report.run.switches.passes = 3;  // prepass, one cascade, colour
+  report.run.pipeline_statistics_missing = "";
+  for (size_t f = 0; f < report.frames.size(); ++f) {
+    FrameRecord& frame = report.frames[f];
+    frame.gpu_ms = 1.0 + 0.1 * static_cast<double>(f);
+    frame.gpu_passes.ms = {0.1, 0.2, 0.3, 0.35};
+    for (size_t p = 0; p < kGpuPassCount; ++p)
+      for (size_t s = 0; s < kPipelineStatCount; ++s) frame.gpu_passes.stats[p][s] = static_cast<double>(100 * p + s + f);
+  }
+  report.frames[0].gpu_passes.ms[3] = std::nan("");  // read back without its colour pass: impossible, kept as null
+  json written = to_json(report);
+  ASSERT_TRUE(written["gpu_time"].contains("passes"));
+  EXPECT_EQ(written["gpu_time"]["passes"].size(), 4u) << "skinning, prepass, shadows, colour";
+  EXPECT_NEAR(written["gpu_time"]["pass_coverage"].get<double>(), (0.1 + 0.2 + 0.3 + 0.35) / 1.1, 1e-9);
+  EXPECT_EQ(written["gpu_time"]["passes"][3]["statistics"]["vertices_submitted"], 301) << "the median of 300, 301, 302";
+  EXPECT_TRUE(written["samples"]["gpu_colour_ms"][0].is_null());
+  Result read = result_from_json(written, "r.json");
+  EXPECT_EQ(result_to_json(read), written);
+  ASSERT_TRUE(read.pipeline_statistics);
+  EXPECT_EQ((*read.pipeline_statistics)[1][static_cast<size_t>(PipelineStat::VertexShaderInvocations)], 103);
+  EXPECT_DOUBLE_EQ(read.samples.gpu_pass_ms[2][1], 0.3);
+
+  // A GL without the statistics: the times, and why there are no statistics.
+  for (FrameRecord& frame : report.frames)
+    for (auto& pass : frame.gpu_passes.stats) pass.fill(std::nan(""));
+  report.run.pipeline_statistics_missing = "llvmpipe lacks ARB_pipeline_statistics_query";
+  written = to_json(report);
+  EXPECT_EQ(written["gpu_time"]["statistics_reason"], "llvmpipe lacks ARB_pipeline_statistics_query");
+  EXPECT_FALSE(written["gpu_time"]["passes"][0].contains("statistics"));
+  read = result_from_json(written, "r.json");
+  EXPECT_FALSE(read.pipeline_statistics);
+  EXPECT_EQ(result_to_json(read), written);
+  // A pass the codec does not know is refused, naming it.
+  written["gpu_time"]["passes"][0]["pass"] = "bloom";
+  EXPECT_NE(refusal(written).find("no pass 'bloom'"), std::string::npos) << refusal(written);
+}
+
 TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
   size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(results_dir())) {

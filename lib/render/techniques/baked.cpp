@@ -54,7 +54,7 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
 }
 
-void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   // This frame's instances, grouped by character: one instanced draw each.
   records_.clear();
   first_.assign(meshes.size() + 1, 0);
@@ -77,8 +77,12 @@ void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, C
                GL_STREAM_DRAW);  // orphaned, as the CPU path's buffers
   glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, records_.data());
   counters.bytes_uploaded += static_cast<uint64_t>(bytes);
+}
+
+void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
+  if (records_.empty()) return;
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, view);
+  set_frame_uniforms(program_, pass);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
   for (size_t k = 0; k < meshes.size(); ++k) {

@@ -24,7 +24,8 @@ class BakedSkinning final : public Technique {
   // GPU storage held: tables, placements and instance records.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
  private:
   struct InstanceRecord {

@@ -59,10 +59,15 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) :
   next_.resize(meshes.size());
 }
 
-void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, false);
+void BufferPalette::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, false);
+  counters.gpu_palette_bytes = buffers_.palette_gpu_bytes();
+}
+
+void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
+                         Counters& counters) {
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, view);
+  set_frame_uniforms(program_, pass);
   for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
@@ -72,11 +77,9 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, C
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElements(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr);
-    counters.bytes_uploaded += kModelBytes;  // the palette went in `sent`
+    counters.bytes_uploaded += kModelBytes;  // the palette went up in upload()
     ++counters.draw_calls;
   }
-  counters.bytes_uploaded += sent;
-  counters.gpu_palette_bytes = buffers_.palette_gpu_bytes();
 }
 
 }  // namespace crowdprof

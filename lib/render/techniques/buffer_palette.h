@@ -28,7 +28,8 @@ class BufferPalette final : public Technique {
   // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
   BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes);
 
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
  private:
   int64_t max_block_bytes_;

@@ -14,8 +14,10 @@ namespace crowdprof {
 
 namespace {
 
-// The batch's vertex buffer holds at most this much.
+// The batch's vertex buffer holds at most this much (with one pass; with
+// several, so that a pass sees more of the crowd before the next pass).
 constexpr size_t kComputeBudgetBytes = size_t{64} << 20;
+constexpr size_t kComputePassesBudgetBytes = size_t{1} << 30;
 constexpr GLuint kComputeGroup = 64;  // skin.comp's local_size_x
 
 }  // namespace
@@ -72,7 +74,8 @@ void ComputeSkinning::prepare(const FrameView& view, const CharacterMeshes& mesh
     bytes += m.vertices * 4 * sizeof(glm::vec4);
   }
   size_t copies = view.copies();
-  size_t batch = std::clamp<size_t>(kComputeBudgetBytes / (vertices * 2 * sizeof(glm::vec4)), 1, std::max<size_t>(copies, 1));
+  size_t budget = view.mode.passes > 1 ? kComputePassesBudgetBytes : kComputeBudgetBytes;
+  size_t batch = std::clamp<size_t>(budget / (vertices * 2 * sizeof(glm::vec4)), 1, std::max<size_t>(copies, 1));
   batch = std::min<size_t>(batch, 65535);  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT[1] GL promises
   if (batch != batch_ || vertices != vertices_ || joints != joints_) {
     glDeleteBuffers(1, &bones_);
@@ -88,15 +91,17 @@ void ComputeSkinning::prepare(const FrameView& view, const CharacterMeshes& mesh
   gpu_bytes_ = bytes + batch_ * (joints_ * 3 + vertices_ * 2) * sizeof(glm::vec4);
 }
 
-void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, std::span<const DrawPass> passes,
+                           const BeginPass& begin_pass, Counters& counters) {
   for (size_t k = 0; k < meshes.size(); ++k)
     if (view.characters[k].site == SkinningSite::Compute) {
-      draw_kind(view, meshes[k], k, counters);
+      draw_kind(view, meshes[k], k, passes, begin_pass, counters);
       counters.gpu_palette_bytes = gpu_bytes_;
     }
 }
 
-void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t k, Counters& counters) {
+void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t k,
+                                std::span<const DrawPass> passes, const BeginPass& begin_pass, Counters& counters) {
   if (k >= rest_storage_.size() || !rest_storage_[k] || mesh.joints > joints_ || mesh.vertices > vertices_)
     throw GlError("compute skinning asked of a renderer not prepared for it");
   copies_.clear();
@@ -104,13 +109,14 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
     if (view.visible[i] && view.kind[i] == k) copies_.push_back(i);
   auto vertices = static_cast<GLuint>(mesh.vertices);
   size_t copy_stride = mesh.vertices * 2 * sizeof(glm::vec4);
-  const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4) + kModelBytes;
+  const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4);
   for (size_t start = 0; start < copies_.size(); start += batch_) {
     size_t count = std::min(batch_, copies_.size() - start);
     for (size_t c = 0; c < count; ++c) {
       std::span<const SkinMatrix> palette = view.palette(copies_[start + c]);
       for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * (c * mesh.joints + j)]);
     }
+    begin_pass(nullptr);
     // Fresh storage for both buffers (orphaning): the last batch's draws may still read them.
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, bones_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * joints_ * 3 * sizeof(glm::vec4)), nullptr,
@@ -129,18 +135,22 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
     glDispatchCompute((vertices + kComputeGroup - 1) / kComputeGroup, static_cast<GLuint>(count), 1);
     // The draws below read what the pass wrote as vertex attributes.
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-    glUseProgram(draw_program_.id());
-    set_frame_uniforms(draw_program_, view);
-    glBindVertexArray(vao_);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
-    for (size_t c = 0; c < count; ++c) {
-      size_t i = copies_[start + c];
-      glBindVertexBuffer(0, skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
-      glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
-      glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
-      glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
-      counters.bytes_uploaded += palette_bytes;
-      ++counters.draw_calls;
+    counters.bytes_uploaded += count * palette_bytes;
+    for (const DrawPass& pass : passes) {
+      begin_pass(&pass);
+      glUseProgram(draw_program_.id());
+      set_frame_uniforms(draw_program_, pass);
+      glBindVertexArray(vao_);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
+      for (size_t c = 0; c < count; ++c) {
+        size_t i = copies_[start + c];
+        glBindVertexBuffer(0, skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
+        glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
+        glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
+        glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+        counters.bytes_uploaded += kModelBytes;
+        ++counters.draw_calls;
+      }
     }
   }
 }

@@ -4,6 +4,9 @@
 // as vertex attributes with the plain lit program.
 #pragma once
 
+#include <functional>
+#include <span>
+
 #include <cstdint>
 #include <vector>
 
@@ -12,10 +15,18 @@
 
 namespace crowdprof {
 
-class ComputeSkinning final : public Technique {
+// Called before each segment of compute's work: null before a batch is
+// skinned, else the pass its draws go to (the renderer binds its target).
+using BeginPass = std::function<void(const DrawPass*)>;
+
+// Not a Technique: its draws must follow the dispatch that skinned their
+// batch, so it runs every pass of a batch before skinning the next.
+class ComputeSkinning final {
  public:
   ComputeSkinning();
-  ~ComputeSkinning() override;
+  ~ComputeSkinning();
+  ComputeSkinning(const ComputeSkinning&) = delete;
+  ComputeSkinning& operator=(const ComputeSkinning&) = delete;
 
   // Uploads the rest mesh of each character the bench skins by compute and
   // sizes the batch buffers for its crowd.
@@ -23,11 +34,17 @@ class ComputeSkinning final : public Technique {
   // GPU storage held: rest meshes and batch buffers.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
-  // The copies on screen whose character the bench skins by compute.
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  // Skins the copies on screen whose character the bench skins by compute,
+  // a batch at a time, and draws each batch in every pass: skinned once
+  // whatever the passes. With several passes a batch holds up to 1 GiB of
+  // skinned vertices (6,700 copies of the humanoid), so a crowd on screen up
+  // to that has its prepass drawn whole before its colour.
+  void draw(const FrameView& view, const CharacterMeshes& meshes, std::span<const DrawPass> passes,
+            const BeginPass& begin_pass, Counters& counters);
 
  private:
-  void draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t kind, Counters& counters);
+  void draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t kind, std::span<const DrawPass> passes,
+                 const BeginPass& begin_pass, Counters& counters);
 
   GlProgram skin_program_, draw_program_;
   GLint vertex_count_ = -1, joint_count_ = -1, model_ = -1, colour_ = -1;

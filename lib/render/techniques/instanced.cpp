@@ -16,10 +16,14 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.joints * 3 * sizeof(glm::vec4) + sizeof(GpuInstance);
 }
 
-void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  uint64_t sent = send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, true);
+void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, true);
+  counters.gpu_palette_bytes = buffers_.gpu_bytes();
+}
+
+void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, view);
+  set_frame_uniforms(program_, pass);
   glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
                glm::value_ptr(kCopyColours[0]));
   for (size_t k = 0; k < meshes.size(); ++k) {
@@ -33,8 +37,6 @@ void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, Count
                             static_cast<GLsizei>(run.count));
     ++counters.draw_calls;
   }
-  counters.bytes_uploaded += sent;
-  counters.gpu_palette_bytes = buffers_.gpu_bytes();
 }
 
 }  // namespace crowdprof

@@ -18,7 +18,8 @@ class Instanced final : public Technique {
   // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
   Instanced(CharacterMeshes& meshes, int64_t max_block_bytes);
 
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
   // Bytes one copy of `mesh` costs to send: its palette's rows and its record.
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);

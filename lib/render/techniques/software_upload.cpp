@@ -60,73 +60,108 @@ uint64_t SoftwareUpload::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.vertices * 2 * sizeof(glm::vec3) + kModelBytes;
 }
 
-void SoftwareUpload::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  const bool packed = view.packed();
-  const GlProgram& program = packed ? packed_program_ : float_program_;
+GLuint SoftwareUpload::stream_buffer(size_t drawn, bool own) {
+  // One pass cycles through the budget's buffers; several passes keep each
+  // copy's vertices until the last pass, so each copy drawn needs its own.
+  if (!own) return stream_[drawn % stream_.size()];
+  while (stream_.size() <= drawn) stream_.push_back(make_buffer(GL_ARRAY_BUFFER, 1, nullptr, GL_STREAM_DRAW));
+  return stream_[drawn];
+}
+
+void SoftwareUpload::use_program(const FrameView& view, const DrawPass& pass) const {
+  const GlProgram& program = view.packed() ? packed_program_ : float_program_;
   glUseProgram(program.id());
-  set_frame_uniforms(program, view);
-  glBindVertexArray(packed ? packed_vao_ : float_vao_);
+  set_frame_uniforms(program, pass);
+  glBindVertexArray(view.packed() ? packed_vao_ : float_vao_);
+}
+
+void SoftwareUpload::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  placed_.clear();
+  if (view.mode.passes <= 1) return;
   size_t drawn = 0;
   shown_storage_ = SIZE_MAX;
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || skins_on_gpu(view.site_of(i))) continue;
     const CharacterMesh& mesh = meshes[view.kind[i]];
-    if (packed)
-      draw_packed(view, mesh, i, drawn++, counters);
-    else
-      draw_float(view, mesh, i, drawn++, counters);
+    placed_.push_back(view.packed() ? place_packed(view, mesh, i, drawn++, counters)
+                                    : place_float(view, mesh, i, drawn++, counters));
   }
 }
 
-void SoftwareUpload::draw_float(const FrameView& view, const CharacterMesh& mesh, size_t i, size_t drawn,
-                                Counters& counters) {
+void SoftwareUpload::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
+                          Counters& counters) {
+  use_program(view, pass);
+  if (view.mode.passes > 1) {
+    for (const Placed& p : placed_) draw_placed(view, meshes[view.kind[p.copy]], p, true, counters);
+    return;
+  }
+  size_t drawn = 0;
+  shown_storage_ = SIZE_MAX;
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!view.visible[i] || skins_on_gpu(view.site_of(i))) continue;
+    const CharacterMesh& mesh = meshes[view.kind[i]];
+    Placed p = view.packed() ? place_packed(view, mesh, i, drawn++, counters) : place_float(view, mesh, i, drawn++, counters);
+    draw_placed(view, mesh, p, p.fresh, counters);
+  }
+}
+
+SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, const CharacterMesh& mesh, size_t i,
+                                                   size_t drawn, Counters& counters) {
   auto half = static_cast<GLsizeiptr>(mesh.vertices * sizeof(glm::vec3));
   // Animation sharing: a copy in the state the last draw uploaded draws that
   // mesh again with its own transform (the thesis scene: one upload a frame).
-  bool same_mesh = view.mode.share_poses && view.storage_of(i) == shown_storage_;
-  GLuint buffer = same_mesh ? shown_buffer_ : stream_[drawn % stream_.size()];
-  if (!same_mesh) {
-    glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    // Fresh storage (orphaning) before writing: writing into storage that a
-    // draw may still read makes the driver wait for it. llvmpipe waits even
-    // for the last frame's finished draws: 2.5x the Rasterizer time without.
-    glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, half, view.skinned_positions(i).data());
-    glBufferSubData(GL_ARRAY_BUFFER, half, half, view.skinned_normals(i).data());
-    counters.bytes_uploaded += bytes_per_copy(mesh);
-    shown_storage_ = view.storage_of(i);
-    shown_buffer_ = buffer;
-  }
-  glBindVertexBuffer(0, buffer, 0, sizeof(glm::vec3));
-  glBindVertexBuffer(1, buffer, half, sizeof(glm::vec3));
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);  // part of the VAO: the copy's character's
-  glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
-  glUniform3fv(float_colour_, 1, glm::value_ptr(copy_colour(i)));
-  glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
-  ++counters.draw_calls;
+  if (view.mode.share_poses && view.storage_of(i) == shown_storage_) return {i, shown_buffer_, half, false};
+  GLuint buffer = stream_buffer(drawn, view.mode.passes > 1);
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  // Fresh storage (orphaning) before writing: writing into storage that a
+  // draw may still read makes the driver wait for it. llvmpipe waits even
+  // for the last frame's finished draws: 2.5x the Rasterizer time without.
+  glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, half, view.skinned_positions(i).data());
+  glBufferSubData(GL_ARRAY_BUFFER, half, half, view.skinned_normals(i).data());
+  counters.bytes_uploaded += bytes_per_copy(mesh) - kModelBytes;  // the model goes with the draw
+  shown_storage_ = view.storage_of(i);
+  shown_buffer_ = buffer;
+  return {i, buffer, half, true};
 }
 
-void SoftwareUpload::draw_packed(const FrameView& view, const CharacterMesh& mesh, size_t i, size_t drawn,
-                                 Counters& counters) {
+SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, const CharacterMesh& mesh, size_t i,
+                                                    size_t drawn, Counters& counters) {
   auto positions = static_cast<GLsizeiptr>(mesh.vertices * kPackedPositionBytes);
   auto normals = static_cast<GLsizeiptr>(mesh.vertices * kPackedNormalBytes);
-  GLuint buffer = stream_[drawn % stream_.size()];
+  GLuint buffer = stream_buffer(drawn, view.mode.passes > 1);
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
   // Normals start on a 4-byte boundary: the words are read whole.
   GLintptr normals_at = (positions + 3) / 4 * 4;
   glBufferData(GL_ARRAY_BUFFER, normals_at + normals, nullptr, GL_STREAM_DRAW);  // orphaned, as above
   glBufferSubData(GL_ARRAY_BUFFER, 0, positions, view.packed_positions_of(i).data());
   glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, view.packed_normals_of(i).data());
-  glBindVertexBuffer(0, buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
-  glBindVertexBuffer(1, buffer, normals_at, static_cast<GLsizei>(kPackedNormalBytes));
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
-  const PositionQuantisation& q = view.character_of(i).quantisation;
-  glUniform3fv(packed_min_, 1, glm::value_ptr(q.min));
-  glUniform3fv(packed_extent_, 1, glm::value_ptr(q.extent));
-  glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
-  glUniform3fv(packed_colour_, 1, glm::value_ptr(copy_colour(i)));
+  counters.bytes_uploaded += mesh.vertices * kPackedVertexBytes;
+  return {i, buffer, normals_at, true};
+}
+
+void SoftwareUpload::draw_placed(const FrameView& view, const CharacterMesh& mesh, const Placed& p, bool send_model,
+                                 Counters& counters) {
+  size_t i = p.copy;
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);  // part of the VAO: the copy's character's
+  if (view.packed()) {
+    glBindVertexBuffer(0, p.buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
+    glBindVertexBuffer(1, p.buffer, p.normals_at, static_cast<GLsizei>(kPackedNormalBytes));
+    const PositionQuantisation& q = view.character_of(i).quantisation;
+    glUniform3fv(packed_min_, 1, glm::value_ptr(q.min));
+    glUniform3fv(packed_extent_, 1, glm::value_ptr(q.extent));
+    glUniformMatrix4fv(packed_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
+    glUniform3fv(packed_colour_, 1, glm::value_ptr(copy_colour(i)));
+  } else {
+    glBindVertexBuffer(0, p.buffer, 0, sizeof(glm::vec3));
+    glBindVertexBuffer(1, p.buffer, p.normals_at, sizeof(glm::vec3));
+    glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
+    glUniform3fv(float_colour_, 1, glm::value_ptr(copy_colour(i)));
+  }
   glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
-  counters.bytes_uploaded += mesh.vertices * kPackedVertexBytes + kModelBytes;
+  // A copy drawing the mesh the last one uploaded (sharing) was counted as
+  // sending nothing; the thesis scene's counters keep that.
+  if (send_model) counters.bytes_uploaded += kModelBytes;
   ++counters.draw_calls;
 }
 

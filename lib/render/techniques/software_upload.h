@@ -20,15 +20,30 @@ class SoftwareUpload final : public Technique {
   SoftwareUpload(const CharacterMeshes& meshes, size_t copies);
   ~SoftwareUpload() override;
 
+  // With one pass, nothing: each copy's vertices go up just before its draw,
+  // as the BGE did. With several, every copy on screen that the CPU skinned
+  // goes up once, into a buffer of its own, for every pass to draw.
+  void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   // The copies on screen that the CPU skinned.
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
   // Bytes one float copy of `mesh` costs to send: positions, normals, model.
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);
 
  private:
-  void draw_float(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
-  void draw_packed(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  // A copy's vertices in a stream buffer: where each attribute starts.
+  struct Placed {
+    size_t copy = 0;
+    GLuint buffer = 0;
+    GLintptr normals_at = 0;
+    bool fresh = true;  // uploaded for this copy (false: sharing the last one's)
+  };
+  Placed place_float(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  Placed place_packed(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  void draw_placed(const FrameView& view, const CharacterMesh& mesh, const Placed& placed, bool send_model,
+                   Counters& counters);
+  void use_program(const FrameView& view, const DrawPass& pass) const;
+  GLuint stream_buffer(size_t drawn, bool own);
 
   GlProgram float_program_, packed_program_;
   GLint float_model_ = -1, float_colour_ = -1;
@@ -42,6 +57,7 @@ class SoftwareUpload final : public Technique {
   // draw that buffer with their own transform, uploading nothing.
   size_t shown_storage_ = SIZE_MAX;
   GLuint shown_buffer_ = 0;
+  std::vector<Placed> placed_;  // several passes: this frame's copies, uploaded
 };
 
 }  // namespace crowdprof

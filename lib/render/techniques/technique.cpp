@@ -4,6 +4,7 @@
 
 #include "frame/frame_view.h"
 #include "render/shader_sources.h"
+#include "scene/shadow_cascades.h"
 
 namespace crowdprof {
 
@@ -24,11 +25,9 @@ std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defin
           {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
 }
 
-void set_frame_uniforms(const GlProgram& program, const FrameView& view) {
-  glm::mat4 view_projection = view.view_projection;
-  glUniformMatrix4fv(program.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(view_projection));
-  glm::vec3 light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.6f));  // above, in front, to the right
-  glUniform3fv(program.uniform("light_direction"), 1, glm::value_ptr(light));
+void set_frame_uniforms(const GlProgram& program, const DrawPass& pass) {
+  glUniformMatrix4fv(program.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(pass.view_projection));
+  glUniform3fv(program.uniform("light_direction"), 1, glm::value_ptr(kLightDirection));
 }
 
 }  // namespace crowdprof

@@ -20,6 +20,7 @@
 #include "animation/skin_matrix.h"
 #include "profile/counters.h"
 #include "render/gl.h"
+#include "render/draw_passes.h"
 #include "render/gl_program.h"
 
 namespace crowdprof {
@@ -48,8 +49,8 @@ void put_rows(const SkinMatrix& m, glm::vec4* rows);
 std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defines,
                                     const std::string& fragment_defines = {});
 
-// What every lit program takes each frame: the camera and the light.
-void set_frame_uniforms(const GlProgram& program, const FrameView& view);
+// What every lit program takes each pass: the pass's camera and the light.
+void set_frame_uniforms(const GlProgram& program, const DrawPass& pass);
 
 // Bytes a copy's world matrix costs to send.
 inline constexpr uint64_t kModelBytes = sizeof(glm::mat4);
@@ -57,9 +58,15 @@ inline constexpr uint64_t kModelBytes = sizeof(glm::mat4);
 class Technique {
  public:
   virtual ~Technique() = default;
-  // Draws this frame's copies on screen that use the technique, and adds what
-  // it sent and drew to `counters` (gpu_palette_bytes: what it holds there).
-  virtual void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) = 0;
+  // Once a frame, before any pass: sends what the draws read this frame
+  // (palettes, skinned vertices, instance records), adding it to
+  // counters.bytes_uploaded (and gpu_palette_bytes: what it holds there).
+  virtual void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) = 0;
+  // Draws this frame's copies on screen that use the technique into the
+  // target bound, as `pass` sees them; adds draws (and what each sends) to
+  // `counters`.
+  virtual void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
+                    Counters& counters) = 0;
 };
 
 }  // namespace crowdprof

@@ -28,9 +28,15 @@ uint64_t UniformPalette::bytes_per_copy(const CharacterMesh& mesh) {
   return mesh.joints * 3 * sizeof(glm::vec4) + kModelBytes;
 }
 
-void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+void UniformPalette::upload(const FrameView&, const CharacterMeshes&, Counters& counters) {
+  counters.gpu_palette_bytes = 3 * sizeof(glm::vec4) * bone_limit_;  // the uniform array
+}
+
+// Each draw sends its copy's palette: every pass sends it again.
+void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
+                          Counters& counters) {
   glUseProgram(program_.id());
-  set_frame_uniforms(program_, view);
+  set_frame_uniforms(program_, pass);
   for (size_t i = 0; i < view.copies(); ++i) {
     size_t k = view.kind[i];
     if (!view.visible[i] || view.characters[k].site != SkinningSite::Gpu) continue;
@@ -47,7 +53,6 @@ void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, 
     counters.bytes_uploaded += bytes_per_copy(mesh);
     ++counters.draw_calls;
   }
-  counters.gpu_palette_bytes = 3 * sizeof(glm::vec4) * bone_limit_;  // the uniform array
 }
 
 }  // namespace crowdprof

@@ -19,7 +19,8 @@ class UniformPalette final : public Technique {
 
   // The copies on screen whose character the mode skins on the GPU from a
   // uniform palette. Throws GlError for one over the bone limit.
-  void draw(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
+  void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
   // Bytes one copy of `mesh` costs to send: its palette's rows and model.
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);
