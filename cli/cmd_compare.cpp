@@ -37,22 +37,36 @@ struct CompareCliOptions {
   std::string svg, trace, summary_csv, gbench_json;
 };
 
-std::vector<size_t> parse_sweep(const std::string& text) {
-  std::string list = text.rfind("n=", 0) == 0 ? text.substr(2) : text;
-  std::vector<size_t> sizes;
+struct Sweep {
+  SweepAxis axis = SweepAxis::Characters;
+  std::vector<size_t> points;  // ascending
+};
+
+// "n=10,20,40" or "10,20,40" (crowd sizes), "passes=1,2,4".
+Sweep parse_sweep(const std::string& text) {
+  Sweep sweep;
+  std::string list = text;
+  if (text.rfind("n=", 0) == 0) {
+    list = text.substr(2);
+  } else if (text.rfind("passes=", 0) == 0) {
+    sweep.axis = SweepAxis::Passes;
+    list = text.substr(7);
+  }
+  const bool passes = sweep.axis == SweepAxis::Passes;
+  const char* expected = passes ? "expected passes such as passes=1,2,4,6" : "expected crowd sizes such as n=10,20,40,80,160, or passes=1,2,4,6";
   std::stringstream in(list);
   std::string item;
   auto bad = [&](const std::string& why) { return UsageError("--sweep '" + text + "': " + why); };
   while (std::getline(in, item, ',')) {
-    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos)
-      throw bad("expected crowd sizes such as n=10,20,40,80,160");
+    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos) throw bad(expected);
     size_t n = std::stoul(item);
-    if (n < 1 || n > 10'000'000) throw bad("each size must be 1 to 10,000,000");
-    if (std::find(sizes.begin(), sizes.end(), n) == sizes.end()) sizes.push_back(n);
+    if (passes && (n < 1 || n > kMaxPasses)) throw bad("each count of passes must be 1 to " + std::to_string(kMaxPasses));
+    if (!passes && (n < 1 || n > 10'000'000)) throw bad("each size must be 1 to 10,000,000");
+    if (std::find(sweep.points.begin(), sweep.points.end(), n) == sweep.points.end()) sweep.points.push_back(n);
   }
-  if (sizes.empty()) throw bad("expected crowd sizes such as n=10,20,40,80,160");
-  std::sort(sizes.begin(), sizes.end());
-  return sizes;
+  if (sweep.points.empty()) throw bad(expected);
+  std::sort(sweep.points.begin(), sweep.points.end());
+  return sweep;
 }
 
 }  // namespace
@@ -145,7 +159,7 @@ namespace {
 
 int compare(CompareCliOptions& o) {
   check_block(o.block);
-  std::vector<size_t> sweep = o.sweep.empty() ? std::vector<size_t>{} : parse_sweep(o.sweep);
+  Sweep sweep = o.sweep.empty() ? Sweep{} : parse_sweep(o.sweep);
   bool named = !o.modes.empty();
   std::vector<std::string> names = modes_to_run(o.modes);
 
@@ -165,6 +179,7 @@ int compare(CompareCliOptions& o) {
 
   Comparison comparison;
   comparison.block = static_cast<size_t>(o.block);
+  comparison.sweep_axis = sweep.axis;
   std::unique_ptr<Tracer> tracer;
   if (!o.trace.empty()) {
     tracer = std::make_unique<Tracer>();
@@ -185,13 +200,22 @@ int compare(CompareCliOptions& o) {
   }
   for (BenchConfig& config : configs) config.tracer = nullptr;  // the trace shows the main run only
   bool partial = !comparison.runs.empty() && comparison.runs.front().partial;
-  for (size_t n : partial ? std::vector<size_t>{} : sweep) {
-    if (n == copies) {
+  const bool by_passes = sweep.axis == SweepAxis::Passes;
+  for (size_t n : partial ? std::vector<size_t>{} : sweep.points) {
+    bool main_point = by_passes ? std::all_of(configs.begin(), configs.end(),
+                                              [&](const BenchConfig& c) { return c.mode.passes == n; })
+                                : n == copies;
+    if (main_point) {
       comparison.sweep.insert(comparison.sweep.end(), comparison.runs.begin(), comparison.runs.end());
       continue;
     }
-    ModeRun point = make_benches(scene, configs, n, named, false);
-    std::vector<RunReport> reports = run_modes(point, o.bench, comparison.block, rendering, "sweep n=" + std::to_string(n) + ", " + modes_text + ",");
+    // Passes: every mode as named, drawn n times a frame (its name unchanged, so its line is one).
+    std::vector<BenchConfig> at_point = configs;
+    for (BenchConfig& config : at_point)
+      if (by_passes) config.mode.passes = static_cast<uint32_t>(n);
+    ModeRun point = make_benches(scene, at_point, by_passes ? copies : n, named, false);
+    std::string label = by_passes ? "sweep passes=" + std::to_string(n) : "sweep n=" + std::to_string(n);
+    std::vector<RunReport> reports = run_modes(point, o.bench, comparison.block, rendering, label + ", " + modes_text + ",");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
@@ -200,11 +224,11 @@ int compare(CompareCliOptions& o) {
     std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
-  // The main run's modes, then the sweep's other crowd sizes.
+  // The main run's modes, then the sweep's other points.
   std::vector<const RunReport*> rows;
   for (const RunReport& report : comparison.runs) rows.push_back(&report);
   for (const RunReport& report : comparison.sweep)
-    if (report.run.characters != copies) rows.push_back(&report);
+    if (!is_main_point(comparison, report)) rows.push_back(&report);
   if (!o.summary_csv.empty()) write_text(o.summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv(rows, out); });
   if (!o.gbench_json.empty())
     write_text(o.gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document(rows).dump(2) << "\n"; });
@@ -228,7 +252,7 @@ int compare(CompareCliOptions& o) {
     std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frames.size() << " of "
               << comparison.runs.front().frames_planned << " frames per mode measured"
               << (wrote ? ", and written as a partial result" : "")
-              << (sweep.empty() ? "" : "; the sweep was not run") << "\n";
+              << (sweep.points.empty() ? "" : "; the sweep was not run") << "\n";
     return kExitInterrupted;
   }
   return kExitOk;
@@ -251,8 +275,9 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
       ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--sweep", options->sweep,
-                  "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160: rows in the table and JSON, "
-                  "a chart in the SVG");
+                  "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160, or drawn this many times a "
+                  "frame, e.g. passes=1,2,4,6 (see --passes): rows in the table and JSON, a chart in the SVG and "
+                  "HTML");
   cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
   cmd->add_option("--summary-csv", options->summary_csv,
                   "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "profile/chart_colours.h"
+#include "profile/report_charts.h"
 #include "profile/stats.h"
 #include "profile/svg_chart.h"
 #include "profile/number_text.h"
@@ -22,13 +23,14 @@ std::vector<double> frame_ms(const RunReport& run) {
   return out;
 }
 
-nlohmann::json medians_json(const ModeMedians& m, const RunReport& run) {
+nlohmann::json medians_json(const ModeMedians& m, const RunReport& run, bool with_passes = false) {
   nlohmann::json categories;
   for (size_t c = 0; c < kCategoryCount; ++c)
     categories[series_name(static_cast<Category>(c))] = m.category_ms[c];
   nlohmann::json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
                       {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
                       {"speedup", m.speedup}, {"digest", run.digest}};
+  if (with_passes || m.passes != 1) j["passes"] = m.passes;
   const FrameRecord& median = run.frames.empty() ? FrameRecord{} : run.frames[median_frame(run.frames)];
   for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = median.counters.*field.member;
   return j;
@@ -36,13 +38,21 @@ nlohmann::json medians_json(const ModeMedians& m, const RunReport& run) {
 
 }  // namespace
 
+bool is_main_point(const Comparison& comparison, const RunReport& run) {
+  if (comparison.runs.empty()) return false;
+  const RunDescription& main = comparison.runs.front().run;
+  return comparison.sweep_axis == SweepAxis::Passes ? run.run.switches.passes == main.switches.passes
+                                                    : run.run.characters == main.characters;
+}
+
 std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs) {
   std::vector<ModeMedians> out;
-  std::map<size_t, double> first_at_size;  // characters -> first mode's median
+  std::map<std::pair<size_t, uint32_t>, double> first_at_size;  // (characters, passes) -> first mode's median
   for (const RunReport& run : runs) {
     ModeMedians m;
     m.mode = run.run.mode;
     m.characters = run.run.characters;
+    m.passes = run.run.switches.passes;
     m.threads = run.run.threads;
     std::vector<double> totals = frame_ms(run);
     m.frame_ms = summarize(totals).median;
@@ -51,7 +61,7 @@ std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs) {
       for (const FrameRecord& f : run.frames) values.push_back(f.times.ms[c]);
       m.category_ms[c] = summarize(values).median;
     }
-    auto [first, inserted] = first_at_size.emplace(m.characters, m.frame_ms);
+    auto [first, inserted] = first_at_size.emplace(std::pair(m.characters, m.passes), m.frame_ms);
     m.speedup = m.frame_ms > 0 ? first->second / m.frame_ms : 0.0;
     out.push_back(m);
   }
@@ -109,10 +119,14 @@ std::string format_comparison(const Comparison& comparison) {
            "'s frame_ms / the mode's\n";
   if (comparison.sweep.empty()) return out;
   rows.clear();
-  rows.push_back({"characters", "mode", "frame_ms", "speedup_x"});
+  const SweepAxis axis = comparison.sweep_axis;
+  rows.push_back({std::string(to_string(axis)), "mode", "frame_ms", "speedup_x"});
   for (const ModeMedians& m : mode_medians(comparison.sweep))
-    rows.push_back({std::to_string(m.characters), m.mode, fixed(m.frame_ms, 3), fixed(m.speedup, 2)});
-  return out + "\nsweep: median frame time by crowd size\n" + align_columns(rows, {1});
+    rows.push_back({std::to_string(m.on(axis)), m.mode, fixed(m.frame_ms, 3), fixed(m.speedup, 2)});
+  return out +
+         (axis == SweepAxis::Passes ? "\nsweep: median frame time by passes (draws of the crowd a frame)\n"
+                                    : "\nsweep: median frame time by crowd size\n") +
+         align_columns(rows, {1});
 }
 
 void write_comparison_csv(const Comparison& comparison, std::ostream& out) {
@@ -125,10 +139,9 @@ void write_comparison_csv(const Comparison& comparison, std::ostream& out) {
     first = false;
   };
   for (const RunReport& run : comparison.runs) write(run);
-  // The sweep's runs at the main size are the main runs: written once.
-  size_t main_size = comparison.runs.empty() ? 0 : comparison.runs.front().run.characters;
+  // The sweep's runs at the main point are the main runs: written once.
   for (const RunReport& run : comparison.sweep)
-    if (run.run.characters != main_size) write(run);
+    if (!is_main_point(comparison, run)) write(run);
 }
 
 nlohmann::json comparison_to_json(const Comparison& comparison) {
@@ -141,7 +154,7 @@ nlohmann::json comparison_to_json(const Comparison& comparison) {
     j["modes"].push_back(medians[r].mode);
   }
   std::vector<ModeMedians> sweep_medians = mode_medians(comparison.sweep);
-  for (size_t r = 0; r < comparison.sweep.size(); ++r) sweep.push_back(medians_json(sweep_medians[r], comparison.sweep[r]));
+  for (size_t r = 0; r < comparison.sweep.size(); ++r) sweep.push_back(medians_json(sweep_medians[r], comparison.sweep[r], comparison.sweep_axis == SweepAxis::Passes));
   if (!runs.empty()) {
     j["crowdprof"] = runs[0]["crowdprof"];
     j["environment"] = runs[0]["environment"];
@@ -152,6 +165,7 @@ nlohmann::json comparison_to_json(const Comparison& comparison) {
   j["block_frames"] = comparison.block;
   j["summary"] = summary;
   j["sweep"] = sweep;
+  if (comparison.sweep_axis != SweepAxis::Characters) j["sweep_axis"] = to_string(comparison.sweep_axis);
   j["runs"] = runs;
   return j;
 }
@@ -192,17 +206,12 @@ std::string comparison_svg(const Comparison& comparison, const std::vector<std::
   svg.add(bars);
 
   if (!comparison.sweep.empty()) {
-    LineChart sweep{"Median frame time against crowd size" + sweep_scene, "characters (log scale)",
-                    "median frame time (ms)", {}, true};
-    sweep.log_x = true;
-    for (const ModeMedians& m : mode_medians(comparison.sweep)) {
-      auto it = std::find_if(sweep.series.begin(), sweep.series.end(),
-                             [&](const LineSeries& s) { return s.name == m.mode; });
-      if (it == sweep.series.end())
-        it = sweep.series.insert(sweep.series.end(), LineSeries{m.mode, {}, {}, colours.colour(m.mode)});
-      it->x.push_back(static_cast<double>(m.characters));
-      it->y.push_back(m.frame_ms);
-    }
+    std::vector<SweepPoint> points;
+    for (const ModeMedians& m : mode_medians(comparison.sweep))
+      points.push_back({m.mode, m.on(comparison.sweep_axis), m.frame_ms});
+    LineChart sweep = sweep_chart(points, comparison.sweep_axis, sweep_scene.substr(std::min<size_t>(2, sweep_scene.size())),
+                                  colours, std::nullopt);
+    sweep.id.clear();
     svg.add(sweep);
   }
   return svg.str();

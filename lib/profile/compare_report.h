@@ -10,12 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "profile/report.h"
+#include "profile/sweep_axis.h"
 
 namespace crowdprof {
 
 struct Comparison {
   std::vector<RunReport> runs;   // one per mode at the chosen crowd size, in the order asked
-  std::vector<RunReport> sweep;  // every (size, mode) of --sweep, by size then mode; empty without
+  std::vector<RunReport> sweep;  // every (point, mode) of --sweep, by point then mode; empty without
+  SweepAxis sweep_axis = SweepAxis::Characters;  // what the sweep's points vary
   size_t block = 10;             // frames per block of the interleaving
 };
 
@@ -23,14 +25,20 @@ struct Comparison {
 struct ModeMedians {
   std::string mode;
   size_t characters = 0;
+  uint32_t passes = 1;
   int threads = 1;
   double frame_ms = 0;
   double category_ms[kCategoryCount]{};
-  double speedup = 0;  // the first mode's frame_ms over this one's (same size)
+  double speedup = 0;  // the first mode's frame_ms over this one's (same size and passes)
+  size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
 };
 
 // Per run, with speedups against the first run of the same size.
 std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs);
+
+// Whether `run` of the sweep is at the main runs' point (their size, or their
+// passes): the same run, written once.
+bool is_main_point(const Comparison& comparison, const RunReport& run);
 
 // Categories to show: those whose median is at least 0.005 ms (0.00 when
 // printed) in some run.

@@ -82,8 +82,10 @@ nlohmann::json gbench_document(const std::vector<const RunReport*>& runs) {
   size_t family = 0;
   for (const RunReport* report : runs) {
     for (const Series& series : series_of(*report)) {
+      uint32_t passes = report->run.switches.passes;
       std::string name = report->run.mode + "/" + report->run.character + "/n:" +
-                         std::to_string(report->run.characters) + "/" + series.metric;
+                         std::to_string(report->run.characters) +
+                         (passes != 1 ? "/passes:" + std::to_string(passes) : std::string()) + "/" + series.metric;
       const size_t n = series.real.size();
       for (size_t i = 0; i < n; ++i) {
         nlohmann::json e = entry(name, family, n, *report);

@@ -46,14 +46,18 @@ void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path)
   if (!doc.contains("sweep")) return;
   const json& sweep = doc["sweep"];
   if (!sweep.is_array()) throw InputError(path, "\"sweep\" should be an array");
+  if (doc.contains("sweep_axis")) {
+    if (doc["sweep_axis"] == "passes") input.sweep_axis = SweepAxis::Passes;
+    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
+  }
+  std::string axis(to_string(input.sweep_axis));
   for (const json& row : sweep) {
-    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains("characters") &&
-              row["characters"].is_number_unsigned() && row.contains("frame_median_ms") &&
+    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains(axis) &&
+              row[axis].is_number_unsigned() && row.contains("frame_median_ms") &&
               row["frame_median_ms"].is_number() && std::isfinite(row["frame_median_ms"].get<double>()) &&
               row["frame_median_ms"].get<double>() >= 0;
-    if (!ok) throw InputError(path, "a \"sweep\" row without mode, characters and frame_median_ms");
-    input.sweep.push_back({row["mode"].get<std::string>(), row["characters"].get<size_t>(),
-                           row["frame_median_ms"].get<double>()});
+    if (!ok) throw InputError(path, "a \"sweep\" row without mode, " + axis + " and frame_median_ms");
+    input.sweep.push_back({row["mode"].get<std::string>(), row[axis].get<size_t>(), row["frame_median_ms"].get<double>()});
   }
 }
 
@@ -441,6 +445,53 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
          runs_table(runs) + counters_table(runs) + "</section>\n";
 }
 
+// Each run's GPU time by pass (medians, and their sum against the frame's GPU
+// time) with the pipeline statistics where the GL had them: only when some
+// run split its GPU time.
+std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
+  if (std::none_of(runs.begin(), runs.end(), [](const ReportRun& r) { return !r.result.samples.gpu_pass_ms[0].empty(); }))
+    return {};
+  std::string out = "<section id=\"gpu-passes\"><h2>GPU time by pass (median a frame)</h2>\n<table><tr>"
+                    "<th class=\"name\">run</th><th class=\"name\">pass</th><th>GPU ms</th>";
+  for (std::string_view stat : kPipelineStatNames) {
+    std::string name(stat);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    out += "<th>" + h(name) + "</th>";
+  }
+  out += "</tr>\n";
+  for (const ReportRun& run : runs) {
+    const Result& r = run.result;
+    if (r.samples.gpu_pass_ms[0].empty()) continue;
+    double sum = 0;
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
+      std::vector<double> ms;
+      for (double v : r.samples.gpu_pass_ms[p])
+        if (std::isfinite(v)) ms.push_back(v);
+      double median = ms.empty() ? 0 : quantile(ms, 0.5);
+      sum += median;
+      out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\">" + std::string(kGpuPassNames[p]) +
+             "</td><td>" + (ms.empty() ? std::string("n/a") : report_number(median, 3)) + "</td>";
+      if (r.pipeline_statistics) {
+        for (size_t s = 0; s < kPipelineStatCount; ++s)
+          out += "<td>" + with_thousands(static_cast<uint64_t>((*r.pipeline_statistics)[p][s])) + "</td>";
+      } else {
+        out += "<td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">unavailable: " +
+               h(r.run.pipeline_statistics_missing.empty() ? "not recorded" : r.run.pipeline_statistics_missing) +
+               "</td>";
+      }
+      out += "</tr>\n";
+    }
+    double gpu = metric_median(r, "gpu_ms");
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\"><i>passes together</i></td><td>" +
+           report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">" +
+           (gpu > 0 ? report_number(100.0 * sum / gpu, 0) + "% of the frame's GPU time (" + report_number(gpu, 3) + " ms)"
+                    : std::string("the frame's GPU time is not known")) +
+           "</td></tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
 std::string percentile_table(const std::vector<ReportRun>& runs) {
   std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
                     "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
@@ -579,6 +630,7 @@ std::string html_report(const HtmlReportInput& given) {
   if (input.check) body += check_section(*input.check, charts);
   body += headline_section(input.runs);
   body += profile_section(input.runs);
+  body += gpu_passes_section(input.runs);
 
   SvgDocument frame_svg;
   frame_svg.add(frame_time_chart(input.runs, colours));
@@ -611,9 +663,11 @@ std::string html_report(const HtmlReportInput& given) {
   if (!sweep.empty()) {
     SvgDocument svg;
     std::string character = first.run.character;
-    svg.add(sweep_chart(sweep, character, colours, input.sweep_budget_ms));
+    svg.add(sweep_chart(sweep, input.sweep_axis, character, colours, input.sweep_budget_ms));
     charts += "s";
-    body += "<section id=\"sweep\"><h2>Crowd size sweep</h2>\n" + svg.inline_svg() + "</section>\n";
+    body += std::string("<section id=\"sweep\"><h2>") +
+            (input.sweep_axis == SweepAxis::Passes ? "Passes sweep" : "Crowd size sweep") + "</h2>\n" +
+            svg.inline_svg() + "</section>\n";
   }
 
   body += environment_section(input.runs);

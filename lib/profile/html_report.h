@@ -47,6 +47,7 @@ struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
   std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
   std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
+  SweepAxis sweep_axis = SweepAxis::Characters;
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
   std::optional<CapacitySection> capacity;

@@ -120,18 +120,20 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs) {
   return chart;
 }
 
-LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours,
-                      std::optional<double> budget_ms) {
-  LineChart chart{"Median frame time against crowd size: " + caption, "characters (log scale)",
-                  "median frame time (ms)", {}, true};
-  chart.log_x = true;
+LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, const std::string& caption,
+                      ModeColours& colours, std::optional<double> budget_ms) {
+  const bool passes = axis == SweepAxis::Passes;
+  LineChart chart{(passes ? "Median frame time against passes: " : "Median frame time against crowd size: ") + caption,
+                  passes ? "passes (draws of the crowd a frame)" : "characters (log scale)", "median frame time (ms)",
+                  {}, true};
+  chart.log_x = !passes;
   chart.id = "sweep";
   for (const SweepPoint& point : points) {
     auto it = std::find_if(chart.series.begin(), chart.series.end(),
                            [&](const LineSeries& s) { return s.name == point.mode; });
     if (it == chart.series.end())
       it = chart.series.insert(chart.series.end(), LineSeries{point.mode, {}, {}, colours.colour(point.mode)});
-    it->x.push_back(static_cast<double>(point.characters));
+    it->x.push_back(static_cast<double>(point.x));
     it->y.push_back(point.frame_median_ms);
   }
   for (LineSeries& series : chart.series) {  // left to right, whatever order the points came in

@@ -12,6 +12,7 @@
 #include "profile/regression.h"
 #include "profile/result.h"
 #include "profile/svg_chart.h"
+#include "profile/sweep_axis.h"
 
 namespace crowdprof {
 
@@ -23,10 +24,11 @@ struct ReportRun {
   std::string source;  // the file it came from ("" when made in this process)
 };
 
-// A median frame time at one crowd size (compare --sweep, or several results).
+// A median frame time at one point of a sweep (compare --sweep, or several
+// results of different crowd sizes).
 struct SweepPoint {
   std::string mode;
-  size_t characters = 0;
+  size_t x = 0;  // on the axis: copies, or passes
   double frame_median_ms = 0;
 };
 
@@ -60,7 +62,7 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs);
 
 // Median frame time against crowd size on a log axis, a line per mode; with a
 // budget (capacity's), the budget as a line.
-LineChart sweep_chart(const std::vector<SweepPoint>& points, const std::string& caption, ModeColours& colours,
+LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, const std::string& caption, ModeColours& colours,
                       std::optional<double> budget_ms = std::nullopt);
 
 // check's verdict per metric against the tolerance band.

@@ -20,7 +20,7 @@ std::string csv_field(const std::string& text) {
 
 std::string summary_csv_header() {
   return "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,cpu_median_ms,"
-         "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial";
+         "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes";
 }
 
 void write_summary_csv(const std::vector<const RunReport*>& runs, std::ostream& out) {
@@ -37,7 +37,8 @@ void write_summary_csv(const std::vector<const RunReport*>& runs, std::ostream& 
     out << csv_field(report->run.mode) << "," << report->run.characters << "," << report->run.threads << ","
         << report->frames.size() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
         << rate(f.median) << "," << fixed(c.median, 4) << "," << fixed(c.p95, 4) << "," << fixed(c.p99, 4) << ","
-        << rate(c.median) << "," << (report->partial ? "true" : "false") << "\n";
+        << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes
+        << "\n";
   }
 }
 

@@ -2,6 +2,7 @@
 // table's medians and speedups are right, and the CLI says what it skips.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <sstream>
 
 #include "gen/humanoid.h"
@@ -140,9 +141,40 @@ TEST(CompareCli, PrintsATableAndRefusesBadModes) {
   EXPECT_NE(r.err.find("skipping mode hwskin"), std::string::npos) << r.err;
 
   for (const char* bad : {"--modes master,fastest", "--modes master,master", "--sweep n=ten", "--sweep n=0,4",
-                          "--block 0", "--mode master", "--modes hwskin --backend none"}) {
+                          "--sweep passes=0,2", "--sweep passes=11", "--sweep draws=2", "--block 0", "--mode master",
+                          "--modes hwskin --backend none", "--modes threaded --sweep passes=1,2 --backend none"}) {
     r = test::run_cli("compare '" + scene + "' -n 2 --frames 2 " + bad);
     EXPECT_EQ(r.status, 2) << bad << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+TEST(CompareCli, SweepsPassesWhereTheGlAllows) {
+  if (!test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
+  std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
+  auto dir = test::scratch_dir("compare_passes");
+  std::string json_path = (dir / "c.json").string(), csv = (dir / "s.csv").string(), html = (dir / "c.html").string();
+  auto r = test::run_cli("compare '" + scene + "' -n 4 --frames 2 --warmup 0 --block 1 --backend egl "
+                         "--modes hwskin,compute --sweep passes=1,3 --json '" + json_path + "' --summary-csv '" + csv +
+                         "' --html '" + html + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("sweep: median frame time by passes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n     3  compute  "), std::string::npos) << r.out;
+  std::ifstream in(json_path);
+  nlohmann::json doc = nlohmann::json::parse(in);
+  EXPECT_EQ(doc["sweep_axis"], "passes");
+  ASSERT_EQ(doc["sweep"].size(), 4u) << "2 modes at 1 and 3 passes";
+  EXPECT_EQ(doc["sweep"][2]["passes"], 3);
+  EXPECT_EQ(doc["sweep"][2]["mode"], "hwskin") << "one line per mode on the chart";
+  EXPECT_EQ(doc["sweep"][0]["counters"]["draw_calls"].get<uint64_t>() * 3,
+            doc["sweep"][2]["counters"]["draw_calls"].get<uint64_t>());
+  std::ifstream rows(csv);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(rows, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u) << "header, 2 modes at the main point, 2 at 3 passes";
+  EXPECT_EQ(lines[3].substr(lines[3].rfind(',')), ",3");
+  std::ifstream page(html);
+  std::string text((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Passes sweep"), std::string::npos);
+  EXPECT_NE(text.find("passes (draws of the crowd a frame)"), std::string::npos);
 }

@@ -32,24 +32,32 @@ if ! EGL_PLATFORM=surfaceless "$bundle/run.sh" "$work/refuse" >/dev/null 2>"$wor
 else fail "run.sh measured on llvmpipe without ALLOW_SOFTWARE"
 fi
 
-ALLOW_SOFTWARE=1 SIZES=12 MODES="instanced nosuchmode" FRAMES=2 WARMUP=0 "$bundle/run.sh" "$work/out" >"$work/run.log" 2>&1 ||
+ALLOW_SOFTWARE=1 SIZES=12 PASSES="1 3" MODES="instanced nosuchmode" FRAMES=2 WARMUP=0 "$bundle/run.sh" "$work/out" >"$work/run.log" 2>&1 ||
   fail "run.sh failed: $(tail -5 "$work/run.log")"
 python3 - "$work/out/results.json" <<'PY'
 import json, sys
 results = json.load(open(sys.argv[1]))
 assert "llvmpipe" in results["renderer"], results["renderer"]
 runs = results["runs"]
-assert len(runs) == 2, runs
+assert len(runs) == 4, runs
 assert runs[0]["mode"] == "instanced" and runs[0]["environment"]["backend"] == "egl", runs[0]["environment"]
 assert runs[0]["frame"]["median_ms"] > 0
 assert runs[1]["mode"] == "nosuchmode" and "expected one of" in runs[1]["error"], runs[1]
+assert runs[2]["mode"].startswith("instanced") and runs[2]["switches"]["passes"] == 3, runs[2]["switches"]
+passes = [p["pass"] for p in runs[2]["gpu_time"]["passes"]]
+assert passes == ["skinning", "prepass", "shadows", "colour"], passes
 PY
-grep -q '^| instanced | 12 | [0-9.]*[mu]s |' "$work/out/summary.md" || fail "no row for instanced: $(cat "$work/out/summary.md")"
-grep -q '^| nosuchmode | 12 | exit 2' "$work/out/summary.md" || fail "the failed run has no row"
+grep -q '^| instanced | 12 | 1 | [0-9.]*[mu]s |' "$work/out/summary.md" || fail "no row for instanced: $(cat "$work/out/summary.md")"
+grep -q '^| instanced | 12 | 3 | [0-9.]*[mu]s |.*| skinning [0-9.]*[mu]s | prepass' "$work/out/summary.md" ||
+  fail "no row for instanced with passes: $(cat "$work/out/summary.md")"
+grep -q '^| nosuchmode | 12 | 1 | exit 2' "$work/out/summary.md" || fail "the failed run has no row"
+# Past its budget the script records the runs it did not make.
+ALLOW_SOFTWARE=1 SIZES=12 MODES=hwskin BUDGET=0 "$bundle/run.sh" "$work/budget" >/dev/null 2>&1 || fail "a spent budget failed the script"
+grep -q '^| hwskin | 12 | 4 | not run: the 0 s budget was spent' "$work/budget/summary.md" || fail "no row for the run not made: $(cat "$work/budget/summary.md")"
 [[ -s $work/out/report.html ]] || fail "no HTML report"
 # A second run into the same folder replaces its own files; a foreign folder is refused.
 ALLOW_SOFTWARE=1 SIZES=12 MODES=hwskin FRAMES=1 WARMUP=0 "$bundle/run.sh" "$work/out" >/dev/null 2>&1 || fail "a rerun into its own folder failed"
-[[ ! -e $work/out/runs/instanced-12.json ]] || fail "the rerun kept the earlier run's files"
+[[ ! -e $work/out/runs/instanced-12-p1.json ]] || fail "the rerun kept the earlier run's files"
 if ALLOW_SOFTWARE=1 "$bundle/run.sh" "$work/mine" >/dev/null 2>&1; then fail "run.sh wrote into the user's folder"; fi
 [[ $(ls "$work/mine") == notes.txt ]] || fail "run.sh changed the user's folder"
 rm -rf "$work"

@@ -1,21 +1,25 @@
 #!/usr/bin/env bash
 # A bundle's run (made by ./setup.sh gpu-bundle DIR): every GPU mode, and
 # threaded (CPU skinning, drawn) for reference, at 160, 10,000 and 100,000
-# copies of the humanoid (69 bones, 4,951 vertices) through EGL on the GPU.
+# copies of the humanoid (69 bones, 4,951 vertices) through EGL on the GPU,
+# drawn once a frame and with 4 passes (depth prepass, 2 shadow cascades,
+# colour: --passes).
 #   run.sh OUT_DIR
 # Writes into OUT_DIR (new, or one this script wrote before):
-#   runs/MODE-N.json|.txt|.err  each bench's result, its table, its stderr
+#   runs/MODE-N-pP.json|.txt|.err  each bench's result, its table, its stderr
 #   results.json                every run's result (or why it has none), with the renderer
 #   report.html                 crowdprof report of every run that finished
-#   summary.md                  one row per run: frame, Animations, Rasterizer, GPU time
+#   summary.md                  one row per run: frame, Animations, Rasterizer, GPU time and
+#                               its split by pass
 # Each run has a time limit (LIMIT, seconds, default 60): one that is cut off,
 # refused or failed is a row that says so, and the script goes on, so that it
-# fits a call of 10 minutes. It refuses to measure when the renderer is a
+# fits a call of 10 minutes; once BUDGET seconds (default 540) have gone, the
+# runs left are rows that say they were not run. It refuses to measure when the renderer is a
 # software rasteriser (llvmpipe, softpipe, swrast): bundled loader libraries can
 # make a run fall back silently. ALLOW_SOFTWARE=1 lifts that (the bundle's test).
 # Environment: MODES ("hwskin buffer instanced compute baked threaded"), SIZES
-# ("160 10000 100000"), LIMIT (60), FRAMES and WARMUP (by size: 120/5 at 160,
-# 30/3 to 10,000, 8/2 above).
+# ("160 10000 100000"), PASSES ("1 4"), LIMIT (60), BUDGET (540), FRAMES and
+# WARMUP (by size: 120/5 at 160, 30/3 to 10,000, 8/2 above).
 set -uo pipefail
 bundle=$(cd "$(dirname "$0")" && pwd)
 out=${1:?usage: run.sh OUT_DIR}
@@ -51,21 +55,28 @@ fi
 
 read -r -a modes <<<"${MODES:-hwskin buffer instanced compute baked threaded}"
 read -r -a sizes <<<"${SIZES:-160 10000 100000}"
-limit=${LIMIT:-60}
+read -r -a pass_counts <<<"${PASSES:-1 4}"
+limit=${LIMIT:-60} budget=${BUDGET:-540}
 json_text() { sed 's/\\/\\\\/g; s/"/\\"/g' | tr -d '\000-\037' | head -c 400; }
 {
-  echo "| mode | copies | frame | Animations | Rasterizer | GPU time | wall s |"
-  echo "|---|---|---|---|---|---|---|"
+  echo "| mode | copies | passes | frame | Animations | Rasterizer | GPU time | GPU by pass | wall s |"
+  echo "|---|---|---|---|---|---|---|---|---|"
 } >"$out/summary.md"
 entries=()
 for n in "${sizes[@]}"; do
   if ((n <= 160)); then frames=${FRAMES:-120} warmup=${WARMUP:-5}
   elif ((n <= 10000)); then frames=${FRAMES:-30} warmup=${WARMUP:-3}
   else frames=${FRAMES:-8} warmup=${WARMUP:-2}; fi
+  for passes in "${pass_counts[@]}"; do
   for mode in "${modes[@]}"; do
-    run=$out/runs/$mode-$n
+    run=$out/runs/$mode-$n-p$passes
+    if ((SECONDS >= budget)); then
+      entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"not run: the ${budget} s budget was spent\"}")
+      echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 |" >>"$out/summary.md"
+      continue
+    fi
     start=$SECONDS
-    timeout --kill-after=5 "$limit" "$crowdprof" bench "$scene" -n "$n" --mode "$mode" --backend egl \
+    timeout --kill-after=5 "$limit" "$crowdprof" bench "$scene" -n "$n" --mode "$mode" --backend egl --passes "$passes" \
       --frames "$frames" --warmup "$warmup" --json "$run.json" >"$run.txt" 2>"$run.err"
     status=$? wall=$((SECONDS - start))
     if ((status == 0)) && [[ -s $run.json ]]; then
@@ -73,15 +84,17 @@ for n in "${sizes[@]}"; do
       # Each figure as the table prints it, with its unit (ms or us).
       figure() { sed -n "s/^$1 *: *\([0-9.]*[mu]s\).*/\1/p" "$run.txt"; }
       gpu=$(figure 'GPU time')
-      echo "| $mode | $n | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | $wall |" >>"$out/summary.md"
+      by_pass=$(sed -n 's/^GPU passes : \(.*\)   medians.*/\1/p' "$run.txt")
+      echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall |" >>"$out/summary.md"
     else
       if ((status == 124 || status == 137)); then why="cut off after the ${limit} s limit"
       else why="exit $status: $(tr '\n' ' ' <"$run.err" | head -c 300)"; fi
       rm -f "$run.json"
-      entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"error\": \"$(json_text <<<"$why")\"}")
-      echo "| $mode | $n | $why |||| $wall |" >>"$out/summary.md"
+      entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"$(json_text <<<"$why")\"}")
+      echo "| $mode | $n | $passes | $why ||||| $wall |" >>"$out/summary.md"
     fi
-    echo "gpu-run: $mode at $n copies: ${wall} s, exit $status"
+    echo "gpu-run: $mode at $n copies, $passes passes: ${wall} s, exit $status"
+  done
   done
 done
 {

@@ -76,6 +76,33 @@ TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
   EXPECT_EQ(count(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
 }
 
+TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
+  RunReport run = test::fake_run("compute", 40, {2, 3, 4}, 0.25);
+  run.run.switches.passes = 2;  // prepass and colour
+  run.run.pipeline_statistics_missing = "";
+  for (FrameRecord& f : run.frames) {
+    f.gpu_ms = 2.0;
+    f.gpu_passes.ms = {0.5, 0.4, 0, 0.9};
+    for (auto& pass : f.gpu_passes.stats) pass.fill(1234567);
+  }
+  HtmlReportInput input;
+  add_result_document(input, to_json(run), "a.json");
+  for (FrameRecord& f : run.frames)
+    for (auto& pass : f.gpu_passes.stats) pass.fill(std::nan(""));
+  run.run.pipeline_statistics_missing = "softpipe lacks ARB_pipeline_statistics_query";
+  add_result_document(input, to_json(run), "b.json");
+  std::string html = html_report(input);
+  ASSERT_NE(html.find("id=\"gpu-passes\""), std::string::npos);
+  EXPECT_EQ(count(html, ">prepass</td>"), 2u);
+  EXPECT_EQ(count(html, ">shadows</td>"), 0u) << "2 passes draw no shadows";
+  EXPECT_NE(html.find("<td>1,234,567</td>"), std::string::npos);
+  EXPECT_NE(html.find("unavailable: softpipe lacks ARB_pipeline_statistics_query"), std::string::npos);
+  EXPECT_NE(html.find("90% of the frame's GPU time"), std::string::npos) << "0.5 + 0.4 + 0.9 of 2 ms";
+  HtmlReportInput plain;
+  add_result_document(plain, fake_result("threaded", 40, {1, 2}), "c.json");
+  EXPECT_EQ(html_report(plain).find("id=\"gpu-passes\""), std::string::npos) << "no GPU passes, no section";
+}
+
 TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   HtmlReportInput input;
   add_result_document(input, fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json");
