@@ -160,6 +160,10 @@ class CrowdBench {
   // What the renderer said it holds on the GPU for this bench's mode when it
   // prepared for it (FrameRenderer::animation_gpu_bytes); 0 without one.
   uint64_t animation_gpu_bytes() const { return animation_gpu_bytes_; }
+  // With a renderer: the GPU's memory as the GL reports it.
+  std::optional<GpuMemoryRecord> gpu_memory() const {
+    return config_.renderer ? std::optional(config_.renderer->gpu_memory()) : std::nullopt;
+  }
   // With --vertex-format packed (skinned_positions() and skinned_normals() are
   // then empty): 3 position codes and one normal word per vertex
   // (skinning/packed_vertex.h), quantised in the character's animated box.

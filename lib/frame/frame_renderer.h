@@ -11,6 +11,7 @@
 #include "frame/frame_view.h"
 #include "frame/modes.h"
 #include "profile/counters.h"
+#include "profile/result.h"
 
 namespace crowdprof {
 
@@ -47,6 +48,9 @@ class FrameRenderer {
   // tables, palette, placement and instance buffers, compute output buffers
   // (meshes and index buffers not counted).
   virtual uint64_t animation_gpu_bytes() const = 0;
+
+  // The GPU's memory as the GL reports it (when the renderer was made).
+  virtual GpuMemoryRecord gpu_memory() const = 0;
 
   // Rasterizer stage: send this frame's data and submit one draw per copy on
   // screen (or per character kind, drawn instanced): skinned vertices of the

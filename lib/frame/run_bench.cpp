@@ -99,6 +99,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
                         std::string(to_string(config.lens.fit))};
   run.gpu_timing_missing = bench.gpu_timing_missing();
   run.pipeline_statistics_missing = bench.pipeline_statistics_missing();
+  run.gpu_memory = bench.gpu_memory();
   run.scene_file = config.scene_file;
   run.scene_hash = config.scene_hash;
   if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {

@@ -172,6 +172,16 @@ std::string format_profile(const RunReport& report) {
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
     out << "\n";
   }
+  if (run.gpu_memory) {
+    const GpuMemoryRecord& m = *run.gpu_memory;
+    auto mib = [](uint64_t bytes) { return with_thousands(bytes >> 20) + " MiB"; };
+    out << "GPU memory ";
+    if (m.total_bytes) out << mib(*m.total_bytes) << (m.free_bytes ? ", " : "");
+    if (m.free_bytes) out << mib(*m.free_bytes) << " free";
+    if (!m.total_bytes && !m.free_bytes) out << "unknown (the GL has neither NVX_gpu_memory_info nor ATI_meminfo)";
+    else out << " (" << m.source << ")";
+    out << " | largest storage block " << mib(m.max_storage_block_bytes) << "\n";
+  }
   if (run.gpu_skinning) {
     const GpuSkinningRecord& g = *run.gpu_skinning;
     out << "skinning " << g.skinning << " | " << g.gpu_bytes << " bytes on the GPU";

@@ -78,6 +78,15 @@ struct AnimationRecord {
   uint64_t copies_checked = 0, copies_deviating = 0;
 };
 
+// The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
+// read when the renderer was made; "unknown" where the GL says nothing, with
+// the largest storage block it allows.
+struct GpuMemoryRecord {
+  std::string source;  // "NVX_gpu_memory_info", "ATI_meminfo" or "unknown"
+  std::optional<uint64_t> total_bytes, free_bytes;
+  uint64_t max_storage_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+};
+
 // What was run: the scene, the crowd, the mode and how it was timed.
 struct RunDescription {
   std::string file;        // the character's file (with #skin=N when chosen), or the scene file
@@ -107,6 +116,7 @@ struct RunDescription {
   std::string scene_file, scene_hash;
   std::vector<CharacterRun> crowd;  // per character, in the scene's order
   std::optional<GpuSkinningRecord> gpu_skinning;  // skinning compute or baked
+  std::optional<GpuMemoryRecord> gpu_memory;       // with a GL backend
 };
 
 // Per-frame samples in milliseconds, one per measured frame.

@@ -389,6 +389,15 @@ void read_mode(const Reader& in, Result& r) {
     }
     r.run.gpu_skinning = g;
   }
+  if (in.has("/gpu_memory")) {
+    in.object("/gpu_memory");
+    GpuMemoryRecord m;
+    m.source = in.text("/gpu_memory/source");
+    m.max_storage_block_bytes = in.count_or("/gpu_memory/max_storage_block_bytes", 0);
+    for (auto [key, field] : {std::pair{"/gpu_memory/total_bytes", &m.total_bytes}, {"/gpu_memory/free_bytes", &m.free_bytes}})
+      if (in.has(key) && !in.at(key).is_null()) *field = in.count(key);
+    r.run.gpu_memory = m;
+  }
 }
 
 // A category's key in "samples" (and "categories", "runs"): format 1 wrote
@@ -560,6 +569,13 @@ nlohmann::json result_to_json(const Result& r) {
   j["mode"] = run.mode;
   j["switches"] = switches_to_json(run.switches);
   if (run.gpu_skinning) j["gpu_skinning"] = gpu_skinning_json(*run.gpu_skinning);
+  if (run.gpu_memory) {
+    const GpuMemoryRecord& m = *run.gpu_memory;
+    json memory = {{"source", m.source}, {"max_storage_block_bytes", m.max_storage_block_bytes}};
+    memory["total_bytes"] = m.total_bytes ? json(*m.total_bytes) : json(nullptr);
+    memory["free_bytes"] = m.free_bytes ? json(*m.free_bytes) : json(nullptr);
+    j["gpu_memory"] = memory;
+  }
   j["threads"] = run.threads;
   j["frames"] = r.frames();
   j["warmup"] = run.warmup;

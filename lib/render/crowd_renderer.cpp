@@ -198,6 +198,15 @@ std::string GlCrowdRenderer::gpu_timing_missing() const {
   return context_.renderer() + " has no GL_TIME_ELAPSED timer (0 counter bits)";
 }
 
+GpuMemoryRecord GlCrowdRenderer::gpu_memory() const {
+  GpuMemoryRecord m;
+  m.source = features_.memory_source;
+  if (features_.memory_total_kib >= 0) m.total_bytes = static_cast<uint64_t>(features_.memory_total_kib) * 1024;
+  if (features_.memory_free_kib >= 0) m.free_bytes = static_cast<uint64_t>(features_.memory_free_kib) * 1024;
+  m.max_storage_block_bytes = static_cast<uint64_t>(std::max<int64_t>(features_.max_storage_block_bytes, 0));
+  return m;
+}
+
 std::string GlCrowdRenderer::pipeline_statistics_missing() const {
   if (!features_.timer_queries()) return gpu_timing_missing();
   if (features_.pipeline_statistics) return {};

@@ -76,6 +76,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   // the baked tables and every copy's placement.
   void prepare(const FrameView& view) override;
   uint64_t animation_gpu_bytes() const override { return animation_gpu_bytes_; }
+  GpuMemoryRecord gpu_memory() const override;
   // Uploads and draws every copy that view.visible says is on screen.
   // Throws GlError "GL error ... during Rasterizer".
   void draw(const FrameView& view, Counters& counters) override;

@@ -25,7 +25,22 @@ GlFeatures read_gl_features(std::string_view hide) {
   glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
   for (GLint e = 0; e < extensions; ++e) {
     const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(e)));
-    if (name && std::string_view(name) == "GL_ARB_pipeline_statistics_query") f.pipeline_statistics = true;
+    if (!name) continue;
+    std::string_view ext(name);
+    if (ext == "GL_ARB_pipeline_statistics_query") f.pipeline_statistics = true;
+    if (ext == "GL_NVX_gpu_memory_info") {
+      GLint total = 0, free = 0;
+      glGetIntegerv(0x9048 /* GPU_MEMORY_INFO_TOTAL_AVAILABLE_MEMORY_NVX */, &total);
+      glGetIntegerv(0x9049 /* GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX */, &free);
+      f.memory_total_kib = total;
+      f.memory_free_kib = free;
+      f.memory_source = "NVX_gpu_memory_info";
+    } else if (ext == "GL_ATI_meminfo" && f.memory_source == "unknown") {
+      GLint free[4] = {0, 0, 0, 0};  // total free, largest block, auxiliary free, largest
+      glGetIntegerv(0x87FB /* VBO_FREE_MEMORY_ATI */, free);
+      f.memory_free_kib = free[0];
+      f.memory_source = "ATI_meminfo";
+    }
   }
   glGetError();  // a GL without one of these may flag the query; absence is the answer
   while (!hide.empty()) {

@@ -23,6 +23,10 @@ struct GlFeatures {
   // ARB_pipeline_statistics_query (core in 4.6): vertices, primitives and
   // shader invocations per pass.
   bool pipeline_statistics = false;
+  // The GPU's memory in KiB, where NVX_gpu_memory_info or ATI_meminfo says
+  // (-1: not said); memory_source names which.
+  int64_t memory_total_kib = -1, memory_free_kib = -1;
+  std::string memory_source = "unknown";
 
   bool storage_buffers() const { return vertex_storage_blocks > 0 && max_storage_block_bytes > 0; }
   bool timer_queries() const { return timer_bits > 0; }

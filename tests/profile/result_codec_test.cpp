@@ -64,7 +64,8 @@ TEST(ResultCodec, GpuPassesAndPipelineStatisticsReadBack) {
     for (size_t p = 0; p < kGpuPassCount; ++p)
       for (size_t s = 0; s < kPipelineStatCount; ++s) frame.gpu_passes.stats[p][s] = static_cast<double>(100 * p + s + f);
   }
-  report.frames[0].gpu_passes.ms[3] = std::nan("");  // read back without its colour pass: impossible, kept as null
+  report.frames[0].gpu_passes.ms[3] = std::nan("");
+  report.run.gpu_memory = GpuMemoryRecord{"NVX_gpu_memory_info", uint64_t{80} << 30, std::nullopt, uint64_t{2} << 30};  // read back without its colour pass: impossible, kept as null
   json written = to_json(report);
   ASSERT_TRUE(written["gpu_time"].contains("passes"));
   EXPECT_EQ(written["gpu_time"]["passes"].size(), 4u) << "skinning, prepass, shadows, colour";
@@ -76,6 +77,10 @@ TEST(ResultCodec, GpuPassesAndPipelineStatisticsReadBack) {
   ASSERT_TRUE(read.pipeline_statistics);
   EXPECT_EQ((*read.pipeline_statistics)[1][static_cast<size_t>(PipelineStat::VertexShaderInvocations)], 103);
   EXPECT_DOUBLE_EQ(read.samples.gpu_pass_ms[2][1], 0.3);
+  ASSERT_TRUE(read.run.gpu_memory);
+  EXPECT_EQ(read.run.gpu_memory->total_bytes, uint64_t{80} << 30);
+  EXPECT_FALSE(read.run.gpu_memory->free_bytes);
+  EXPECT_EQ(read.run.gpu_memory->max_storage_block_bytes, uint64_t{2} << 30);
 
   // A GL without the statistics: the times, and why there are no statistics.
   for (FrameRecord& frame : report.frames)
