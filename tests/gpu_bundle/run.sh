@@ -84,7 +84,7 @@ for n in "${sizes[@]}"; do
       # Each figure as the table prints it, with its unit (ms or us).
       figure() { sed -n "s/^$1 *: *\([0-9.]*[mu]s\).*/\1/p" "$run.txt"; }
       gpu=$(figure 'GPU time')
-      by_pass=$(sed -n 's/^GPU passes : \(.*\)   medians.*/\1/p' "$run.txt")
+      by_pass=$(sed -n 's/^GPU passes : \(.*\)   medians.*/\1/p' "$run.txt" | sed 's/ | /, /g')
       echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall |" >>"$out/summary.md"
     else
       if ((status == 124 || status == 137)); then why="cut off after the ${limit} s limit"
