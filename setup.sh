@@ -8,6 +8,7 @@
 #   ./setup.sh fuzz [SECONDS]        run each fuzz target SECONDS (default 60) on the ASan build
 #   ./setup.sh valgrind              memcheck of a short bench and of info on a Draco file
 #   ./setup.sh coverage              line coverage of lib/ by the test suite (GCC, gcovr)
+#   ./setup.sh docs                  remake the README's figures and docs/report-bench.png (docs/figures.sh)
 #   ./setup.sh gpu-bundle DIR        a folder to carry to a GPU machine: the binary, its libraries,
 #                                    scenes and run.sh, which measures every GPU mode (docs/gpu.md)
 # The build goes to ./build (override with CROWDPROF_BUILD_DIR).
@@ -18,9 +19,9 @@ action=${1:-run}
 shift || true
 build_dir=${CROWDPROF_BUILD_DIR:-build}
 case "$action" in
-  run | test | build | bench | sanitize | fuzz | valgrind | coverage) ;;
+  run | test | build | bench | sanitize | fuzz | valgrind | coverage | docs) ;;
   gpu-bundle) [[ $# -eq 1 ]] || { echo "usage: ./setup.sh gpu-bundle DIR" >&2; exit 2; } ;;
-  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|coverage|gpu-bundle DIR] [options]" >&2; exit 2 ;;
+  *) echo "usage: ./setup.sh [run|test|build|bench|sanitize|fuzz|valgrind|coverage|docs|gpu-bundle DIR] [options]" >&2; exit 2 ;;
 esac
 
 # valgrind is built against too: its callgrind.h lets the frames toggle
@@ -45,6 +46,7 @@ esac
 runs_suite=false
 [[ $action == test || $action == coverage ]] && runs_suite=true
 $runs_suite && packages+=(chromium python3-yaml libbenchmark-tools python3-scipy)
+[[ $action == docs ]] && packages+=(chromium)
 # The .deb's test installs it into a clean Debian 12 root (tests/install/).
 $runs_suite && packages+=(debootstrap)
 
@@ -69,7 +71,7 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 # run builds only the binary it runs; the tests, fuzzers, micro-benchmarks,
 # generated scenes and man pages come with the other actions.
 targets=()
-[[ $action == run ]] && targets=(--target crowdprof_cli)
+[[ $action == run || $action == docs ]] && targets=(--target crowdprof_cli)
 [[ $action == gpu-bundle ]] && targets=(--target crowdprof_cli crowdprof_scenes)
 cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}"
 
@@ -79,4 +81,5 @@ case "$action" in
   build) ;;
   bench) exec "$build_dir/crowdprof_micro" "$@" ;;
   gpu-bundle) exec tests/gpu_bundle/make.sh "$build_dir" "$@" ;;
+  docs) exec docs/figures.sh "$build_dir" ;;
 esac
