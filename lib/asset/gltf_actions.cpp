@@ -16,7 +16,6 @@ namespace crowdprof {
 
 namespace {
 
-std::string str(size_t i) { return std::to_string(i); }
 
 Interpolation parse_interpolation(const std::string& text, const std::string& where, const std::string& file) {
   if (text.empty() || text == "LINEAR") return Interpolation::Linear;

@@ -48,4 +48,7 @@ void preflight_gltf(const GltfContainer& container);
 std::string resolve_inside(const GltfContainer& container, const std::string& uri,
                            const std::string& what);
 
+// An index or count as error messages print it.
+inline std::string str(size_t i) { return std::to_string(i); }
+
 }  // namespace crowdprof

@@ -23,7 +23,6 @@ namespace crowdprof {
 
 namespace {
 
-std::string str(size_t i) { return std::to_string(i); }
 
 template <typename V>
 bool finite(const V& v) {

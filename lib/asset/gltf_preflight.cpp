@@ -19,7 +19,6 @@ const json& array_or_empty(const json& object, const char* key) {
   return object.is_object() && object.contains(key) && object[key].is_array() ? object[key] : empty;
 }
 
-std::string str(size_t i) { return std::to_string(i); }
 
 struct Checker {
   const GltfContainer& c;

@@ -12,7 +12,6 @@
 namespace crowdprof::humanoid {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180.0;
 constexpr int kFps = 30;
 

@@ -11,7 +11,6 @@
 namespace crowdprof::humanoid {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 
 struct Ring {
   double s;       // fraction of the path's length

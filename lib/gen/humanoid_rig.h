@@ -83,4 +83,6 @@ SkinnedMesh build_mesh(const Rig& rig, int vertices);
 // The looping actions, for the skeleton made from the rig (same joint order).
 std::vector<Action> build_actions(const Rig& rig, const Skeleton& skeleton, uint32_t seed);
 
+inline constexpr double kPi = 3.141592653589793;
+
 }  // namespace crowdprof::humanoid

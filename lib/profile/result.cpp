@@ -7,15 +7,11 @@
 
 namespace crowdprof {
 
-namespace {
-
 std::vector<double> finite(const std::vector<double>& values) {
   std::vector<double> out;
   std::copy_if(values.begin(), values.end(), std::back_inserter(out), [](double v) { return std::isfinite(v); });
   return out;
 }
-
-}  // namespace
 
 const std::vector<double>* metric_samples(const Result& result, std::string_view key) {
   const ResultSamples& s = result.samples;

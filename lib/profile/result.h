@@ -179,6 +179,9 @@ struct Result {
   size_t frames() const { return samples.frame_ms.size(); }
 };
 
+// The values that are numbers (a frame's NaN: not measured).
+std::vector<double> finite(const std::vector<double>& values);
+
 // The samples of a metric key: "frame_ms", "cpu_ms", "gpu_ms" or a category as
 // the BGE names it ("Animations"). Null for another key, or cpu_ms/gpu_ms in a
 // result without them.

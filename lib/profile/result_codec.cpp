@@ -40,13 +40,6 @@ json summary_json(const std::vector<double>& values) {
           {"p95_ms", s.p95}, {"p99_ms", s.p99},       {"max_ms", s.max},   {"stddev_ms", s.stddev}};
 }
 
-std::vector<double> finite(const std::vector<double>& values) {
-  std::vector<double> out;
-  for (double v : values)
-    if (std::isfinite(v)) out.push_back(v);
-  return out;
-}
-
 json lens_json(const std::optional<LensRecord>& lens) {
   if (!lens) return nullptr;
   return {{"focal_mm", lens->focal_mm},

@@ -8,7 +8,7 @@ namespace {
 
 std::atomic<OutputStores> g_stores{OutputStores::Auto};
 
-bool same_name(std::string_view a, std::string_view b) {
+bool equals_lowercase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (std::tolower(static_cast<unsigned char>(a[i])) != b[i]) return false;
@@ -39,7 +39,7 @@ const char* to_string(OutputStores stores) {
 
 std::string force_output_stores(std::string_view name) {
   for (OutputStores s : {OutputStores::Auto, OutputStores::Regular, OutputStores::Streaming})
-    if (same_name(name, to_string(s))) {
+    if (equals_lowercase(name, to_string(s))) {
       g_stores.store(s, std::memory_order_relaxed);
       return {};
     }

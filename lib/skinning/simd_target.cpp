@@ -13,7 +13,7 @@ namespace {
 // lower bits are better targets.
 int64_t runnable() { return hwy::SupportedTargets() & HWY_TARGETS; }
 
-bool same_name(std::string_view a, std::string_view b) {
+bool equals_ignoring_case(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) return false;
@@ -58,7 +58,7 @@ std::string force_simd_target(std::string_view name) {
   // Every target this build knows, runnable here or not, to tell the two apart.
   int64_t wanted = 0;
   for (int64_t bits = HWY_TARGETS; bits != 0; bits &= bits - 1)
-    if (same_name(name, hwy::TargetName(bits & -bits))) wanted = bits & -bits;
+    if (equals_ignoring_case(name, hwy::TargetName(bits & -bits))) wanted = bits & -bits;
   if (wanted == 0 || !(wanted & runnable())) {
     const std::string can = joined(available_simd_targets());
     allow(before);
