@@ -99,7 +99,8 @@ std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
 
 std::string set_passes(ModeSwitches& s, std::string_view text) {
   std::optional<double> value = parse_number(text);
-  if (!value || *value != static_cast<double>(static_cast<uint32_t>(*value)) || *value < 1 || *value > kMaxPasses)
+  // The range first: a double outside uint32_t's is undefined to convert.
+  if (!value || !(*value >= 1 && *value <= kMaxPasses) || *value != std::floor(*value))
     return "expected 1 to " + std::to_string(kMaxPasses) + " (1: colour; 2: depth prepass and colour; more: " +
            "shadow cascades between them)";
   s.passes = static_cast<uint32_t>(*value);
