@@ -63,7 +63,7 @@ void group_options(CLI::App& cmd, const std::string& group, std::initializer_lis
 void group_outputs(CLI::App& cmd) {
   group_options(cmd, kOutputsGroup,
                 {"--csv", "--summary-csv", "--json", "--gbench-json", "--trace", "--screenshot", "--svg", "--html",
-                 "--junit", "--markdown", "--count-instructions", "--quiet"});
+                 "--junit", "--markdown", "--count-instructions", "--calibrate", "--quiet"});
 }
 
 crowdprof::SpecLayer command_line_layer(const BenchCliOptions& o) {

@@ -28,6 +28,7 @@ using namespace crowdprof;
 struct BenchOutputs {
   std::string summary_csv, gbench_json;
   bool count_instructions = false;
+  bool calibrate = false;
 };
 
 int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
@@ -72,6 +73,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
   run.count_instructions = outputs.count_instructions;
+  run.calibrate = outputs.calibrate;
   RunReport report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
@@ -126,6 +128,11 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                 "Count each measured frame's instructions on one thread: perf_event's hardware counter, or "
                 "callgrind's under valgrind --tool=callgrind --collect-atstart=no (check --metric instructions runs "
                 "that); recorded in --json as \"instructions\"");
+  cmd->add_flag("--calibrate", outputs->calibrate,
+                "After every frame, time a fixed calibration probe (a skinning kernel of fixed size on the same "
+                "threads) and record each frame over it: the metric check --metric calibrated compares, which a "
+                "change of the machine's speed moves less than the frame; in --json as samples.probe_ms and "
+                "samples.calibrated");
   cmd->add_option("--summary-csv", outputs->summary_csv,
                   "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
   cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");

@@ -47,7 +47,7 @@ using nlohmann::json;
 struct CheckCliOptions {
   BenchCliOptions bench;
   std::string baseline, result;
-  std::vector<std::string> metrics = {"cpu"};
+  std::vector<std::string> metrics = {"calibrated"};
   std::string tolerance = "7%";
   std::string floor = "2%";
   long long runs = kCheckRuns;  // the plan's default: more with --update-baseline
@@ -58,6 +58,7 @@ struct CheckCliOptions {
   double alpha = 0.05;
   bool update = false;
   bool timings_only = false;
+  bool calibrate = false;  // time the calibration probe after each frame (set by check())
   std::string svg;
   std::string against;  // the base build's binary: an A/B instead of a stored baseline
   long long groups = static_cast<long long>(kAbGroups);
@@ -133,6 +134,7 @@ RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label
   run.progress = terminal_progress(o.bench.quiet, progress_label + ", mode " + config.mode_name + ",");
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
+  run.calibrate = o.calibrate;
   RunReport report = run_bench(bench, o.bench.spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
@@ -141,9 +143,11 @@ RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label
 
 void write_svg(const std::string& path, const Result& baseline, const Result& current, const std::string& metric) {
   std::string shown = metric == "frame_ms" ? "frame" : metric == "cpu_ms" ? "CPU" : metric;
-  LineChart chart{"check: " + shown + " time per frame, baseline and current: " + scene_caption(current),
+  const bool ratio = metric == "calibrated";  // each frame over its probe: no unit
+  LineChart chart{"check: " + shown + (ratio ? " frame" : " time") + " per frame, baseline and current: " +
+                      scene_caption(current),
                   "frame (0 = the first measured, after " + std::to_string(current.run.warmup) + " warm-up)",
-                  "time (ms)", {}, false};
+                  ratio ? "frame over the calibration probe" : "time (ms)", {}, false};
   ModeColours colours(preset_mode_order());  // baseline and current as the HTML report colours them
   for (const auto& [name, result] : {std::pair<const char*, const Result*>{"baseline", &baseline}, {"current", &current}}) {
     LineSeries series{name, {}, result_samples(*result, metric), colours.colour(name)};
@@ -347,8 +351,13 @@ std::optional<Result> measure(CheckCliOptions& o, const CheckPlan& plan, const s
       runs.push_back(std::move(run));
     }
   }
-  if (partial.is_null() && !interrupt_requested().load())
-    return pooled_runs(std::move(runs), plan.gate.metrics.front());
+  if (partial.is_null() && !interrupt_requested().load()) {
+    // The median run by the gate's first metric; by CPU time (else the frame)
+    // when the runs were not calibrated, as the gate then falls back to it.
+    std::string key = plan.gate.metrics.front();
+    if (!metric_samples(runs.front(), key)) key = metric_samples(runs.front(), "cpu_ms") ? "cpu_ms" : "frame_ms";
+    return pooled_runs(std::move(runs), key);
+  }
   // The frames measured so far: the cut run's, or the last whole one's.
   if (partial.is_null() && !runs.empty()) {
     Result last = std::move(runs.back());
@@ -463,17 +472,27 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, Resul
          const std::function<std::optional<Result>()>& remeasure) {
   if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
-  // A baseline from before CPU time was recorded is checked on the frame, when
-  // the metric was not asked for by name.
-  if (o.command->count("--metric") == 0 && !metric_samples(baseline, "cpu_ms")) {
-    std::cerr << "crowdprof: note: " << o.baseline
-              << " has no CPU time per frame (an older crowdprof's): checking the frame time instead\n";
-    options.metrics = {"frame_ms"};
+  // Without --metric, results that lack the calibrated frame (a baseline of an
+  // older crowdprof, a --result of bench without --calibrate) are checked on
+  // CPU time, and those without CPU time on the frame, with a note.
+  std::string current_name = o.result.empty() ? std::string("the run") : o.result;
+  if (o.command->count("--metric") == 0) {
+    for (const auto& [key, shown, fallback] :
+         {std::tuple<const char*, const char*, const char*>{"calibrated", "calibrated frame time", "cpu_ms"},
+          {"cpu_ms", "CPU time per frame", "frame_ms"}}) {
+      if (options.metrics != std::vector<std::string>{key}) continue;
+      for (const auto& [result, path] : {std::pair{&baseline, o.baseline}, {&current, current_name}})
+        if (options.metrics.front() == key && !metric_samples(*result, key)) {
+          std::cerr << "crowdprof: note: " << path << " has no " << shown << " (recorded by an older crowdprof"
+                    << (key == std::string("calibrated") ? " or by bench without --calibrate" : "")
+                    << "): checking " << metric_display_name(fallback) << " instead\n";
+          options.metrics = {fallback};
+        }
+    }
   }
   if (!o.timings_only) require_same_run(baseline, current, o.baseline);
   for (const std::string& note : comparison_notes(baseline, current))
     std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
-  std::string current_name = o.result.empty() ? std::string("the run") : o.result;
   for (const std::string& key : options.metrics)
     for (const auto& [result, path] : {std::pair{&baseline, o.baseline}, {&current, current_name}})
       if (!metric_samples(*result, key))
@@ -527,6 +546,10 @@ int check_ab(CheckCliOptions& o, CheckPlan plan) {
       throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
   if (plan.gate.metrics.front() == kInstructionsMetric)
     throw UsageError("--metric instructions is for a stored baseline: an A/B times both builds side by side");
+  if (o.command->count("--metric") > 0 &&
+      std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), "calibrated") != plan.gate.metrics.end())
+    throw UsageError("--metric calibrated is for a stored baseline: an A/B pairs both builds in time, which is what "
+                     "the calibration probe does for a baseline; check frame (the default) or cpu");
   SpecLayer command_line = command_line_layer(o.bench);
   if (!command_line.has("file")) throw UsageError("check --against needs a scene FILE to run on both builds");
   resolve_bench_spec(o.bench);
@@ -580,6 +603,12 @@ int check(CheckCliOptions& o) {
     throw UsageError("give either a scene FILE to run or --result FILE to read, not both");
   require_safe_outputs(o);
   std::optional<Result> baseline = read_baseline(o);
+  // The probe's workers spin on into the next frame, where CPU time counts them:
+  // runs are calibrated when a new baseline gates on the calibrated frame, or
+  // when the baseline was calibrated, so that both sides' CPU time counts alike.
+  const std::vector<std::string>& metrics = plan.gate.metrics;
+  o.calibrate = o.update ? std::find(metrics.begin(), metrics.end(), "calibrated") != metrics.end()
+                         : baseline && !baseline->samples.probe_ms.empty();
   std::optional<Result> current = o.result.empty() ? measure(o, plan, baseline) : read_result(o.result);
   if (!current) return kExitInterrupted;
   if (o.update) return write_baseline(o, plan, *current);
@@ -632,8 +661,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "Write the verdict as a Markdown table (a CI job summary or a pull-request comment)");
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");
   cmd->add_option("--metric", options->metrics,
-                  "Timed metrics that must not regress: cpu (CPU time of every thread in the frame), frame (wall "
-                  "clock), categories such as Animations, Rasterizer, or all: the frame and every category "
+                  "Timed metrics that must not regress: calibrated (the wall-clock frame over a fixed calibration "
+                  "probe timed right after it on the same threads, so a change of the machine's speed falls on both; "
+                  "a baseline without it is checked on cpu), cpu (CPU time of every thread in the frame, waiting "
+                  "workers' spinning included), frame (wall clock), categories such as Animations, Rasterizer, or all: the frame and every category "
                   "(Holm-corrected together); or instructions: instructions per frame on one thread (hardware "
                   "counter, else callgrind), tolerance 1%, one run")
       ->delimiter(',')

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "asset/errors.h"
+#include "frame/calibration_probe.h"
 #include "frame/switch_table.h"
 #include "profile/instruction_counter.h"
 
@@ -157,6 +158,9 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
     report.instruction_source = instruction_source_name(instructions.source());
     if (instructions.source() == InstructionSource::None) report.instruction_problem = instructions.why_none();
   }
+  std::unique_ptr<CalibrationProbe> probe;
+  if (options.calibrate)
+    probe = std::make_unique<CalibrationProbe>(bench.config().mode.parallel ? bench.config().threads : 1);
   for (size_t i = 0; i < total; ++i) {
     if (options.stop && options.stop->load()) {
       report.partial = true;
@@ -167,6 +171,11 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
     if (measured) instructions.begin_frame();
     FrameRecord record = bench.step();
     if (measured) record.instructions = instructions.end_frame();
+    // Right after the frame, outside it, so that both meet the same moment.
+    if (probe) {
+      record.probe_ms = probe->run();
+      bench.restart_clock();  // the probe's time is not the next frame's Outside
+    }
     if (measured) report.frames.push_back(record);
     place_gpu_times(bench, options.warmup, report.frames);
     if (options.progress) options.progress(i + 1, total);
@@ -178,6 +187,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   bench.collect_gpu_times();
   place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
+  if (probe) report.calibration_probe = kCalibrationProbeVersion;
   report.stores = bench.streams_output() ? "streaming" : "regular";
   record_character_counters(bench, report.run);
   record_animation(bench, report);

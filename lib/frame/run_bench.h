@@ -22,6 +22,9 @@ struct RunOptions {
   // Count each measured frame's instructions on this thread
   // (profile/instruction_counter.h); the caller makes the run one thread's.
   bool count_instructions = false;
+  // Time the calibration probe after every frame, warm-up included, on the
+  // bench's threads (frame/calibration_probe.h; check --metric calibrated).
+  bool calibrate = false;
 };
 
 // Bytes of memory the machine can still give (MemAvailable), 0 if unknown.

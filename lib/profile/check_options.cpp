@@ -91,6 +91,7 @@ double floor_ms(const Floor& floor, double frame_ms) {
 std::string metric_display_name(const std::string& key) {
   if (key == "frame_ms") return "frame";
   if (key == "cpu_ms") return "cpu";
+  if (key == "calibrated") return "calibrated";
   for (size_t c = 0; c < kCategoryCount; ++c)
     if (key == series_name(static_cast<Category>(c))) return std::string(category_name(static_cast<Category>(c)));
   return key;
@@ -106,7 +107,8 @@ std::string resolve_metric(std::string_view name) {
   std::string wanted = lower(name);
   if (wanted == "frame" || wanted == "frame_ms") return "frame_ms";
   if (wanted == "cpu" || wanted == "cpu_ms") return "cpu_ms";
-  std::string choices = "frame, cpu";
+  if (wanted == "calibrated") return "calibrated";
+  std::string choices = "frame, cpu, calibrated";
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
     if (wanted == lower(category_name(category)) || wanted == category_column(category) ||

@@ -39,10 +39,11 @@ double floor_ms(const Floor& floor, double frame_ms);
 inline constexpr double kDefaultTolerance = 0.07;
 
 struct CheckOptions {
-  // Keys of "samples" (resolve_metric). CPU time by default: on a machine shared
-  // with other jobs the wall-clock frame swings by half while the work does not
-  // (docs/compare-and-check.md has the measurement).
-  std::vector<std::string> metrics = {"cpu_ms"};
+  // Keys of "samples" (resolve_metric). The calibrated frame by default: on a
+  // machine shared with other jobs the wall-clock frame swings by half and the
+  // CPU time counts waiting workers' spinning, while the frame over a probe timed
+  // at the same moment moves least (docs/compare-and-check.md has the measurement).
+  std::vector<std::string> metrics = {"calibrated"};
   double tolerance = kDefaultTolerance;  // a slowdown of the median beyond this fraction...
   double alpha = 0.05;      // ...that the U test finds significant at this level (Holm-corrected over metrics)...
   Floor floor;              // ...and larger than this

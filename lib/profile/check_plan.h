@@ -15,7 +15,7 @@ namespace crowdprof {
 
 // What the user asked of `check`, as typed.
 struct CheckRequest {
-  std::vector<std::string> metrics = {"cpu"};  // "all", "frame", "cpu", a category
+  std::vector<std::string> metrics = {"calibrated"};  // "all", "frame", "calibrated", "cpu", a category
   std::string tolerance = "7%";
   bool tolerance_given = false;  // else the metric's own default (instructions: 1%)
   std::string floor = "2%";

@@ -73,6 +73,9 @@ struct FrameRecord {
   // the wall-clock frame it does not grow while the machine's other jobs hold
   // the cores (check --metric cpu).
   double cpu_ms = 0;
+  // The calibration probe's time right after the frame (frame/calibration_probe.h),
+  // ms; 0 when the run was not calibrated.
+  double probe_ms = 0;
   // The GPU's time for the frame from a GL timer query (GL_TIME_ELAPSED), ms;
   // NaN when not measured (no GL backend, no timer, or not read back). Not a
   // category: the GPU runs beside the CPU's frame, not in it.

@@ -538,15 +538,17 @@ std::string check_section(const CheckSection& check, std::string& charts) {
   svg.add(verdict_chart(r, check.options));
   charts += "v";
   out += svg.inline_svg();
-  out += "<table><tr><th class=\"name\">metric</th><th>baseline median ms</th><th>current median ms</th><th>change</th>"
-         "<th>p (Mann-Whitney U, Holm)</th><th>floor ms</th><th class=\"name\">verdict</th></tr>\n";
+  out += "<table><tr><th class=\"name\">metric</th><th>baseline median</th><th>current median</th><th>change</th>"
+         "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
   VerdictChart rows = verdict_chart(r, check.options);
   for (size_t m = 0; m < r.metrics.size(); ++m) {
     const MetricCheck& metric = r.metrics[m];
-    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + "</td><td>" +
-           report_number(metric.current.median, 3) + "</td><td>" +
+    // Milliseconds, or "probes" for the calibrated frame (a ratio).
+    const std::string unit = " " + metric.value_unit;
+    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + unit +
+           "</td><td>" + report_number(metric.current.median, 3) + unit + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + report_number(metric.floor_ms, 3) +
+           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + report_number(metric.floor_ms, 3) + unit +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "

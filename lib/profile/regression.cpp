@@ -97,8 +97,19 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
       a = samples_of(baseline, key);
       b = samples_of(current, key);
     }
-    result.metrics.push_back(check_metric(metric_display_name(key), a, b, options, floor));
+    // The calibrated frame is a ratio: its floor is the same share of its own
+    // median, or a floor in ms over the baseline's probe.
+    double metric_floor = floor;
+    if (key == "calibrated") {
+      std::vector<double> base = run_medians(baseline, key, kMannWhitneyMinSamples);
+      double median = summarize(base.empty() ? samples_of(baseline, key) : base).median;
+      double probe = summarize(finite(baseline.samples.probe_ms)).median;
+      metric_floor = options.floor.fraction_of_frame > 0 ? options.floor.fraction_of_frame * median
+                                                         : (probe > 0 ? options.floor.ms / probe : 0);
+    }
+    result.metrics.push_back(check_metric(metric_display_name(key), a, b, options, metric_floor));
     result.metrics.back().unit = by_runs ? "runs" : "frames";
+    if (key == "calibrated") result.metrics.back().value_unit = "probes";
   }
   adjust_holm(result.metrics, options);
   if (!options.compare_work) return result;
@@ -119,16 +130,28 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   return result;
 }
 
+namespace {
+// A metric's value: milliseconds to the microsecond; a calibrated ratio to four
+// significant digits (a small crowd's frame is a small share of the probe).
+std::string value_text(const MetricCheck& m, double v) {
+  if (m.value_unit == "ms") return fixed(v, 3);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+}  // namespace
+
 std::string format_check(const CheckResult& result, const CheckOptions& options) {
   std::ostringstream out;
   double whole = std::round(options.tolerance * 100.0);
   std::string tolerance = fixed(options.tolerance * 100.0, std::abs(options.tolerance * 100.0 - whole) < 1e-9 ? 0 : 1) + "%";
   bool corrected = result.metrics.size() > 1;
   auto metric_line = [&](const MetricCheck& m, const char* verdict) {
-    out << verdict << " " << m.metric << ": median " << fixed(m.baseline.median, 3) << " ms -> "
-        << fixed(m.current.median, 3) << " ms (" << percent(m.change) << ", tolerance " << tolerance << ", floor "
-        << fixed(m.floor_ms, 3) << " ms), IQR " << fixed(m.baseline_iqr, 3) << " -> " << fixed(m.current_iqr, 3)
-        << " ms, p = " << p_value(m.test.p);
+    const std::string unit = " " + m.value_unit;
+    out << verdict << " " << m.metric << ": median " << value_text(m, m.baseline.median) << unit << " -> "
+        << value_text(m, m.current.median) << unit << " (" << percent(m.change) << ", tolerance " << tolerance
+        << ", floor " << value_text(m, m.floor_ms) << unit << "), IQR " << value_text(m, m.baseline_iqr) << " -> "
+        << value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
     if (corrected) out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
     out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " " << m.unit
         << (m.unit == "runs" ? ", the median of each" : "")
@@ -147,9 +170,10 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   // One line: every metric's verdict, then the exact checks.
   out << "ok";
   for (const MetricCheck& m : result.metrics) {
-    out << " " << m.metric << " " << fixed(m.baseline.median, 3) << " -> " << fixed(m.current.median, 3) << " ms ("
-        << percent(m.change) << ", p = " << p_value(m.p_adjusted);
-    if (m.beyond_tolerance && !m.beyond_floor) out << ", beyond " << tolerance << " but under the floor of " << fixed(m.floor_ms, 3) << " ms";
+    out << " " << m.metric << " " << value_text(m, m.baseline.median) << " -> " << value_text(m, m.current.median)
+        << " " << m.value_unit << " (" << percent(m.change) << ", p = " << p_value(m.p_adjusted);
+    if (m.beyond_tolerance && !m.beyond_floor)
+      out << ", beyond " << tolerance << " but under the floor of " << value_text(m, m.floor_ms) << " " << m.value_unit;
     else if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
     else if (m.change < -options.tolerance && m.p_adjusted < options.alpha) out << ", faster";
     else out << ", within " << tolerance;

@@ -28,6 +28,9 @@ struct MetricCheck {
   bool beyond_tolerance = false, beyond_floor = false, significant = false;
   bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance and floor alone
   std::string unit = "frames";   // what was compared: each frame, or the median of each run ("runs")
+  // What the values are in: "ms", or "probes" for calibrated (each frame over
+  // the calibration probe's time at the same moment).
+  std::string value_unit = "ms";
   bool regressed = false;
 };
 

@@ -272,6 +272,7 @@ Result make_result(const RunReport& report) {
   for (const FrameRecord& f : report.frames) {
     r.samples.frame_ms.push_back(f.times.total_ms());
     r.samples.cpu_ms.push_back(f.cpu_ms);
+    if (report.calibration_probe) r.samples.probe_ms.push_back(f.probe_ms);
     for (size_t c = 0; c < kCategoryCount; ++c) r.samples.category_ms[c].push_back(f.times.ms[c]);
   }
   // GPU times only when a timer measured some frame: never a column of NaN.
@@ -292,6 +293,8 @@ Result make_result(const RunReport& report) {
         medians[p][s] = quantile(values, 0.5);
       }
   }
+  r.calibration_probe = report.calibration_probe;
+  r.samples.calibrated = calibrated_frames(r.samples.frame_ms, r.samples.probe_ms);
   for (const CounterField& field : kCounterFields) {
     std::vector<double> values;
     for (const FrameRecord& f : report.frames) values.push_back(static_cast<double>(f.counters.*field.member));

@@ -33,6 +33,9 @@ struct RunReport {
   // "none" (asked, but nothing here counts; instruction_problem says why).
   std::string instruction_source;
   std::string instruction_problem;
+  // The calibration probe's version when each frame was followed by it
+  // (frame/calibration_probe.h), else 0.
+  int calibration_probe = 0;
 };
 
 // Index of the frame whose time is the median (the lower one for an even count).

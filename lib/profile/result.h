@@ -127,6 +127,10 @@ struct ResultSamples {
   std::vector<double> gpu_ms;  // NaN where a frame's was not read back; empty when not timed
   // The same by pass (gpu_passes.h); each empty when the frame was not split.
   std::array<std::vector<double>, kGpuPassCount> gpu_pass_ms;
+  // With a calibrated run: the probe's time after each frame, and each frame
+  // over its probe (a ratio: the frame in the machine's speed of that moment).
+  // Both empty otherwise.
+  std::vector<double> probe_ms, calibrated;
 };
 
 // The median counters per frame; results recorded before a counter existed
@@ -171,6 +175,7 @@ struct Result {
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
   std::optional<InstructionRecord> instructions;
+  int calibration_probe = 0;  // the probe's version with samples.probe_ms, else 0
   std::optional<PooledRuns> runs;
   // The process that measured it, when several were (check --runs, the A/B).
   std::optional<int64_t> pid;
@@ -178,6 +183,10 @@ struct Result {
 
   size_t frames() const { return samples.frame_ms.size(); }
 };
+
+// Each frame over its probe: samples.calibrated from frame_ms and probe_ms
+// (empty when either is, or they differ in length; a probe of 0 gives NaN).
+std::vector<double> calibrated_frames(const std::vector<double>& frame_ms, const std::vector<double>& probe_ms);
 
 // The values that are numbers (a frame's NaN: not measured).
 std::vector<double> finite(const std::vector<double>& values);

@@ -441,6 +441,15 @@ void read_samples(const Reader& in, Result& r) {
   s.frame_ms = in.samples("/samples/frame_ms", frames);
   // CPU time per frame arrived within format 1: read when present.
   if (in.has("/samples/cpu_ms")) s.cpu_ms = in.samples("/samples/cpu_ms", frames);
+  // A calibrated run's probe (frame/calibration_probe.h); the ratio is derived
+  // again, never trusted from the file.
+  if (in.has("/samples/probe_ms")) {
+    s.probe_ms = in.samples("/samples/probe_ms", frames);
+    if (std::any_of(s.probe_ms.begin(), s.probe_ms.end(), [](double ms) { return !(ms > 0); }))
+      in.fail("\"samples.probe_ms\" holds a time that is not above 0");
+    s.calibrated = calibrated_frames(s.frame_ms, s.probe_ms);
+    r.calibration_probe = static_cast<int>(in.count("/calibration/probe"));
+  }
   for (size_t c = 0; c < kCategoryCount; ++c)
     s.category_ms[c] = in.samples("/samples/" + series_key(r.format, static_cast<Category>(c)), frames);
   if (in.has("/samples/gpu_ms") && !in.at("/samples/gpu_ms").is_null())
@@ -579,6 +588,14 @@ nlohmann::json result_to_json(const Result& r) {
   if (!s.cpu_ms.empty()) {
     j["cpu"] = summary_json(s.cpu_ms);
     samples["cpu_ms"] = s.cpu_ms;
+  }
+  if (!s.probe_ms.empty()) {
+    // The ratio has no unit: its median alone, not a summary of "_ms" fields.
+    j["calibration"] = {{"probe", r.calibration_probe},
+                        {"probe_ms", summary_json(s.probe_ms)},
+                        {"median_calibrated", summarize(finite(s.calibrated)).median}};
+    samples["probe_ms"] = s.probe_ms;
+    samples["calibrated"] = s.calibrated;
   }
   for (size_t c = 0; c < kCategoryCount; ++c) {
     const std::string name = series_name(static_cast<Category>(c));

@@ -29,7 +29,8 @@ std::string format(const char* pattern, double value) {
 std::string ms(double value) { return format(value < 1 ? "%.4f" : "%.3f", value); }
 // A row's value with its unit: "1.234 ms", "22210727 instructions".
 std::string value(const GateRow& row, double v) {
-  return row.unit == "ms" ? ms(v) + " ms" : format("%.0f", v) + " " + row.unit;
+  if (row.unit == "ms") return ms(v) + " ms";
+  return (row.unit == "probes" ? ms(v) : format("%.0f", v)) + " " + row.unit;
 }
 
 std::string interval(const GateRow& row) {
@@ -110,10 +111,11 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
     bool faster = metric.significant && metric.change < -options.tolerance;
     row.verdict = metric.regressed ? "slower" : faster ? "faster" : "no change";
     row.failed = metric.regressed;
+    row.unit = metric.value_unit;
     if (row.failed)
       row.why = "slower by more than the " + percent(options.tolerance).substr(1) + " tolerance and the " +
-                ms(metric.floor_ms) + " ms floor, significant at " + format("%g", options.alpha) +
-                " (Mann-Whitney over " + metric.unit + ")";
+                ms(metric.floor_ms) + " " + metric.value_unit + " floor, significant at " +
+                format("%g", options.alpha) + " (Mann-Whitney over " + metric.unit + ")";
     table.metrics.push_back(std::move(row));
   }
   table.work_compared = options.compare_work;

@@ -61,7 +61,7 @@ TEST(BaselineOrigin, AnotherMachineOrBuildIsOneWarningLine) {
   auto dir = crowdprof::test::scratch_dir("baseline_machine");
   std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  ASSERT_EQ(run_cli("bench '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled -q --json '" + base + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --calibrate -q --json '" + base + "'").status, 0);
   json other = json::parse(std::ifstream(base));
   other["environment"]["cpu"] = "Another CPU";
   other["environment"]["build_type"] = "Another build type";

@@ -167,7 +167,7 @@ TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + fast_base + "' --runs 2 -q");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("with the same work: measuring again to confirm (1 of 1, --confirm)"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("confirmed: slower again (cpu +"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("confirmed: slower again (calibrated +"), std::string::npos) << r.err;
   r = run_cli("check --spread 0 --baseline '" + fast_base + "' --runs 2 --confirm 0 -q");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;

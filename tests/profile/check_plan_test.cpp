@@ -11,7 +11,7 @@ using namespace crowdprof;
 
 TEST(CheckPlan, Defaults) {
   CheckPlan plan = plan_check({});
-  EXPECT_EQ(plan.gate.metrics, std::vector<std::string>{"cpu_ms"});
+  EXPECT_EQ(plan.gate.metrics, std::vector<std::string>{"calibrated"});
   EXPECT_DOUBLE_EQ(plan.gate.tolerance, 0.07);
   EXPECT_EQ(plan.runs, 8u);
   EXPECT_EQ(plan.spread_s, 0.0);

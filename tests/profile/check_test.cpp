@@ -210,13 +210,13 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("baseline written"), std::string::npos) << r.out;
   // A baseline's luck counts against every later check: 20 runs by default.
-  EXPECT_NE(r.out.find("the median of 20 runs by cpu"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the median of 20 runs by calibrated"), std::string::npos) << r.out;
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(base))["runs"]["count"], 20);
 
   r = test::run_cli("check --result '" + base + "' --baseline '" + base + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
-  EXPECT_EQ(r.out.rfind("ok cpu", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.rfind("ok calibrated", 0), 0u) << r.out;
 
   // A fresh run with the baseline's options (taken from it): the counters and
   // digest must match exactly; the timing's tolerance is wide, as a loaded

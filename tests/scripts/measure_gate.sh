@@ -5,7 +5,7 @@
 #   1. false alarms: a baseline is recorded, then RUNS (50) unchanged `check`
 #      runs against it; every exit 1 is a false alarm (goal: at most 1 of 50);
 #   2. detection: DETECT (20) `check` runs of the same scene with more characters,
-#      enough that 10% more copies are animated and skinned (real work added, not a
+#      enough that SLOWER (10)% more copies are animated and skinned (real work added, not a
 #      sleep; culled copies cost nothing, so the count is found from the counters),
 #      compared on timings alone (--timings-only); every exit 1 is a detection
 #      (goal: at least 19 of 20).
@@ -13,7 +13,8 @@
 #   CROWDPROF  the crowdprof binary (e.g. build/crowdprof)
 #   N          characters in the baseline (default 160, the thesis's scene)
 #   N_SLOWER   characters of the slower variant (default: the smallest crowd whose
-#              vertices skinned per frame are at least 10% above N's)
+#              vertices skinned per frame are at least SLOWER% above N's; issue 25's
+#              6c asks for 20% under drift)
 # Environment: SCENE (scenes/humanoid.glb), MODE (threaded), FRAMES (120),
 #   WARMUP (10), RUNS (50), DETECT (20), OUT (a new temporary folder; kept),
 #   CHECK_ARGS (extra options for every check, e.g. "--tolerance 10%"),
@@ -55,7 +56,7 @@ work_of() {
 work=$(work_of "$n")
 if [[ -z $n_slower ]]; then
   n_slower=$n
-  while (($(work_of "$n_slower") * 10 < work * 11)); do n_slower=$((n_slower + 1)); done
+  while (($(work_of "$n_slower") * 100 < work * (100 + ${SLOWER:-10}))); do n_slower=$((n_slower + 1)); done
 fi
 work_slower=$(work_of "$n_slower")
 echo "measure_gate: scene $scene, mode $mode, $frames frames after $warmup warm-up; baseline -n $n, slower -n $n_slower" \
@@ -87,13 +88,14 @@ if [[ -n ${ALTERNATE:-} ]]; then
   echo "measure_gate: a compile on one core for ${ALTERNATE} s, then ${ALTERNATE} s quiet, for as long as the checks run"
 fi
 span=${SPAN:-600}
-echo "phase,run,exit,runs,baseline_cpu_ms,current_cpu_ms,current_cpu_min_ms,current_cpu_max_ms,baseline_frame_ms,current_frame_ms" >"$out/runs.csv"
+echo "phase,run,exit,runs,baseline_cpu_ms,current_cpu_ms,current_cpu_min_ms,current_cpu_max_ms,baseline_frame_ms,current_frame_ms,baseline_calibrated,current_calibrated,started" >"$out/runs.csv"
 
 # CPU and frame time of a result: the median of its runs' medians (check pools
 # --runs runs, each a process of its own), and the fastest and slowest run.
 medians() {
   jq -r 'def med: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end;
-    .runs.median_ms as $m | [.runs.count, ($m.cpu_ms | med), ($m.cpu_ms | min), ($m.cpu_ms | max), ($m.frame_ms | med)]
+    .runs.median_ms as $m | [.runs.count, ($m.cpu_ms | med), ($m.cpu_ms | min), ($m.cpu_ms | max), ($m.frame_ms | med),
+      (($m.calibrated // [0]) | med)]
     | @csv' "$1"
 }
 
@@ -108,10 +110,10 @@ one_check() {
     cat "$out/stderr" >&2
     exit 3
   fi
-  local b_cpu b_frame count c_cpu c_min c_max c_frame
-  IFS=, read -r _ b_cpu _ _ b_frame <<<"$(medians "$base")"
-  IFS=, read -r count c_cpu c_min c_max c_frame <<<"$(medians "$out/current.json")"
-  echo "$phase,$run,$status,$count,$b_cpu,$c_cpu,$c_min,$c_max,$b_frame,$c_frame" >>"$out/runs.csv"
+  local b_cpu b_frame b_cal count c_cpu c_min c_max c_frame c_cal
+  IFS=, read -r _ b_cpu _ _ b_frame b_cal <<<"$(medians "$base")"
+  IFS=, read -r count c_cpu c_min c_max c_frame c_cal <<<"$(medians "$out/current.json")"
+  echo "$phase,$run,$status,$count,$b_cpu,$c_cpu,$c_min,$c_max,$b_frame,$c_frame,$b_cal,$c_cal,$((SECONDS - phase_start))" >>"$out/runs.csv"
   echo "$status"
 }
 

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# How much one unchanged scene's CPU time moves between processes and within one
-# (not run by CI; about 30 s on the 2-core machine, quiet): RUNS (12) separate
-# `bench` processes of FRAMES (120) frames, and one process of RUNS x FRAMES
-# frames cut into RUNS blocks; for each, the median CPU time per frame of every
-# process or block, their spread (max/min - 1) and their relative standard
-# deviation. `check` samples processes (docs/compare-and-check.md) because the
-# first spread is the larger.
+# How much one unchanged scene's metrics move between processes and within one
+# (not run by CI; about a minute on the 2-core machine, quiet): RUNS (12) separate
+# `bench --calibrate` processes of FRAMES (120) frames, and one process of RUNS x
+# FRAMES frames cut into RUNS blocks; for each metric, the median per frame of
+# every process or block, their spread (max/min - 1) and their relative standard
+# deviation, side by side. `check` samples processes (docs/compare-and-check.md)
+# because the first spread is the larger, and gates on the metric that moves least.
 # Usage: tests/scripts/measure_run_spread.sh CROWDPROF
 # Environment: SCENE (scenes/humanoid.glb), N (160), MODE (threaded), THREADS
-#   (the mode's default), FRAMES (120), WARMUP (10), RUNS (12), METRIC (cpu_ms).
+#   (the mode's default), FRAMES (120), WARMUP (10), RUNS (12), METRICS (samples
+#   keys: "frame_ms cpu_ms animations_ms calibrated"; calibrated is a ratio, its
+#   "ms" in the lines below are probes).
 # Needs jq.
 set -euo pipefail
 
@@ -19,14 +21,14 @@ mode=${MODE:-threaded}
 frames=${FRAMES:-120}
 warmup=${WARMUP:-10}
 runs=${RUNS:-12}
-metric=${METRIC:-cpu_ms}
+read -r -a metrics <<<"${METRICS:-frame_ms cpu_ms animations_ms calibrated}"
 threads=()
 [[ -n ${THREADS:-} ]] && threads=(--threads "$THREADS")
 command -v jq >/dev/null || { echo "measure_run_spread: needs jq (apt-get install jq)" >&2; exit 2; }
 [[ -x $crowdprof ]] || { echo "measure_run_spread: $crowdprof is not an executable" >&2; exit 2; }
 out=$(mktemp -d /tmp/measure_run_spread.XXXXXX)
 echo "measure_run_spread: $("$crowdprof" --version); -n $n, mode $mode ${threads[*]}, $frames frames x $runs," \
-  "$metric; load $(cut -d' ' -f1-3 /proc/loadavg)"
+  "${metrics[*]}; load $(cut -d' ' -f1-3 /proc/loadavg)"
 
 # Median, spread and relative standard deviation of a JSON array of numbers.
 stats='def med: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end;
@@ -36,14 +38,15 @@ stats='def med: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[len
 
 for ((i = 1; i <= runs; ++i)); do
   "$crowdprof" bench "$scene" -n "$n" --mode "$mode" "${threads[@]}" --frames "$frames" --warmup "$warmup" -q \
-    --json "$out/run$i.json"
+    --calibrate --json "$out/run$i.json"
 done
-jq -s "[.[] | .samples.$metric | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end] | $stats" \
-  "$out"/run*.json | sed 's/^"/separate processes: /; s/"$//'
-
 "$crowdprof" bench "$scene" -n "$n" --mode "$mode" "${threads[@]}" --frames $((frames * runs)) --warmup "$warmup" -q \
-  --json "$out/one.json"
-jq --argjson f "$frames" "[.samples.$metric as \$s | range(0; \$s | length; \$f) as \$i | \$s[\$i:\$i + \$f]
-  | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end] | $stats" \
-  "$out/one.json" | sed 's/^"/blocks of one process: /; s/"$//'
+  --calibrate --json "$out/one.json"
+for metric in "${metrics[@]}"; do
+  jq -s "[.[] | .samples.$metric | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end] | $stats" \
+    "$out"/run*.json | sed "s/^\"/$metric, separate processes: /; s/\"\$//"
+  jq --argjson f "$frames" "[.samples.$metric as \$s | range(0; \$s | length; \$f) as \$i | \$s[\$i:\$i + \$f]
+    | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end] | $stats" \
+    "$out/one.json" | sed "s/^\"/$metric, blocks of one process: /; s/\"\$//"
+done
 rm -rf "$out"
