@@ -13,7 +13,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <tuple>
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
@@ -472,23 +471,40 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, Resul
          const std::function<std::optional<Result>()>& remeasure) {
   if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
-  // Without --metric, results that lack the calibrated frame (a baseline of an
-  // older crowdprof, a --result of bench without --calibrate) are checked on
-  // CPU time, and those without CPU time on the frame, with a note.
+  // The calibrated frame compares only between runs of the same probe; the CPU
+  // time only between runs that both ran it or both did not (its workers spin on
+  // into the next frame). Without --metric, a pair that cannot compare the
+  // calibrated frame is checked on CPU time where that is alike, else on the frame.
   std::string current_name = o.result.empty() ? std::string("the run") : o.result;
-  if (o.command->count("--metric") == 0) {
-    for (const auto& [key, shown, fallback] :
-         {std::tuple<const char*, const char*, const char*>{"calibrated", "calibrated frame time", "cpu_ms"},
-          {"cpu_ms", "CPU time per frame", "frame_ms"}}) {
-      if (options.metrics != std::vector<std::string>{key}) continue;
-      for (const auto& [result, path] : {std::pair{&baseline, o.baseline}, {&current, current_name}})
-        if (options.metrics.front() == key && !metric_samples(*result, key)) {
-          std::cerr << "crowdprof: note: " << path << " has no " << shown << " (recorded by an older crowdprof"
-                    << (key == std::string("calibrated") ? " or by bench without --calibrate" : "")
-                    << "): checking " << metric_display_name(fallback) << " instead\n";
-          options.metrics = {fallback};
-        }
+  const bool base_probe = !baseline.samples.probe_ms.empty(), current_probe = !current.samples.probe_ms.empty();
+  const bool named = o.command->count("--metric") > 0;
+  const bool uses_calibrated =
+      std::find(options.metrics.begin(), options.metrics.end(), "calibrated") != options.metrics.end();
+  if (named && uses_calibrated && base_probe && current_probe &&
+      baseline.calibration_probe != current.calibration_probe)
+    throw InputError(o.baseline, "was calibrated by probe version " + std::to_string(baseline.calibration_probe) +
+                                     ", " + current_name + " by version " + std::to_string(current.calibration_probe) +
+                                     ": the calibrated frame does not compare; record the baseline again, or check "
+                                     "another --metric");
+  if (!named && options.metrics == std::vector<std::string>{"calibrated"}) {
+    std::string why;
+    if (!base_probe || !current_probe)
+      why = (!base_probe ? o.baseline : current_name) +
+            " has no calibrated frame time (recorded by an older crowdprof or by bench without --calibrate)";
+    else if (baseline.calibration_probe != current.calibration_probe)
+      why = "the two were calibrated by different probes (version " + std::to_string(baseline.calibration_probe) +
+            " and " + std::to_string(current.calibration_probe) + ")";
+    if (!why.empty()) {
+      const bool alike = base_probe == current_probe;
+      const bool cpu = alike && metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
+      options.metrics = {cpu ? "cpu_ms" : "frame_ms"};
+      std::cerr << "crowdprof: note: " << why << ": checking " << metric_display_name(options.metrics.front())
+                << " instead" << (alike ? "" : " (only one of the two ran the probe, which raises CPU time)") << "\n";
     }
+  } else if (base_probe != current_probe &&
+             std::find(options.metrics.begin(), options.metrics.end(), "cpu_ms") != options.metrics.end()) {
+    std::cerr << "crowdprof: note: only one of the two ran the calibration probe, whose workers raise CPU time: cpu "
+                 "does not compare like for like\n";
   }
   if (!o.timings_only) require_same_run(baseline, current, o.baseline);
   for (const std::string& note : comparison_notes(baseline, current))
@@ -663,7 +679,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--metric", options->metrics,
                   "Timed metrics that must not regress: calibrated (the wall-clock frame over a fixed calibration "
                   "probe timed right after it on the same threads, so a change of the machine's speed falls on both; "
-                  "a baseline without it is checked on cpu), cpu (CPU time of every thread in the frame, waiting "
+                  "a baseline or --result without it is checked on cpu; not with --against), cpu (CPU time of every thread in the frame, waiting "
                   "workers' spinning included), frame (wall clock), categories such as Animations, Rasterizer, or all: the frame and every category "
                   "(Holm-corrected together); or instructions: instructions per frame on one thread (hardware "
                   "counter, else callgrind), tolerance 1%, one run")

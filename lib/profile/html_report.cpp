@@ -545,10 +545,10 @@ std::string check_section(const CheckSection& check, std::string& charts) {
     const MetricCheck& metric = r.metrics[m];
     // Milliseconds, or "probes" for the calibrated frame (a ratio).
     const std::string unit = " " + metric.value_unit;
-    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + report_number(metric.baseline.median, 3) + unit +
-           "</td><td>" + report_number(metric.current.median, 3) + unit + "</td><td>" +
+    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + metric_value_text(metric, metric.baseline.median) +
+           unit + "</td><td>" + metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + report_number(metric.floor_ms, 3) + unit +
+           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + metric_value_text(metric, metric.floor_ms) + unit +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "

@@ -130,16 +130,14 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   return result;
 }
 
-namespace {
-// A metric's value: milliseconds to the microsecond; a calibrated ratio to four
-// significant digits (a small crowd's frame is a small share of the probe).
-std::string value_text(const MetricCheck& m, double v) {
+// A small crowd's calibrated frame is a small share of the probe: significant
+// digits, not decimals.
+std::string metric_value_text(const MetricCheck& m, double v) {
   if (m.value_unit == "ms") return fixed(v, 3);
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", v);
   return text;
 }
-}  // namespace
 
 std::string format_check(const CheckResult& result, const CheckOptions& options) {
   std::ostringstream out;
@@ -148,10 +146,10 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   bool corrected = result.metrics.size() > 1;
   auto metric_line = [&](const MetricCheck& m, const char* verdict) {
     const std::string unit = " " + m.value_unit;
-    out << verdict << " " << m.metric << ": median " << value_text(m, m.baseline.median) << unit << " -> "
-        << value_text(m, m.current.median) << unit << " (" << percent(m.change) << ", tolerance " << tolerance
-        << ", floor " << value_text(m, m.floor_ms) << unit << "), IQR " << value_text(m, m.baseline_iqr) << " -> "
-        << value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
+    out << verdict << " " << m.metric << ": median " << metric_value_text(m, m.baseline.median) << unit << " -> "
+        << metric_value_text(m, m.current.median) << unit << " (" << percent(m.change) << ", tolerance " << tolerance
+        << ", floor " << metric_value_text(m, m.floor_ms) << unit << "), IQR " << metric_value_text(m, m.baseline_iqr) << " -> "
+        << metric_value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
     if (corrected) out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
     out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " " << m.unit
         << (m.unit == "runs" ? ", the median of each" : "")
@@ -170,10 +168,10 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   // One line: every metric's verdict, then the exact checks.
   out << "ok";
   for (const MetricCheck& m : result.metrics) {
-    out << " " << m.metric << " " << value_text(m, m.baseline.median) << " -> " << value_text(m, m.current.median)
+    out << " " << m.metric << " " << metric_value_text(m, m.baseline.median) << " -> " << metric_value_text(m, m.current.median)
         << " " << m.value_unit << " (" << percent(m.change) << ", p = " << p_value(m.p_adjusted);
     if (m.beyond_tolerance && !m.beyond_floor)
-      out << ", beyond " << tolerance << " but under the floor of " << value_text(m, m.floor_ms) << " " << m.value_unit;
+      out << ", beyond " << tolerance << " but under the floor of " << metric_value_text(m, m.floor_ms) << " " << m.value_unit;
     else if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
     else if (m.change < -options.tolerance && m.p_adjusted < options.alpha) out << ", faster";
     else out << ", within " << tolerance;

@@ -68,6 +68,10 @@ void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options)
 // Holm-corrected together. A metric either result lacks samples of is an
 // std::invalid_argument: the caller chooses metrics both have.
 CheckResult check_results(const Result& baseline, const Result& current, const CheckOptions& options);
+// A metric's value as text, without its unit (m.value_unit): milliseconds to
+// the microsecond, the calibrated ratio to four significant digits.
+std::string metric_value_text(const MetricCheck& m, double value);
+
 // What stdout shows: a line per regressed metric or changed counter (metric,
 // both medians, their IQRs, the change and the p-value), or one summary line
 // when nothing regressed.

@@ -161,9 +161,10 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
                           : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";
     std::string colour = m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
-    std::string detail = m.metric + ": median " + report_number(m.baseline.median, 3) + " -> " +
-                         report_number(m.current.median, 3) + " ms, p = " + report_number(m.p_adjusted, 4) +
-                         " (Holm), floor " + report_number(m.floor_ms, 3) + " ms";
+    const std::string unit = " " + m.value_unit;
+    std::string detail = m.metric + ": median " + metric_value_text(m, m.baseline.median) + " -> " +
+                         metric_value_text(m, m.current.median) + unit + ", p = " + report_number(m.p_adjusted, 4) +
+                         " (Holm), floor " + metric_value_text(m, m.floor_ms) + unit;
     // A slowdown must pass both the tolerance and the floor: the band is the larger.
     double allowed = std::max(options.tolerance, m.baseline.median > 0 ? m.floor_ms / m.baseline.median : 0.0);
     chart.rows.push_back({m.metric, m.change, verdict, colour, detail, allowed});

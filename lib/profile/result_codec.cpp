@@ -448,6 +448,8 @@ void read_samples(const Reader& in, Result& r) {
     if (std::any_of(s.probe_ms.begin(), s.probe_ms.end(), [](double ms) { return !(ms > 0); }))
       in.fail("\"samples.probe_ms\" holds a time that is not above 0");
     s.calibrated = calibrated_frames(s.frame_ms, s.probe_ms);
+    if (std::any_of(s.calibrated.begin(), s.calibrated.end(), [](double ratio) { return !std::isfinite(ratio); }))
+      in.fail("\"samples.probe_ms\" holds a time too small to divide a frame by");
     r.calibration_probe = static_cast<int>(in.count("/calibration/probe"));
   }
   for (size_t c = 0; c < kCategoryCount; ++c)

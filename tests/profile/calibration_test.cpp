@@ -83,6 +83,8 @@ TEST(Calibration, TheRatioIsDerivedFromTheFramesNeverTrustedFromTheFile) {
     EXPECT_DOUBLE_EQ(tampered.samples.calibrated[i], tampered.samples.frame_ms[i] / tampered.samples.probe_ms[i]);
   doc["samples"]["probe_ms"][1] = 0;
   EXPECT_THROW(read_result(write_json(dir / "zero.json", doc)), InputError);
+  doc["samples"]["probe_ms"][1] = 1e-320;  // above 0, but a frame over it is not a number
+  EXPECT_THROW(read_result(write_json(dir / "denormal.json", doc)), InputError);
   doc["samples"]["probe_ms"].erase(1);
   EXPECT_THROW(read_result(write_json(dir / "short.json", doc)), InputError);
 }
@@ -129,6 +131,39 @@ TEST(Calibration, CheckFallsBackToCpuTimeForAResultWithoutTheProbe) {
   r = test::run_cli("check --result '" + plain + "' --baseline '" + plain + "' --metric calibrated");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("samples.calibrated"), std::string::npos) << r.err;
+}
+
+// CPU time compares only when both results ran the probe or neither did (its
+// workers spin on into the next frame), and the calibrated frame only between
+// runs of the same probe version.
+TEST(Calibration, APairThatCannotCompareTheCalibratedFrameFallsBackAndSaysWhy) {
+  auto dir = test::scratch_dir("calibration_pairs");
+  std::string plain = (dir / "plain.json").string(), calibrated = (dir / "calibrated.json").string();
+  std::string common = "bench '" + humanoid() + "' -n 2 --frames 10 --warmup 0 -q ";
+  ASSERT_EQ(test::run_cli(common + "--json '" + plain + "'").status, 0);
+  ASSERT_EQ(test::run_cli(common + "--calibrate --json '" + calibrated + "'").status, 0);
+  auto r = test::run_cli("check --result '" + calibrated + "' --baseline '" + plain + "' --tolerance 900%");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("checking frame instead (only one of the two ran the probe, which raises CPU time)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.rfind("ok frame", 0), 0u) << r.out;
+  r = test::run_cli("check --result '" + calibrated + "' --baseline '" + plain + "' --metric cpu --tolerance 900%");
+  EXPECT_NE(r.err.find("cpu does not compare like for like"), std::string::npos) << r.err;
+
+  json other = read_json(calibrated);
+  other["calibration"]["probe"] = kCalibrationProbeVersion + 1;
+  std::string other_path = write_json(dir / "other_probe.json", other);
+  r = test::run_cli("check --result '" + calibrated + "' --baseline '" + other_path + "' --tolerance 900%");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("the two were calibrated by different probes (version " +
+                       std::to_string(kCalibrationProbeVersion + 1) + " and " +
+                       std::to_string(kCalibrationProbeVersion) + "): checking cpu instead"),
+            std::string::npos)
+      << r.err;
+  r = test::run_cli("check --result '" + calibrated + "' --baseline '" + other_path + "' --metric calibrated");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("the calibrated frame does not compare"), std::string::npos) << r.err;
 }
 
 TEST(Calibration, TheAbRefusesTheCalibratedMetricBeforeAnythingRuns) {

@@ -154,4 +154,10 @@ summary=$(awk -F, 'NR > 1 { r = $6 / $5 - 1; if ($1 == "unchanged") u[++nu] = r;
       100 * mu, 100 * u[1], 100 * u[nu], 100 * lo, 100 * hi, 100 * ms, 100 * s[1], 100 * s[ns] }' "$out/runs.csv")
 echo "detections: $detected of $detect checks of -n $n_slower (goal: at least 19)"
 echo "measure_gate: CPU time of the median run against the baseline's, $summary"
+# The same for the calibrated frame, the default metric (columns 11 and 12).
+calibrated=$(awk -F, 'NR > 1 && $11 > 0 { r = $12 / $11 - 1; if ($1 == "unchanged") u[++nu] = r; else s[++ns] = r }
+  function sorted(a, n,   i, j, t) { for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t } }
+  END { sorted(u, nu); sorted(s, ns)
+    printf "unchanged checks %+.1f%% to %+.1f%%; slower %+.1f%% to %+.1f%%", 100 * u[1], 100 * u[nu], 100 * s[1], 100 * s[ns] }' "$out/runs.csv")
+echo "measure_gate: the calibrated frame of the median run against the baseline's, $calibrated"
 echo "measure_gate: took $(($(date +%s) - start)) s, load average now $(cut -d' ' -f1-3 /proc/loadavg)"
