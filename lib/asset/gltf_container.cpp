@@ -94,7 +94,8 @@ void split_glb(GltfContainer& c, const std::vector<unsigned char>& bytes) {
     const char* data = reinterpret_cast<const char*>(bytes.data() + payload);
     if (!have_json) {
       if (chunk_type != 0x4E4F534Au) throw InputError(path, "GLB's first chunk is not JSON");
-      c.json = parse_json(path, data, data + chunk_length);
+      c.json_text.assign(data, chunk_length);
+      c.json = parse_json(path, c.json_text.data(), c.json_text.data() + c.json_text.size());
       have_json = true;
     } else if (chunk_type == 0x004E4942u && c.bin.empty()) {
       c.bin.assign(bytes.begin() + static_cast<std::ptrdiff_t>(payload),
@@ -135,8 +136,8 @@ GltfContainer gltf_container_from_bytes(const std::vector<unsigned char>& bytes,
   while (first < bytes.size() && std::isspace(bytes[first])) ++first;
   if (first == bytes.size() || bytes[first] != '{')
     throw InputError(path, not_gltf(path));
-  const char* text = reinterpret_cast<const char*>(bytes.data());
-  c.json = parse_json(path, text, text + bytes.size());
+  c.json_text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  c.json = parse_json(path, c.json_text.data(), c.json_text.data() + c.json_text.size());
   return c;
 }
 

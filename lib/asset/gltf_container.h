@@ -27,6 +27,7 @@ struct GltfContainer {
   std::string base_dir;  // folder that external URIs must stay inside
   bool binary = false;   // GLB
   nlohmann::json json;
+  std::string json_text;  // the text `json` was parsed from, handed to tiny_gltf as it is
   std::vector<unsigned char> bin;  // GLB BIN chunk; empty for .gltf
 };
 

@@ -79,27 +79,31 @@ void put_u32(std::vector<unsigned char>& out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
 }
 
-tinygltf::Model run_tinygltf(const GltfContainer& c, const nlohmann::json& json) {
+// `text` is the container's own JSON text (or a document made from it): tiny_gltf
+// parses it with the same nlohmann as the container did, so it reads the
+// document the preflight checked, without a dump and copy of it first.
+tinygltf::Model run_tinygltf(const GltfContainer& c, const std::string& text) {
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing,
                          const_cast<GltfContainer*>(&c)});
   loader.SetImageLoader(&skip_image, nullptr);
-  std::string text = json.dump();
   tinygltf::Model model;
   std::string err, warn;
   bool ok;
   if (c.binary) {
-    // Re-pack the (possibly edited) JSON with the original BIN chunk.
-    while (text.size() % 4) text.push_back(' ');
+    // Re-packed with the BIN chunk the container kept: tiny_gltf sees the chunks
+    // crowdprof read, whatever else the file holds.
+    size_t text_padded = (text.size() + 3) & ~size_t(3);
     size_t bin_padded = (c.bin.size() + 3) & ~size_t(3);
     std::vector<unsigned char> glb;
-    glb.reserve(28 + text.size() + bin_padded);
+    glb.reserve(28 + text_padded + bin_padded);
     glb.insert(glb.end(), {'g', 'l', 'T', 'F'});
     put_u32(glb, 2);
-    put_u32(glb, static_cast<uint32_t>(12 + 8 + text.size() + (c.bin.empty() ? 0 : 8 + bin_padded)));
-    put_u32(glb, static_cast<uint32_t>(text.size()));
+    put_u32(glb, static_cast<uint32_t>(12 + 8 + text_padded + (c.bin.empty() ? 0 : 8 + bin_padded)));
+    put_u32(glb, static_cast<uint32_t>(text_padded));
     put_u32(glb, 0x4E4F534Au);
     glb.insert(glb.end(), text.begin(), text.end());
+    glb.resize(glb.size() + text_padded - text.size(), ' ');
     if (!c.bin.empty()) {
       put_u32(glb, static_cast<uint32_t>(bin_padded));
       put_u32(glb, 0x004E4942u);
@@ -249,7 +253,7 @@ std::vector<DracoPrimitive> trial_decode_draco(const GltfContainer& c) {
   nlohmann::json bytes_only = {{"asset", c.json["asset"]}};
   for (const char* key : {"buffers", "bufferViews"})
     if (c.json.contains(key)) bytes_only[key] = c.json[key];
-  tinygltf::Model model = run_tinygltf(c, bytes_only);
+  tinygltf::Model model = run_tinygltf(c, bytes_only.dump());
   const auto& accessors = c.json["accessors"];
   for (DracoPrimitive& d : found) {
     const auto& prim = c.json["meshes"][d.mesh]["primitives"][d.primitive];
@@ -329,7 +333,7 @@ GltfAsset load_checked(const std::string& file, GltfContainer container) {
   preflight_gltf(container);
   check_buffer_sizes(container);
   std::vector<DracoPrimitive> draco = trial_decode_draco(container);
-  tinygltf::Model model = run_tinygltf(container, container.json);
+  tinygltf::Model model = run_tinygltf(container, container.json_text);
   normalise_draco_views(model, draco, container.json.contains("bufferViews") ? container.json["bufferViews"].size() : 0,
                         file);
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "asset/errors.h"
+#include "asset/input_file.h"
 #include "gltf_fixture.h"
 #include "loader_checks.h"
 
@@ -81,6 +83,24 @@ TEST(BadInput, JsonNestedTooDeep) {
   std::string extras(100000, '[');
   write_file(file, R"({"asset": {"version": "2.0"}, "extras": )" + extras + std::string(100000, ']') + "}");
   expect_bad_input(file, {"nested"});
+}
+
+TEST(BadInput, JsonDepthLimitIsExactly64Levels) {
+  // The limit the message names: 64 levels of arrays and objects are read, 65 are not.
+  auto nested = [](int levels) {
+    std::string text;
+    for (int i = 0; i < levels; ++i) text += i % 2 ? "[" : "{\"k\": ";
+    text += "0";
+    for (int i = levels - 1; i >= 0; --i) text += i % 2 ? "]" : "}";
+    return text;
+  };
+  EXPECT_EQ(parse_json_input("ok.json", nested(kMaxJsonDepth)).size(), 1u);
+  try {
+    parse_json_input("deep.json", nested(kMaxJsonDepth + 1));
+    FAIL() << "65 levels were read";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "deep.json: broken JSON: nested more than 64 levels deep");
+  }
 }
 
 TEST(BadInput, BufferShorterThanDeclared) {
