@@ -471,41 +471,11 @@ int gate(const CheckCliOptions& o, CheckPlan plan, const Result& baseline, Resul
          const std::function<std::optional<Result>()>& remeasure) {
   if (plan.gate.metrics.front() == kInstructionsMetric) return gate_instructions(o, plan, baseline, current);
   CheckOptions& options = plan.gate;
-  // The calibrated frame compares only between runs of the same probe; the CPU
-  // time only between runs that both ran it or both did not (its workers spin on
-  // into the next frame). Without --metric, a pair that cannot compare the
-  // calibrated frame is checked on CPU time where that is alike, else on the frame.
   std::string current_name = o.result.empty() ? std::string("the run") : o.result;
-  const bool base_probe = !baseline.samples.probe_ms.empty(), current_probe = !current.samples.probe_ms.empty();
-  const bool named = o.command->count("--metric") > 0;
-  const bool uses_calibrated =
-      std::find(options.metrics.begin(), options.metrics.end(), "calibrated") != options.metrics.end();
-  if (named && uses_calibrated && base_probe && current_probe &&
-      baseline.calibration_probe != current.calibration_probe)
-    throw InputError(o.baseline, "was calibrated by probe version " + std::to_string(baseline.calibration_probe) +
-                                     ", " + current_name + " by version " + std::to_string(current.calibration_probe) +
-                                     ": the calibrated frame does not compare; record the baseline again, or check "
-                                     "another --metric");
-  if (!named && options.metrics == std::vector<std::string>{"calibrated"}) {
-    std::string why;
-    if (!base_probe || !current_probe)
-      why = (!base_probe ? o.baseline : current_name) +
-            " has no calibrated frame time (recorded by an older crowdprof or by bench without --calibrate)";
-    else if (baseline.calibration_probe != current.calibration_probe)
-      why = "the two were calibrated by different probes (version " + std::to_string(baseline.calibration_probe) +
-            " and " + std::to_string(current.calibration_probe) + ")";
-    if (!why.empty()) {
-      const bool alike = base_probe == current_probe;
-      const bool cpu = alike && metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
-      options.metrics = {cpu ? "cpu_ms" : "frame_ms"};
-      std::cerr << "crowdprof: note: " << why << ": checking " << metric_display_name(options.metrics.front())
-                << " instead" << (alike ? "" : " (only one of the two ran the probe, which raises CPU time)") << "\n";
-    }
-  } else if (base_probe != current_probe &&
-             std::find(options.metrics.begin(), options.metrics.end(), "cpu_ms") != options.metrics.end()) {
-    std::cerr << "crowdprof: note: only one of the two ran the calibration probe, whose workers raise CPU time: cpu "
-                 "does not compare like for like\n";
-  }
+  GateMetrics chosen =
+      gate_metrics(baseline, current, options.metrics, o.command->count("--metric") > 0, o.baseline, current_name);
+  options.metrics = std::move(chosen.metrics);
+  for (const std::string& note : chosen.notes) std::cerr << "crowdprof: note: " << note << "\n";
   if (!o.timings_only) require_same_run(baseline, current, o.baseline);
   for (const std::string& note : comparison_notes(baseline, current))
     std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";

@@ -48,4 +48,40 @@ CheckPlan plan_check(const CheckRequest& r) {
   return plan;
 }
 
+GateMetrics gate_metrics(const Result& baseline, const Result& current, std::vector<std::string> metrics, bool named,
+                         const std::string& baseline_path, const std::string& current_name) {
+  GateMetrics out;
+  const bool base_probe = !baseline.samples.probe_ms.empty(), current_probe = !current.samples.probe_ms.empty();
+  const bool same_probe = baseline.calibration_probe == current.calibration_probe;
+  auto uses = [&](const char* key) { return std::find(metrics.begin(), metrics.end(), key) != metrics.end(); };
+  if (named && uses("calibrated") && base_probe && current_probe && !same_probe)
+    throw InputError(baseline_path, "was calibrated by probe version " + std::to_string(baseline.calibration_probe) +
+                                        ", " + current_name + " by version " +
+                                        std::to_string(current.calibration_probe) +
+                                        ": the calibrated frame does not compare; record the baseline again, or check "
+                                        "another --metric");
+  if (!named && metrics == std::vector<std::string>{"calibrated"}) {
+    std::string why;
+    if (!base_probe || !current_probe)
+      why = (!base_probe ? baseline_path : current_name) +
+            " has no calibrated frame time (recorded by an older crowdprof or by bench without --calibrate)";
+    else if (!same_probe)
+      why = "the two were calibrated by different probes (version " + std::to_string(baseline.calibration_probe) +
+            " and " + std::to_string(current.calibration_probe) + ")";
+    if (!why.empty()) {
+      const bool alike = base_probe == current_probe;
+      const bool cpu = alike && metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
+      metrics = {cpu ? "cpu_ms" : "frame_ms"};
+      out.notes.push_back(why + ": checking " + metric_display_name(metrics.front()) + " instead" +
+                          (alike ? "" : " (only one of the two ran the probe, which raises CPU time)"));
+    }
+  } else if (base_probe != current_probe && uses("cpu_ms")) {
+    out.notes.push_back(
+        "only one of the two ran the calibration probe, whose workers raise CPU time: cpu does not compare like for "
+        "like");
+  }
+  out.metrics = std::move(metrics);
+  return out;
+}
+
 }  // namespace crowdprof

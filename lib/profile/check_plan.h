@@ -38,7 +38,7 @@ inline constexpr const char* kInstructionsMetric = "instructions";
 inline constexpr double kInstructionTolerance = 0.01;
 
 struct CheckPlan {
-  CheckOptions gate;  // metrics: samples keys, or kInstructionsMetric alone  // metrics (samples keys, no repeats), tolerance, floor, alpha, work compared
+  CheckOptions gate;  // metrics (samples keys, no repeats, or kInstructionsMetric alone), tolerance, floor, alpha, work compared
   size_t runs = kCheckRuns;  // each a process of its own
   double spread_s = 0;       // the runs start this many seconds apart in all
   bool update_baseline = false;
@@ -48,5 +48,21 @@ struct CheckPlan {
 // floor, alpha, runs, spread, metric) or UsageError for options that cannot go
 // together.
 CheckPlan plan_check(const CheckRequest& request);
+
+// The metrics a stored-baseline check compares, once both results are known,
+// and the notes that say why they changed. The calibrated frame compares only
+// between runs of the same probe; CPU time only between runs that both ran the
+// probe or both did not (its workers spin on into the next frame).
+struct GateMetrics {
+  std::vector<std::string> metrics;
+  std::vector<std::string> notes;  // one line each, for stderr after "note: "
+};
+// `named`: the user gave --metric, so nothing is swapped: a named calibrated
+// metric over two probe versions is an InputError naming `baseline_path`.
+// Unnamed, the default calibrated frame falls back to CPU time where both ran
+// the probe alike (or neither did), else to the frame. `current_name` names the
+// other result in notes ("the run" or its file).
+GateMetrics gate_metrics(const Result& baseline, const Result& current, std::vector<std::string> metrics, bool named,
+                         const std::string& baseline_path, const std::string& current_name);
 
 }  // namespace crowdprof
