@@ -9,7 +9,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
+#include <vector>
 
 namespace crowdprof {
 
@@ -54,5 +56,15 @@ struct GpuPassFigures {
   bool timed() const { return ms[0] == ms[0]; }
   bool has_stats() const { return stats[0][0] == stats[0][0]; }
 };
+
+// Each drawn pass's median time over the frames that timed it, and the sum of
+// those medians, which the passes' coverage of the frame's GPU time divides.
+// The text report, the JSON and the HTML report all print these.
+struct GpuPassMedians {
+  std::array<std::optional<double>, kGpuPassCount> median;  // empty: not drawn, or never timed
+  double sum = 0;
+};
+// `ms[p]`: pass p's time per frame, NaN where it was not timed.
+GpuPassMedians gpu_pass_medians(const std::array<std::vector<double>, kGpuPassCount>& ms, uint32_t passes);
 
 }  // namespace crowdprof

@@ -462,16 +462,12 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
   for (const ReportRun& run : runs) {
     const Result& r = run.result;
     if (r.samples.gpu_pass_ms[0].empty()) continue;
-    double sum = 0;
+    const GpuPassMedians medians = gpu_pass_medians(r.samples.gpu_pass_ms, r.run.switches.passes);
+    const double sum = medians.sum;
     for (size_t p = 0; p < kGpuPassCount; ++p) {
       if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
-      std::vector<double> ms;
-      for (double v : r.samples.gpu_pass_ms[p])
-        if (std::isfinite(v)) ms.push_back(v);
-      double median = ms.empty() ? 0 : quantile(ms, 0.5);
-      sum += median;
       out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\">" + std::string(kGpuPassNames[p]) +
-             "</td><td>" + (ms.empty() ? std::string("n/a") : report_number(median, 3)) + "</td>";
+             "</td><td>" + (medians.median[p] ? report_number(*medians.median[p], 3) : std::string("n/a")) + "</td>";
       if (r.pipeline_statistics) {
         for (size_t s = 0; s < kPipelineStatCount; ++s)
           out += "<td>" + with_thousands(static_cast<uint64_t>((*r.pipeline_statistics)[p][s])) + "</td>";

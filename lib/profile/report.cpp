@@ -66,12 +66,12 @@ std::string format_gpu_passes(const RunReport& report, const std::vector<double>
   if (ms[0].empty()) return {};
   const uint32_t passes = run.switches.passes;
   std::string out = "GPU passes : ";
-  double sum = 0;
+  const GpuPassMedians medians = gpu_pass_medians(ms, passes);
+  const double sum = medians.sum;
   for (size_t p = 0; p < kGpuPassCount; ++p) {
     if (!pass_drawn(static_cast<GpuPass>(p), passes)) continue;
-    double median = quantile(ms[p], 0.5);
-    sum += median;
-    out += std::string(p == 0 ? "" : " | ") + std::string(kGpuPassNames[p]) + " " + short_time(median);
+    out += std::string(p == 0 ? "" : " | ") + std::string(kGpuPassNames[p]) + " " +
+           (medians.median[p] ? short_time(*medians.median[p]) : std::string("n/a"));
   }
   double gpu_median = gpu.empty() ? 0 : summarize(gpu).median;
   if (gpu_median > 0 && !below_timer_resolution(gpu_median, run))

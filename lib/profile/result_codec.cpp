@@ -97,12 +97,10 @@ std::string pass_samples_key(size_t pass) { return "gpu_" + std::string(kGpuPass
 // read), the passes' coverage of the GPU time, and samples.gpu_<pass>_ms.
 void write_gpu_passes(const Result& r, double gpu_median, json& gpu_time, json& samples) {
   json passes = json::array();
-  double sum = 0;
+  const GpuPassMedians medians = gpu_pass_medians(r.samples.gpu_pass_ms, r.run.switches.passes);
   for (size_t p = 0; p < kGpuPassCount; ++p) {
     if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
-    std::vector<double> ms = finite(r.samples.gpu_pass_ms[p]);
-    json pass = {{"pass", kGpuPassNames[p]}, {"median_ms", ms.empty() ? json(nullptr) : json(summarize(ms).median)}};
-    if (!ms.empty()) sum += summarize(ms).median;
+    json pass = {{"pass", kGpuPassNames[p]}, {"median_ms", medians.median[p] ? json(*medians.median[p]) : json(nullptr)}};
     if (r.pipeline_statistics) {
       json statistics = json::object();
       for (size_t s = 0; s < kPipelineStatCount; ++s)
@@ -115,7 +113,7 @@ void write_gpu_passes(const Result& r, double gpu_median, json& gpu_time, json& 
     samples[pass_samples_key(p)] = per_frame;
   }
   gpu_time["passes"] = passes;
-  gpu_time["pass_coverage"] = gpu_median > 0 ? json(sum / gpu_median) : json(nullptr);
+  gpu_time["pass_coverage"] = gpu_median > 0 ? json(medians.sum / gpu_median) : json(nullptr);
   if (!r.pipeline_statistics)
     gpu_time["statistics_reason"] =
         r.run.pipeline_statistics_missing.empty() ? "not read back" : r.run.pipeline_statistics_missing;

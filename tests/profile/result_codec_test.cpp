@@ -97,6 +97,24 @@ TEST(ResultCodec, GpuPassesAndPipelineStatisticsReadBack) {
   EXPECT_NE(refusal(written).find("no pass 'bloom'"), std::string::npos) << refusal(written);
 }
 
+TEST(GpuPassMedians, EachDrawnPassOverTheFramesThatTimedIt) {
+  const double none = GpuPassFigures::kNone;
+  std::array<std::vector<double>, kGpuPassCount> ms = {
+      std::vector<double>{1.0, none, 3.0, 2.0},  // skinning: a frame not timed is left out
+      {0.5, 0.5, 0.5, 0.5},                      // prepass: not drawn at 1 pass
+      {},                                         // shadows: not drawn
+      {none, none, none, none}};                  // colour: drawn, never timed
+  GpuPassMedians one = gpu_pass_medians(ms, 1);
+  EXPECT_EQ(one.median[0], 2.0);
+  EXPECT_FALSE(one.median[1]);
+  EXPECT_FALSE(one.median[2]);
+  EXPECT_FALSE(one.median[3]);
+  EXPECT_DOUBLE_EQ(one.sum, 2.0);
+  GpuPassMedians two = gpu_pass_medians(ms, 2);
+  EXPECT_EQ(two.median[1], 0.5);
+  EXPECT_DOUBLE_EQ(two.sum, 2.5);
+}
+
 TEST(ResultCodec, ReadsEveryFormatItEverWrote) {
   size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(results_dir())) {
