@@ -12,7 +12,7 @@
 # what the run found into tests/fuzz/corpus/TARGET (-merge=1: the smallest set of
 # inputs that reaches every feature of the committed corpus and the run's), for a
 # long run whose ground CI should start from; commit the result if it stays
-# under 1 MB. FUZZ_SEED fixes libFuzzer's
+# under 1 MB (FUZZ_MERGE_LARGEST=BYTES merges only inputs up to that size). FUZZ_SEED fixes libFuzzer's
 # random seed (the sanitizer stage of CI sets it, so that a finding there is the
 # same on every run of the same code); unset, each run explores anew.
 # FUZZ_RUNS=N stops each target after N executions instead (SECONDS 0: no time
@@ -53,11 +53,16 @@ for name in "${names[@]}"; do
   fi
   if [[ ${FUZZ_MERGE:-0} == 1 ]]; then
     merged=$asan_dir/fuzz/merged/$name
-    rm -rf "$merged" && mkdir -p "$merged" "$committed"
+    inputs=$asan_dir/fuzz/merge-inputs/$name
+    rm -rf "$merged" "$inputs" && mkdir -p "$merged" "$inputs" "$committed"
+    # FUZZ_MERGE_LARGEST=BYTES merges only inputs up to that size, to keep the
+    # committed corpus under 1 MB (a long run's whole corpus is far larger).
+    find "$committed" "$corpus" -type f -size -$((${FUZZ_MERGE_LARGEST:-1073741824} + 1))c \
+      -exec cp -n {} "$inputs"/ \;
     "$asan_dir/tests/fuzz/fuzz_$name" -merge=1 "${options[@]}" -timeout=25 -rss_limit_mb=2560 \
-      "$merged" "$committed" "$corpus" >"$asan_dir/fuzz/$name.merge.log" 2>&1
+      "$merged" "$inputs" >"$asan_dir/fuzz/$name.merge.log" 2>&1
     rm -rf "$committed" && mv "$merged" "$committed"
-    echo "fuzz: $name: merged into tests/fuzz/corpus/$name: $(ls "$committed" | wc -l) inputs, $(du -sk "$committed" | cut -f1) KiB"
+    echo "fuzz: $name: merged into tests/fuzz/corpus/$name: $(ls "$committed" | wc -l) inputs, $(cat "$committed"/* | wc -c) bytes"
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   done_line=$(grep -E '^#[0-9]+' "$log" | tail -1)
