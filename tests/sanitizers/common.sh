@@ -26,3 +26,20 @@ build_asan() {
     -DCROWDPROF_SANITIZE=address,undefined -DCROWDPROF_FUZZ=ON >/dev/null
   cmake --build "$asan_dir" -j"$jobs" ${targets:+--target $targets}
 }
+
+# explain_failures DIR: after a failed `ctest ... >DIR/ctest.log`, prints ctest's
+# summary, then each failed test's own output (why, not only which), then runs
+# the failed tests once more and says whether they fail again: a failure that
+# does not come back is still a failure, but a different one to look for.
+explain_failures() {
+  local dir=$1
+  sed -n '/% tests passed/,$p' "$dir/ctest.log"
+  echo "--- the failed tests' output:"
+  "$root/tests/ci/failed_output.sh" "$dir/ctest.log"
+  if ctest --test-dir "$dir" --rerun-failed --output-on-failure >"$dir/ctest-rerun.log" 2>&1; then
+    echo "--- run again alone, the failed tests passed: a failure that depends on timing or on the tests beside it"
+  else
+    echo "--- run again alone, they failed again:"
+    "$root/tests/ci/failed_output.sh" "$dir/ctest-rerun.log" | head -n 30
+  fi
+}

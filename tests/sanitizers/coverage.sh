@@ -39,7 +39,7 @@ find "$dir" -name '*.gcda' -delete
 not_here='^(install\.tree|gpu_bundle\.llvmpipe)$'
 status=0
 timed "coverage test suite" ctest --test-dir "$dir" -j"$jobs" -E "$not_here" --output-on-failure >"$dir/ctest.log" 2>&1 ||
-  { status=$?; tail -n 60 "$dir/ctest.log"; echo "coverage: the test suite failed; the figures below are of a failing suite" >&2; }
+  { status=$?; explain_failures "$dir"; echo "coverage: the test suite failed; the figures below are of a failing suite" >&2; }
 tail -n 3 "$dir/ctest.log"
 
 # Only the sources of lib/ (the filter is a path under the source tree, so

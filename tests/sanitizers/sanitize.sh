@@ -16,7 +16,7 @@ tsan_dir=${CROWDPROF_TSAN_DIR:-$root/build-tsan}
 echo "sanitize: ASan+UBSan build in $asan_dir" >&2
 timed "ASan+UBSan build" build_asan >/dev/null
 timed "ASan+UBSan test suite" ctest --test-dir "$asan_dir" -j"$jobs" --output-on-failure >"$asan_dir/ctest.log" 2>&1 ||
-  { tail -n 60 "$asan_dir/ctest.log"; echo "sanitize: the test suite failed under ASan+UBSan" >&2; exit 1; }
+  { explain_failures "$asan_dir"; echo "sanitize: the test suite failed under ASan+UBSan" >&2; exit 1; }
 tail -n 3 "$asan_dir/ctest.log"
 # A fixed seed: the same code fuzzes the same inputs, so CI is not red by luck
 # and a finding here is reproduced by running the stage again.
@@ -38,6 +38,6 @@ threaded='^threaded\.|^tsan_canary\.'
 export TSAN_OPTIONS=second_deadlock_stack=1
 timed "TSan threaded tests" ctest --test-dir "$tsan_dir/crowdprof" -R "$threaded" -j"$jobs" --output-on-failure \
   >"$tsan_dir/ctest.log" 2>&1 ||
-  { tail -n 60 "$tsan_dir/ctest.log"; echo "sanitize: the threaded tests failed under TSan" >&2; exit 1; }
+  { explain_failures "$tsan_dir/crowdprof"; echo "sanitize: the threaded tests failed under TSan" >&2; exit 1; }
 tail -n 3 "$tsan_dir/ctest.log"
 echo "sanitize: no sanitizer reports" >&2
