@@ -63,6 +63,7 @@ struct Shot {
   float bake_rate = kDefaultBakeRateHz;  // skinning baked
   VertexFormat vertex_format = VertexFormat::Float;
   uint32_t passes = 1;  // modes.h
+  FrustumTest frustum = FrustumTest::Cpu;
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -79,6 +80,7 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   config.mode = find_mode(shot.mode)->switches;
   config.mode.vertex_format = shot.vertex_format;
   config.mode.passes = shot.passes;
+  config.mode.frustum = shot.frustum;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;

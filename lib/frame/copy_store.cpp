@@ -21,10 +21,18 @@ uint64_t max_channels(const Character& c) {
   return channels;
 }
 
+// Copies the GPU skins keep no vertices on the CPU. With uniform palettes a
+// character over the bone limit falls back to the CPU, so the estimate keeps them.
+bool cpu_vertices(const ModeSwitches& mode) {
+  return !skins_on_gpu(mode.skinning) || mode.palettes == PaletteStorage::Uniforms;
+}
+
 // What one copy and one pose slot of a character cost.
 uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
   const uint64_t channels = max_channels(c);
-  const uint64_t vertex_bytes = mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes : kFloatVertexBytes;
+  const uint64_t vertex_bytes = !cpu_vertices(mode)                         ? 0
+                                : mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes
+                                                                             : kFloatVertexBytes;
   return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
 }
@@ -69,7 +77,8 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     joint_offset[i] = joints;
     vertex_offset[i] = vertices;
     joints += p.joints;
-    vertices += whole_batches(p.vertices);
+    // The GPU skins from the rest mesh it holds: no vertices here (gpu, compute, baked).
+    if (!skins_on_gpu(p.site)) vertices += whole_batches(p.vertices);
     const Character& character = *characters[crowd.kind[i]];
     if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
   }
@@ -99,6 +108,7 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     const SkinnedMesh& mesh = characters[crowd.kind[i]]->mesh;
     const std::vector<SkinMatrix>& rest = rest_palettes[crowd.kind[i]];
     std::copy(rest.begin(), rest.end(), palettes.begin() + static_cast<std::ptrdiff_t>(joint_offset[i]));
+    if (skins_on_gpu(prepared[crowd.kind[i]].site)) continue;
     const size_t v0 = vertex_offset[i];
     if (packed) {
       const PositionQuantisation& q = prepared[crowd.kind[i]].quantisation;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <ctime>
+#include <stdexcept>
 
 #include "asset/errors.h"
 #include "profile/trace.h"
@@ -56,6 +57,13 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     bake_summary_ = bake_characters(characters_, config.bake_rate_hz, prepared_);
     baked_instances_.resize(crowd_.size());
   }
+  copies_of_character_.assign(characters_.size(), 0);
+  for (uint16_t k : crowd_.kind) ++copies_of_character_[k];
+  if (mode.frustum == FrustumTest::Gpu) {
+    baked_clocks_.resize(crowd_.size());
+    for (size_t i = 0; i < crowd_.size(); ++i) baked_clocks_[i] = baked_clock(i);
+    gpu_visible_.assign(characters_.size(), 0);
+  }
   character_views_ = character_views(prepared_);
   view_.mode = mode;
   view_.view_projection = camera_.view_projection();
@@ -67,6 +75,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   view_.visible = store_->visible;
   view_.shown = planner_->shown();
   view_.baked = baked_instances_;
+  view_.world_boxes = crowd_.world_boxes;
+  view_.baked_clocks = baked_clocks_;
   view_.joint_offset = store_->joint_offset;
   view_.vertex_offset = store_->vertex_offset;
   view_.palettes = store_->palettes;
@@ -88,23 +98,35 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
 
 CrowdBench::~CrowdBench() = default;
 
-BakedInstance CrowdBench::baked_instance(size_t copy) const {
+BakedInstance CrowdBench::baked_instance(size_t copy, float time) const {
+  const BakedClock clock = baked_clock(copy);
+  BakedInstance instance{clock.first_sample, clock.intervals, 0.0f};
+  const Character& character = character_of(copy);
+  if (prepared_[crowd_.kind[copy]].baked.joints && !character.actions.empty())
+    instance.position = baked_position(character.actions[crowd_.action[copy]], clock.intervals, time);
+  return instance;
+}
+
+BakedClock CrowdBench::baked_clock(size_t copy) const {
   const PreparedCharacter& p = prepared_[crowd_.kind[copy]];
-  BakedInstance instance;
-  if (!p.baked.joints) return instance;
+  BakedClock clock;
+  if (!p.baked.joints) return clock;
   const Character& character = character_of(copy);
   const size_t a = character.actions.empty() ? 0 : crowd_.action[copy];
-  instance.first_sample = static_cast<uint32_t>(p.baked.first_sample[a]);
-  instance.intervals = static_cast<uint32_t>(p.baked.intervals[a]);
-  instance.position = character.actions.empty()
-                          ? 0.0f
-                          : baked_position(character.actions[a], p.baked.intervals[a], store_->times[copy]);
-  return instance;
+  clock.first_sample = static_cast<uint32_t>(p.baked.first_sample[a]);
+  clock.intervals = static_cast<uint32_t>(p.baked.intervals[a]);
+  if (character.actions.empty()) return clock;
+  const Action& action = character.actions[a];
+  clock.phase = crowd_.phase[copy];
+  clock.start = action.start;
+  clock.end = action.end;
+  clock.duration = action.duration() > 0 ? action.duration() : 0.0f;
+  return clock;
 }
 
 void CrowdBench::place_baked_instances() {
   for (size_t i = 0; i < crowd_.size(); ++i)
-    if (store_->visible[i]) baked_instances_[i] = baked_instance(i);
+    if (store_->visible[i]) baked_instances_[i] = baked_instance(i, store_->times[i]);
 }
 
 namespace {
@@ -130,8 +152,9 @@ FrameRecord CrowdBench::step() {
   enter(Category::Rasterizer);
   if (config_.mode.skinning == SkinningSite::CpuInRasterizer) poser_->skin(planner_->jobs());
   if (config_.renderer) {
-    if (!baked_instances_.empty()) place_baked_instances();
+    if (!baked_instances_.empty() && gpu_visible_.empty()) place_baked_instances();
     view_.frame = frame_;
+    view_.seconds = static_cast<double>(frame_) / config_.fps;
     config_.renderer->draw(view_, counters);
   }
   enter(Category::GpuLatency);  // without a GL backend, nothing to wait for
@@ -176,16 +199,20 @@ void CrowdBench::enter(Category category) {
   stage_start_ = now;
 }
 
+float CrowdBench::copy_time(size_t copy, double seconds) const {
+  const Character& character = character_of(copy);
+  if (character.actions.empty()) return 0.0f;
+  const Action& action = character.actions[crowd_.action[copy]];
+  double duration = action.duration();
+  double local = duration > 0 ? std::fmod(static_cast<double>(crowd_.phase[copy]) + seconds, duration) : 0.0;
+  return action.start + static_cast<float>(local);
+}
+
 void CrowdBench::update_logic() {
+  if (!gpu_visible_.empty()) return;  // frustum gpu: the cull pass computes each copy's time (cull.comp)
   const double t = static_cast<double>(frame_) / config_.fps;
-  for (size_t i = 0; i < crowd_.size(); ++i) {
-    const Character& character = character_of(i);
-    if (character.actions.empty()) continue;
-    const Action& action = character.actions[crowd_.action[i]];
-    double duration = action.duration();
-    double local = duration > 0 ? std::fmod(static_cast<double>(crowd_.phase[i]) + t, duration) : 0.0;
-    store_->times[i] = action.start + static_cast<float>(local);
-  }
+  for (size_t i = 0; i < crowd_.size(); ++i)
+    if (!character_of(i).actions.empty()) store_->times[i] = copy_time(i, t);
 }
 
 void CrowdBench::update_poses(Counters& counters) {
@@ -197,6 +224,9 @@ void CrowdBench::update_poses(Counters& counters) {
 }
 
 void CrowdBench::update_scenegraph(Counters& counters) {
+  // frustum gpu: the GPU tests the copies (counted after the frame, count_work);
+  // the test at load (frame -1) still runs, for the planner's set-up.
+  if (!gpu_visible_.empty() && frame_ > 0) return;
   uint64_t visible = 0;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     store_->visible[i] = intersects(frustum_, crowd_.world_boxes[i]) ? 1 : 0;
@@ -205,7 +235,26 @@ void CrowdBench::update_scenegraph(Counters& counters) {
   counters.copies_visible = visible;
 }
 
+void CrowdBench::count_gpu_culled_work(Counters& counters) {
+  // The GPU's own counts; a GL that could not say leaves them all off screen.
+  if (!config_.renderer || !config_.renderer->gpu_visible_counts(gpu_visible_))
+    throw std::runtime_error("the GPU's cull pass gave no count of the copies it found on screen");
+  uint64_t visible = 0, culled = 0;
+  for (size_t k = 0; k < characters_.size(); ++k) {
+    Counters& c = character_counters_[k];
+    c = Counters{};
+    c.copies_visible = std::min(gpu_visible_[k], copies_of_character_[k]);
+    const bool moves = !prepared_[k].bindings.empty();
+    c.copies_culled = moves && config_.mode.animation_culling ? copies_of_character_[k] - c.copies_visible : 0;
+    visible += c.copies_visible;
+    culled += c.copies_culled;
+  }
+  counters.copies_visible = visible;
+  counters.copies_culled = culled;
+}
+
 void CrowdBench::count_work(Counters& counters) {
+  if (!gpu_visible_.empty()) return count_gpu_culled_work(counters);
   for (Counters& c : character_counters_) c = Counters{};
   for (size_t i = 0; i < crowd_.size(); ++i) {
     Counters& c = character_counters_[crowd_.kind[i]];

@@ -140,8 +140,8 @@ class CrowdBench {
   // a character over hwskin's bone limit.
   SkinningSite site_of_kind(size_t kind) const { return prepared_[kind].site; }
   // True when the renderer skins this copy's character (mode hwskin and the
-  // character within its bone limit, or compute, or baked): its
-  // skinned_positions() stay in the rest pose.
+  // character within its bone limit, or compute, or baked): it keeps no
+  // vertices on the CPU (skinned_positions() and the others are empty).
   bool gpu_skinned_copy(size_t copy) const { return skins_on_gpu(site_of_kind(crowd_.kind[copy])); }
   // Every character skinned by the renderer.
   bool gpu_skinned() const { return view_.gpu_skinned(); }
@@ -182,12 +182,18 @@ class CrowdBench {
   void update_scenegraph(Counters& counters);
   // Rasterizer, mode baked: where each copy on screen reads its baked table.
   void place_baked_instances();
-  BakedInstance baked_instance(size_t copy) const;
+  // Copy `copy`'s place among its baked samples at action time `time`.
+  BakedInstance baked_instance(size_t copy, float time) const;
+  // The action time copy `copy` shows `seconds` into the run.
+  float copy_time(size_t copy, double seconds) const;
   // Overhead: the frame's work by character and in all, from who was posed
   // and where each character is skinned.
   void count_work(Counters& counters);
   // Animated this frame: not culled (a character without actions, or baked,
   // is never posed on the CPU all the same).
+  BakedClock baked_clock(size_t copy) const;
+  // frustum gpu: the counters from the GPU's visible counts, per character.
+  void count_gpu_culled_work(Counters& counters);
   bool animates(size_t copy) const { return !config_.mode.animation_culling || store_->visible[copy]; }
 
   std::vector<const Character*> characters_;
@@ -203,6 +209,9 @@ class CrowdBench {
   std::unique_ptr<PoseUpdater> poser_;
   std::vector<CharacterView> character_views_;
   std::vector<BakedInstance> baked_instances_;  // per copy, mode baked
+  std::vector<BakedClock> baked_clocks_;        // per copy, mode baked with frustum gpu
+  std::vector<uint64_t> copies_of_character_;   // per character
+  std::vector<uint64_t> gpu_visible_;           // per character, frustum gpu: the cull pass's count
   FrameView view_;
   CategoryClock clock_;
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer

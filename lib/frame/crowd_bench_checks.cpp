@@ -70,13 +70,16 @@ void fnv1a(uint64_t& hash, const void* data, size_t bytes) {
 
 std::string CrowdBench::digest() const {
   uint64_t hash = 0xcbf29ce484222325ull;
+  // frustum gpu keeps no times on the CPU: the last frame's, as the cull pass made them.
+  const double last_seconds = frame_ > 0 ? static_cast<double>(frame_ - 1) / config_.fps : 0.0;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     if (!store_->visible[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
     if (prepared_[crowd_.kind[i]].site == SkinningSite::Baked) {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
-      BakedInstance instance = baked_instance(i);
+      BakedInstance instance =
+          baked_instance(i, gpu_visible_.empty() ? store_->times[i] : copy_time(i, last_seconds));
       fnv1a(hash, &instance, sizeof instance);
     } else if (!gpu_skinned_copy(i) && packed_vertices()) {
       fnv1a(hash, packed_positions(i).data(), packed_positions(i).size_bytes());

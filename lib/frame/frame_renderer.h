@@ -62,6 +62,14 @@ class FrameRenderer {
   // GPU Latency stage: wait until the frame is drawn (the BGE's SwapBuffers).
   virtual void finish() = 0;
 
+  // After finish(), with frustum gpu: how many copies of each character the
+  // GPU's cull pass found on screen this frame, into `per_character`. False
+  // (and nothing written) when the frame was not culled on the GPU.
+  virtual bool gpu_visible_counts(std::span<uint64_t> per_character) const {
+    (void)per_character;
+    return false;
+  }
+
   // Empty when draw() times each frame on the GPU (GL timer queries), else
   // why not, for the report ("... has no GL_TIME_ELAPSED timer").
   virtual std::string gpu_timing_missing() const = 0;

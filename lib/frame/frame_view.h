@@ -13,6 +13,7 @@
 #include "animation/bake.h"
 #include "animation/skin_matrix.h"
 #include "frame/modes.h"
+#include "scene/bounds.h"
 #include "skinning/packed_vertex.h"
 
 namespace crowdprof {
@@ -32,8 +33,18 @@ struct BakedInstance {
   float position = 0.0f;
 };
 
+// What a copy's baked record is made from when the GPU makes it (frustum gpu):
+// fixed at load, the time coming from FrameView::seconds. Its action's sample
+// 0 in the table and interval count, its phase, and its action's start, end
+// and duration (0: a character without actions, always at sample 0).
+struct BakedClock {
+  uint32_t first_sample = 0, intervals = 1;
+  float phase = 0.0f, start = 0.0f, end = 0.0f, duration = 0.0f;
+};
+
 struct FrameView {
   uint64_t frame = 0;  // the bench's frame number (0 for the first)
+  double seconds = 0;  // the simulated clock this frame: frame / fps
   ModeSwitches mode;
   glm::mat4 view_projection{1.0f};
   // mode.passes > 2: each shadow cascade's camera (scene/shadow_cascades.h).
@@ -45,6 +56,8 @@ struct FrameView {
   std::span<const uint8_t> visible;        // inside the frustum this frame
   std::span<const uint32_t> shown;         // the pose storage it draws (sharing), empty: its own
   std::span<const BakedInstance> baked;    // mode baked: this frame's, for copies on screen
+  std::span<const Aabb> world_boxes;       // what frustum gpu tests (the CPU's test reads the same)
+  std::span<const BakedClock> baked_clocks;  // mode baked with frustum gpu: fixed at load
   // Per pose storage (one per copy): where its palette and vertices start.
   std::span<const size_t> joint_offset, vertex_offset;
   std::span<const SkinMatrix> palettes;    // every storage's skinning matrices
@@ -64,18 +77,19 @@ struct FrameView {
   }
   std::span<const glm::vec3> skinned_positions(size_t copy) const { return float_span(positions, copy); }
   std::span<const glm::vec3> skinned_normals(size_t copy) const { return float_span(normals, copy); }
+  // Copies the GPU skins keep no vertices on the CPU: empty for them.
   std::span<const uint16_t> packed_positions_of(size_t copy) const {
-    if (!packed()) return {};
+    if (!packed() || skins_on_gpu(site_of(copy))) return {};
     return packed_positions.subspan(3 * vertex_offset[storage_of(copy)], 3 * character_of(copy).vertices);
   }
   std::span<const uint32_t> packed_normals_of(size_t copy) const {
-    if (!packed()) return {};
+    if (!packed() || skins_on_gpu(site_of(copy))) return {};
     return packed_normals.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
   }
 
  private:
   std::span<const glm::vec3> float_span(std::span<const glm::vec3> all, size_t copy) const {
-    if (packed()) return {};
+    if (packed() || skins_on_gpu(site_of(copy))) return {};
     return all.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
   }
 };

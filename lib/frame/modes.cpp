@@ -107,6 +107,9 @@ SettingText conflicts(const ModeSwitches& s) {
   if (s.share_poses && (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked))
     return "{share} on shares the poses the CPU builds: skinning " + std::string(to_string(s.skinning)) +
            " is not measured with it";
+  if (s.frustum == FrustumTest::Gpu && s.skinning != SkinningSite::Baked)
+    return "{frustum} gpu culls in a compute pass that also writes each visible copy's baked sample and time, so "
+           "the CPU touches no copy: it needs {skinning} baked";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
   return {};
@@ -131,6 +134,7 @@ std::string_view to_string(VertexFormat format) { return format == VertexFormat:
 std::string_view to_string(PaletteStorage palettes) {
   return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
 }
+std::string_view to_string(FrustumTest frustum) { return frustum == FrustumTest::Gpu ? "gpu" : "cpu"; }
 std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 
 }  // namespace crowdprof

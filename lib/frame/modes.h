@@ -52,6 +52,15 @@ enum class DrawMethod : uint8_t {
               // reads its transform and palette offset from a buffer
 };
 
+// Where copies are tested against the camera's frustum and the draw list made
+// (issue 30). GPU-driven crowds decide both on the GPU, so the CPU's cost per
+// frame does not grow with the crowd.
+enum class FrustumTest : uint8_t {
+  Cpu,  // each frame in Scenegraph, every copy's box; the CPU lists the draws
+  Gpu,  // a compute pass tests the boxes and writes the instance records and
+        // indirect draw commands; the CPU submits one indirect draw per character
+};
+
 // What CPU skinning writes for the GPU to read (skinning/packed_vertex.h).
 enum class VertexFormat : uint8_t {
   Float,   // positions and normals as 32-bit floats, 24 bytes a vertex
@@ -93,6 +102,7 @@ struct ModeSwitches {
   // Times the crowd is drawn a frame (issue 30): 1, colour only; 2, a depth
   // prepass then colour; N > 2, the prepass, N - 2 shadow cascades, colour.
   uint32_t passes = 1;
+  FrustumTest frustum = FrustumTest::Cpu;
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -121,5 +131,6 @@ std::string_view to_string(SkinningSite site);
 std::string_view to_string(VertexFormat format);
 std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
 std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
+std::string_view to_string(FrustumTest frustum);      // "cpu", "gpu"
 
 }  // namespace crowdprof

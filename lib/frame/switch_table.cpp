@@ -67,6 +67,7 @@ constexpr std::array kSites = {SkinningSite::CpuInRasterizer, SkinningSite::CpuI
 constexpr std::array kFormats = {VertexFormat::Float, VertexFormat::Packed};
 constexpr std::array kPalettes = {PaletteStorage::Uniforms, PaletteStorage::Buffer};
 constexpr std::array kDraws = {DrawMethod::PerCopy, DrawMethod::Instanced};
+constexpr std::array kFrustumTests = {FrustumTest::Cpu, FrustumTest::Gpu};
 
 // Seconds, as a decimal or a fraction 1/N.
 std::string set_share_quantum(ModeSwitches& s, std::string_view text) {
@@ -176,6 +177,12 @@ const std::array kSwitches = {
                "colour; N > 2, the prepass, N-2 shadow cascades (2048x2048 depth maps) and colour. Vertex-shader "
                "skinning repeats per pass, compute skinning does not. Needs a GL backend",
                [](const ModeSwitches& s) { return json(s.passes); }, set_passes, false},
+    SwitchSpec{"frustum", "cpu|gpu",
+               "Where copies are tested against the camera and the draws listed: cpu, every copy's box each frame in "
+               "Scenegraph; gpu, a compute pass culls and writes indirect draws, so the CPU's work per frame does "
+               "not grow with the crowd (needs skinning baked)",
+               [](const ModeSwitches& s) { return json(to_string(s.frustum)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.frustum, t, kFrustumTests); }, false},
 };
 
 }  // namespace

@@ -14,6 +14,7 @@ UpdatePlanner::UpdatePlanner(std::span<const Character* const> characters, const
                              std::vector<uint8_t> posed_on_cpu)
     : characters_(characters), crowd_(crowd), mode_(mode), posed_on_cpu_(std::move(posed_on_cpu)) {
   const size_t n = crowd.size();
+  for (uint8_t posed : posed_on_cpu_) any_posed_on_cpu_ |= posed != 0;
   jobs_.reserve(n);
   updated_.assign(n, 0);
   last_update_.assign(n, -1);
@@ -49,6 +50,7 @@ void UpdatePlanner::run_budget(const PlanInput& input) {
 std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& counters) {
   run_budget(input);
   jobs_.clear();
+  if (!any_posed_on_cpu_) return jobs_;  // no pose to build: a cost flat in the crowd (frustum gpu)
   size_t changes = 0;  // copies taking a new state: changing_copies_, changing_keys_
   const bool share = mode_.share_poses;
   const double quantum = mode_.share_quantum_s;

@@ -88,6 +88,7 @@ class UpdatePlanner {
   const Crowd& crowd_;
   ModeSwitches mode_;
   std::vector<uint8_t> posed_on_cpu_;   // per character
+  bool any_posed_on_cpu_ = false;       // false (mode baked): plan() touches no copy
   std::vector<float> screen_fraction_;  // per copy
   std::vector<uint8_t> shift_;          // per copy: updated every 2^shift frames
   std::vector<uint8_t> updated_;        // per copy: took a new pose this frame

@@ -78,6 +78,10 @@ void GlCrowdRenderer::require(const ModeSwitches& mode) const {
   if (std::string missing = missing_gl_feature(mode.skinning, features_); !missing.empty())
     throw GlUnavailable("skinning " + std::string(to_string(mode.skinning)) + " needs " + missing + ", which " +
                         context_.renderer() + " lacks");
+  if (mode.frustum == FrustumTest::Gpu) {
+    if (std::string missing = missing_gl_feature(SkinningSite::Compute, features_); !missing.empty())
+      throw GlUnavailable("frustum gpu needs " + missing + ", which " + context_.renderer() + " lacks");
+  }
   if (mode.skinning != SkinningSite::Gpu || mode.palettes != PaletteStorage::Buffer) return;
   if (!features_.storage_buffers())
     throw GlUnavailable(context_.renderer() + " offers no shader storage buffers in the vertex stage "
@@ -191,6 +195,12 @@ void GlCrowdRenderer::draw(const FrameView& view, Counters& counters) {
 void GlCrowdRenderer::finish() {
   glFinish();
   check_gl("GPU Latency");
+}
+
+bool GlCrowdRenderer::gpu_visible_counts(std::span<uint64_t> per_character) const {
+  if (!baked_ || !baked_->visible_counts(per_character)) return false;
+  check_gl("Overhead (reading the cull pass's counts)");
+  return true;
 }
 
 std::string GlCrowdRenderer::gpu_timing_missing() const {

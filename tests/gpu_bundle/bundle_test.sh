@@ -32,25 +32,29 @@ if ! EGL_PLATFORM=surfaceless "$bundle/run.sh" "$work/refuse" >/dev/null 2>"$wor
 else fail "run.sh measured on llvmpipe without ALLOW_SOFTWARE"
 fi
 
-ALLOW_SOFTWARE=1 SIZES=12 PASSES="1 3" MODES="instanced nosuchmode" FRAMES=2 WARMUP=0 "$bundle/run.sh" "$work/out" >"$work/run.log" 2>&1 ||
+ALLOW_SOFTWARE=1 SIZES=12 PASSES="1 3" MODES="instanced baked+frustum=gpu nosuchmode" FRAMES=2 WARMUP=0 "$bundle/run.sh" "$work/out" >"$work/run.log" 2>&1 ||
   fail "run.sh failed: $(tail -5 "$work/run.log")"
 python3 - "$work/out/results.json" <<'PY'
 import json, sys
 results = json.load(open(sys.argv[1]))
 assert "llvmpipe" in results["renderer"], results["renderer"]
 runs = results["runs"]
-assert len(runs) == 4, runs
+assert len(runs) == 6, runs
 assert runs[0]["mode"] == "instanced" and runs[0]["environment"]["backend"] == "egl", runs[0]["environment"]
 assert runs[0]["frame"]["median_ms"] > 0
-assert runs[1]["mode"] == "nosuchmode" and "expected one of" in runs[1]["error"], runs[1]
-assert runs[2]["mode"].startswith("instanced") and runs[2]["switches"]["passes"] == 3, runs[2]["switches"]
-passes = [p["pass"] for p in runs[2]["gpu_time"]["passes"]]
+# A mode with a switch, as compare spells it, runs as --mode baked --frustum gpu.
+assert runs[1]["switches"]["skinning"] == "baked" and runs[1]["switches"]["frustum"] == "gpu", runs[1]
+assert runs[1]["counters"]["draw_calls"] == 1, runs[1]["counters"]
+assert runs[2]["mode"] == "nosuchmode" and "expected one of" in runs[2]["error"], runs[2]
+assert runs[3]["mode"].startswith("instanced") and runs[3]["switches"]["passes"] == 3, runs[3]["switches"]
+passes = [p["pass"] for p in runs[3]["gpu_time"]["passes"]]
 assert passes == ["skinning", "prepass", "shadows", "colour"], passes
 PY
 grep -q '^| instanced | 12 | 1 | [0-9.]*[mu]s |' "$work/out/summary.md" || fail "no row for instanced: $(cat "$work/out/summary.md")"
 grep -q '^| instanced | 12 | 3 | [0-9.]*[mu]s |.*| skinning [0-9.]*[mu]s, prepass' "$work/out/summary.md" ||
   fail "no row for instanced with passes: $(cat "$work/out/summary.md")"
 grep -q '^| nosuchmode | 12 | 1 | exit 2' "$work/out/summary.md" || fail "the failed run has no row"
+[[ -s $work/out/runs/baked_frustum_gpu-12-p1.json ]] || fail "no file for baked+frustum=gpu: $(ls "$work/out/runs")"
 # Past its budget the script records the runs it did not make.
 ALLOW_SOFTWARE=1 SIZES=12 MODES=hwskin BUDGET=0 "$bundle/run.sh" "$work/budget" >/dev/null 2>&1 || fail "a spent budget failed the script"
 grep -q '^| hwskin | 12 | 4 | not run: the 0 s budget was spent' "$work/budget/summary.md" || fail "no row for the run not made: $(cat "$work/budget/summary.md")"

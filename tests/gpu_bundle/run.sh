@@ -17,7 +17,8 @@
 # runs left are rows that say they were not run. It refuses to measure when the renderer is a
 # software rasteriser (llvmpipe, softpipe, swrast): bundled loader libraries can
 # make a run fall back silently. ALLOW_SOFTWARE=1 lifts that (the bundle's test).
-# Environment: MODES ("hwskin buffer instanced compute baked threaded"), SIZES
+# Environment: MODES ("hwskin buffer instanced compute baked baked+frustum=gpu
+# threaded"; a mode may carry switches as compare spells them), SIZES
 # ("160 10000 100000"), PASSES ("1 4"), LIMIT (60), BUDGET (540), FRAMES and
 # WARMUP (by size: 120/5 at 160, 30/3 to 10,000, 8/2 above).
 set -uo pipefail
@@ -53,7 +54,7 @@ if grep -Eqi 'llvmpipe|softpipe|swrast|software' <<<"$renderer" && [[ ${ALLOW_SO
   fail "the renderer is a software rasteriser ($renderer), not the GPU: is the driver's EGL vendor library visible? (__EGL_VENDOR_LIBRARY_FILENAMES)"
 fi
 
-read -r -a modes <<<"${MODES:-hwskin buffer instanced compute baked threaded}"
+read -r -a modes <<<"${MODES:-hwskin buffer instanced compute baked baked+frustum=gpu threaded}"
 read -r -a sizes <<<"${SIZES:-160 10000 100000}"
 read -r -a pass_counts <<<"${PASSES:-1 4}"
 limit=${LIMIT:-60} budget=${BUDGET:-540}
@@ -69,14 +70,21 @@ for n in "${sizes[@]}"; do
   else frames=${FRAMES:-8} warmup=${WARMUP:-2}; fi
   for passes in "${pass_counts[@]}"; do
   for mode in "${modes[@]}"; do
-    run=$out/runs/$mode-$n-p$passes
+    run=$out/runs/${mode//[+=]/_}-$n-p$passes
+    # baked+frustum=gpu: --mode baked --frustum gpu.
+    IFS='+' read -r -a parts <<<"$mode"
+    mode_args=(--mode "${parts[0]}")
+    for switch in "${parts[@]:1}"; do
+      name=${switch%%=*}
+      mode_args+=("--${name//_/-}" "${switch#*=}")
+    done
     if ((SECONDS >= budget)); then
       entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"not run: the ${budget} s budget was spent\"}")
       echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 |" >>"$out/summary.md"
       continue
     fi
     start=$SECONDS
-    timeout --kill-after=5 "$limit" "$crowdprof" bench "$scene" -n "$n" --mode "$mode" --backend egl --passes "$passes" \
+    timeout --kill-after=5 "$limit" "$crowdprof" bench "$scene" -n "$n" "${mode_args[@]}" --backend egl --passes "$passes" \
       --frames "$frames" --warmup "$warmup" --json "$run.json" >"$run.txt" 2>"$run.err"
     status=$? wall=$((SECONDS - start))
     if ((status == 0)) && [[ -s $run.json ]]; then

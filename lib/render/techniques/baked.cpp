@@ -52,9 +52,30 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   }
   records_.reserve(copies);
   gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
+  gpu_cull_.reset();
+  if (view.mode.frustum != FrustumTest::Gpu) return;
+  // Each character's records in a range as long as its copies: the cull pass
+  // appends to it, and its draw reads it.
+  std::vector<size_t> first(meshes.size() + 1, 0);
+  std::vector<uint8_t> baked(meshes.size(), 0);
+  for (size_t i = 0; i < copies; ++i) ++first[view.kind[i] + 1];
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    first[k + 1] += first[k];
+    baked[k] = k < tables_.size() && tables_[k] != 0;
+  }
+  gpu_cull_ = std::make_unique<GpuCull>(view, meshes, first, baked);
+  gpu_bytes_ += gpu_cull_->gpu_bytes();
+}
+
+bool BakedSkinning::visible_counts(std::span<uint64_t> per_character) const {
+  if (!gpu_cull_) return false;
+  gpu_cull_->visible_counts(per_character);
+  return true;
 }
 
 void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  counters.gpu_palette_bytes = gpu_bytes_;
+  if (gpu_cull_) return gpu_cull_->run(view, instances_, counters);
   // This frame's instances, grouped by character: one instanced draw each.
   records_.clear();
   first_.assign(meshes.size() + 1, 0);
@@ -69,7 +90,6 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
     }
   }
   first_[meshes.size()] = records_.size();
-  counters.gpu_palette_bytes = gpu_bytes_;
   if (records_.empty()) return;
   auto bytes = static_cast<GLsizeiptr>(records_.size() * sizeof(InstanceRecord));
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, instances_);
@@ -80,12 +100,20 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
 }
 
 void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
-  if (records_.empty()) return;
+  if (records_.empty() && !gpu_cull_) return;
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
   for (size_t k = 0; k < meshes.size(); ++k) {
+    if (gpu_cull_) {
+      if (k >= tables_.size() || !tables_[k]) continue;
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
+      glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
+      glBindVertexArray(meshes[k].rest_vao);
+      gpu_cull_->draw(k, first_instance_, counters);
+      continue;
+    }
     auto count = static_cast<GLsizei>(first_[k + 1] - first_[k]);
     if (count == 0) continue;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);

@@ -2,13 +2,18 @@
 // character's actions are baked into a table of palettes on the GPU once, every
 // copy's placement goes up once, and each frame sends one 16-byte record per
 // copy on screen (which sample, how far to the next) and draws each character
-// with one instanced draw; the vertex shader blends the two samples.
+// with one instanced draw; the vertex shader blends the two samples. With
+// frustum gpu the records are made on the GPU (gpu_cull.h) and nothing per copy
+// is sent.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "render/character_meshes.h"
+#include "render/techniques/gpu_cull.h"
 #include "render/techniques/technique.h"
 
 namespace crowdprof {
@@ -26,6 +31,9 @@ class BakedSkinning final : public Technique {
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
+  // frustum gpu, after the frame has finished: each character's copies on
+  // screen, as the cull pass counted them. False when the CPU culled.
+  bool visible_counts(std::span<uint64_t> per_character) const;
 
  private:
   struct InstanceRecord {
@@ -40,6 +48,7 @@ class BakedSkinning final : public Technique {
   GLuint placements_ = 0, instances_ = 0;
   size_t instance_capacity_ = 0;
   uint64_t gpu_bytes_ = 0;
+  std::unique_ptr<GpuCull> gpu_cull_;   // frustum gpu: writes the records and draws
   std::vector<InstanceRecord> records_;  // scratch: this frame's, grouped by character
   std::vector<size_t> first_;            // scratch: each character's first record, then the end
 };

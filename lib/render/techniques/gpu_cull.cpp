@@ -1,0 +1,99 @@
+#include "render/techniques/gpu_cull.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frame/frame_view.h"
+#include "render/character_meshes.h"
+#include "render/shader_sources.h"
+#include "render/techniques/technique.h"
+#include "scene/camera.h"
+
+namespace crowdprof {
+
+namespace {
+
+constexpr GLuint kCullGroup = 64;  // cull.comp's local_size_x
+
+// cull.comp's CullCopy, std430: two vec4, then eight 4-byte fields.
+struct CullCopy {
+  glm::vec4 box_min, box_max;
+  uint32_t kind, first_sample, intervals;
+  float phase, start, end, duration;
+  uint32_t pad = 0;
+};
+static_assert(sizeof(CullCopy) == 64);
+
+}  // namespace
+
+GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span<const size_t> first_record,
+                 std::span<const uint8_t> baked) {
+  std::string source(embedded_shader("shaders/cull.comp"));
+  ShaderStage stage{GL_COMPUTE_SHADER, "shaders/cull.comp", source};
+  program_ = GlProgram(std::span(&stage, 1));
+  planes_ = program_.uniform("planes");
+  seconds_ = program_.uniform("seconds");
+  copy_count_ = program_.uniform("copy_count");
+  copy_count_value_ = view.copies();
+  std::vector<CullCopy> copies(std::max<size_t>(copy_count_value_, 1));
+  for (size_t i = 0; i < copy_count_value_; ++i) {
+    const Aabb& box = view.world_boxes[i];
+    const BakedClock& clock = view.baked_clocks[i];
+    copies[i] = {glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], clock.first_sample,
+                 clock.intervals, clock.phase, clock.start, clock.end, clock.duration};
+  }
+  copies_ = make_buffer(GL_SHADER_STORAGE_BUFFER, copies.size() * sizeof(CullCopy), copies.data(), GL_STATIC_DRAW);
+  drawn_.assign(meshes.size(), 0);
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    drawn_[k] = baked[k];
+    cleared_.push_back({static_cast<uint32_t>(meshes[k].index_count), 0, 0, 0, static_cast<uint32_t>(first_record[k])});
+  }
+  commands_ = make_buffer(GL_SHADER_STORAGE_BUFFER, cleared_.size() * sizeof(Command), cleared_.data(),
+                          GL_DYNAMIC_DRAW);
+  gpu_bytes_ = copies.size() * sizeof(CullCopy) + cleared_.size() * sizeof(Command);
+}
+
+GpuCull::~GpuCull() {
+  GLuint buffers[] = {copies_, commands_};
+  glDeleteBuffers(2, buffers);
+}
+
+void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
+  // The only bytes a frame sends: the commands with their counts at zero.
+  const auto command_bytes = static_cast<GLsizeiptr>(cleared_.size() * sizeof(Command));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, commands_);
+  glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, command_bytes, cleared_.data());
+  counters.bytes_uploaded += static_cast<uint64_t>(command_bytes);
+  if (copy_count_value_ == 0) return;
+  const Frustum frustum = frustum_of(view.view_projection);
+  glUseProgram(program_.id());
+  glUniform4fv(planes_, 6, glm::value_ptr(frustum.planes[0]));
+  glUniform1d(seconds_, view.seconds);
+  glUniform1ui(copy_count_, static_cast<GLuint>(copy_count_value_));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, copies_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, instances);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, commands_);
+  glDispatchCompute(static_cast<GLuint>((copy_count_value_ + kCullGroup - 1) / kCullGroup), 1, 1);
+  // The draws read the records from storage and their counts as commands.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GpuCull::draw(size_t k, GLint first_instance_uniform, Counters& counters) const {
+  if (!drawn_[k]) return;
+  glUniform1ui(first_instance_uniform, cleared_[k].base_instance);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_);
+  // The CPU does not know how many copies are on screen: one draw per character, always.
+  glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                         reinterpret_cast<const void*>(static_cast<uintptr_t>(k * sizeof(Command))));
+  ++counters.draw_calls;
+}
+
+void GpuCull::visible_counts(std::span<uint64_t> per_character) const {
+  std::vector<Command> commands(cleared_.size());
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, commands_);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(commands.size() * sizeof(Command)),
+                     commands.data());
+  for (size_t k = 0; k < per_character.size() && k < commands.size(); ++k)
+    per_character[k] = drawn_[k] ? commands[k].instance_count : 0;
+}
+
+}  // namespace crowdprof
