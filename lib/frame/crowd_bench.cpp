@@ -94,6 +94,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     config.renderer->prepare(view_);
     animation_gpu_bytes_ = config.renderer->animation_gpu_bytes();
   }
+  loaded_ = true;
 }
 
 CrowdBench::~CrowdBench() = default;
@@ -226,7 +227,7 @@ void CrowdBench::update_poses(Counters& counters) {
 void CrowdBench::update_scenegraph(Counters& counters) {
   // frustum gpu: the GPU tests the copies (counted after the frame, count_work);
   // the test at load (frame -1) still runs, for the planner's set-up.
-  if (!gpu_visible_.empty() && frame_ > 0) return;
+  if (!gpu_visible_.empty() && loaded_) return;
   uint64_t visible = 0;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     store_->visible[i] = intersects(frustum_, crowd_.world_boxes[i]) ? 1 : 0;

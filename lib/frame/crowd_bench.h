@@ -212,6 +212,7 @@ class CrowdBench {
   std::vector<BakedClock> baked_clocks_;        // per copy, mode baked with frustum gpu
   std::vector<uint64_t> copies_of_character_;   // per character
   std::vector<uint64_t> gpu_visible_;           // per character, frustum gpu: the cull pass's count
+  bool loaded_ = false;                         // the constructor has finished (its frame -1 is done)
   FrameView view_;
   CategoryClock clock_;
   CategoryClock::Clock::time_point frame_start_{}, stage_start_{};  // for the tracer

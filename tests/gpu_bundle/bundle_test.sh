@@ -55,6 +55,11 @@ grep -q '^| instanced | 12 | 3 | [0-9.]*[mu]s |.*| skinning [0-9.]*[mu]s, prepas
   fail "no row for instanced with passes: $(cat "$work/out/summary.md")"
 grep -q '^| nosuchmode | 12 | 1 | exit 2' "$work/out/summary.md" || fail "the failed run has no row"
 [[ -s $work/out/runs/baked_frustum_gpu-12-p1.json ]] || fail "no file for baked+frustum=gpu: $(ls "$work/out/runs")"
+# A switch without a value is refused before any run, saying why.
+if ALLOW_SOFTWARE=1 SIZES=12 MODES="baked+frustum" "$bundle/run.sh" "$work/novalue" >/dev/null 2>"$work/novalue.err"; then
+  fail "a MODES entry with a switch but no value ran"
+fi
+grep -q "needs a value" "$work/novalue.err" || fail "no reason for the refused MODES entry: $(cat "$work/novalue.err")"
 # Past its budget the script records the runs it did not make.
 ALLOW_SOFTWARE=1 SIZES=12 MODES=hwskin BUDGET=0 "$bundle/run.sh" "$work/budget" >/dev/null 2>&1 || fail "a spent budget failed the script"
 grep -q '^| hwskin | 12 | 4 | not run: the 0 s budget was spent' "$work/budget/summary.md" || fail "no row for the run not made: $(cat "$work/budget/summary.md")"

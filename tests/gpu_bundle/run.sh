@@ -55,6 +55,12 @@ if grep -Eqi 'llvmpipe|softpipe|swrast|software' <<<"$renderer" && [[ ${ALLOW_SO
 fi
 
 read -r -a modes <<<"${MODES:-hwskin buffer instanced compute baked baked+frustum=gpu threaded}"
+for mode in "${modes[@]}"; do
+  IFS='+' read -r -a parts <<<"$mode"
+  for switch in "${parts[@]:1}"; do
+    [[ $switch == ?*=?* ]] || fail "MODES entry '$mode': '$switch' needs a value, as in baked+frustum=gpu"
+  done
+done
 read -r -a sizes <<<"${SIZES:-160 10000 100000}"
 read -r -a pass_counts <<<"${PASSES:-1 4}"
 limit=${LIMIT:-60} budget=${BUDGET:-540}

@@ -123,6 +123,7 @@ void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const 
     glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr, count);
     ++counters.draw_calls;
   }
+  if (gpu_cull_) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);  // no later draw reads commands by accident
 }
 
 }  // namespace crowdprof

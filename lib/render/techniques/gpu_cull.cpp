@@ -73,8 +73,10 @@ void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, instances);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, commands_);
   glDispatchCompute(static_cast<GLuint>((copy_count_value_ + kCullGroup - 1) / kCullGroup), 1, 1);
-  // The draws read the records from storage and their counts as commands.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  // The draws read the records from storage and their counts as commands; the
+  // counts are read back, and the commands cleared next frame, by buffer calls.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 void GpuCull::draw(size_t k, GLint first_instance_uniform, Counters& counters) const {
