@@ -15,6 +15,7 @@
 #include "asset/character.h"
 #include "asset/gltf_loader.h"
 #include "frame/crowd_bench.h"
+#include "gen/humanoid.h"
 #include "render/crowd_renderer.h"
 #include "render/gl_context.h"
 #include "render/gl_errors.h"
@@ -120,6 +121,19 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
 inline Frame render(GlContext& context, const Character& character, const Shot& shot) {
   const Character* one[] = {&character};
   return render(context, one, shot);
+}
+
+// A second, smaller character (30 bones, 800 vertices): in a crowd beside the
+// humanoid, each has its own range of records, its own draws and palettes of
+// another size.
+inline const Character& thirty_bone_humanoid() {
+  static const Character character = [] {
+    HumanoidOptions options;
+    options.bones = 30;
+    options.vertices = 800;
+    return generate_humanoid(options);
+  }();
+  return character;
 }
 
 // scenes/humanoid.glb, the thesis's character, loaded once.

@@ -53,8 +53,8 @@ GlCrowdRenderer::GlCrowdRenderer(GlContext& context, std::span<const Character* 
   if (any_fits && max_joints_ > 0) uniform_palette_ = std::make_unique<UniformPalette>(meshes_, max_joints_);
   // Buffer palettes know no bone limit: every character gets its rest mesh.
   if (features_.storage_buffers()) {
-    buffer_palette_ = std::make_unique<BufferPalette>(meshes_, features_.max_storage_block_bytes);
-    instanced_ = std::make_unique<Instanced>(meshes_, features_.max_storage_block_bytes);
+    buffer_palette_ = std::make_unique<BufferPalette>(meshes_, features_);
+    instanced_ = std::make_unique<Instanced>(meshes_, features_);
   }
   glBindVertexArray(0);
   glEnable(GL_DEPTH_TEST);

@@ -1,5 +1,6 @@
 #include "render/gl_features.h"
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "asset/errors.h"
@@ -15,6 +16,9 @@ GlFeatures read_gl_features(std::string_view hide) {
   GLint64 bytes = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
   f.max_storage_block_bytes = bytes;
+  value = 0;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &value);
+  if (value > 0) f.storage_offset_alignment = value;
   value = 0;
   glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &value);
   f.compute_storage_blocks = value;
@@ -57,6 +61,8 @@ GlFeatures read_gl_features(std::string_view hide) {
       f.compute_storage_blocks = 0;
     else if (name == "pipeline-statistics")
       f.pipeline_statistics = false;
+    else if (name == "small-blocks")
+      f.max_storage_block_bytes = std::min<int64_t>(f.max_storage_block_bytes, int64_t{64} << 10);
     else if (!name.empty())
       throw UsageError("CROWDPROF_GL_HIDE '" + std::string(name) + "': expected some of " +
                        std::string(kHideableGlFeatures));

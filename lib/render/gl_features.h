@@ -15,6 +15,8 @@ struct GlFeatures {
   // vertex stage (only fragment and compute), so a context may offer 0.
   int64_t vertex_storage_blocks = 0;
   int64_t max_storage_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  // GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT: where a bound range may start.
+  int64_t storage_offset_alignment = 256;
   // Shader storage blocks a compute shader may use (skinning compute); 0 means
   // no compute shaders to speak of.
   int64_t compute_storage_blocks = 0;
@@ -34,7 +36,10 @@ struct GlFeatures {
 
 // The names `hide` understands, comma-separated: "vertex-ssbo", "timer-query",
 // "compute".
-inline constexpr std::string_view kHideableGlFeatures = "vertex-ssbo, timer-query, compute, pipeline-statistics";
+// "small-blocks" is not a feature but a limit: storage blocks of 64 KiB, so that
+// a small crowd's palettes take several pages (tests of the paging).
+inline constexpr std::string_view kHideableGlFeatures =
+    "vertex-ssbo, timer-query, compute, pipeline-statistics, small-blocks";
 
 // Reads the current context's features, then acts as if it lacked those that
 // `hide` names (CROWDPROF_GL_HIDE: to see what crowdprof does on a GL without

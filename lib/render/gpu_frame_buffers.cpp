@@ -9,8 +9,12 @@ namespace crowdprof {
 
 namespace {
 
+// "3.2 MiB", or "64.0 KiB" below a MiB.
 std::string mib(uint64_t bytes) {
-  return std::to_string(bytes >> 20) + "." + std::to_string(((bytes & ((1u << 20) - 1)) * 10) >> 20) + " MiB";
+  const int shift = bytes < (uint64_t{1} << 20) ? 10 : 20;
+  const uint64_t unit = uint64_t{1} << shift;
+  return std::to_string(bytes >> shift) + "." + std::to_string((bytes & (unit - 1)) * 10 >> shift) +
+         (shift == 10 ? " KiB" : " MiB");
 }
 
 }  // namespace
@@ -20,16 +24,43 @@ GpuFrameBuffers::~GpuFrameBuffers() {
   glDeleteBuffers(1, &instance_buffer_);
 }
 
-void GpuFrameBuffers::reserve(size_t instances, size_t rows, int64_t max_block_bytes) {
-  uint64_t palette_bytes = std::max<uint64_t>(rows, 1) * sizeof(glm::vec4);
+void GpuFrameBuffers::reserve(size_t instances, size_t rows, const GlFeatures& gl) {
+  const auto block = static_cast<uint64_t>(std::max<int64_t>(gl.max_storage_block_bytes, 0));
+  const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.storage_offset_alignment, 1));
+  const uint64_t page_bytes = block / align * align;
+  page_rows_ = page_bytes / sizeof(glm::vec4);
+  if (page_rows_ == 0) throw GlUnavailable("this GL's storage blocks (" + std::to_string(block) + " bytes) hold no palette");
+  const uint64_t copy_rows = instances ? (rows + instances - 1) / instances : 0;
+  // The records are read whole (as vertex attributes and as one block).
   uint64_t instance_bytes = std::max<uint64_t>(instances, 1) * sizeof(GpuInstance);
-  if (palette_bytes > static_cast<uint64_t>(max_block_bytes) || instance_bytes > static_cast<uint64_t>(max_block_bytes))
-    throw GlUnavailable("the palettes of this crowd need " + mib(std::max(palette_bytes, instance_bytes)) +
-                            " in one shader storage buffer; this GL allows " +
-                            mib(static_cast<uint64_t>(max_block_bytes)) + " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE): ",
+  if (copy_rows > page_rows_)
+    throw GlUnavailable("a palette of " + std::to_string(copy_rows / 3) + " joints needs " +
+                            mib(copy_rows * sizeof(glm::vec4)) + "; this GL's storage blocks hold " + mib(block) +
+                            " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE): ",
+                        "use {palettes} uniforms");
+  if (instance_bytes > block)
+    throw GlUnavailable("the instance records of " + std::to_string(instances) + " copies need " +
+                            mib(instance_bytes) + " in one shader storage block; this GL allows " + mib(block) +
+                            " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE), " +
+                            std::to_string(block / sizeof(GpuInstance)) + " copies: ",
                         "use fewer copies or {palettes} uniforms");
+  // In one page, the rows themselves; past it, a page loses at most one palette's rows at its end.
+  const uint64_t pages = page_rows_ > copy_rows ? rows / (page_rows_ - copy_rows) + 1 : 1;
+  const uint64_t palette_rows = rows <= page_rows_ ? rows : std::min<uint64_t>(rows + pages * copy_rows, pages * page_rows_);
+  uint64_t palette_bytes = std::max<uint64_t>(palette_rows, 1) * sizeof(glm::vec4);
+  if (gl.memory_free_kib >= 0 && instances > 0) {
+    const uint64_t free_bytes = static_cast<uint64_t>(gl.memory_free_kib) << 10;
+    const uint64_t per_copy = copy_rows * sizeof(glm::vec4) + sizeof(GpuInstance);
+    if (palette_bytes + instance_bytes > free_bytes)
+      throw GlUnavailable("the palettes and instance records of " + std::to_string(instances) + " copies need " +
+                              mib(palette_bytes + instance_bytes) + "; the GPU has " + mib(free_bytes) + " free (" +
+                              gl.memory_source + "), room for about " + std::to_string(free_bytes / per_copy) +
+                              " copies: ",
+                          "use fewer copies");
+  }
   if (instances > instances_.size()) instances_.resize(instances);
-  if (rows > rows_.size()) rows_.resize(rows);
+  if (instances > page_of_.size()) page_of_.resize(instances);
+  if (palette_bytes / sizeof(glm::vec4) > rows_.size()) rows_.resize(palette_bytes / sizeof(glm::vec4));
   if (!palette_buffer_) glGenBuffers(1, &palette_buffer_);
   if (!instance_buffer_) glGenBuffers(1, &instance_buffer_);
   palette_capacity_bytes_ = std::max(palette_capacity_bytes_, palette_bytes);
@@ -48,21 +79,50 @@ void GpuFrameBuffers::begin(std::span<const uint32_t> counts) {
 }
 
 std::span<glm::vec4> GpuFrameBuffers::add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows) {
-  GpuInstance& record = instances_[runs_[kind].first + filled_[kind]++];
+  const uint32_t index = runs_[kind].first + filled_[kind]++;
+  GpuInstance& record = instances_[index];
   record.model = model;
   record.colour = colour;
-  record.palette_base = static_cast<uint32_t>(rows_used_);
+  if (palette_rows > page_rows_) throw GlError("a palette larger than a storage block asked of the palette buffer");
+  // A palette that would cross into the next page starts it.
+  size_t page = rows_used_ / page_rows_;
+  if (rows_used_ % page_rows_ + palette_rows > page_rows_) rows_used_ = ++page * page_rows_;
+  record.palette_base = static_cast<uint32_t>(rows_used_ - page * page_rows_);
+  page_of_[index] = static_cast<uint32_t>(page);
+  // Mixed characters may leave more at a page's end than reserve() allowed for.
+  if (rows_used_ + palette_rows > rows_.size()) rows_.resize(std::max(rows_used_ + palette_rows, rows_.size() * 5 / 4));
   std::span<glm::vec4> rows = std::span(rows_).subspan(rows_used_, palette_rows);
   rows_used_ += palette_rows;
   return rows;
 }
 
+InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {
+  const uint32_t end = runs_[kind].first + runs_[kind].count;
+  uint32_t last = from;
+  while (last < end && page_of_[last] == page_of_[from]) ++last;
+  return {from, last - from};
+}
+
+uint32_t GpuFrameBuffers::pages() const {
+  return rows_used_ ? static_cast<uint32_t>((rows_used_ - 1) / page_rows_ + 1) : 0;
+}
+
+void GpuFrameBuffers::bind_page(uint32_t page) const {
+  const uint64_t page_bytes = page_rows_ * sizeof(glm::vec4);
+  const uint64_t offset = page * page_bytes;
+  const uint64_t size = std::min(page_bytes, palette_capacity_bytes_ - offset);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kPaletteBinding, palette_buffer_, static_cast<GLintptr>(offset),
+                    static_cast<GLsizeiptr>(size));
+}
+
 uint64_t GpuFrameBuffers::upload(bool with_instances) {
+  // The rows left empty at pages' ends go up too (one upload).
   uint64_t sent = rows_used_ * sizeof(glm::vec4);
+  palette_capacity_bytes_ = std::max(palette_capacity_bytes_, sent);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, palette_buffer_);
   glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(palette_capacity_bytes_), nullptr, GL_STREAM_DRAW);
   if (rows_used_) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(sent), rows_.data());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPaletteBinding, palette_buffer_);
+  bind_page(0);
   if (with_instances) {
     uint32_t records = 0;
     for (const InstanceRun& run : runs_) records += run.count;

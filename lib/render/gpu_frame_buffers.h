@@ -3,6 +3,14 @@
 // record per instance (transform, palette offset, colour) in another, laid out
 // as shaders/instances.glsl declares them (std430).
 //
+// Paged palettes (issue 30): a shader may see at most one storage block of the
+// palette buffer (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe: about
+// 40,000 humanoids), but the buffer may be larger. It is cut into pages of at
+// most a block, each starting where a bound range may start; no palette spans
+// two. A record's palette_base counts rows from its page's start, and a draw
+// binds its page's range (bind_page) first: per copy, or one instanced draw per
+// run of a kind's records on one page (page_run).
+//
 // How another skinning source plugs in (baked animation, say): reserve the
 // frame's runs with begin(), and for each copy add() an instance whose
 // palette_rows is 0 (it sends no palette) with its own per-instance values in
@@ -23,6 +31,7 @@
 #include <glm/glm.hpp>
 
 #include "render/gl.h"
+#include "render/gl_features.h"
 
 namespace crowdprof {
 
@@ -53,9 +62,11 @@ class GpuFrameBuffers {
   GpuFrameBuffers& operator=(const GpuFrameBuffers&) = delete;
 
   // Makes room (on the CPU and the GPU) for `instances` records and `rows`
-  // palette rows; growing keeps nothing. Throws GlUnavailable when the rows
-  // exceed what one storage block may hold (`max_block_bytes`).
-  void reserve(size_t instances, size_t rows, int64_t max_block_bytes);
+  // palette rows, in pages of the largest storage block `gl` allows; growing
+  // keeps nothing. Throws GlUnavailable, naming the limit and the most copies
+  // that fit, when the records exceed one block or the buffers the GPU's free
+  // memory (where the GL says it).
+  void reserve(size_t instances, size_t rows, const GlFeatures& gl);
 
   // Starts a frame: kind k gets `counts[k]` records, one run after another,
   // which add() fills in order. `counts` must fit the reservation.
@@ -65,7 +76,15 @@ class GpuFrameBuffers {
   std::span<glm::vec4> add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows);
   // The records and rows added since begin().
   InstanceRun run(size_t kind) const { return runs_[kind]; }
+  // Counted from the start of the record's page.
   uint32_t palette_base(uint32_t record) const { return instances_[record].palette_base; }
+  uint32_t page_of(uint32_t record) const { return page_of_[record]; }
+  // The records of `kind`'s run from `from` on that are on from's page.
+  InstanceRun page_run(size_t kind, uint32_t from) const;
+  // Binds page `page` of the palettes at kPaletteBinding.
+  void bind_page(uint32_t page) const;
+  // Pages this frame's palettes take.
+  uint32_t pages() const;
 
   // Sends the palette rows (and, with `with_instances`, the records) to the GPU
   // in fresh storage (orphaned, so no draw of the last frame is waited for) and
@@ -83,7 +102,9 @@ class GpuFrameBuffers {
   std::vector<glm::vec4> rows_;
   std::vector<InstanceRun> runs_;
   std::vector<uint32_t> filled_;  // per kind, records added so far
+  std::vector<uint32_t> page_of_;  // per record
   size_t rows_used_ = 0;
+  size_t page_rows_ = 0;           // rows a page holds
   GLuint palette_buffer_ = 0, instance_buffer_ = 0;
   uint64_t palette_capacity_bytes_ = 0, instance_capacity_bytes_ = 0;
 };

@@ -9,7 +9,6 @@
 
 #include "frame/modes.h"
 #include "frame/switch_table.h"
-#include "gen/humanoid.h"
 #include "render/gl_errors.h"
 #include "render_support.h"
 #include "test_support.h"
@@ -18,16 +17,6 @@ using namespace crowdprof;
 using namespace crowdprof::test;
 
 namespace {
-
-const Character& small_humanoid() {  // a second character, so that each has its own range and draw
-  static const Character character = [] {
-    HumanoidOptions options;
-    options.bones = 30;
-    options.vertices = 800;
-    return generate_humanoid(options);
-  }();
-  return character;
-}
 
 struct Case {
   std::string name;
@@ -42,8 +31,8 @@ TEST(GpuCull, FindsTheCopiesTheCpuFindsAndDrawsTheSameImage) {
   OPEN_GL_OR_SKIP(context);
   const std::vector<Case> cases = {
       {"humanoid, shared action", {&default_humanoid()}, ActionChoice::Shared, 1},
-      {"two characters, random actions", {&default_humanoid(), &small_humanoid()}, ActionChoice::Random, 1},
-      {"two characters, prepass and a shadow cascade", {&default_humanoid(), &small_humanoid()}, ActionChoice::Random,
+      {"two characters, random actions", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random, 1},
+      {"two characters, prepass and a shadow cascade", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random,
        3},
   };
   for (const Case& c : cases) {
@@ -78,7 +67,7 @@ TEST(GpuCull, FindsTheCopiesTheCpuFindsAndDrawsTheSameImage) {
 
 TEST(GpuCull, WhatTheCpuSendsAndSubmitsDoesNotGrowWithTheCrowd) {
   OPEN_GL_OR_SKIP(context);
-  const Character* both[] = {&default_humanoid(), &small_humanoid()};
+  const Character* both[] = {&default_humanoid(), &thirty_bone_humanoid()};
   Shot shot;
   shot.mode = "baked";
   shot.frame = 2;

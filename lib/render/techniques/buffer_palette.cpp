@@ -1,6 +1,7 @@
 #include "render/techniques/buffer_palette.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -28,7 +29,7 @@ std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
 }
 
 uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced) {
+                       std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
   size_t copies = 0, rows = 0;
   on_screen.assign(meshes.size(), 0);
   for (size_t i = 0; i < view.copies(); ++i) {
@@ -37,7 +38,7 @@ uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, Gpu
     rows += 3 * meshes[view.kind[i]].joints;
     on_screen[view.kind[i]] += view.visible[i];
   }
-  buffers.reserve(copies, rows, max_block_bytes);
+  buffers.reserve(copies, rows, gl);
   buffers.begin(on_screen);
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
@@ -50,7 +51,7 @@ uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, Gpu
   return buffers.upload(instanced);
 }
 
-BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) : max_block_bytes_(max_block_bytes) {
+BufferPalette::BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
   program_ = GlProgram(buffer_palette_stages(false));
   model_ = program_.uniform("model");
   colour_ = program_.uniform("base_colour");
@@ -60,7 +61,7 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes) :
 }
 
 void BufferPalette::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, false);
+  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, gl_, false);
   counters.gpu_palette_bytes = buffers_.palette_gpu_bytes();
 }
 
@@ -69,11 +70,14 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, c
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;
+  uint32_t bound = UINT32_MAX;  // another technique may have bound its own buffer since upload()
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
     glBindVertexArray(meshes[k].rest_vao);
-    glUniform1ui(base_, buffers_.palette_base(next_[k]++));
+    const uint32_t record = next_[k]++;
+    if (buffers_.page_of(record) != bound) buffers_.bind_page(bound = buffers_.page_of(record));
+    glUniform1ui(base_, buffers_.palette_base(record));
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElements(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr);

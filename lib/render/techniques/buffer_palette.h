@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/character_meshes.h"
+#include "render/gl_features.h"
 #include "render/gpu_frame_buffers.h"
 #include "render/techniques/technique.h"
 
@@ -21,18 +22,18 @@ namespace crowdprof {
 // exceed one storage block (`max_block_bytes`).
 // `on_screen` is scratch, kept by the caller so that frames allocate nothing.
 uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       std::vector<uint32_t>& on_screen, int64_t max_block_bytes, bool instanced);
+                       std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced);
 
 class BufferPalette final : public Technique {
  public:
   // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
-  BufferPalette(CharacterMeshes& meshes, int64_t max_block_bytes);
+  BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl);
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
  private:
-  int64_t max_block_bytes_;
+  GlFeatures gl_;
   GlProgram program_;
   GLint model_ = -1, colour_ = -1, base_ = -1;
   GpuFrameBuffers buffers_;

@@ -7,7 +7,7 @@
 
 namespace crowdprof {
 
-Instanced::Instanced(CharacterMeshes& meshes, int64_t max_block_bytes) : max_block_bytes_(max_block_bytes) {
+Instanced::Instanced(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
   program_ = GlProgram(buffer_palette_stages(true));
   for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);
 }
@@ -17,7 +17,7 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
 }
 
 void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, max_block_bytes_, true);
+  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, gl_, true);
   counters.gpu_palette_bytes = buffers_.gpu_bytes();
 }
 
@@ -27,15 +27,21 @@ void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const Draw
   glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
                glm::value_ptr(kCopyColours[0]));
   for (size_t k = 0; k < meshes.size(); ++k) {
-    InstanceRun run = buffers_.run(k);
+    const InstanceRun run = buffers_.run(k);
     if (run.count == 0) continue;
     glBindVertexArray(meshes[k].instanced_vao);
-    glBindVertexBuffer(kInstanceStream, buffers_.instance_buffer(),
-                       static_cast<GLintptr>(run.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
-                       sizeof(GpuInstance));
-    glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr,
-                            static_cast<GLsizei>(run.count));
-    ++counters.draw_calls;
+    // One instanced draw per page the kind's palettes take (one, below the storage-block limit).
+    for (uint32_t from = run.first; from < run.first + run.count;) {
+      const InstanceRun part = buffers_.page_run(k, from);
+      buffers_.bind_page(buffers_.page_of(from));
+      glBindVertexBuffer(kInstanceStream, buffers_.instance_buffer(),
+                         static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
+                         sizeof(GpuInstance));
+      glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(part.count));
+      from += part.count;
+      ++counters.draw_calls;
+    }
   }
 }
 

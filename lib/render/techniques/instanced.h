@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/character_meshes.h"
+#include "render/gl_features.h"
 #include "render/gpu_frame_buffers.h"
 #include "render/techniques/technique.h"
 
@@ -16,7 +17,7 @@ namespace crowdprof {
 class Instanced final : public Technique {
  public:
   // Uploads every character's rest mesh. Needs vertex-stage storage buffers.
-  Instanced(CharacterMeshes& meshes, int64_t max_block_bytes);
+  Instanced(CharacterMeshes& meshes, const GlFeatures& gl);
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
@@ -25,7 +26,7 @@ class Instanced final : public Technique {
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);
 
  private:
-  int64_t max_block_bytes_;
+  GlFeatures gl_;
   GlProgram program_;
   GpuFrameBuffers buffers_;
   std::vector<uint32_t> on_screen_;  // scratch: per character, copies on screen

@@ -1,0 +1,82 @@
+// Paged palettes (issue 30 item 2, lib/render/gpu_frame_buffers.h): palettes
+// past one storage block are cut into pages, each bound as a range of one
+// buffer. With storage blocks of 64 KiB (CROWDPROF_GL_HIDE=small-blocks: about
+// 19 humanoid palettes a page) `buffer` and `instanced` draw the image they draw
+// in one page, `instanced` with one draw per page; a crowd past the GPU's free
+// memory is refused, naming the limit and how many copies would fit.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "render/gl_errors.h"
+#include "render/gpu_frame_buffers.h"
+#include "render_support.h"
+#include "test_support.h"
+
+using namespace crowdprof;
+using namespace crowdprof::test;
+
+TEST(PagedPalettes, SmallBlocksDrawTheSameImage) {
+  OPEN_GL_OR_SKIP(context);
+  const Character* one[] = {&default_humanoid()};
+  const Character* two[] = {&default_humanoid(), &thirty_bone_humanoid()};
+  for (std::span<const Character* const> characters : {std::span<const Character* const>(one),
+                                                       std::span<const Character* const>(two)}) {
+    for (const char* mode : {"buffer", "instanced"}) {
+      const std::string what = std::string(mode) + ", " + std::to_string(characters.size()) + " character(s)";
+      Shot shot;
+      shot.mode = mode;
+      shot.copies = 60;
+      shot.frame = 2;
+      Frame whole = render(*context, characters, shot);
+      shot.hide_features = "small-blocks";
+      Frame paged = render(*context, characters, shot);
+      ASSERT_GT(whole.counters.copies_visible, 40u) << what << ": more palettes than two pages hold";
+      EXPECT_EQ(paged.counters.copies_visible, whole.counters.copies_visible) << what;
+      EXPECT_EQ(paged.digest, whole.digest) << what;
+      const size_t pixels = whole.rgba.size() / 4;
+      ASSERT_GT(covered(whole.rgba), pixels / 200) << what;
+      EXPECT_EQ(pixels_differing(whole.rgba, paged.rgba, 4), 0u) << what;
+      if (std::string(mode) == "instanced") {
+        EXPECT_EQ(whole.counters.draw_calls, characters.size()) << what;
+        // 64 KiB pages hold 19 humanoid palettes: at least one more draw per page past the first.
+        EXPECT_GE(paged.counters.draw_calls, whole.counters.copies_visible / 19) << what;
+      } else {
+        EXPECT_EQ(paged.counters.draw_calls, whole.counters.draw_calls) << what;
+      }
+    }
+  }
+}
+
+TEST(PagedPalettes, ACrowdPastTheGpusFreeMemoryIsRefusedSayingHowManyFit) {
+  OPEN_GL_OR_SKIP(context);
+  GlFeatures gl;
+  gl.vertex_storage_blocks = 16;
+  gl.max_storage_block_bytes = int64_t{128} << 20;
+  gl.storage_offset_alignment = 16;
+  gl.memory_free_kib = 1024;  // 1 MiB free
+  gl.memory_source = "NVX_gpu_memory_info";
+  GpuFrameBuffers buffers;
+  // 1,000 humanoids: 69 joints, 207 rows (3,312 bytes) and an 80-byte record each.
+  try {
+    buffers.reserve(1000, 1000 * 207, gl);
+    FAIL() << "1,000 palettes reserved in 1 MiB";
+  } catch (const GlUnavailable& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("1000 copies need 3.2 MiB"), std::string::npos) << what;
+    EXPECT_NE(what.find("the GPU has 1.0 MiB free (NVX_gpu_memory_info)"), std::string::npos) << what;
+    EXPECT_NE(what.find("room for about 309 copies"), std::string::npos) << what;  // 1,048,576 / 3,392
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  // Not said: nothing is refused for memory (the GL's own out-of-memory error would be).
+  gl.memory_free_kib = -1;
+  EXPECT_NO_THROW(buffers.reserve(1000, 1000 * 207, gl));
+  // The records are read as one block: past it, refused with the copies that fit.
+  gl.max_storage_block_bytes = 64 << 10;
+  try {
+    buffers.reserve(1000, 1000 * 207, gl);
+    FAIL() << "80,000 bytes of records in a 64 KiB block";
+  } catch (const GlUnavailable& e) {
+    EXPECT_NE(std::string(e.what()).find("this GL allows 64.0 KiB"), std::string::npos) << e.what();
+  }
+}
