@@ -24,38 +24,39 @@ GpuFrameBuffers::~GpuFrameBuffers() {
   glDeleteBuffers(1, &instance_buffer_);
 }
 
-void GpuFrameBuffers::reserve(size_t instances, size_t rows, const GlFeatures& gl) {
+void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows, bool with_instances,
+                              const GlFeatures& gl) {
   const auto block = static_cast<uint64_t>(std::max<int64_t>(gl.max_storage_block_bytes, 0));
   const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.storage_offset_alignment, 1));
-  const uint64_t page_bytes = block / align * align;
-  page_rows_ = page_bytes / sizeof(glm::vec4);
-  if (page_rows_ == 0) throw GlUnavailable("this GL's storage blocks (" + std::to_string(block) + " bytes) hold no palette");
-  const uint64_t copy_rows = instances ? (rows + instances - 1) / instances : 0;
-  // The records are read whole (as vertex attributes and as one block).
-  uint64_t instance_bytes = std::max<uint64_t>(instances, 1) * sizeof(GpuInstance);
-  if (copy_rows > page_rows_)
-    throw GlUnavailable("a palette of " + std::to_string(copy_rows / 3) + " joints needs " +
-                            mib(copy_rows * sizeof(glm::vec4)) + "; this GL's storage blocks hold " + mib(block) +
-                            " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE): ",
-                        "use {palettes} uniforms");
+  page_rows_ = block / align * align / sizeof(glm::vec4);
+  if (page_rows_ == 0 || largest_rows > page_rows_)
+    throw GlUnavailable("a palette of " + std::to_string(largest_rows / 3) + " joints needs " +
+                            mib(largest_rows * sizeof(glm::vec4)) + "; a page of this GL's palette buffer holds " +
+                            mib(page_rows_ * sizeof(glm::vec4)) +
+                            " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, on GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT): ",
+                        "skin it on the CPU, {skinning} animations");
+  // The records are read whole, as vertex attributes (instanced only).
+  const uint64_t instance_bytes = with_instances ? std::max<uint64_t>(instances, 1) * sizeof(GpuInstance) : 0;
   if (instance_bytes > block)
     throw GlUnavailable("the instance records of " + std::to_string(instances) + " copies need " +
                             mib(instance_bytes) + " in one shader storage block; this GL allows " + mib(block) +
                             " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE), " +
                             std::to_string(block / sizeof(GpuInstance)) + " copies: ",
-                        "use fewer copies or {palettes} uniforms");
-  // In one page, the rows themselves; past it, a page loses at most one palette's rows at its end.
-  const uint64_t pages = page_rows_ > copy_rows ? rows / (page_rows_ - copy_rows) + 1 : 1;
-  const uint64_t palette_rows = rows <= page_rows_ ? rows : std::min<uint64_t>(rows + pages * copy_rows, pages * page_rows_);
-  uint64_t palette_bytes = std::max<uint64_t>(palette_rows, 1) * sizeof(glm::vec4);
+                        "use fewer copies or {draw} per-copy");
+  // In one page, the rows themselves; past it, a page leaves less than its
+  // largest palette empty at its end.
+  const uint64_t pages = page_rows_ > largest_rows ? rows / (page_rows_ - largest_rows) + 1 : std::max<size_t>(instances, 1);
+  const uint64_t palette_rows =
+      rows <= page_rows_ ? rows : std::min<uint64_t>(rows + pages * largest_rows, pages * page_rows_);
+  const uint64_t palette_bytes = std::max<uint64_t>(palette_rows, 1) * sizeof(glm::vec4);
   if (gl.memory_free_kib >= 0 && instances > 0) {
     const uint64_t free_bytes = static_cast<uint64_t>(gl.memory_free_kib) << 10;
-    const uint64_t per_copy = copy_rows * sizeof(glm::vec4) + sizeof(GpuInstance);
+    const uint64_t per_copy = (rows + instances - 1) / instances * sizeof(glm::vec4) + instance_bytes / instances;
     if (palette_bytes + instance_bytes > free_bytes)
-      throw GlUnavailable("the palettes and instance records of " + std::to_string(instances) + " copies need " +
-                              mib(palette_bytes + instance_bytes) + "; the GPU has " + mib(free_bytes) + " free (" +
-                              gl.memory_source + "), room for about " + std::to_string(free_bytes / per_copy) +
-                              " copies: ",
+      throw GlUnavailable(std::string(with_instances ? "the palettes and instance records of " : "the palettes of ") +
+                              std::to_string(instances) + " copies need " + mib(palette_bytes + instance_bytes) +
+                              "; the GPU has " + mib(free_bytes) + " free (" + gl.memory_source +
+                              "), room for about " + std::to_string(free_bytes / per_copy) + " copies: ",
                           "use fewer copies");
   }
   if (instances > instances_.size()) instances_.resize(instances);
@@ -101,10 +102,6 @@ InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {
   uint32_t last = from;
   while (last < end && page_of_[last] == page_of_[from]) ++last;
   return {from, last - from};
-}
-
-uint32_t GpuFrameBuffers::pages() const {
-  return rows_used_ ? static_cast<uint32_t>((rows_used_ - 1) / page_rows_ + 1) : 0;
 }
 
 void GpuFrameBuffers::bind_page(uint32_t page) const {

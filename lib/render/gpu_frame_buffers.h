@@ -61,12 +61,13 @@ class GpuFrameBuffers {
   GpuFrameBuffers(const GpuFrameBuffers&) = delete;
   GpuFrameBuffers& operator=(const GpuFrameBuffers&) = delete;
 
-  // Makes room (on the CPU and the GPU) for `instances` records and `rows`
-  // palette rows, in pages of the largest storage block `gl` allows; growing
-  // keeps nothing. Throws GlUnavailable, naming the limit and the most copies
-  // that fit, when the records exceed one block or the buffers the GPU's free
-  // memory (where the GL says it).
-  void reserve(size_t instances, size_t rows, const GlFeatures& gl);
+  // Makes room (on the CPU and the GPU) for `instances` records (sent only
+  // `with_instances`) and `rows` palette rows, none longer than `largest_rows`,
+  // in pages of the largest storage block `gl` allows; growing keeps nothing.
+  // Throws GlUnavailable, naming the limit and the most copies that fit, when a
+  // palette exceeds a page, the records one block, or the buffers the GPU's
+  // free memory (where the GL says it).
+  void reserve(size_t instances, size_t rows, size_t largest_rows, bool with_instances, const GlFeatures& gl);
 
   // Starts a frame: kind k gets `counts[k]` records, one run after another,
   // which add() fills in order. `counts` must fit the reservation.
@@ -83,8 +84,6 @@ class GpuFrameBuffers {
   InstanceRun page_run(size_t kind, uint32_t from) const;
   // Binds page `page` of the palettes at kPaletteBinding.
   void bind_page(uint32_t page) const;
-  // Pages this frame's palettes take.
-  uint32_t pages() const;
 
   // Sends the palette rows (and, with `with_instances`, the records) to the GPU
   // in fresh storage (orphaned, so no draw of the last frame is waited for) and

@@ -59,7 +59,7 @@ TEST(PagedPalettes, ACrowdPastTheGpusFreeMemoryIsRefusedSayingHowManyFit) {
   GpuFrameBuffers buffers;
   // 1,000 humanoids: 69 joints, 207 rows (3,312 bytes) and an 80-byte record each.
   try {
-    buffers.reserve(1000, 1000 * 207, gl);
+    buffers.reserve(1000, 1000 * 207, 207, true, gl);
     FAIL() << "1,000 palettes reserved in 1 MiB";
   } catch (const GlUnavailable& e) {
     const std::string what = e.what();
@@ -70,13 +70,24 @@ TEST(PagedPalettes, ACrowdPastTheGpusFreeMemoryIsRefusedSayingHowManyFit) {
   }
   // Not said: nothing is refused for memory (the GL's own out-of-memory error would be).
   gl.memory_free_kib = -1;
-  EXPECT_NO_THROW(buffers.reserve(1000, 1000 * 207, gl));
+  EXPECT_NO_THROW(buffers.reserve(1000, 1000 * 207, 207, true, gl));
   // The records are read as one block: past it, refused with the copies that fit.
   gl.max_storage_block_bytes = 64 << 10;
   try {
-    buffers.reserve(1000, 1000 * 207, gl);
+    buffers.reserve(1000, 1000 * 207, 207, true, gl);
     FAIL() << "80,000 bytes of records in a 64 KiB block";
   } catch (const GlUnavailable& e) {
     EXPECT_NE(std::string(e.what()).find("this GL allows 64.0 KiB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("819 copies"), std::string::npos) << e.what();
+  }
+  // Mode buffer sends no records: only its palettes count.
+  EXPECT_NO_THROW(buffers.reserve(1000, 1000 * 207, 207, false, gl));
+  // A palette larger than a page, however small the others (a mixed crowd).
+  try {
+    buffers.reserve(2, 207 + 5000, 5000, false, gl);
+    FAIL() << "a 5,000-row palette in 4,096-row pages";
+  } catch (const GlUnavailable& e) {
+    EXPECT_NE(std::string(e.what()).find("a palette of 1666 joints needs 78.1 KiB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("holds 64.0 KiB"), std::string::npos) << e.what();
   }
 }

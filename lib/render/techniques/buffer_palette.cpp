@@ -30,15 +30,16 @@ std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
 
 uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
-  size_t copies = 0, rows = 0;
+  size_t copies = 0, rows = 0, largest = 0;
   on_screen.assign(meshes.size(), 0);
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!palette_copy(view, i)) continue;
     ++copies;
     rows += 3 * meshes[view.kind[i]].joints;
+    largest = std::max<size_t>(largest, 3 * meshes[view.kind[i]].joints);
     on_screen[view.kind[i]] += view.visible[i];
   }
-  buffers.reserve(copies, rows, gl);
+  buffers.reserve(copies, rows, largest, instanced, gl);
   buffers.begin(on_screen);
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
