@@ -151,7 +151,9 @@ TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
   std::string result = (dir / "c.json").string();
   Interrupted r = interrupt_cli({"capacity", scene(), "--budget", "100000", "--modes", "master,threaded", "--start", "2",
                                  "--frames", "10000000", "--warmup", "0", "--json", result},
-                                dir, SIGINT, std::chrono::milliseconds(2500));
+                                // Long enough for both modes' first blocks under ASan on a busy
+                                // 2-core machine (2.5 s was not: a mode had measured no frame).
+                                dir, SIGINT, std::chrono::milliseconds(6000));
   ASSERT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: round 1 was cut short"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
