@@ -8,16 +8,7 @@ layout(std430, binding = 0) readonly buffer Palettes {
   vec4 bone_rows[];
 };
 
-// One record per instance of an instanced draw, a character kind's instances
-// one after another. `source` is free for another skinning source (a baked
-// animation's action and time, say); buffer palettes leave it zero. The same
-// buffer is also bound as per-instance vertex attributes (buffer_skin.vert).
-struct Instance {
-  mat4 model;         // the copy's place in the crowd
-  uint palette_base;  // its palette's first row in bone_rows
-  uint colour;        // index into the frame's colours
-  uint source0, source1;
-};
-layout(std430, binding = 1) readonly buffer Instances {
-  Instance instances[];
-};
+// The instanced draws' records (render/gpu_frame_buffers.h, GpuInstance: a
+// mat4 model, then palette_base, colour and two words free for another
+// skinning source) reach the vertex shader as per-instance attributes, not as
+// a storage block: no block-size limit bounds how many copies a draw takes.

@@ -35,14 +35,9 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
                             mib(page_rows_ * sizeof(glm::vec4)) +
                             " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, on GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT): ",
                         "skin it on the CPU, {skinning} animations");
-  // The records are read whole, as vertex attributes (instanced only).
+  // The records are read as per-instance vertex attributes (instanced only),
+  // which no storage-block limit bounds.
   const uint64_t instance_bytes = with_instances ? std::max<uint64_t>(instances, 1) * sizeof(GpuInstance) : 0;
-  if (instance_bytes > block)
-    throw GlUnavailable("the instance records of " + std::to_string(instances) + " copies need " +
-                            mib(instance_bytes) + " in one shader storage block; this GL allows " + mib(block) +
-                            " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE), " +
-                            std::to_string(block / sizeof(GpuInstance)) + " copies: ",
-                        "use fewer copies or {draw} per-copy");
   // In one page, the rows themselves; past it, a page leaves less than its
   // largest palette empty at its end.
   const uint64_t pages = page_rows_ > largest_rows ? rows / (page_rows_ - largest_rows) + 1 : std::max<size_t>(instances, 1);
@@ -124,10 +119,10 @@ uint64_t GpuFrameBuffers::upload(bool with_instances) {
     uint32_t records = 0;
     for (const InstanceRun& run : runs_) records += run.count;
     uint64_t bytes = uint64_t{records} * sizeof(GpuInstance);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, instance_buffer_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(instance_capacity_bytes_), nullptr, GL_STREAM_DRAW);
-    if (records) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances_.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, instance_buffer_);
+    glBindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_capacity_bytes_), nullptr, GL_STREAM_DRAW);
+    if (records) glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances_.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
     sent += bytes;
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);

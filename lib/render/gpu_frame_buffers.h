@@ -1,7 +1,7 @@
 // The per-frame buffers of GPU-skinned copies in the buffer and instanced
 // modes: every palette drawn this frame in one shader storage buffer, and one
-// record per instance (transform, palette offset, colour) in another, laid out
-// as shaders/instances.glsl declares them (std430).
+// record per instance (transform, palette offset, colour) in another, read as
+// per-instance vertex attributes (shaders/instances.glsl says the layout).
 //
 // Paged palettes (issue 30): a shader may see at most one storage block of the
 // palette buffer (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe: about
@@ -16,10 +16,9 @@
 // palette_rows is 0 (it sends no palette) with its own per-instance values in
 // `source` (an action and a time); upload(), then bind its own tables at a
 // further binding and draw each kind's run with one instanced draw. Its vertex
-// shader reads the records either from the storage block
-// (instances[first + gl_InstanceID]) or, faster on llvmpipe, as per-instance
-// attributes: instance_buffer() bound at vertex binding kInstanceStream with
-// offset first x 80 and divisor 1, the model's columns at locations 4-7 and
+// shader reads the records as per-instance attributes (not a storage block,
+// whose size limit would cap the copies a draw takes): instance_buffer()
+// bound at vertex binding kInstanceStream with offset first x 80 and divisor 1, the model's columns at locations 4-7 and
 // (palette_base, colour, source0, source1) as a uvec4 at location 8, as the
 // renderer's own instanced VAOs do (render/character_meshes.cpp).
 #pragma once
@@ -44,8 +43,8 @@ struct GpuInstance {
 };
 static_assert(sizeof(GpuInstance) == 80, "std430 layout of struct Instance");
 
-// Binding points, as shaders/instances.glsl names them.
-inline constexpr GLuint kPaletteBinding = 0, kInstanceBinding = 1;
+// The palettes' binding point, as shaders/instances.glsl names it.
+inline constexpr GLuint kPaletteBinding = 0;
 // The vertex buffer binding an instanced draw reads the records from.
 inline constexpr GLuint kInstanceStream = 4;
 
@@ -65,8 +64,8 @@ class GpuFrameBuffers {
   // `with_instances`) and `rows` palette rows, none longer than `largest_rows`,
   // in pages of the largest storage block `gl` allows; growing keeps nothing.
   // Throws GlUnavailable, naming the limit and the most copies that fit, when a
-  // palette exceeds a page, the records one block, or the buffers the GPU's
-  // free memory (where the GL says it).
+  // palette exceeds a page or the buffers the GPU's free memory (where the GL
+  // says it). The records are read as vertex attributes: no block bounds them.
   void reserve(size_t instances, size_t rows, size_t largest_rows, bool with_instances, const GlFeatures& gl);
 
   // Starts a frame: kind k gets `counts[k]` records, one run after another,
@@ -87,7 +86,7 @@ class GpuFrameBuffers {
 
   // Sends the palette rows (and, with `with_instances`, the records) to the GPU
   // in fresh storage (orphaned, so no draw of the last frame is waited for) and
-  // binds them at kPaletteBinding and kInstanceBinding. Returns the bytes sent.
+  // binds the palettes' first page at kPaletteBinding. Returns the bytes sent.
   uint64_t upload(bool with_instances);
 
   // Bytes of GPU storage the two buffers hold.
