@@ -28,7 +28,7 @@ esac
 # callgrind's counting (check --metric instructions).
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev libmeshoptimizer-dev
   libbenchmark-dev help2man valgrind)
 # The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
 # are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.

@@ -48,7 +48,7 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME crowdprof-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 # What crowdprofConfig.cmake finds, and the GL libraries the static library links.
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
-  "libglm-dev, libtbb-dev, nlohmann-json3-dev, libdraco-dev, libhwy-dev, libegl-dev, libosmesa6-dev")
+  "libglm-dev, libtbb-dev, nlohmann-json3-dev, libdraco-dev, libhwy-dev, libmeshoptimizer-dev, libegl-dev, libosmesa6-dev")
 set(CPACK_COMPONENT_RUNTIME_DESCRIPTION "crowdprof command-line tool, default scenes and man pages")
 set(CPACK_COMPONENT_DEVELOPMENT_DESCRIPTION "crowdprof static library, headers and CMake package config")
 include(CPack)

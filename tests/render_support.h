@@ -65,6 +65,8 @@ struct Shot {
   VertexFormat vertex_format = VertexFormat::Float;
   uint32_t passes = 1;  // modes.h
   FrustumTest frustum = FrustumTest::Cpu;
+  bool mesh_lod = false;
+  MeshLodThresholds mesh_lod_at;
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -82,6 +84,8 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   config.mode.vertex_format = shot.vertex_format;
   config.mode.passes = shot.passes;
   config.mode.frustum = shot.frustum;
+  config.mode.mesh_lod = shot.mesh_lod;
+  config.mode.mesh_lod_at = shot.mesh_lod_at;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;

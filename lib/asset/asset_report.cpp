@@ -1,7 +1,11 @@
 #include "asset/asset_report.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <set>
 #include <sstream>
+
+#include "asset/mesh_lod.h"
 
 namespace crowdprof {
 
@@ -43,6 +47,32 @@ std::array<size_t, 4> influence_histogram(const SkinnedMesh& mesh) {
   return histogram;
 }
 
+namespace {
+
+// The bind pose's extent in Y: the height errors are given as a share of.
+float mesh_height(const SkinnedMesh& mesh) {
+  float low = 0, high = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    low = v ? std::min(low, mesh.positions[v].y) : mesh.positions[v].y;
+    high = v ? std::max(high, mesh.positions[v].y) : mesh.positions[v].y;
+  }
+  return high - low;
+}
+
+// The levels `--mesh-lod on` would build from the character (asset/mesh_lod.h).
+nlohmann::json describe_mesh_lods(const SkinnedMesh& mesh) {
+  nlohmann::json levels = nlohmann::json::array();
+  const float height = mesh_height(mesh);
+  for (const MeshLod& lod : build_mesh_lods(mesh))
+    levels.push_back({{"triangles", lod.mesh.triangle_count()},
+                      {"vertices", lod.mesh.vertex_count()},
+                      {"error", lod.error},
+                      {"error_fraction", height > 0 ? lod.error / height : 0.0f}});
+  return levels;
+}
+
+}  // namespace
+
 nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
   nlohmann::json out = {{"file", asset.file}, {"draco_decoded", asset.draco_decoded}};
   out["characters"] = nlohmann::json::array();
@@ -64,6 +94,7 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
                                  {"fixups", describe_fixups(c.fixups)},
                                  {"actions", actions},
                                  {"draco_decoded", c.draco_decoded},
+                                 {"mesh_lods", describe_mesh_lods(c.mesh)},
                                  {"shared_bytes", c.shared_bytes()}});
   }
   if (asset.characters.empty()) {
@@ -96,6 +127,17 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "  vertices:    " << c.mesh.vertex_count() << "\n";
     out << "  triangles:   " << c.mesh.triangle_count() << "\n";
     out << "  primitives:  " << c.mesh.primitives.size() << "\n";
+    out << "  mesh LOD:    ";
+    const nlohmann::json lods = describe_mesh_lods(c.mesh);
+    if (lods.empty()) out << "none (the simplifier found nothing to remove within its error limits)";
+    for (size_t l = 0; l < lods.size(); ++l) {
+      char error[64];
+      std::snprintf(error, sizeof error, "%.2f mm, %.2f%% of its height", 1000.0 * lods[l]["error"].get<double>(),
+                    100.0 * lods[l]["error_fraction"].get<double>());
+      out << (l ? "\n               " : "") << l + 1 << ": " << lods[l]["triangles"].get<size_t>() << " triangles, "
+          << lods[l]["vertices"].get<size_t>() << " vertices, error " << error;
+    }
+    out << "\n";
     out << "  influences:  1: " << h[0] << "  2: " << h[1] << "  3: " << h[2] << "  4: " << h[3] << " vertices\n";
     const Fixups& f = c.fixups;
     out << "  fix-ups:     " << (f.total() ? "" : "none");

@@ -8,6 +8,7 @@
 
 #include "asset/errors.h"
 #include "profile/trace.h"
+#include "scene/screen_size.h"
 #include "scene/shadow_cascades.h"
 
 namespace crowdprof {
@@ -51,8 +52,9 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   std::vector<uint8_t> posed_on_cpu;
   for (const PreparedCharacter& p : prepared_) posed_on_cpu.push_back(p.posed_on_cpu);
   planner_ = std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));
-  poser_ = std::make_unique<PoseUpdater>(
-      PoseUpdateContext{characters_, prepared_, &crowd_, store_.get(), mode, config.threads, config.tracer, config.trace_pid});
+  if (mode.mesh_lod) choose_mesh_levels();
+  poser_ = std::make_unique<PoseUpdater>(PoseUpdateContext{characters_, prepared_, &crowd_, store_.get(), mode,
+                                                           config.threads, config.tracer, config.trace_pid, mesh_level_});
   if (mode.skinning == SkinningSite::Baked) {
     bake_summary_ = bake_characters(characters_, config.bake_rate_hz, prepared_);
     baked_instances_.resize(crowd_.size());
@@ -77,6 +79,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   view_.baked = baked_instances_;
   view_.world_boxes = crowd_.world_boxes;
   view_.baked_clocks = baked_clocks_;
+  view_.mesh_level = mesh_level_;
   view_.joint_offset = store_->joint_offset;
   view_.vertex_offset = store_->vertex_offset;
   view_.palettes = store_->palettes;
@@ -98,6 +101,20 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
 }
 
 CrowdBench::~CrowdBench() = default;
+
+void CrowdBench::choose_mesh_levels() {
+  const MeshLodThresholds& at = config_.mode.mesh_lod_at;
+  const float thresholds[3] = {at.level_1, at.level_2, at.level_3};
+  mesh_level_.assign(crowd_.size(), 0);
+  for (size_t i = 0; i < crowd_.size(); ++i)
+    mesh_level_[i] = mesh_level_for(planner_->screen_fraction(i), 0, thresholds, kMeshLodHysteresis,
+                                    prepared_[crowd_.kind[i]].levels());
+}
+
+uint64_t CrowdBench::triangles_of(size_t kind, size_t level) const {
+  const PreparedCharacter& p = prepared_[kind];
+  return level == 0 ? characters_[kind]->mesh.triangle_count() : p.mesh_lods[level - 1].mesh.triangle_count();
+}
 
 BakedInstance CrowdBench::baked_instance(size_t copy, float time) const {
   const BakedClock clock = baked_clock(copy);
@@ -247,11 +264,19 @@ void CrowdBench::count_gpu_culled_work(Counters& counters) {
     c.copies_visible = std::min(gpu_visible_[k], copies_of_character_[k]);
     const bool moves = !prepared_[k].bindings.empty();
     c.copies_culled = moves && config_.mode.animation_culling ? copies_of_character_[k] - c.copies_visible : 0;
+    c.lod0_copies = c.copies_visible;  // mesh LOD does not run with frustum gpu: every copy is level 0
+    c.lod0_vertices = c.copies_visible * prepared_[k].vertices;
+    c.lod0_triangles = c.copies_visible * triangles_of(k, 0);
     visible += c.copies_visible;
     culled += c.copies_culled;
   }
   counters.copies_visible = visible;
   counters.copies_culled = culled;
+  for (const Counters& c : character_counters_) {
+    counters.lod0_copies += c.lod0_copies;
+    counters.lod0_vertices += c.lod0_vertices;
+    counters.lod0_triangles += c.lod0_triangles;
+  }
 }
 
 void CrowdBench::count_work(Counters& counters) {
@@ -267,13 +292,27 @@ void CrowdBench::count_work(Counters& counters) {
     c.copies_updated += updated;
     c.copies_held += planner_->poses(i, store_->visible) && !updated;
     if (updated) ++(c.*kUpdatesByShift[planner_->shift(i)]);
+    if (store_->visible[i]) {
+      const size_t k = crowd_.kind[i], level = level_of(i);
+      ++(c.*kLodCopies[level]);
+      c.*kLodTriangles[level] += triangles_of(k, level);
+      // The GPU skins every copy it draws, once a frame.
+      if (skins_on_gpu(prepared_[k].site)) c.*kLodVertices[level] += prepared_[k].vertices_of(level);
+    }
   }
   // An evaluation is one pose sampled and rebuilt, and one mesh skinned on the CPU.
-  for (const StateJob& job : planner_->jobs()) ++character_counters_[crowd_.kind[job.leader]].poses_updated;
+  for (const StateJob& job : planner_->jobs()) {
+    const size_t k = crowd_.kind[job.leader];
+    Counters& c = character_counters_[k];
+    ++c.poses_updated;
+    if (skins_on_gpu(prepared_[k].site)) continue;
+    const size_t level = level_of(job.storage), vertices = prepared_[k].vertices_of(level);
+    c.vertices_skinned += vertices;
+    c.*kLodVertices[level] += vertices;
+  }
   uint64_t posed = 0, culled = 0, skinned = 0, fallback = 0;
   for (size_t k = 0; k < prepared_.size(); ++k) {
     Counters& c = character_counters_[k];
-    if (!skins_on_gpu(prepared_[k].site)) c.vertices_skinned = c.poses_updated * prepared_[k].vertices;
     if (prepared_[k].site != SkinningSite::Gpu && config_.mode.skinning == SkinningSite::Gpu)
       c.copies_fallback = c.poses_updated;
     posed += c.poses_updated;
@@ -285,6 +324,12 @@ void CrowdBench::count_work(Counters& counters) {
   counters.copies_culled = culled;
   counters.vertices_skinned = skinned;
   counters.copies_fallback = fallback;
+  for (const Counters& c : character_counters_)
+    for (size_t level = 0; level < 4; ++level) {
+      counters.*kLodCopies[level] += c.*kLodCopies[level];
+      counters.*kLodVertices[level] += c.*kLodVertices[level];
+      counters.*kLodTriangles[level] += c.*kLodTriangles[level];
+    }
 }
 
 }  // namespace crowdprof

@@ -134,6 +134,8 @@ class CrowdBench {
   // twice, so it is for the end of a run (allocates, takes time).
   AnimationFidelity measure_fidelity() const;
   const UpdateSchedule& schedule() const { return planner_->schedule(); }
+  // Mesh LOD: the level copy `copy` draws (0, the full mesh, without it).
+  size_t mesh_level(size_t copy) const { return level_of(copy); }
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return store_->visible[copy] != 0; }
   // Where this character's copies are skinned: the mode's site, or the CPU for
@@ -195,6 +197,12 @@ class CrowdBench {
   // frustum gpu: the counters from the GPU's visible counts, per character.
   void count_gpu_culled_work(Counters& counters);
   bool animates(size_t copy) const { return !config_.mode.animation_culling || store_->visible[copy]; }
+  // Mesh LOD: each copy's level from its size on screen (copies and camera
+  // stand still, so it is chosen once, at load).
+  void choose_mesh_levels();
+  size_t level_of(size_t copy) const { return mesh_level_.empty() ? 0 : mesh_level_[copy]; }
+  // Triangles of a character's mesh level.
+  uint64_t triangles_of(size_t kind, size_t level) const;
 
   std::vector<const Character*> characters_;
   BenchConfig config_;
@@ -212,6 +220,7 @@ class CrowdBench {
   std::vector<BakedClock> baked_clocks_;        // per copy, mode baked with frustum gpu
   std::vector<uint64_t> copies_of_character_;   // per character
   std::vector<uint64_t> gpu_visible_;           // per character, frustum gpu: the cull pass's count
+  std::vector<uint8_t> mesh_level_;             // per copy, mesh LOD: the level it draws (empty: none)
   bool loaded_ = false;                         // the constructor has finished (its frame -1 is done)
   FrameView view_;
   CategoryClock clock_;

@@ -76,6 +76,7 @@ std::string CrowdBench::digest() const {
     if (!store_->visible[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
+    if (!mesh_level_.empty()) fnv1a(hash, &mesh_level_[i], 1);  // the mesh it draws
     if (prepared_[crowd_.kind[i]].site == SkinningSite::Baked) {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
       BakedInstance instance =

@@ -12,6 +12,7 @@
 
 #include "animation/bake.h"
 #include "animation/skin_matrix.h"
+#include "asset/mesh_lod.h"
 #include "frame/modes.h"
 #include "scene/bounds.h"
 #include "skinning/packed_vertex.h"
@@ -24,6 +25,7 @@ struct CharacterView {
   size_t joints = 0, vertices = 0;
   const BakedCharacter* baked = nullptr;  // mode baked only
   PositionQuantisation quantisation;      // packed vertices: the box positions are packed in
+  std::span<const MeshLod> mesh_lods;     // mesh LOD: levels 1.. (prepared_character.h)
 };
 
 // Where a copy drawn with a baked table reads it this frame: its action's
@@ -58,6 +60,7 @@ struct FrameView {
   std::span<const BakedInstance> baked;    // mode baked: this frame's, for copies on screen
   std::span<const Aabb> world_boxes;       // what frustum gpu tests (the CPU's test reads the same)
   std::span<const BakedClock> baked_clocks;  // mode baked with frustum gpu: fixed at load
+  std::span<const uint8_t> mesh_level;     // mesh LOD: the level each copy draws; empty: all level 0
   // Per pose storage (one per copy): where its palette and vertices start.
   std::span<const size_t> joint_offset, vertex_offset;
   std::span<const SkinMatrix> palettes;    // every storage's skinning matrices
@@ -72,6 +75,12 @@ struct FrameView {
   bool gpu_skinned() const;
   bool packed() const { return mode.vertex_format == VertexFormat::Packed; }
   size_t storage_of(size_t copy) const { return shown.empty() ? copy : shown[copy]; }
+  size_t level_of(size_t copy) const { return mesh_level.empty() ? 0 : mesh_level[copy]; }
+  // Vertices of the mesh the copy draws: its level's.
+  size_t vertices_of(size_t copy) const {
+    const size_t level = level_of(copy);
+    return level == 0 ? character_of(copy).vertices : character_of(copy).mesh_lods[level - 1].mesh.vertex_count();
+  }
   std::span<const SkinMatrix> palette(size_t copy) const {
     return palettes.subspan(joint_offset[storage_of(copy)], character_of(copy).joints);
   }
@@ -80,17 +89,17 @@ struct FrameView {
   // Copies the GPU skins keep no vertices on the CPU: empty for them.
   std::span<const uint16_t> packed_positions_of(size_t copy) const {
     if (!packed() || skins_on_gpu(site_of(copy))) return {};
-    return packed_positions.subspan(3 * vertex_offset[storage_of(copy)], 3 * character_of(copy).vertices);
+    return packed_positions.subspan(3 * vertex_offset[storage_of(copy)], 3 * vertices_of(copy));
   }
   std::span<const uint32_t> packed_normals_of(size_t copy) const {
     if (!packed() || skins_on_gpu(site_of(copy))) return {};
-    return packed_normals.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
+    return packed_normals.subspan(vertex_offset[storage_of(copy)], vertices_of(copy));
   }
 
  private:
   std::span<const glm::vec3> float_span(std::span<const glm::vec3> all, size_t copy) const {
     if (packed() || skins_on_gpu(site_of(copy))) return {};
-    return all.subspan(vertex_offset[storage_of(copy)], character_of(copy).vertices);
+    return all.subspan(vertex_offset[storage_of(copy)], vertices_of(copy));
   }
 };
 

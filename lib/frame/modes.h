@@ -76,6 +76,17 @@ struct LodThresholds {
   bool operator==(const LodThresholds&) const = default;
 };
 
+// Mesh LOD (issue 29): a copy whose box spans at least level_1 of the screen's
+// height draws the full mesh, at least level_2 the first simplified level, at
+// least level_3 the second, smaller ones the third (asset/mesh_lod.h). A copy
+// coarsens as soon as it is below a threshold, and refines only once it is
+// kMeshLodHysteresis above it, so one at a threshold does not flicker.
+struct MeshLodThresholds {
+  float level_1 = 0.25f, level_2 = 0.125f, level_3 = 0.0625f;
+  bool operator==(const MeshLodThresholds&) const = default;
+};
+inline constexpr float kMeshLodHysteresis = 0.15f;
+
 // Most draws of the crowd a frame (--passes): a prepass, 8 shadow cascades, colour.
 inline constexpr uint32_t kMaxPasses = 10;
 
@@ -103,6 +114,8 @@ struct ModeSwitches {
   // prepass then colour; N > 2, the prepass, N - 2 shadow cascades, colour.
   uint32_t passes = 1;
   FrustumTest frustum = FrustumTest::Cpu;
+  bool mesh_lod = false;  // far copies skin and draw simplified meshes
+  MeshLodThresholds mesh_lod_at;
 
   bool operator==(const ModeSwitches&) const = default;
 };

@@ -178,13 +178,13 @@ size_t PoseUpdater::worker_index() const {
 }
 
 void PoseUpdater::skin_storage(size_t storage) {
-  skin_vertices(storage, 0, context_.prepared[crowd_.kind[storage]].vertices);
+  skin_vertices(storage, 0, vertices_of(storage));
 }
 
 void PoseUpdater::skin_range(size_t storage, size_t part, size_t parts) {
   const PreparedCharacter& prepared = context_.prepared[crowd_.kind[storage]];
   if (prepared.site != SkinningSite::CpuInAnimations) return;  // skinned elsewhere (a mixed crowd)
-  auto [first, end] = part_of(prepared.vertices, part, parts);
+  auto [first, end] = part_of(vertices_of(storage), part, parts);
   skin_vertices(storage, first, end - first);
 }
 
@@ -195,9 +195,10 @@ void PoseUpdater::prefetch_while(size_t storage, size_t part, size_t parts, cons
   // Positions and normals side by side, 64 vertices at a time (that many
   // floats or codes span whole cache lines), from this part to the mesh's end.
   constexpr size_t kStep = 64;
-  for (size_t first = part_of(prepared.vertices, part, parts).first; first < prepared.vertices; first += kStep) {
+  const size_t vertices = vertices_of(storage);
+  for (size_t first = part_of(vertices, part, parts).first; first < vertices; first += kStep) {
     if (posed.load(std::memory_order_acquire) == kPosed) return;
-    const size_t end = std::min(prepared.vertices, first + kStep);
+    const size_t end = std::min(vertices, first + kStep);
     if (store_.packed) {
       prefetch_for_write(&store_.packed_positions[3 * (v + first)], &store_.packed_positions[3 * (v + end)]);
       prefetch_for_write(&store_.packed_normals[v + first], &store_.packed_normals[v + end]);
@@ -213,14 +214,15 @@ void PoseUpdater::skin_vertices(size_t storage, size_t first, size_t count) {
   const PreparedCharacter& prepared = context_.prepared[crowd_.kind[storage]];
   const size_t v = store_.vertex_offset[storage] + first;
   std::span<const SkinMatrix> palette = std::span(store_.palettes).subspan(store_.joint_offset[storage], prepared.joints);
+  const SkinningPlan* plan = &prepared.plan_of(level_of(storage));
   if (store_.packed) {
-    run_job(PackedSkinningJob{palette, &prepared.skinning_plan, &prepared.quantisation, first, count,
+    run_job(PackedSkinningJob{palette, plan, &prepared.quantisation, first, count,
                               std::span(store_.packed_positions).subspan(3 * v, 3 * count),
                               std::span(store_.packed_normals).subspan(v, count)},
             "PackedSkinningJob");
     return;
   }
-  run_job(SkinningJob{palette, &prepared.skinning_plan, first, count, std::span(store_.positions).subspan(v, count),
+  run_job(SkinningJob{palette, plan, first, count, std::span(store_.positions).subspan(v, count),
                       std::span(store_.normals).subspan(v, count), store_.stream_output},
           "SkinningJob");
 }

@@ -39,6 +39,8 @@ struct PoseUpdateContext {
   // When set, each parallel task is recorded as a span under process trace_pid.
   Tracer* tracer = nullptr;
   int trace_pid = 1;
+  // Mesh LOD: per pose storage, the mesh level it is skinned at; empty: level 0.
+  std::span<const uint8_t> mesh_level;
 };
 
 class PoseUpdater {
@@ -75,6 +77,11 @@ class PoseUpdater {
   // writing the skinned vertices from this part to the mesh's end.
   void prefetch_while(size_t storage, size_t part, size_t parts, const std::atomic<uint8_t>& posed) const;
   void skin_vertices(size_t storage, size_t first, size_t count);
+  size_t level_of(size_t storage) const { return context_.mesh_level.empty() ? 0 : context_.mesh_level[storage]; }
+  // Vertices of the storage's mesh level.
+  size_t vertices_of(size_t storage) const {
+    return context_.prepared[crowd_.kind[storage]].vertices_of(level_of(storage));
+  }
   // The pose slot a job's leader is built in: its own, or its character's scratch.
   size_t slot_of(size_t copy) const;
   // `task` names the spans of its tasks in a trace.

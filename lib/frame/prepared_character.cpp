@@ -31,6 +31,14 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
     }
     p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
     p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
+    if (mode.mesh_lod) {
+      p.mesh_lods = build_mesh_lods(character.mesh);
+      for (const MeshLod& level : p.mesh_lods) {
+        SkinningPlan& plan = p.lod_plans.emplace_back();
+        if (std::string why = build_skinning_plan(level.mesh, p.joints, &plan); !why.empty())
+          throw std::runtime_error("skinning plan of a mesh level: " + why);  // its joints are the mesh's: a bug
+      }
+    }
     prepared.push_back(std::move(p));
   }
   return prepared;
@@ -77,7 +85,7 @@ BakeSummary bake_characters(std::span<const Character* const> characters, float 
 std::vector<CharacterView> character_views(std::span<const PreparedCharacter> prepared) {
   std::vector<CharacterView> views;
   for (const PreparedCharacter& p : prepared)
-    views.push_back({p.site, p.joints, p.vertices, p.baked.joints ? &p.baked : nullptr, p.quantisation});
+    views.push_back({p.site, p.joints, p.vertices, p.baked.joints ? &p.baked : nullptr, p.quantisation, p.mesh_lods});
   return views;
 }
 

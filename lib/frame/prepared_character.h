@@ -12,6 +12,7 @@
 #include "animation/bake.h"
 #include "animation/binding.h"
 #include "asset/character.h"
+#include "asset/mesh_lod.h"
 #include "frame/frame_view.h"
 #include "frame/modes.h"
 #include "scene/bounds.h"
@@ -32,6 +33,15 @@ struct PreparedCharacter {
   SkinningPlan skinning_plan;            // the mesh prepared for skinning
   BakedCharacter baked;                  // mode baked only
   PositionQuantisation quantisation;     // packed vertices: the character's animated box
+  // Mesh LOD only: the simplified levels (level L is mesh_lods[L - 1]; level 0
+  // is the character's own mesh) and each one's plan for skinning.
+  std::vector<MeshLod> mesh_lods;
+  std::vector<SkinningPlan> lod_plans;
+
+  // Levels a copy can draw, the full mesh counted.
+  size_t levels() const { return 1 + mesh_lods.size(); }
+  const SkinningPlan& plan_of(size_t level) const { return level == 0 ? skinning_plan : lod_plans[level - 1]; }
+  size_t vertices_of(size_t level) const { return level == 0 ? vertices : mesh_lods[level - 1].mesh.vertex_count(); }
 };
 
 // Prepares each character for `mode`; `boxes` are the characters' animated

@@ -84,7 +84,8 @@ std::string set_share_quantum(ModeSwitches& s, std::string_view text) {
   return {};
 }
 
-std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
+// Three shares of the screen's height, A,B,C with 1 >= A >= B >= C >= 0.
+std::string set_lod_thresholds_into(LodThresholds& lod, std::string_view text) {
   std::optional<double> v[3];
   size_t first = text.find(','), second = first == std::string_view::npos ? first : text.find(',', first + 1);
   if (second != std::string_view::npos && text.find(',', second + 1) == std::string_view::npos) {
@@ -94,7 +95,17 @@ std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
   }
   if (!v[0] || !v[1] || !v[2] || !(*v[0] <= 1 && *v[0] >= *v[1] && *v[1] >= *v[2] && *v[2] >= 0))
     return "expected three shares of the screen's height A,B,C with 1 >= A >= B >= C >= 0";
-  s.lod = {static_cast<float>(*v[0]), static_cast<float>(*v[1]), static_cast<float>(*v[2])};
+  lod = {static_cast<float>(*v[0]), static_cast<float>(*v[1]), static_cast<float>(*v[2])};
+  return {};
+}
+
+std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) { return set_lod_thresholds_into(s.lod, text); }
+
+std::string set_mesh_lod_thresholds(ModeSwitches& s, std::string_view text) {
+  LodThresholds parsed;
+  if (!set_lod_thresholds_into(parsed, text).empty())
+    return "expected three shares of the screen's height A,B,C with 1 >= A >= B >= C >= 0";
+  s.mesh_lod_at = {parsed.every_1, parsed.every_2, parsed.every_4};
   return {};
 }
 
@@ -183,6 +194,19 @@ const std::array kSwitches = {
                "not grow with the crowd (needs skinning baked)",
                [](const ModeSwitches& s) { return json(to_string(s.frustum)); },
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.frustum, t, kFrustumTests); }, false},
+    SwitchSpec{"mesh_lod", "on|off",
+               "Mesh LOD: copies small on screen skin and draw a simplified mesh (half, a quarter, a tenth of the "
+               "triangles, made at load with meshoptimizer); needs draw per-copy, share off, no compute skinning",
+               [](const ModeSwitches& s) { return json(s.mesh_lod); },
+               [](ModeSwitches& s, std::string_view t) { return set_on_off(s.mesh_lod, t); }, false},
+    SwitchSpec{"mesh_lod_thresholds", "A,B,C",
+               "Shares of the screen's height under which a copy draws mesh level 1 (< A), 2 (< B), 3 (< C); it "
+               "refines again 15% above a threshold",
+               [](const ModeSwitches& s) {
+                 return json(shortest(s.mesh_lod_at.level_1) + "," + shortest(s.mesh_lod_at.level_2) + "," +
+                             shortest(s.mesh_lod_at.level_3));
+               },
+               set_mesh_lod_thresholds, false},
 };
 
 }  // namespace

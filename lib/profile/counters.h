@@ -34,6 +34,13 @@ struct Counters {
   uint64_t copies_held = 0;
   uint64_t updates_every_1 = 0, updates_every_2 = 0, updates_every_4 = 0, updates_every_8 = 0;
   uint64_t updates_every_16 = 0, updates_every_32 = 0, updates_every_64 = 0;
+  // Mesh LOD (issue 29), per level (0: the full mesh; 1 to 3 coarser): copies
+  // drawn at it, vertices skinned at it (on the CPU, or by the GPU for the
+  // copies it skins: once a frame, whatever the passes) and triangles drawn
+  // (one pass). Without mesh LOD every copy counts at level 0.
+  uint64_t lod0_copies = 0, lod1_copies = 0, lod2_copies = 0, lod3_copies = 0;
+  uint64_t lod0_vertices = 0, lod1_vertices = 0, lod2_vertices = 0, lod3_vertices = 0;
+  uint64_t lod0_triangles = 0, lod1_triangles = 0, lod2_triangles = 0, lod3_triangles = 0;
 };
 
 struct CounterField {
@@ -41,7 +48,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 18> kCounterFields = {{
+inline constexpr std::array<CounterField, 30> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -60,7 +67,26 @@ inline constexpr std::array<CounterField, 18> kCounterFields = {{
     {"updates_every_16", &Counters::updates_every_16},
     {"updates_every_32", &Counters::updates_every_32},
     {"updates_every_64", &Counters::updates_every_64},
+    {"lod0_copies", &Counters::lod0_copies},
+    {"lod1_copies", &Counters::lod1_copies},
+    {"lod2_copies", &Counters::lod2_copies},
+    {"lod3_copies", &Counters::lod3_copies},
+    {"lod0_vertices", &Counters::lod0_vertices},
+    {"lod1_vertices", &Counters::lod1_vertices},
+    {"lod2_vertices", &Counters::lod2_vertices},
+    {"lod3_vertices", &Counters::lod3_vertices},
+    {"lod0_triangles", &Counters::lod0_triangles},
+    {"lod1_triangles", &Counters::lod1_triangles},
+    {"lod2_triangles", &Counters::lod2_triangles},
+    {"lod3_triangles", &Counters::lod3_triangles},
 }};
+// The lod*_ counters of level L.
+inline constexpr uint64_t Counters::*kLodCopies[4] = {&Counters::lod0_copies, &Counters::lod1_copies,
+                                                      &Counters::lod2_copies, &Counters::lod3_copies};
+inline constexpr uint64_t Counters::*kLodVertices[4] = {&Counters::lod0_vertices, &Counters::lod1_vertices,
+                                                        &Counters::lod2_vertices, &Counters::lod3_vertices};
+inline constexpr uint64_t Counters::*kLodTriangles[4] = {&Counters::lod0_triangles, &Counters::lod1_triangles,
+                                                         &Counters::lod2_triangles, &Counters::lod3_triangles};
 // The updates_every_* counter of period 2^shift.
 inline constexpr uint64_t Counters::*kUpdatesByShift[7] = {
     &Counters::updates_every_1,  &Counters::updates_every_2,  &Counters::updates_every_4, &Counters::updates_every_8,

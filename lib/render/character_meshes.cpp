@@ -31,8 +31,19 @@ CharacterMeshes::CharacterMeshes(std::span<const Character* const> characters)
   }
 }
 
+MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest) const {
+  if (level == 0 || levels.first_index.empty()) return {rest_vao, indices, index_count, nullptr, 0};
+  const size_t l = std::min(level, levels.first_index.size()) - 1;
+  return {levels.rest_vao, levels.indices, levels.index_count[l],
+          reinterpret_cast<const void*>(levels.first_index[l] * sizeof(uint32_t)),
+          rest ? static_cast<GLint>(levels.first_vertex[l]) : 0};
+}
+
 CharacterMeshes::~CharacterMeshes() {
   for (CharacterMesh& m : meshes_) {
+    glDeleteVertexArrays(1, &m.levels.rest_vao);
+    glDeleteBuffers(1, &m.levels.indices);
+    glDeleteBuffers(4, m.levels.rest_buffers);
     glDeleteVertexArrays(1, &m.rest_vao);
     glDeleteVertexArrays(1, &m.instanced_vao);
     glDeleteBuffers(1, &m.indices);
@@ -46,28 +57,62 @@ size_t CharacterMeshes::max_vertices() const {
   return most;
 }
 
+namespace {
+
+// A rest mesh's four arrays in buffers, and a VAO reading them (attributes
+// 0-3) with `indices`.
+void upload_rest_arrays(const SkinnedMesh& mesh, GLuint indices, GLuint (&buffers)[4], std::span<GLuint* const> vaos) {
+  const size_t vertices = mesh.vertex_count();
+  buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
+  buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
+  buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
+  buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
+  for (GLuint* vao : vaos) {
+    glGenVertexArrays(1, vao);
+    glBindVertexArray(*vao);
+    float_attribute(0, buffers[0], 3);
+    float_attribute(1, buffers[1], 3);
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[2]);
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
+    float_attribute(3, buffers[3], 4);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+  }
+}
+
+}  // namespace
+
+void CharacterMeshes::upload_levels(size_t kind, std::span<const MeshLod> lods) {
+  CharacterMesh::Levels& l = meshes_[kind].levels;
+  if (l.rest_vao || lods.empty()) return;
+  glBindVertexArray(0);  // binding the index buffer below must not change a VAO
+  // Levels one after another: indices stay counted from each level's first
+  // vertex, which the draw passes as its base vertex.
+  SkinnedMesh all;
+  for (const MeshLod& lod : lods) {
+    l.first_index.push_back(all.indices.size());
+    l.first_vertex.push_back(all.positions.size());
+    l.index_count.push_back(static_cast<GLsizei>(lod.mesh.indices.size()));
+    all.indices.insert(all.indices.end(), lod.mesh.indices.begin(), lod.mesh.indices.end());
+    all.positions.insert(all.positions.end(), lod.mesh.positions.begin(), lod.mesh.positions.end());
+    all.normals.insert(all.normals.end(), lod.mesh.normals.begin(), lod.mesh.normals.end());
+    all.joints.insert(all.joints.end(), lod.mesh.joints.begin(), lod.mesh.joints.end());
+    all.weights.insert(all.weights.end(), lod.mesh.weights.begin(), lod.mesh.weights.end());
+  }
+  l.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, all.indices.size() * sizeof(uint32_t), all.indices.data(),
+                          GL_STATIC_DRAW);
+  GLuint* vaos[] = {&l.rest_vao};
+  upload_rest_arrays(all, l.indices, l.rest_buffers, vaos);
+  glBindVertexArray(0);
+}
+
 void CharacterMeshes::upload_rest_mesh(size_t kind) {
   CharacterMesh& m = meshes_[kind];
   if (m.rest_vao) return;
-  const SkinnedMesh& mesh = characters_[kind]->mesh;
-  size_t vertices = m.vertices;
-  m.rest_buffers[0] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.positions.data(), GL_STATIC_DRAW);
-  m.rest_buffers[1] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec3), mesh.normals.data(), GL_STATIC_DRAW);
-  m.rest_buffers[2] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::u16vec4), mesh.joints.data(), GL_STATIC_DRAW);
-  m.rest_buffers[3] = make_buffer(GL_ARRAY_BUFFER, vertices * sizeof(glm::vec4), mesh.weights.data(), GL_STATIC_DRAW);
   // Two VAOs on the same buffers: one per copy, and one for instanced draws
   // that also reads each instance's record.
-  for (GLuint* vao : {&m.rest_vao, &m.instanced_vao}) {
-    glGenVertexArrays(1, vao);
-    glBindVertexArray(*vao);
-    float_attribute(0, m.rest_buffers[0], 3);
-    float_attribute(1, m.rest_buffers[1], 3);
-    glBindBuffer(GL_ARRAY_BUFFER, m.rest_buffers[2]);
-    glEnableVertexAttribArray(2);
-    glVertexAttribIPointer(2, 4, GL_UNSIGNED_SHORT, 0, nullptr);
-    float_attribute(3, m.rest_buffers[3], 4);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.indices);
-  }
+  GLuint* vaos[] = {&m.rest_vao, &m.instanced_vao};
+  upload_rest_arrays(characters_[kind]->mesh, m.indices, m.rest_buffers, vaos);
   // The records of shaders/instances.glsl as per-instance attributes 4-8 (the
   // model's columns, then palette offset, colour and the source words): llvmpipe
   // fetches them once per instance, where reading them from the storage buffer

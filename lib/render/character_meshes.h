@@ -8,9 +8,19 @@
 #include <vector>
 
 #include "asset/character.h"
+#include "asset/mesh_lod.h"
 #include "render/gl.h"
 
 namespace crowdprof {
+
+// Where one mesh level is in the buffers a draw binds.
+struct MeshLevelDraw {
+  GLuint vao = 0;      // rest-mesh VAO (GPU skinning): its vertices at base_vertex
+  GLuint indices = 0;  // the index buffer (CPU-skinned draws bind it to their own VAO)
+  GLsizei index_count = 0;
+  const void* first_index = nullptr;  // byte offset into `indices`
+  GLint base_vertex = 0;              // of the level's vertices in the rest buffers (0 for CPU-skinned vertices)
+};
 
 struct CharacterMesh {
   size_t vertices = 0, joints = 0;
@@ -20,6 +30,17 @@ struct CharacterMesh {
   GLuint rest_buffers[4] = {0, 0, 0, 0};
   GLuint rest_vao = 0;        // the rest mesh and indices, drawn one copy at a time
   GLuint instanced_vao = 0;   // the same, with each instance's record (gpu_frame_buffers.h) from attribute 4
+  // Mesh LOD (0 until upload_levels): levels 1.. one after another, each with
+  // its own indices (counted from its first vertex) and rest vertices.
+  struct Levels {
+    GLuint indices = 0, rest_buffers[4] = {0, 0, 0, 0}, rest_vao = 0;
+    std::vector<size_t> first_index, first_vertex;  // per level 1..
+    std::vector<GLsizei> index_count;
+  } levels;
+
+  // How to draw level `level` (0: the full mesh): from the rest mesh (GPU
+  // skinning, `rest` true) or from vertices skinned on the CPU.
+  MeshLevelDraw draw_of(size_t level, bool rest) const;
 };
 
 class CharacterMeshes {
@@ -33,6 +54,10 @@ class CharacterMeshes {
 
   // Uploads character `kind`'s rest mesh once; later calls do nothing.
   void upload_rest_mesh(size_t kind);
+  // Mesh LOD: uploads character `kind`'s levels 1.. (indices, rest vertices)
+  // once; later calls do nothing. The levels are the same for every bench of
+  // one character (build_mesh_lods is deterministic).
+  void upload_levels(size_t kind, std::span<const MeshLod> lods);
 
   size_t size() const { return meshes_.size(); }
   const CharacterMesh& operator[](size_t kind) const { return meshes_[kind]; }

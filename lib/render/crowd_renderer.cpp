@@ -96,6 +96,7 @@ void GlCrowdRenderer::prepare(const FrameView& view) {
     any_baked |= view.characters[k].site == SkinningSite::Baked;
   }
   require(view.mode);
+  for (size_t k = 0; k < meshes_.size(); ++k) meshes_.upload_levels(k, view.characters[k].mesh_lods);
   uint64_t bytes = 0;
   if (any_compute) {
     if (!compute_) compute_ = std::make_unique<ComputeSkinning>();

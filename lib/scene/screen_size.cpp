@@ -1,6 +1,7 @@
 #include "scene/screen_size.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace crowdprof {
 
@@ -16,6 +17,18 @@ float screen_height_fraction(const glm::mat4& view_projection, const Aabb& box) 
     high = corner == 0 ? y : std::max(high, y);
   }
   return std::min(1.0f, 0.5f * (high - low));
+}
+
+uint8_t mesh_level_for(float fraction, uint8_t current, const float (&thresholds)[3], float hysteresis, size_t levels) {
+  if (levels <= 1) return 0;
+  const auto most = static_cast<uint8_t>(std::min<size_t>(levels - 1, 3));
+  if (std::isnan(fraction)) return std::min(current, most);
+  // Without hysteresis: one level per threshold the copy is below.
+  uint8_t level = 0;
+  while (level < most && fraction < thresholds[level]) ++level;
+  // Finer than it was: only past the band above each threshold it crosses.
+  while (level < std::min(current, most) && fraction < thresholds[level] * (1.0f + hysteresis)) ++level;
+  return level;
 }
 
 }  // namespace crowdprof

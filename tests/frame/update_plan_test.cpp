@@ -112,7 +112,7 @@ TEST(PoseUpdate, ThreadsWriteWhatOneThreadWrites) {
       const Action& action = plan.characters[0]->actions[plan.crowd.action[i]];
       store.times[i] = action.start + plan.crowd.phase[i];
     }
-    PoseUpdater updater({plan.characters, plan.prepared, &plan.crowd, &store, mode, 2, nullptr, 1});
+    PoseUpdater updater({plan.characters, plan.prepared, &plan.crowd, &store, mode, 2, nullptr, 1, {}});
     Counters counters;
     std::span<const StateJob> jobs = plan.planner->plan({0, store.times, store.visible, 0.0}, counters);
     EXPECT_EQ(jobs.size(), 12u);
@@ -133,7 +133,7 @@ TEST(PoseUpdate, PerFrameStringLookupsAreCounted) {
   CopyStore store(plan.characters, plan.prepared, plan.crowd, mode);
   store.times = plan.times;
   store.visible.assign(store.visible.size(), 1);
-  PoseUpdater updater({plan.characters, plan.prepared, &plan.crowd, &store, mode, 1, nullptr, 1});
+  PoseUpdater updater({plan.characters, plan.prepared, &plan.crowd, &store, mode, 1, nullptr, 1, {}});
   Counters counters;
   const size_t channels = plan.characters[0]->actions[0].channels.size();
   EXPECT_EQ(updater.update(plan.planner->plan({0, store.times, store.visible, 0.0}, counters)), 4 * channels);

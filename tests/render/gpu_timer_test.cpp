@@ -92,7 +92,10 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   EXPECT_NE(header.find(",gpu_latency_ms,poses_updated,"), std::string::npos) << "earlier columns never move";
   // gpu_ms follows the last counter (issue 13 appended counters after gpu_palette_bytes).
   EXPECT_TRUE(header.ends_with(",gpu_palette_bytes,copies_updated,copies_held,updates_every_1,updates_every_2,"
-                               "updates_every_4,updates_every_8,updates_every_16,updates_every_32,updates_every_64,gpu_ms,cpu_ms"))
+                               "updates_every_4,updates_every_8,updates_every_16,updates_every_32,updates_every_64,"
+                               "lod0_copies,lod1_copies,lod2_copies,lod3_copies,lod0_vertices,lod1_vertices,"
+                               "lod2_vertices,lod3_vertices,lod0_triangles,lod1_triangles,lod2_triangles,"
+                               "lod3_triangles,gpu_ms,cpu_ms"))
       << header;
   std::string row;
   std::getline(csv, row);

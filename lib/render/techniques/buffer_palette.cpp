@@ -75,13 +75,14 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, c
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
-    glBindVertexArray(meshes[k].rest_vao);
+    const MeshLevelDraw level = meshes[k].draw_of(view.level_of(i), true);
+    glBindVertexArray(level.vao);
     const uint32_t record = next_[k]++;
     if (buffers_.page_of(record) != bound) buffers_.bind_page(bound = buffers_.page_of(record));
     glUniform1ui(base_, buffers_.palette_base(record));
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
-    glDrawElements(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr);
+    glDrawElementsBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index, level.base_vertex);
     counters.bytes_uploaded += kModelBytes;  // the palette went up in upload()
     ++counters.draw_calls;
   }

@@ -75,16 +75,15 @@ void SoftwareUpload::use_program(const FrameView& view, const DrawPass& pass) co
   glBindVertexArray(view.packed() ? packed_vao_ : float_vao_);
 }
 
-void SoftwareUpload::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+void SoftwareUpload::upload(const FrameView& view, const CharacterMeshes&, Counters& counters) {
   placed_.clear();
   if (view.mode.passes <= 1) return;
   size_t drawn = 0;
   shown_storage_ = SIZE_MAX;
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || skins_on_gpu(view.site_of(i))) continue;
-    const CharacterMesh& mesh = meshes[view.kind[i]];
-    placed_.push_back(view.packed() ? place_packed(view, mesh, i, drawn++, counters)
-                                    : place_float(view, mesh, i, drawn++, counters));
+    placed_.push_back(view.packed() ? place_packed(view, i, drawn++, counters)
+                                    : place_float(view, i, drawn++, counters));
   }
 }
 
@@ -100,14 +99,14 @@ void SoftwareUpload::draw(const FrameView& view, const CharacterMeshes& meshes, 
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || skins_on_gpu(view.site_of(i))) continue;
     const CharacterMesh& mesh = meshes[view.kind[i]];
-    Placed p = view.packed() ? place_packed(view, mesh, i, drawn++, counters) : place_float(view, mesh, i, drawn++, counters);
+    Placed p = view.packed() ? place_packed(view, i, drawn++, counters) : place_float(view, i, drawn++, counters);
     draw_placed(view, mesh, p, p.fresh, counters);
   }
 }
 
-SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, const CharacterMesh& mesh, size_t i,
-                                                   size_t drawn, Counters& counters) {
-  auto half = static_cast<GLsizeiptr>(mesh.vertices * sizeof(glm::vec3));
+SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, size_t i, size_t drawn,
+                                                   Counters& counters) {
+  auto half = static_cast<GLsizeiptr>(view.vertices_of(i) * sizeof(glm::vec3));
   // Animation sharing: a copy in the state the last draw uploaded draws that
   // mesh again with its own transform (the thesis scene: one upload a frame).
   if (view.mode.share_poses && view.storage_of(i) == shown_storage_) return {i, shown_buffer_, half, false};
@@ -119,16 +118,16 @@ SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, const 
   glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
   glBufferSubData(GL_ARRAY_BUFFER, 0, half, view.skinned_positions(i).data());
   glBufferSubData(GL_ARRAY_BUFFER, half, half, view.skinned_normals(i).data());
-  counters.bytes_uploaded += bytes_per_copy(mesh) - kModelBytes;  // the model goes with the draw
+  counters.bytes_uploaded += 2 * static_cast<uint64_t>(half);  // the model goes with the draw
   shown_storage_ = view.storage_of(i);
   shown_buffer_ = buffer;
   return {i, buffer, half, true};
 }
 
-SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, const CharacterMesh& mesh, size_t i,
-                                                    size_t drawn, Counters& counters) {
-  auto positions = static_cast<GLsizeiptr>(mesh.vertices * kPackedPositionBytes);
-  auto normals = static_cast<GLsizeiptr>(mesh.vertices * kPackedNormalBytes);
+SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, size_t i, size_t drawn,
+                                                    Counters& counters) {
+  auto positions = static_cast<GLsizeiptr>(view.vertices_of(i) * kPackedPositionBytes);
+  auto normals = static_cast<GLsizeiptr>(view.vertices_of(i) * kPackedNormalBytes);
   GLuint buffer = stream_buffer(drawn, view.mode.passes > 1);
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
   // Normals start on a 4-byte boundary: the words are read whole.
@@ -136,14 +135,15 @@ SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, const
   glBufferData(GL_ARRAY_BUFFER, normals_at + normals, nullptr, GL_STREAM_DRAW);  // orphaned, as above
   glBufferSubData(GL_ARRAY_BUFFER, 0, positions, view.packed_positions_of(i).data());
   glBufferSubData(GL_ARRAY_BUFFER, normals_at, normals, view.packed_normals_of(i).data());
-  counters.bytes_uploaded += mesh.vertices * kPackedVertexBytes;
+  counters.bytes_uploaded += view.vertices_of(i) * kPackedVertexBytes;
   return {i, buffer, normals_at, true};
 }
 
 void SoftwareUpload::draw_placed(const FrameView& view, const CharacterMesh& mesh, const Placed& p, bool send_model,
                                  Counters& counters) {
   size_t i = p.copy;
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);  // part of the VAO: the copy's character's
+  const MeshLevelDraw level = mesh.draw_of(view.level_of(i), false);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, level.indices);  // part of the VAO: the copy's character's (level's)
   if (view.packed()) {
     glBindVertexBuffer(0, p.buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));
     glBindVertexBuffer(1, p.buffer, p.normals_at, static_cast<GLsizei>(kPackedNormalBytes));
@@ -158,7 +158,7 @@ void SoftwareUpload::draw_placed(const FrameView& view, const CharacterMesh& mes
     glUniformMatrix4fv(float_model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(float_colour_, 1, glm::value_ptr(copy_colour(i)));
   }
-  glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+  glDrawElements(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index);
   // A copy drawing the mesh the last one uploaded (sharing) was counted as
   // sending nothing; the thesis scene's counters keep that.
   if (send_model) counters.bytes_uploaded += kModelBytes;

@@ -38,8 +38,8 @@ class SoftwareUpload final : public Technique {
     GLintptr normals_at = 0;
     bool fresh = true;  // uploaded for this copy (false: sharing the last one's)
   };
-  Placed place_float(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
-  Placed place_packed(const FrameView& view, const CharacterMesh& mesh, size_t copy, size_t drawn, Counters& counters);
+  Placed place_float(const FrameView& view, size_t copy, size_t drawn, Counters& counters);
+  Placed place_packed(const FrameView& view, size_t copy, size_t drawn, Counters& counters);
   void draw_placed(const FrameView& view, const CharacterMesh& mesh, const Placed& placed, bool send_model,
                    Counters& counters);
   void use_program(const FrameView& view, const DrawPass& pass) const;

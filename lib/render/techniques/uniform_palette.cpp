@@ -43,13 +43,14 @@ void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, 
     const CharacterMesh& mesh = meshes[k];
     if (!mesh.rest_vao || mesh.joints > bone_limit_)
       throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
-    glBindVertexArray(mesh.rest_vao);
+    const MeshLevelDraw level = mesh.draw_of(view.level_of(i), true);
+    glBindVertexArray(level.vao);
     std::span<const SkinMatrix> palette = view.palette(i);
     for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * j]);
     if (mesh.joints > 0) glUniform4fv(bones_, static_cast<GLsizei>(3 * mesh.joints), glm::value_ptr(rows_[0]));
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
-    glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    glDrawElementsBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index, level.base_vertex);
     counters.bytes_uploaded += bytes_per_copy(mesh);
     ++counters.draw_calls;
   }

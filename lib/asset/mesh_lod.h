@@ -1,0 +1,40 @@
+// Mesh LOD (issue 29): coarser versions of a skinned mesh for copies small on
+// screen, made with meshoptimizer's simplifier. Each level keeps only the
+// vertices its triangles use, so a far copy *skins* fewer vertices, not only
+// draws fewer triangles; their joints and weights are the full mesh's.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "asset/character.h"
+
+namespace crowdprof {
+
+// One simplified level of a mesh.
+struct MeshLod {
+  SkinnedMesh mesh;                    // its own vertices and triangles (indices into them), one primitive
+  std::vector<uint32_t> source_vertex;  // per vertex of `mesh`: the full mesh's vertex it is
+  float target_share = 1;              // of the full mesh's triangles asked for
+  // meshoptimizer's estimate of how far the simplified surface strays from the
+  // full one, in the mesh's own units (the bind pose; glTF's metres).
+  float error = 0;
+};
+
+// The levels built by default: half, a quarter and a tenth of the triangles,
+// each allowed to stray at most 1%, 2% and 5% of the mesh's extent (past
+// that, the simplifier stops short of the share and the level has more).
+struct MeshLodTarget {
+  float share = 1, max_error = 0;  // max_error: relative to the mesh's extent
+};
+inline constexpr MeshLodTarget kMeshLodTargets[] = {{0.5f, 0.01f}, {0.25f, 0.02f}, {0.1f, 0.05f}};
+
+// Simplifies `mesh` (bind pose) to each target in turn, each level from the
+// full mesh. A level that would not have fewer triangles than the one before
+// it is left out, so a small mesh may get fewer levels (or none). The vertices
+// of each level are in the order its triangles first use them (meshoptimizer's
+// vertex fetch order), its triangles in vertex-cache order. Allocates.
+std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets = kMeshLodTargets);
+
+}  // namespace crowdprof

@@ -1,0 +1,95 @@
+// Mesh LOD in the frame loop (issue 29): each copy's level from its size on
+// screen, its skinning at that level on the CPU (the same bits on any thread
+// count and in master as in threaded), and the counters per level adding up.
+#include <gtest/gtest.h>
+
+#include "frame/crowd_bench.h"
+#include "render_support.h"
+
+using namespace crowdprof;
+
+namespace {
+
+BenchConfig lod_config(const std::string& mode, int threads, size_t copies = 1000) {
+  BenchConfig config;
+  config.mode = find_mode(mode)->switches;
+  config.mode.mesh_lod = true;
+  config.mode_name = mode;
+  config.threads = threads;
+  config.crowd.copies = copies;
+  return config;
+}
+
+}  // namespace
+
+TEST(MeshLodBench, FarCopiesSkinFewerVerticesAndTheCountersAddUp) {
+  const Character& humanoid = test::default_humanoid();
+  CrowdBench lod(humanoid, lod_config("threaded", 2));
+  BenchConfig plain_config = lod_config("threaded", 2);
+  plain_config.mode.mesh_lod = false;
+  CrowdBench plain(humanoid, plain_config);
+  Counters with = lod.step().counters, without = plain.step().counters;
+  ASSERT_EQ(with.copies_visible, without.copies_visible);
+  // At 1,000 copies from the default camera no copy spans a quarter of the screen.
+  EXPECT_EQ(with.lod0_copies, 0u);
+  EXPECT_EQ(with.lod0_copies + with.lod1_copies + with.lod2_copies + with.lod3_copies, with.copies_visible);
+  EXPECT_GT(with.lod2_copies + with.lod3_copies, with.copies_visible / 2);
+  EXPECT_EQ(with.lod0_vertices + with.lod1_vertices + with.lod2_vertices + with.lod3_vertices, with.vertices_skinned);
+  EXPECT_LT(with.vertices_skinned, without.vertices_skinned / 3);
+  // Without mesh LOD every copy is level 0.
+  EXPECT_EQ(without.lod0_copies, without.copies_visible);
+  EXPECT_EQ(without.lod0_vertices, without.vertices_skinned);
+  EXPECT_EQ(without.lod0_triangles, without.copies_visible * humanoid.mesh.triangle_count());
+  EXPECT_LT(with.lod0_triangles + with.lod1_triangles + with.lod2_triangles + with.lod3_triangles,
+            without.lod0_triangles / 3);
+  // Each copy's skinned vertices are its level's.
+  for (size_t i = 0; i < lod.crowd().size(); ++i) {
+    if (!lod.visible(i)) continue;
+    EXPECT_LE(lod.skinned_positions(i).size(), humanoid.mesh.vertex_count());
+    if (lod.mesh_level(i) > 0) {
+      EXPECT_LT(lod.skinned_positions(i).size(), humanoid.mesh.vertex_count());
+    }
+  }
+}
+
+TEST(MeshLodBench, TheSameBitsOnAnyThreadsAndInMaster) {
+  const Character& humanoid = test::default_humanoid();
+  CrowdBench one(humanoid, lod_config("threaded", 1, 200));
+  CrowdBench two(humanoid, lod_config("threaded", 2, 200));
+  CrowdBench master(humanoid, lod_config("master", 1, 200));
+  for (int f = 0; f < 3; ++f) {
+    one.step();
+    two.step();
+    master.step();
+  }
+  EXPECT_EQ(one.digest(), two.digest());
+  EXPECT_EQ(one.digest(), master.digest());
+  BenchConfig plain = lod_config("threaded", 1, 200);
+  plain.mode.mesh_lod = false;
+  CrowdBench full(humanoid, plain);
+  for (int f = 0; f < 3; ++f) full.step();
+  EXPECT_NE(one.digest(), full.digest()) << "the levels are not what was skinned";
+}
+
+TEST(MeshLodBench, ThresholdsOfZeroKeepEveryCopyWhole) {
+  BenchConfig config = lod_config("threaded", 1, 200);
+  config.mode.mesh_lod_at = {0, 0, 0};
+  CrowdBench bench(test::default_humanoid(), config);
+  Counters c = bench.step().counters;
+  EXPECT_EQ(c.lod0_copies, c.copies_visible);
+  EXPECT_EQ(c.lod1_copies + c.lod2_copies + c.lod3_copies, 0u);
+}
+
+TEST(MeshLodBench, ModesThatDrawSeveralCopiesAtOnceAreRefusedNamingTheSwitch) {
+  for (const char* mode : {"shared", "instanced", "compute", "baked"}) {
+    ModeSwitches s = find_mode(mode)->switches;
+    s.mesh_lod = true;
+    const std::string why = conflicts(s).str();
+    EXPECT_NE(why.find("mesh_lod"), std::string::npos) << mode << ": " << why;
+  }
+  for (const char* mode : {"master", "culled", "threaded", "hwskin", "buffer"}) {
+    ModeSwitches s = find_mode(mode)->switches;
+    s.mesh_lod = true;
+    EXPECT_TRUE(conflicts(s).empty()) << mode << ": " << conflicts(s).str();
+  }
+}

@@ -1,0 +1,35 @@
+// Mesh LOD drawn (issue 29): the vertex shader skinning a copy's level draws
+// what CPU skinning of that level draws, in hwskin and buffer, and the coarse
+// crowd looks like the full one (its shape on screen, not its pixels).
+#include <gtest/gtest.h>
+
+#include "render_support.h"
+
+using namespace crowdprof;
+using namespace crowdprof::test;
+
+TEST(MeshLodRender, GpuSkinningDrawsTheLevelsCpuSkinningDraws) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  shot.copies = 60;
+  shot.frame = 2;
+  shot.mesh_lod = true;
+  Frame cpu = render(*context, default_humanoid(), shot);
+  const size_t pixels = cpu.rgba.size() / 4;
+  ASSERT_GT(covered(cpu.rgba), pixels / 200);
+  EXPECT_GT(cpu.counters.lod1_copies + cpu.counters.lod2_copies + cpu.counters.lod3_copies, 0u);
+  for (const char* mode : {"hwskin", "buffer"}) {
+    shot.mode = mode;
+    Frame gpu = render(*context, default_humanoid(), shot);
+    EXPECT_TRUE(gpu.gpu_skinned) << mode;
+    EXPECT_EQ(gpu.counters.lod1_copies, cpu.counters.lod1_copies) << mode;
+    EXPECT_EQ(gpu.counters.lod3_triangles, cpu.counters.lod3_triangles) << mode;
+    EXPECT_LE(pixels_differing(cpu.rgba, gpu.rgba, 4), pixels * 5 / 10000) << mode;
+  }
+  // Against the full mesh: the same silhouettes within a few percent of the covered pixels.
+  shot.mode = "threaded";
+  shot.mesh_lod = false;
+  Frame full = render(*context, default_humanoid(), shot);
+  const size_t covered_full = covered(full.rgba), covered_lod = covered(cpu.rgba);
+  EXPECT_NEAR(static_cast<double>(covered_lod), static_cast<double>(covered_full), 0.05 * static_cast<double>(covered_full));
+}
