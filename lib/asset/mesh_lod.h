@@ -29,6 +29,8 @@ struct MeshLodTarget {
   float share = 1, max_error = 0;  // max_error: relative to the mesh's extent
 };
 inline constexpr MeshLodTarget kMeshLodTargets[] = {{0.5f, 0.01f}, {0.25f, 0.02f}, {0.1f, 0.05f}};
+// Levels a copy can draw: the full mesh and at most three coarser ones.
+inline constexpr size_t kMeshLevels = 4;
 
 // Simplifies `mesh` (bind pose) to each target in turn, each level from the
 // full mesh. A level that would not have fewer triangles than the one before

@@ -63,7 +63,7 @@ uint64_t estimate_bench_bytes(std::span<const Character* const> characters, cons
 }
 
 CopyStore::CopyStore(std::span<const Character* const> characters, std::span<const PreparedCharacter> prepared,
-                     const Crowd& crowd, const ModeSwitches& mode) {
+                     const Crowd& crowd, const ModeSwitches& mode, std::span<const uint8_t> mesh_level) {
   const size_t n = crowd.size();
   times.assign(n, 0.0f);
   visible.assign(n, 0);
@@ -105,7 +105,9 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
   std::vector<std::vector<SkinMatrix>> rest_palettes;
   for (const Character* character : characters) rest_palettes.push_back(rest_palette(*character));
   for (size_t i = 0; i < n; ++i) {
-    const SkinnedMesh& mesh = characters[crowd.kind[i]]->mesh;
+    const size_t level = mesh_level.empty() ? 0 : mesh_level[i];
+    const SkinnedMesh& mesh =
+        level == 0 ? characters[crowd.kind[i]]->mesh : prepared[crowd.kind[i]].mesh_lods[level - 1].mesh;
     const std::vector<SkinMatrix>& rest = rest_palettes[crowd.kind[i]];
     std::copy(rest.begin(), rest.end(), palettes.begin() + static_cast<std::ptrdiff_t>(joint_offset[i]));
     if (skins_on_gpu(prepared[crowd.kind[i]].site)) continue;

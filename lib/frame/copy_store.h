@@ -24,9 +24,10 @@ namespace crowdprof {
 
 struct CopyStore {
   // Allocates every array for `crowd` of `characters`, prepared for `mode`:
-  // copies start in their rest pose, their rest vertices in place.
+  // copies start in their rest pose, their rest vertices in place (with mesh
+  // LOD, those of the level `mesh_level` gives each copy; empty: level 0).
   CopyStore(std::span<const Character* const> characters, std::span<const PreparedCharacter> prepared,
-            const Crowd& crowd, const ModeSwitches& mode);
+            const Crowd& crowd, const ModeSwitches& mode, std::span<const uint8_t> mesh_level = {});
 
   // Per copy.
   std::vector<float> times;                // this frame's time on its action's clock (Logic)

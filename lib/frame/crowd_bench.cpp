@@ -48,11 +48,11 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   prepared_ = prepare_characters(characters_, crowd_.character_boxes, mode,
                                  config.renderer ? config.renderer->max_gpu_joints(mode) : 0);
   character_counters_.resize(characters_.size());
-  store_ = std::make_unique<CopyStore>(characters_, prepared_, crowd_, mode);
+  if (mode.mesh_lod) choose_mesh_levels();
+  store_ = std::make_unique<CopyStore>(characters_, prepared_, crowd_, mode, mesh_level_);
   std::vector<uint8_t> posed_on_cpu;
   for (const PreparedCharacter& p : prepared_) posed_on_cpu.push_back(p.posed_on_cpu);
   planner_ = std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));
-  if (mode.mesh_lod) choose_mesh_levels();
   poser_ = std::make_unique<PoseUpdater>(PoseUpdateContext{characters_, prepared_, &crowd_, store_.get(), mode,
                                                            config.threads, config.tracer, config.trace_pid, mesh_level_});
   if (mode.skinning == SkinningSite::Baked) {
@@ -106,9 +106,17 @@ void CrowdBench::choose_mesh_levels() {
   const MeshLodThresholds& at = config_.mode.mesh_lod_at;
   const float thresholds[3] = {at.level_1, at.level_2, at.level_3};
   mesh_level_.assign(crowd_.size(), 0);
-  for (size_t i = 0; i < crowd_.size(); ++i)
-    mesh_level_[i] = mesh_level_for(planner_->screen_fraction(i), 0, thresholds, kMeshLodHysteresis,
-                                    prepared_[crowd_.kind[i]].levels());
+  const glm::mat4 view_projection = camera_.view_projection();
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    const size_t levels = prepared_[crowd_.kind[i]].levels();
+    // Off screen (skinned all the same with culling off): the coarsest level.
+    if (!intersects(frustum_, crowd_.world_boxes[i])) {
+      mesh_level_[i] = static_cast<uint8_t>(std::min(levels, kMeshLevels) - 1);
+      continue;
+    }
+    mesh_level_[i] = mesh_level_for(screen_height_fraction(view_projection, crowd_.world_boxes[i]), 0, thresholds,
+                                    kMeshLodHysteresis, levels);
+  }
 }
 
 uint64_t CrowdBench::triangles_of(size_t kind, size_t level) const {

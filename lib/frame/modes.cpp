@@ -110,14 +110,12 @@ SettingText conflicts(const ModeSwitches& s) {
   if (s.frustum == FrustumTest::Gpu && s.skinning != SkinningSite::Baked)
     return "{frustum} gpu culls in a compute pass that also writes each visible copy's baked sample and time, so "
            "the CPU touches no copy: it needs {skinning} baked";
-  // Mesh LOD draws each copy's own level; these draw or skin several copies
-  // at once from one mesh, and are not yet taught to pick a level per copy.
   if (s.mesh_lod && s.share_poses)
     return "{mesh_lod} on skins each copy at the level its size picks; copies sharing one skinned mesh may differ "
            "in size: it needs {share} off";
-  if (s.mesh_lod && (s.draw == DrawMethod::Instanced || s.skinning == SkinningSite::Compute))
-    return "{mesh_lod} on draws each copy at its own level, which instanced draws and compute skinning do not yet "
-           "do: it needs {draw} per-copy and {skinning} rasterizer, animations or gpu";
+  if (s.mesh_lod && s.frustum == FrustumTest::Gpu)
+    return "{mesh_lod} on picks each copy's level on the CPU, and {frustum} gpu's cull pass does not pick levels "
+           "yet: use {frustum} cpu";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
   return {};

@@ -32,9 +32,9 @@ CharacterMeshes::CharacterMeshes(std::span<const Character* const> characters)
 }
 
 MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest) const {
-  if (level == 0 || levels.first_index.empty()) return {rest_vao, indices, index_count, nullptr, 0};
+  if (level == 0 || levels.first_index.empty()) return {rest_vao, instanced_vao, indices, index_count, nullptr, 0};
   const size_t l = std::min(level, levels.first_index.size()) - 1;
-  return {levels.rest_vao, levels.indices, levels.index_count[l],
+  return {levels.rest_vao, levels.instanced_vao, levels.indices, levels.index_count[l],
           reinterpret_cast<const void*>(levels.first_index[l] * sizeof(uint32_t)),
           rest ? static_cast<GLint>(levels.first_vertex[l]) : 0};
 }
@@ -42,6 +42,7 @@ MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest) const {
 CharacterMeshes::~CharacterMeshes() {
   for (CharacterMesh& m : meshes_) {
     glDeleteVertexArrays(1, &m.levels.rest_vao);
+    glDeleteVertexArrays(1, &m.levels.instanced_vao);
     glDeleteBuffers(1, &m.levels.indices);
     glDeleteBuffers(4, m.levels.rest_buffers);
     glDeleteVertexArrays(1, &m.rest_vao);
@@ -80,6 +81,23 @@ void upload_rest_arrays(const SkinnedMesh& mesh, GLuint indices, GLuint (&buffer
   }
 }
 
+// The records of shaders/instances.glsl as per-instance attributes 4-8 of the
+// bound VAO (the model's columns, then palette offset, colour and the source
+// words): llvmpipe fetches them once per instance, where reading them from
+// the storage buffer costs a gather per vertex (1.2x the CPU time,
+// docs/rendering.md).
+void add_instance_attributes() {
+  for (GLuint column = 0; column < 4; ++column) {
+    glEnableVertexAttribArray(4 + column);
+    glVertexAttribFormat(4 + column, 4, GL_FLOAT, GL_FALSE, column * static_cast<GLuint>(sizeof(glm::vec4)));
+    glVertexAttribBinding(4 + column, kInstanceStream);
+  }
+  glEnableVertexAttribArray(8);
+  glVertexAttribIFormat(8, 4, GL_UNSIGNED_INT, static_cast<GLuint>(sizeof(glm::mat4)));
+  glVertexAttribBinding(8, kInstanceStream);
+  glVertexBindingDivisor(kInstanceStream, 1);
+}
+
 }  // namespace
 
 void CharacterMeshes::upload_levels(size_t kind, std::span<const MeshLod> lods) {
@@ -101,8 +119,9 @@ void CharacterMeshes::upload_levels(size_t kind, std::span<const MeshLod> lods) 
   }
   l.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, all.indices.size() * sizeof(uint32_t), all.indices.data(),
                           GL_STATIC_DRAW);
-  GLuint* vaos[] = {&l.rest_vao};
+  GLuint* vaos[] = {&l.rest_vao, &l.instanced_vao};
   upload_rest_arrays(all, l.indices, l.rest_buffers, vaos);
+  add_instance_attributes();  // to the instanced VAO, bound last
   glBindVertexArray(0);
 }
 
@@ -113,19 +132,7 @@ void CharacterMeshes::upload_rest_mesh(size_t kind) {
   // that also reads each instance's record.
   GLuint* vaos[] = {&m.rest_vao, &m.instanced_vao};
   upload_rest_arrays(characters_[kind]->mesh, m.indices, m.rest_buffers, vaos);
-  // The records of shaders/instances.glsl as per-instance attributes 4-8 (the
-  // model's columns, then palette offset, colour and the source words): llvmpipe
-  // fetches them once per instance, where reading them from the storage buffer
-  // costs a gather per vertex (1.2x the CPU time, docs/rendering.md).
-  for (GLuint column = 0; column < 4; ++column) {
-    glEnableVertexAttribArray(4 + column);
-    glVertexAttribFormat(4 + column, 4, GL_FLOAT, GL_FALSE, column * static_cast<GLuint>(sizeof(glm::vec4)));
-    glVertexAttribBinding(4 + column, kInstanceStream);
-  }
-  glEnableVertexAttribArray(8);
-  glVertexAttribIFormat(8, 4, GL_UNSIGNED_INT, static_cast<GLuint>(sizeof(glm::mat4)));
-  glVertexAttribBinding(8, kInstanceStream);
-  glVertexBindingDivisor(kInstanceStream, 1);
+  add_instance_attributes();
   glBindVertexArray(0);
 }
 

@@ -15,7 +15,8 @@ namespace crowdprof {
 
 // Where one mesh level is in the buffers a draw binds.
 struct MeshLevelDraw {
-  GLuint vao = 0;      // rest-mesh VAO (GPU skinning): its vertices at base_vertex
+  GLuint vao = 0;            // rest-mesh VAO (GPU skinning): its vertices at base_vertex
+  GLuint instanced_vao = 0;  // the same, with the instance records (CharacterMesh::instanced_vao)
   GLuint indices = 0;  // the index buffer (CPU-skinned draws bind it to their own VAO)
   GLsizei index_count = 0;
   const void* first_index = nullptr;  // byte offset into `indices`
@@ -33,7 +34,7 @@ struct CharacterMesh {
   // Mesh LOD (0 until upload_levels): levels 1.. one after another, each with
   // its own indices (counted from its first vertex) and rest vertices.
   struct Levels {
-    GLuint indices = 0, rest_buffers[4] = {0, 0, 0, 0}, rest_vao = 0;
+    GLuint indices = 0, rest_buffers[4] = {0, 0, 0, 0}, rest_vao = 0, instanced_vao = 0;
     std::vector<size_t> first_index, first_vertex;  // per level 1..
     std::vector<GLsizei> index_count;
   } levels;

@@ -80,16 +80,30 @@ TEST(MeshLodBench, ThresholdsOfZeroKeepEveryCopyWhole) {
   EXPECT_EQ(c.lod1_copies + c.lod2_copies + c.lod3_copies, 0u);
 }
 
-TEST(MeshLodBench, ModesThatDrawSeveralCopiesAtOnceAreRefusedNamingTheSwitch) {
-  for (const char* mode : {"shared", "instanced", "compute", "baked"}) {
-    ModeSwitches s = find_mode(mode)->switches;
+TEST(MeshLodBench, SharingAndTheGpuCullAreRefusedNamingTheSwitch) {
+  ModeSwitches shared = find_mode("shared")->switches, culled_on_gpu = find_mode("baked")->switches;
+  culled_on_gpu.frustum = FrustumTest::Gpu;
+  for (ModeSwitches s : {shared, culled_on_gpu}) {
     s.mesh_lod = true;
     const std::string why = conflicts(s).str();
-    EXPECT_NE(why.find("mesh_lod"), std::string::npos) << mode << ": " << why;
+    EXPECT_NE(why.find("mesh_lod"), std::string::npos) << why;
   }
-  for (const char* mode : {"master", "culled", "threaded", "hwskin", "buffer"}) {
+  for (const char* mode : {"master", "culled", "threaded", "hwskin", "buffer", "instanced", "compute", "baked"}) {
     ModeSwitches s = find_mode(mode)->switches;
     s.mesh_lod = true;
     EXPECT_TRUE(conflicts(s).empty()) << mode << ": " << conflicts(s).str();
   }
+}
+
+TEST(MeshLodBench, CopiesOffScreenAreSkinnedAtTheCoarsestLevelWithCullingOff) {
+  BenchConfig config = lod_config("master", 1, 200);
+  CrowdBench bench(test::default_humanoid(), config);
+  bench.step();
+  size_t off_screen = 0;
+  for (size_t i = 0; i < bench.crowd().size(); ++i) {
+    if (bench.visible(i)) continue;
+    ++off_screen;
+    EXPECT_EQ(bench.mesh_level(i), 3u) << i;
+  }
+  EXPECT_GT(off_screen, 0u);
 }

@@ -76,20 +76,22 @@ bool BakedSkinning::visible_counts(std::span<uint64_t> per_character) const {
 void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   counters.gpu_palette_bytes = gpu_bytes_;
   if (gpu_cull_) return gpu_cull_->run(view, instances_, counters);
-  // This frame's instances, grouped by character: one instanced draw each.
+  // This frame's instances, grouped by character and mesh level: one instanced draw each.
   records_.clear();
-  first_.assign(meshes.size() + 1, 0);
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    first_[k] = records_.size();
+  const size_t groups = meshes.size() * kMeshLevels;
+  first_.assign(groups + 1, 0);
+  for (size_t g = 0; g < groups; ++g) {
+    first_[g] = records_.size();
+    const size_t k = g / kMeshLevels;
     if (view.characters[k].site != SkinningSite::Baked) continue;
     if (k >= tables_.size() || !tables_[k]) throw GlError("baked skinning asked of a renderer not prepared for it");
     for (size_t i = 0; i < view.copies(); ++i) {
-      if (!view.visible[i] || view.kind[i] != k) continue;
+      if (!view.visible[i] || view.kind[i] != k || view.level_of(i) != g % kMeshLevels) continue;
       const BakedInstance& b = view.baked[i];
       records_.push_back({static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position});
     }
   }
-  first_[meshes.size()] = records_.size();
+  first_[groups] = records_.size();
   if (records_.empty()) return;
   auto bytes = static_cast<GLsizeiptr>(records_.size() * sizeof(InstanceRecord));
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, instances_);
@@ -114,14 +116,19 @@ void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const 
       gpu_cull_->draw(k, first_instance_, counters);
       continue;
     }
-    auto count = static_cast<GLsizei>(first_[k + 1] - first_[k]);
-    if (count == 0) continue;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
-    glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
-    glUniform1ui(first_instance_, static_cast<GLuint>(first_[k]));
-    glBindVertexArray(meshes[k].rest_vao);
-    glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr, count);
-    ++counters.draw_calls;
+    for (size_t l = 0; l < kMeshLevels; ++l) {
+      const size_t g = k * kMeshLevels + l;
+      auto count = static_cast<GLsizei>(first_[g + 1] - first_[g]);
+      if (count == 0) continue;
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
+      glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
+      glUniform1ui(first_instance_, static_cast<GLuint>(first_[g]));
+      const MeshLevelDraw level = meshes[k].draw_of(l, true);
+      glBindVertexArray(level.vao);
+      glDrawElementsInstancedBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index, count,
+                                        level.base_vertex);
+      ++counters.draw_calls;
+    }
   }
   if (gpu_cull_) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);  // no later draw reads commands by accident
 }

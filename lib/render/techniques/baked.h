@@ -50,7 +50,7 @@ class BakedSkinning final : public Technique {
   uint64_t gpu_bytes_ = 0;
   std::unique_ptr<GpuCull> gpu_cull_;   // frustum gpu: writes the records and draws
   std::vector<InstanceRecord> records_;  // scratch: this frame's, grouped by character
-  std::vector<size_t> first_;            // scratch: each character's first record, then the end
+  std::vector<size_t> first_;            // scratch: each draw group's (character, mesh level) first record, then the end
 };
 
 }  // namespace crowdprof

@@ -31,13 +31,13 @@ std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
 uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
   size_t copies = 0, rows = 0, largest = 0;
-  on_screen.assign(meshes.size(), 0);
+  on_screen.assign(meshes.size() * kMeshLevels, 0);
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!palette_copy(view, i)) continue;
     ++copies;
     rows += 3 * meshes[view.kind[i]].joints;
     largest = std::max<size_t>(largest, 3 * meshes[view.kind[i]].joints);
-    on_screen[view.kind[i]] += view.visible[i];
+    on_screen[draw_group(view, i)] += view.visible[i];
   }
   buffers.reserve(copies, rows, largest, instanced, gl);
   buffers.begin(on_screen);
@@ -45,8 +45,8 @@ uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, Gpu
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
     std::span<const SkinMatrix> palette = view.palette(i);
-    std::span<glm::vec4> out = buffers.add(k, view.world[i], static_cast<uint32_t>(i % kCopyColours.size()),
-                                           3 * meshes[k].joints);
+    std::span<glm::vec4> out = buffers.add(draw_group(view, i), view.world[i],
+                                           static_cast<uint32_t>(i % kCopyColours.size()), 3 * meshes[k].joints);
     for (size_t j = 0; j < meshes[k].joints; ++j) put_rows(palette[j], &out[3 * j]);
   }
   return buffers.upload(instanced);
@@ -58,7 +58,7 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl) : gl
   colour_ = program_.uniform("base_colour");
   base_ = program_.uniform("palette_base");
   for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);  // no bone limit
-  next_.resize(meshes.size());
+  next_.resize(meshes.size() * kMeshLevels);
 }
 
 void BufferPalette::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
@@ -70,14 +70,14 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, c
                          Counters& counters) {
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
-  for (size_t k = 0; k < meshes.size(); ++k) next_[k] = buffers_.run(k).first;
+  for (size_t g = 0; g < next_.size(); ++g) next_[g] = buffers_.run(g).first;
   uint32_t bound = UINT32_MAX;  // another technique may have bound its own buffer since upload()
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
     const MeshLevelDraw level = meshes[k].draw_of(view.level_of(i), true);
     glBindVertexArray(level.vao);
-    const uint32_t record = next_[k]++;
+    const uint32_t record = next_[draw_group(view, i)]++;
     if (buffers_.page_of(record) != bound) buffers_.bind_page(bound = buffers_.page_of(record));
     glUniform1ui(base_, buffers_.palette_base(record));
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "frame/frame_view.h"
 #include "render/character_meshes.h"
 #include "render/gl_features.h"
 #include "render/gpu_frame_buffers.h"
@@ -14,9 +15,16 @@
 
 namespace crowdprof {
 
+// The run of records a copy's palette goes in: one per character and mesh
+// level (character k's level l is run k x kMeshLevels + l), so that an
+// instanced draw takes copies of one level.
+inline size_t draw_group(const FrameView& view, size_t copy) {
+  return view.kind[copy] * kMeshLevels + view.level_of(copy);
+}
+
 // This frame's palettes (and instance records) of the copies on screen that
-// the vertex shader skins from a palette buffer, per character, into
-// `buffers`, sent to the GPU (records too when `instanced`). Room is made for
+// the vertex shader skins from a palette buffer, per character and mesh level
+// (draw_group), into `buffers`, sent to the GPU (records too when `instanced`). Room is made for
 // every such copy, on screen or not, so that the buffers never grow while the
 // crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
 // exceed one storage block (`max_block_bytes`).
@@ -37,8 +45,8 @@ class BufferPalette final : public Technique {
   GlProgram program_;
   GLint model_ = -1, colour_ = -1, base_ = -1;
   GpuFrameBuffers buffers_;
-  std::vector<uint32_t> on_screen_;  // scratch: per character, copies on screen
-  std::vector<uint32_t> next_;       // scratch: per character, the next record to draw
+  std::vector<uint32_t> on_screen_;  // scratch: per draw group, copies on screen
+  std::vector<uint32_t> next_;       // scratch: per draw group, the next record to draw
 };
 
 // shaders/buffer_skin.vert with shaders/instances.glsl ahead of it.

@@ -49,8 +49,25 @@ ComputeSkinning::~ComputeSkinning() {
   glDeleteBuffers(static_cast<GLsizei>(rest_storage_.size()), rest_storage_.data());
 }
 
+namespace {
+
+// A mesh as skin.comp reads it: 64 bytes a vertex.
+GLuint upload_rest_storage(const SkinnedMesh& mesh) {
+  std::vector<glm::vec4> rest(4 * mesh.vertex_count());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    rest[4 * v] = glm::vec4(mesh.positions[v], 1.0f);
+    rest[4 * v + 1] = glm::vec4(mesh.normals[v], 0.0f);
+    glm::uvec4 j(mesh.joints[v]);
+    std::memcpy(&rest[4 * v + 2], &j, sizeof j);  // uvec4 in the shader: the bits, not the values
+    rest[4 * v + 3] = mesh.weights[v];
+  }
+  return make_buffer(GL_SHADER_STORAGE_BUFFER, rest.size() * sizeof(glm::vec4), rest.data(), GL_STATIC_DRAW);
+}
+
+}  // namespace
+
 void ComputeSkinning::prepare(const FrameView& view, const CharacterMeshes& meshes) {
-  rest_storage_.resize(meshes.size(), 0);
+  rest_storage_.resize(meshes.size() * kMeshLevels, 0);
   uint64_t bytes = 0;
   size_t vertices = 1, joints = 1;
   for (size_t k = 0; k < meshes.size(); ++k) {
@@ -58,20 +75,14 @@ void ComputeSkinning::prepare(const FrameView& view, const CharacterMeshes& mesh
     const CharacterMesh& m = meshes[k];
     vertices = std::max(vertices, m.vertices);
     joints = std::max(joints, m.joints);
-    if (!rest_storage_[k]) {
-      const SkinnedMesh& mesh = meshes.character(k).mesh;
-      std::vector<glm::vec4> rest(4 * m.vertices);
-      for (size_t v = 0; v < m.vertices; ++v) {
-        rest[4 * v] = glm::vec4(mesh.positions[v], 1.0f);
-        rest[4 * v + 1] = glm::vec4(mesh.normals[v], 0.0f);
-        glm::uvec4 j(mesh.joints[v]);
-        std::memcpy(&rest[4 * v + 2], &j, sizeof j);  // uvec4 in the shader: the bits, not the values
-        rest[4 * v + 3] = mesh.weights[v];
-      }
-      rest_storage_[k] =
-          make_buffer(GL_SHADER_STORAGE_BUFFER, rest.size() * sizeof(glm::vec4), rest.data(), GL_STATIC_DRAW);
+    // The full mesh, then each mesh level (mesh LOD; the same for every bench).
+    std::span<const MeshLod> lods = view.characters[k].mesh_lods;
+    for (size_t l = 0; l <= lods.size() && l < kMeshLevels; ++l) {
+      const SkinnedMesh& mesh = l == 0 ? meshes.character(k).mesh : lods[l - 1].mesh;
+      GLuint& storage = rest_storage_[k * kMeshLevels + l];
+      if (!storage) storage = upload_rest_storage(mesh);
+      bytes += mesh.vertex_count() * 4 * sizeof(glm::vec4);
     }
-    bytes += m.vertices * 4 * sizeof(glm::vec4);
   }
   size_t copies = view.copies();
   size_t budget = view.mode.passes > 1 ? kComputePassesBudgetBytes : kComputeBudgetBytes;
@@ -95,20 +106,24 @@ void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes,
                            const BeginPass& begin_pass, Counters& counters) {
   for (size_t k = 0; k < meshes.size(); ++k)
     if (view.characters[k].site == SkinningSite::Compute) {
-      draw_kind(view, meshes[k], k, passes, begin_pass, counters);
+      for (size_t level = 0; level < kMeshLevels; ++level) draw_kind(view, meshes[k], k, level, passes, begin_pass, counters);
       counters.gpu_palette_bytes = gpu_bytes_;
     }
 }
 
-void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t k,
+void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t k, size_t level,
                                 std::span<const DrawPass> passes, const BeginPass& begin_pass, Counters& counters) {
-  if (k >= rest_storage_.size() || !rest_storage_[k] || mesh.joints > joints_ || mesh.vertices > vertices_)
-    throw GlError("compute skinning asked of a renderer not prepared for it");
   copies_.clear();
   for (size_t i = 0; i < view.copies(); ++i)
-    if (view.visible[i] && view.kind[i] == k) copies_.push_back(i);
-  auto vertices = static_cast<GLuint>(mesh.vertices);
-  size_t copy_stride = mesh.vertices * 2 * sizeof(glm::vec4);
+    if (view.visible[i] && view.kind[i] == k && view.level_of(i) == level) copies_.push_back(i);
+  if (copies_.empty()) return;
+  const GLuint rest = rest_storage_.size() > k * kMeshLevels + level ? rest_storage_[k * kMeshLevels + level] : 0;
+  if (!rest || mesh.joints > joints_ || mesh.vertices > vertices_)
+    throw GlError("compute skinning asked of a renderer not prepared for it");
+  const size_t level_vertices = view.vertices_of(copies_.front());
+  const MeshLevelDraw drawn = mesh.draw_of(level, false);
+  auto vertices = static_cast<GLuint>(level_vertices);
+  size_t copy_stride = level_vertices * 2 * sizeof(glm::vec4);
   const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4);
   for (size_t start = 0; start < copies_.size(); start += batch_) {
     size_t count = std::min(batch_, copies_.size() - start);
@@ -129,7 +144,7 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
     glUseProgram(skin_program_.id());
     glUniform1ui(vertex_count_, vertices);
     glUniform1ui(joint_count_, static_cast<GLuint>(mesh.joints));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rest_storage_[k]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rest);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bones_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, skinned_);
     glDispatchCompute((vertices + kComputeGroup - 1) / kComputeGroup, static_cast<GLuint>(count), 1);
@@ -141,13 +156,13 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
       glUseProgram(draw_program_.id());
       set_frame_uniforms(draw_program_, pass);
       glBindVertexArray(vao_);
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, drawn.indices);
       for (size_t c = 0; c < count; ++c) {
         size_t i = copies_[start + c];
         glBindVertexBuffer(0, skinned_, static_cast<GLintptr>(c * copy_stride), 2 * sizeof(glm::vec4));
         glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
         glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
-        glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_TRIANGLES, drawn.index_count, GL_UNSIGNED_INT, drawn.first_index);
         counters.bytes_uploaded += kModelBytes;
         ++counters.draw_calls;
       }

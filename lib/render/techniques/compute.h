@@ -43,13 +43,15 @@ class ComputeSkinning final {
             const BeginPass& begin_pass, Counters& counters);
 
  private:
-  void draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t kind, std::span<const DrawPass> passes,
-                 const BeginPass& begin_pass, Counters& counters);
+  void draw_kind(const FrameView& view, const CharacterMesh& mesh, size_t kind, size_t level,
+                 std::span<const DrawPass> passes, const BeginPass& begin_pass, Counters& counters);
 
   GlProgram skin_program_, draw_program_;
   GLint vertex_count_ = -1, joint_count_ = -1, model_ = -1, colour_ = -1;
   GLuint vao_ = 0, bones_ = 0, skinned_ = 0;
-  std::vector<GLuint> rest_storage_;  // per character: the rest mesh, 64 bytes a vertex (0: none)
+  // Per character and mesh level (k x kMeshLevels + level): the rest mesh, 64
+  // bytes a vertex (0: none).
+  std::vector<GLuint> rest_storage_;
   size_t batch_ = 0, vertices_ = 0, joints_ = 0;  // sizes the batch buffers hold
   uint64_t gpu_bytes_ = 0;
   std::vector<glm::vec4> rows_;      // scratch: a batch's palettes

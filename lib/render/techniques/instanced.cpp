@@ -26,19 +26,21 @@ void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const Draw
   set_frame_uniforms(program_, pass);
   glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
                glm::value_ptr(kCopyColours[0]));
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    const InstanceRun run = buffers_.run(k);
+  for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
+    const InstanceRun run = buffers_.run(group);
     if (run.count == 0) continue;
-    glBindVertexArray(meshes[k].instanced_vao);
-    // One instanced draw per page the kind's palettes take (one, below the storage-block limit).
+    // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
+    const MeshLevelDraw level = meshes[group / kMeshLevels].draw_of(group % kMeshLevels, true);
+    glBindVertexArray(level.instanced_vao);
+    // One instanced draw per page the group's palettes take (one, below the storage-block limit).
     for (uint32_t from = run.first; from < run.first + run.count;) {
-      const InstanceRun part = buffers_.page_run(k, from);
+      const InstanceRun part = buffers_.page_run(group, from);
       buffers_.bind_page(buffers_.page_of(from));
       glBindVertexBuffer(kInstanceStream, buffers_.instance_buffer(),
                          static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
                          sizeof(GpuInstance));
-      glDrawElementsInstanced(GL_TRIANGLES, meshes[k].index_count, GL_UNSIGNED_INT, nullptr,
-                              static_cast<GLsizei>(part.count));
+      glDrawElementsInstancedBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index,
+                                        static_cast<GLsizei>(part.count), level.base_vertex);
       from += part.count;
       ++counters.draw_calls;
     }
