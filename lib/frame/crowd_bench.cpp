@@ -64,7 +64,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   if (mode.frustum == FrustumTest::Gpu) {
     baked_clocks_.resize(crowd_.size());
     for (size_t i = 0; i < crowd_.size(); ++i) baked_clocks_[i] = baked_clock(i);
-    gpu_visible_.assign(characters_.size(), 0);
+    gpu_visible_.assign(characters_.size() * kMeshLevels, 0);
   }
   character_views_ = character_views(prepared_);
   view_.mode = mode;
@@ -269,22 +269,34 @@ void CrowdBench::count_gpu_culled_work(Counters& counters) {
   for (size_t k = 0; k < characters_.size(); ++k) {
     Counters& c = character_counters_[k];
     c = Counters{};
-    c.copies_visible = std::min(gpu_visible_[k], copies_of_character_[k]);
+    // Per mesh level (level 0 alone without mesh LOD): copies, and the vertices
+    // the GPU skins and the triangles it draws for them.
+    for (size_t level = 0; level < kMeshLevels; ++level) {
+      const uint64_t copies = gpu_visible_[k * kMeshLevels + level];
+      if (copies == 0) continue;
+      c.*kLodCopies[level] = copies;
+      c.*kLodVertices[level] = copies * prepared_[k].vertices_of(level);
+      c.*kLodTriangles[level] = copies * triangles_of(k, level);
+      c.copies_visible += copies;
+    }
+    c.copies_visible = std::min(c.copies_visible, copies_of_character_[k]);
     const bool moves = !prepared_[k].bindings.empty();
     c.copies_culled = moves && config_.mode.animation_culling ? copies_of_character_[k] - c.copies_visible : 0;
-    c.lod0_copies = c.copies_visible;  // mesh LOD does not run with frustum gpu: every copy is level 0
-    c.lod0_vertices = c.copies_visible * prepared_[k].vertices;
-    c.lod0_triangles = c.copies_visible * triangles_of(k, 0);
     visible += c.copies_visible;
     culled += c.copies_culled;
   }
   counters.copies_visible = visible;
   counters.copies_culled = culled;
-  for (const Counters& c : character_counters_) {
-    counters.lod0_copies += c.lod0_copies;
-    counters.lod0_vertices += c.lod0_vertices;
-    counters.lod0_triangles += c.lod0_triangles;
-  }
+  add_lod_counters(counters);
+}
+
+void CrowdBench::add_lod_counters(Counters& counters) const {
+  for (const Counters& c : character_counters_)
+    for (size_t level = 0; level < kMeshLevels; ++level) {
+      counters.*kLodCopies[level] += c.*kLodCopies[level];
+      counters.*kLodVertices[level] += c.*kLodVertices[level];
+      counters.*kLodTriangles[level] += c.*kLodTriangles[level];
+    }
 }
 
 void CrowdBench::count_work(Counters& counters) {
@@ -332,12 +344,7 @@ void CrowdBench::count_work(Counters& counters) {
   counters.copies_culled = culled;
   counters.vertices_skinned = skinned;
   counters.copies_fallback = fallback;
-  for (const Counters& c : character_counters_)
-    for (size_t level = 0; level < 4; ++level) {
-      counters.*kLodCopies[level] += c.*kLodCopies[level];
-      counters.*kLodVertices[level] += c.*kLodVertices[level];
-      counters.*kLodTriangles[level] += c.*kLodTriangles[level];
-    }
+  add_lod_counters(counters);
 }
 
 }  // namespace crowdprof

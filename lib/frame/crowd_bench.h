@@ -196,6 +196,8 @@ class CrowdBench {
   BakedClock baked_clock(size_t copy) const;
   // frustum gpu: the counters from the GPU's visible counts, per character.
   void count_gpu_culled_work(Counters& counters);
+  // The characters' lod*_ counters summed into `counters`.
+  void add_lod_counters(Counters& counters) const;
   bool animates(size_t copy) const { return !config_.mode.animation_culling || store_->visible[copy]; }
   // Mesh LOD: each copy's level from its size on screen (copies and camera
   // stand still, so it is chosen once, at load).
@@ -219,7 +221,7 @@ class CrowdBench {
   std::vector<BakedInstance> baked_instances_;  // per copy, mode baked
   std::vector<BakedClock> baked_clocks_;        // per copy, mode baked with frustum gpu
   std::vector<uint64_t> copies_of_character_;   // per character
-  std::vector<uint64_t> gpu_visible_;           // per character, frustum gpu: the cull pass's count
+  std::vector<uint64_t> gpu_visible_;           // per character and level, frustum gpu: the cull pass's count
   std::vector<uint8_t> mesh_level_;             // per copy, mesh LOD: the level it draws (empty: none)
   bool loaded_ = false;                         // the constructor has finished (its frame -1 is done)
   FrameView view_;

@@ -113,9 +113,6 @@ SettingText conflicts(const ModeSwitches& s) {
   if (s.mesh_lod && s.share_poses)
     return "{mesh_lod} on skins each copy at the level its size picks; copies sharing one skinned mesh may differ "
            "in size: it needs {share} off";
-  if (s.mesh_lod && s.frustum == FrustumTest::Gpu)
-    return "{mesh_lod} on picks each copy's level on the CPU, and {frustum} gpu's cull pass does not pick levels "
-           "yet: use {frustum} cpu";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
   return {};

@@ -196,7 +196,7 @@ const std::array kSwitches = {
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.frustum, t, kFrustumTests); }, false},
     SwitchSpec{"mesh_lod", "on|off",
                "Mesh LOD: copies small on screen skin and draw a simplified mesh (half, a quarter, a tenth of the "
-               "triangles, made at load with meshoptimizer); needs share off and frustum cpu",
+               "triangles, made at load with meshoptimizer); needs share off",
                [](const ModeSwitches& s) { return json(s.mesh_lod); },
                [](ModeSwitches& s, std::string_view t) { return set_on_off(s.mesh_lod, t); }, false},
     SwitchSpec{"mesh_lod_thresholds", "A,B,C",

@@ -56,3 +56,30 @@ TEST(MeshLodRender, ACharacterWithoutActionsShowsItsLevelsRestMesh) {
   ASSERT_GT(covered(cpu.rgba), pixels / 200);
   EXPECT_LE(pixels_differing(cpu.rgba, gpu.rgba, 4), pixels * 5 / 10000);
 }
+
+// frustum gpu picks each copy's level in its cull pass (cull.comp) as the CPU
+// does at load: the same counts per level, read back from the GPU, and the
+// same image; one indirect draw per character and level.
+TEST(MeshLodRender, TheGpuCullPicksTheLevelsTheCpuPicks) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  shot.mode = "baked";
+  shot.copies = 300;
+  shot.frame = 2;
+  shot.mesh_lod = true;
+  Frame cpu = render(*context, default_humanoid(), shot);
+  shot.frustum = FrustumTest::Gpu;
+  Frame gpu = render(*context, default_humanoid(), shot);
+  ASSERT_GT(cpu.counters.lod1_copies + cpu.counters.lod2_copies + cpu.counters.lod3_copies, 0u);
+  EXPECT_EQ(gpu.counters.copies_visible, cpu.counters.copies_visible);
+  EXPECT_EQ(gpu.counters.lod0_copies, cpu.counters.lod0_copies);
+  EXPECT_EQ(gpu.counters.lod1_copies, cpu.counters.lod1_copies);
+  EXPECT_EQ(gpu.counters.lod2_copies, cpu.counters.lod2_copies);
+  EXPECT_EQ(gpu.counters.lod3_copies, cpu.counters.lod3_copies);
+  EXPECT_EQ(gpu.counters.lod3_triangles, cpu.counters.lod3_triangles);
+  EXPECT_EQ(gpu.counters.draw_calls, 4u);  // every level of the one character, drawn or not
+  EXPECT_EQ(gpu.counters.bytes_uploaded, 4u * 20u);  // its four commands, cleared
+  const size_t pixels = cpu.rgba.size() / 4;
+  ASSERT_GT(covered(cpu.rgba), pixels / 200);
+  EXPECT_EQ(pixels_differing(cpu.rgba, gpu.rgba, 4), 0u);
+}

@@ -54,22 +54,30 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
   gpu_cull_.reset();
   if (view.mode.frustum != FrustumTest::Gpu) return;
-  // Each character's records in a range as long as its copies: the cull pass
+  // Each character's and level's records in a range as long as the
+  // character's copies (any of them may take any level): the cull pass
   // appends to it, and its draw reads it.
-  std::vector<size_t> first(meshes.size() + 1, 0);
+  const size_t per_kind = view.mode.mesh_lod ? kMeshLevels : 1, groups = meshes.size() * per_kind;
+  std::vector<size_t> first(groups + 1, 0);
   std::vector<uint8_t> baked(meshes.size(), 0);
-  for (size_t i = 0; i < copies; ++i) ++first[view.kind[i] + 1];
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    first[k + 1] += first[k];
-    baked[k] = k < tables_.size() && tables_[k] != 0;
+  for (size_t i = 0; i < copies; ++i)
+    for (size_t level = 0; level < per_kind; ++level) ++first[view.kind[i] * per_kind + level + 1];
+  for (size_t g = 0; g < groups; ++g) first[g + 1] += first[g];
+  for (size_t k = 0; k < meshes.size(); ++k) baked[k] = k < tables_.size() && tables_[k] != 0;
+  if (instance_capacity_ < first[groups]) {
+    instance_capacity_ = first[groups];
+    glDeleteBuffers(1, &instances_);
+    instances_ = make_buffer(GL_SHADER_STORAGE_BUFFER, instance_capacity_ * sizeof(InstanceRecord), nullptr,
+                             GL_STREAM_DRAW);
+    gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
   }
   gpu_cull_ = std::make_unique<GpuCull>(view, meshes, first, baked);
   gpu_bytes_ += gpu_cull_->gpu_bytes();
 }
 
-bool BakedSkinning::visible_counts(std::span<uint64_t> per_character) const {
+bool BakedSkinning::visible_counts(std::span<uint64_t> per_group) const {
   if (!gpu_cull_) return false;
-  gpu_cull_->visible_counts(per_character);
+  gpu_cull_->visible_counts(per_group);
   return true;
 }
 
@@ -112,8 +120,7 @@ void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const 
       if (k >= tables_.size() || !tables_[k]) continue;
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
       glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
-      glBindVertexArray(meshes[k].rest_vao);
-      gpu_cull_->draw(k, first_instance_, counters);
+      gpu_cull_->draw(k, meshes[k], first_instance_, counters);
       continue;
     }
     for (size_t l = 0; l < kMeshLevels; ++l) {

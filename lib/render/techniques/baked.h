@@ -31,9 +31,10 @@ class BakedSkinning final : public Technique {
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
-  // frustum gpu, after the frame has finished: each character's copies on
-  // screen, as the cull pass counted them. False when the CPU culled.
-  bool visible_counts(std::span<uint64_t> per_character) const;
+  // frustum gpu, after the frame has finished: the copies on screen per
+  // character and mesh level (k x kMeshLevels + level), as the cull pass
+  // counted them. False when the CPU culled.
+  bool visible_counts(std::span<uint64_t> per_group) const;
 
  private:
   struct InstanceRecord {

@@ -1,5 +1,7 @@
 #include "render/techniques/gpu_cull.h"
 
+#include <algorithm>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "frame/frame_view.h"
@@ -19,7 +21,7 @@ struct CullCopy {
   glm::vec4 box_min, box_max;
   uint32_t kind, first_sample, intervals;
   float phase, start, end, duration;
-  uint32_t pad = 0;
+  uint32_t levels = 1;  // mesh levels of its character (1: no mesh LOD)
 };
 static_assert(sizeof(CullCopy) == 64);
 
@@ -31,6 +33,9 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   ShaderStage stage{GL_COMPUTE_SHADER, "shaders/cull.comp", source};
   program_ = GlProgram(std::span(&stage, 1));
   planes_ = program_.uniform("planes");
+  view_projection_ = program_.uniform("view_projection");
+  thresholds_ = program_.uniform("lod_thresholds");
+  per_kind_uniform_ = program_.uniform("commands_per_kind");
   seconds_ = program_.uniform("seconds");
   copy_count_ = program_.uniform("copy_count");
   copy_count_value_ = view.copies();
@@ -38,14 +43,23 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   for (size_t i = 0; i < copy_count_value_; ++i) {
     const Aabb& box = view.world_boxes[i];
     const BakedClock& clock = view.baked_clocks[i];
+    const auto levels = static_cast<uint32_t>(
+        view.mode.mesh_lod ? std::min(view.character_of(i).mesh_lods.size() + 1, kMeshLevels) : 1);
     copies[i] = {glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], clock.first_sample,
-                 clock.intervals, clock.phase, clock.start, clock.end, clock.duration};
+                 clock.intervals, clock.phase, clock.start, clock.end, clock.duration, levels};
   }
   copies_ = make_buffer(GL_SHADER_STORAGE_BUFFER, copies.size() * sizeof(CullCopy), copies.data(), GL_STATIC_DRAW);
-  drawn_.assign(meshes.size(), 0);
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    drawn_[k] = baked[k];
-    cleared_.push_back({static_cast<uint32_t>(meshes[k].index_count), 0, 0, 0, static_cast<uint32_t>(first_record[k])});
+  // One command per character, or with mesh LOD per character and level, even
+  // for levels it lacks (never appended to, never drawn).
+  per_kind_ = view.mode.mesh_lod ? kMeshLevels : 1;
+  drawn_.assign(meshes.size() * per_kind_, 0);
+  for (size_t g = 0; g < meshes.size() * per_kind_; ++g) {
+    const size_t k = g / per_kind_, level = g % per_kind_;
+    drawn_[g] = baked[k] && (level == 0 || (view.mode.mesh_lod && level <= view.characters[k].mesh_lods.size()));
+    const MeshLevelDraw d = meshes[k].draw_of(level, true);
+    cleared_.push_back({static_cast<uint32_t>(d.index_count), 0,
+                        static_cast<uint32_t>(reinterpret_cast<uintptr_t>(d.first_index) / sizeof(uint32_t)),
+                        d.base_vertex, static_cast<uint32_t>(first_record[g])});
   }
   commands_ = make_buffer(GL_SHADER_STORAGE_BUFFER, cleared_.size() * sizeof(Command), cleared_.data(),
                           GL_DYNAMIC_DRAW);
@@ -67,6 +81,11 @@ void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
   const Frustum frustum = frustum_of(view.view_projection);
   glUseProgram(program_.id());
   glUniform4fv(planes_, 6, glm::value_ptr(frustum.planes[0]));
+  glUniformMatrix4fv(view_projection_, 1, GL_FALSE, glm::value_ptr(view.view_projection));
+  const MeshLodThresholds& at = view.mode.mesh_lod_at;
+  const float thresholds[3] = {at.level_1, at.level_2, at.level_3};
+  glUniform1fv(thresholds_, 3, thresholds);
+  glUniform1ui(per_kind_uniform_, static_cast<GLuint>(per_kind_));
   glUniform1d(seconds_, view.seconds);
   glUniform1ui(copy_count_, static_cast<GLuint>(copy_count_value_));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, copies_);
@@ -79,23 +98,31 @@ void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
-void GpuCull::draw(size_t k, GLint first_instance_uniform, Counters& counters) const {
-  if (!drawn_[k]) return;
-  glUniform1ui(first_instance_uniform, cleared_[k].base_instance);
+void GpuCull::draw(size_t k, const CharacterMesh& mesh, GLint first_instance_uniform, Counters& counters) const {
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_);
-  // The CPU does not know how many copies are on screen: one draw per character, always.
-  glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                         reinterpret_cast<const void*>(static_cast<uintptr_t>(k * sizeof(Command))));
-  ++counters.draw_calls;
+  // The CPU does not know how many copies are on screen: one draw per character
+  // and level, always (a level's own vertex array holds its indices).
+  for (size_t level = 0; level < per_kind_; ++level) {
+    const size_t g = k * per_kind_ + level;
+    if (!drawn_[g]) continue;
+    glUniform1ui(first_instance_uniform, cleared_[g].base_instance);
+    glBindVertexArray(mesh.draw_of(level, true).vao);
+    glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(static_cast<uintptr_t>(g * sizeof(Command))));
+    ++counters.draw_calls;
+  }
 }
 
-void GpuCull::visible_counts(std::span<uint64_t> per_character) const {
+void GpuCull::visible_counts(std::span<uint64_t> per_group) const {
   std::vector<Command> commands(cleared_.size());
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, commands_);
   glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(commands.size() * sizeof(Command)),
                      commands.data());
-  for (size_t k = 0; k < per_character.size() && k < commands.size(); ++k)
-    per_character[k] = drawn_[k] ? commands[k].instance_count : 0;
+  std::fill(per_group.begin(), per_group.end(), 0);
+  for (size_t g = 0; g < commands.size(); ++g) {
+    const size_t at = g / per_kind_ * kMeshLevels + g % per_kind_;
+    if (at < per_group.size()) per_group[at] = drawn_[g] ? commands[g].instance_count : 0;
+  }
 }
 
 }  // namespace crowdprof

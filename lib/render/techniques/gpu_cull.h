@@ -1,9 +1,10 @@
 // The GPU-driven crowd's cull pass (frustum gpu, issue 30): a compute shader
 // (shaders/cull.comp) tests every copy's world box against the camera and,
-// for each copy on screen, appends its baked record to its character's range
-// of the instance buffer and counts it in that character's indirect draw
-// command. The CPU's work per frame is a few uniforms, one dispatch and one
-// indirect draw per character: it does not grow with the crowd.
+// for each copy on screen, picks its mesh level (mesh LOD; else level 0),
+// appends its baked record to its character's and level's range of the
+// instance buffer and counts it in that range's indirect draw command. The
+// CPU's work per frame is a few uniforms, one dispatch and one indirect draw
+// per character and level: it does not grow with the crowd.
 #pragma once
 
 #include <cstddef>
@@ -19,12 +20,14 @@ namespace crowdprof {
 
 struct FrameView;
 class CharacterMeshes;
+struct CharacterMesh;
 
 class GpuCull {
  public:
-  // `first_record`: per character, where its records start in the instance
-  // buffer (its copies' count apart), and the end; `baked`: per character,
-  // whether it is drawn from a baked table.
+  // `first_record`: per character, or with mesh LOD per character and level
+  // (k x kMeshLevels + level), where its records start in the instance buffer
+  // (its character's copy count apart), and the end; `baked`: per character, whether it is drawn from a
+  // baked table.
   GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span<const size_t> first_record,
           std::span<const uint8_t> baked);
   ~GpuCull();
@@ -34,11 +37,12 @@ class GpuCull {
   // Once a frame, before the passes: clears the instance counts and runs the
   // pass, writing into `instances` (bound as the records baked.vert reads).
   void run(const FrameView& view, GLuint instances, Counters& counters);
-  // Draws character k's copies on screen with the program bound (baked.vert,
-  // whose first_instance uniform is `first_instance_uniform`).
-  void draw(size_t k, GLint first_instance_uniform, Counters& counters) const;
-  // After the frame has finished: each character's count of copies on screen.
-  void visible_counts(std::span<uint64_t> per_character) const;
+  // Draws character k's copies on screen, level by level, with the program
+  // bound (baked.vert, whose first_instance uniform is `first_instance_uniform`).
+  void draw(size_t k, const CharacterMesh& mesh, GLint first_instance_uniform, Counters& counters) const;
+  // After the frame has finished: the copies on screen per character and mesh
+  // level (k x kMeshLevels + level).
+  void visible_counts(std::span<uint64_t> per_group) const;
   // GPU storage held: the copies' boxes and clocks, the commands.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
@@ -51,11 +55,12 @@ class GpuCull {
   static_assert(sizeof(Command) == 20);
 
   GlProgram program_;
-  GLint planes_ = -1, seconds_ = -1, copy_count_ = -1;
+  GLint planes_ = -1, view_projection_ = -1, thresholds_ = -1, per_kind_uniform_ = -1, seconds_ = -1, copy_count_ = -1;
   GLuint copies_ = 0, commands_ = 0;
   std::vector<Command> cleared_;  // the commands with no instance: each frame starts from them
-  std::vector<uint8_t> drawn_;    // per character: has a command
+  std::vector<uint8_t> drawn_;    // per character and level: drawn (a baked character's level it has)
   size_t copy_count_value_ = 0;
+  size_t per_kind_ = 1;  // commands per character: kMeshLevels with mesh LOD, else 1
   uint64_t gpu_bytes_ = 0;
 };
 
