@@ -49,20 +49,10 @@ std::array<size_t, 4> influence_histogram(const SkinnedMesh& mesh) {
 
 namespace {
 
-// The bind pose's extent in Y: the height errors are given as a share of.
-float mesh_height(const SkinnedMesh& mesh) {
-  float low = 0, high = 0;
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    low = v ? std::min(low, mesh.positions[v].y) : mesh.positions[v].y;
-    high = v ? std::max(high, mesh.positions[v].y) : mesh.positions[v].y;
-  }
-  return high - low;
-}
-
 // The levels `--mesh-lod on` would build from the character (asset/mesh_lod.h).
 nlohmann::json describe_mesh_lods(const SkinnedMesh& mesh) {
   nlohmann::json levels = nlohmann::json::array();
-  const float height = mesh_height(mesh);
+  const float height = bind_pose_height(mesh);
   for (const MeshLod& lod : build_mesh_lods(mesh))
     levels.push_back({{"triangles", lod.mesh.triangle_count()},
                       {"vertices", lod.mesh.vertex_count()},

@@ -1,5 +1,7 @@
 #include "asset/mesh_lod.h"
 
+#include <algorithm>
+
 #include <meshoptimizer.h>
 
 namespace crowdprof {
@@ -36,6 +38,15 @@ MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
 }
 
 }  // namespace
+
+float bind_pose_height(const SkinnedMesh& mesh) {
+  float low = 0, high = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    low = v ? std::min(low, mesh.positions[v].y) : mesh.positions[v].y;
+    high = v ? std::max(high, mesh.positions[v].y) : mesh.positions[v].y;
+  }
+  return high - low;
+}
 
 std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets) {
   std::vector<MeshLod> levels;

@@ -32,6 +32,9 @@ inline constexpr MeshLodTarget kMeshLodTargets[] = {{0.5f, 0.01f}, {0.25f, 0.02f
 // Levels a copy can draw: the full mesh and at most three coarser ones.
 inline constexpr size_t kMeshLevels = 4;
 
+// The bind pose's extent in Y: the height errors are given as a share of.
+float bind_pose_height(const SkinnedMesh& mesh);
+
 // Simplifies `mesh` (bind pose) to each target in turn, each level from the
 // full mesh. A level that would not have fewer triangles than the one before
 // it is left out, so a small mesh may get fewer levels (or none). The vertices

@@ -62,6 +62,7 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
     reports[b].stores = benches[b]->streams_output() ? "streaming" : "regular";
     record_character_counters(*benches[b], reports[b].run);
     record_animation(*benches[b], reports[b]);
+    record_mesh_lod(*benches[b], reports[b]);
   }
   return reports;
 }

@@ -71,6 +71,17 @@ struct AnimationFidelity {
   size_t copies_deviating = 0;     // of those, copies whose time drawn was not their exact time
 };
 
+// Mesh LOD (issue 29): the copies on screen at one level and what the level
+// costs in fidelity. The error is meshoptimizer's estimate of the level's
+// distance from the full surface (bind pose; 0 at level 0), the worst
+// character's (a level no character has: 0): in model units, as a share of
+// that character's height, and in screen pixels at the largest copy drawn at
+// the level (0 when none is).
+struct MeshLevelFidelity {
+  uint64_t copies = 0;
+  double error = 0, error_fraction = 0, error_px = 0;
+};
+
 // Empty when a bench of this config can run, else why not: switches that
 // conflict, skinning on the GPU without a renderer, a bake rate that is not a
 // positive number.
@@ -136,6 +147,9 @@ class CrowdBench {
   const UpdateSchedule& schedule() const { return planner_->schedule(); }
   // Mesh LOD: the level copy `copy` draws (0, the full mesh, without it).
   size_t mesh_level(size_t copy) const { return level_of(copy); }
+  // Mesh LOD: per level, the copies on screen and the error they are drawn
+  // with, on a screen `screen_height_px` tall; all zero without mesh LOD.
+  std::array<MeshLevelFidelity, kMeshLevels> mesh_lod_fidelity(int screen_height_px) const;
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return store_->visible[copy] != 0; }
   // Where this character's copies are skinned: the mode's site, or the CPU for

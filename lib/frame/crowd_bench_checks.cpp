@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "animation/pose.h"
+#include "asset/mesh_lod.h"
+#include "scene/screen_size.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -16,15 +18,7 @@ namespace crowdprof {
 AnimationFidelity CrowdBench::measure_fidelity() const {
   AnimationFidelity fidelity;
   std::vector<float> heights;
-  for (const Character* character : characters_) {
-    float low = 0, high = 0;
-    for (size_t v = 0; v < character->mesh.positions.size(); ++v) {
-      float y = character->mesh.positions[v].y;
-      low = v ? std::min(low, y) : y;
-      high = v ? std::max(high, y) : y;
-    }
-    heights.push_back(high - low);
-  }
+  for (const Character* character : characters_) heights.push_back(bind_pose_height(character->mesh));
   LocalPose pose;
   SamplingCursor cursor;
   std::vector<glm::mat4> model;
@@ -59,6 +53,36 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
     if (height > 0) fidelity.deviation_fraction = std::max(fidelity.deviation_fraction, worst / height);
   }
   return fidelity;
+}
+
+std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int screen_height_px) const {
+  std::array<MeshLevelFidelity, kMeshLevels> levels{};
+  if (mesh_level_.empty()) return levels;
+  // Each level's error, the worst character's, whether or not a copy is at it.
+  for (size_t k = 0; k < characters_.size(); ++k) {
+    const float height = bind_pose_height(characters_[k]->mesh);
+    for (size_t level = 1; level < prepared_[k].levels() && level < kMeshLevels; ++level) {
+      const double error = prepared_[k].mesh_lods[level - 1].error;
+      levels[level].error = std::max(levels[level].error, error);
+      if (height > 0) levels[level].error_fraction = std::max(levels[level].error_fraction, error / height);
+    }
+  }
+  const glm::mat4 view_projection = camera_.view_projection();
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!store_->visible[i]) continue;
+    const size_t k = crowd_.kind[i], level = mesh_level_[i];
+    MeshLevelFidelity& f = levels[level];
+    ++f.copies;
+    if (level == 0) continue;
+    const double error = prepared_[k].mesh_lods[level - 1].error;
+    // Pixels a model unit spans at this copy's size: its box's projected share
+    // of the screen's height over the box's own height.
+    const Aabb& box = crowd_.world_boxes[i];
+    const double box_height = box.max.y - box.min.y;
+    if (box_height > 0)
+      f.error_px = std::max(f.error_px, error * screen_height_fraction(view_projection, box) * screen_height_px / box_height);
+  }
+  return levels;
 }
 
 namespace {

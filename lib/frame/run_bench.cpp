@@ -1,5 +1,7 @@
 #include "frame/run_bench.h"
 
+#include "frame/bench_setup.h"
+
 #include "profile/instruction_counter.h"
 
 #include <algorithm>
@@ -136,6 +138,18 @@ void record_animation(const CrowdBench& bench, RunReport& report) {
   report.animation = a;
 }
 
+void record_mesh_lod(const CrowdBench& bench, RunReport& report) {
+  if (!bench.config().mode.mesh_lod) return;
+  MeshLodRecord m;
+  for (const MeshLevelFidelity& f : bench.mesh_lod_fidelity(resolution_size(bench.config().resolution).second)) {
+    m.copies.push_back(f.copies);
+    m.error.push_back(f.error);
+    m.error_fraction.push_back(f.error_fraction);
+    m.error_px.push_back(f.error_px);
+  }
+  report.mesh_lod = std::move(m);
+}
+
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
   for (const GpuTime& t : bench.gpu_times())
     if (t.frame >= warmup && t.frame - warmup < frames.size()) {
@@ -195,6 +209,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   report.stores = bench.streams_output() ? "streaming" : "regular";
   record_character_counters(bench, report.run);
   record_animation(bench, report);
+  record_mesh_lod(bench, report);
   return report;
 }
 

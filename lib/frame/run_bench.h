@@ -48,6 +48,8 @@ void check_fits_in_memory(std::span<const Character* const> characters, const Be
 // With sharing, update-rate LOD or a budget: report.animation from the
 // bench's schedule and its fidelity measured on the last frame (docs/formats.md).
 void record_animation(const CrowdBench& bench, RunReport& report);
+// With mesh LOD: the copies per level and the error each is drawn with.
+void record_mesh_lod(const CrowdBench& bench, RunReport& report);
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 

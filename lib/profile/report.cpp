@@ -228,6 +228,16 @@ std::string format_profile(const RunReport& report) {
         << fixed(a.deviation_fraction_of_height * 100.0, 2) << "% of height) over " << a.copies_checked
         << " copies on screen\n";
   }
+  if (report.mesh_lod) {
+    const MeshLodRecord& m = *report.mesh_lod;
+    out << "mesh LOD: copies on screen by level (0: full mesh)";
+    for (size_t l = 0; l < m.copies.size(); ++l) out << (l ? " / " : " ") << m.copies[l];
+    out << " | error by level";
+    for (size_t l = 1; l < m.copies.size(); ++l)
+      out << (l > 1 ? " / " : " ") << fixed(m.error[l] * 1000.0, 2) << " mm (" << fixed(m.error_fraction[l] * 100.0, 2)
+          << "% of height" << (m.copies[l] ? ", " + fixed(m.error_px[l], 2) + " px" : std::string()) << ")";
+    out << "\n";
+  }
   if (report.partial)
     out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
         << " frames; the figures above are of those\n";
@@ -306,6 +316,7 @@ Result make_result(const RunReport& report) {
   r.partial = report.partial;
   r.frames_planned = report.frames_planned;
   r.animation = report.animation;
+  r.mesh_lod = report.mesh_lod;
   if (!report.instruction_source.empty()) {
     // What a stored instruction baseline must match to be compared.
     InstructionRecord i;

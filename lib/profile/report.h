@@ -28,6 +28,8 @@ struct RunReport {
   // With animation sharing, update-rate LOD or a budget (issue 13): how updates
   // were scheduled and what it cost in fidelity (docs/formats.md); null otherwise.
   std::optional<AnimationRecord> animation;
+  // With mesh LOD (issue 29): copies per level and the error each is drawn with.
+  std::optional<MeshLodRecord> mesh_lod;
   // How the frames' instructions were counted: "" (not asked), "perf_event",
   // "callgrind" (the total is read from callgrind's output by who ran it) or
   // "none" (asked, but nothing here counts; instruction_problem says why).

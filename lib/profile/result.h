@@ -78,6 +78,16 @@ struct AnimationRecord {
   uint64_t copies_checked = 0, copies_deviating = 0;
 };
 
+// Mesh LOD (issue 29): per level (0: the full mesh), the copies on screen at it
+// in the last frame and the error it is drawn with: meshoptimizer's estimate
+// of the level's distance from the full surface (bind pose), the worst
+// character's, in model units (mm for glTF's metres x 1000), as a share of its
+// height, and in pixels at the largest copy drawn at the level.
+struct MeshLodRecord {
+  std::vector<uint64_t> copies;
+  std::vector<double> error, error_fraction, error_px;
+};
+
 // The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
 // read when the renderer was made; "unknown" where the GL says nothing, with
 // the largest storage block it allows.
@@ -172,6 +182,7 @@ struct Result {
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;
+  std::optional<MeshLodRecord> mesh_lod;  // with --mesh-lod on
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
   std::optional<InstructionRecord> instructions;

@@ -70,6 +70,10 @@ json animation_json(const AnimationRecord& a) {
           {"copies_deviating", a.copies_deviating}};
 }
 
+json mesh_lod_json(const MeshLodRecord& m) {
+  return {{"copies", m.copies}, {"error", m.error}, {"error_fraction", m.error_fraction}, {"error_px", m.error_px}};
+}
+
 json instructions_json(const InstructionRecord& i) {
   json j = {{"source", i.source}, {"threads", i.threads}, {"simd", i.simd}, {"compiler", i.compiler}};
   j["per_frame"] = i.per_frame ? json(*i.per_frame) : json(nullptr);
@@ -521,6 +525,20 @@ void read_extras(const Reader& in, Result& r) {
     a.copies_deviating = in.count_or("/animation/copies_deviating", 0);
     r.animation = std::move(a);
   }
+  if (in.has("/mesh_lod")) {
+    in.object("/mesh_lod");
+    MeshLodRecord m;
+    auto is_whole = [](const json& v) { return whole(v); };
+    m.copies = in.array_of<uint64_t>("/mesh_lod/copies", is_whole, "an array of copy counts");
+    m.error = in.array_of<double>("/mesh_lod/error", milliseconds, "an array of distances");
+    m.error_fraction = in.array_of<double>("/mesh_lod/error_fraction", milliseconds, "an array of fractions");
+    m.error_px = in.array_of<double>("/mesh_lod/error_px", milliseconds, "an array of pixels");
+    const size_t levels = m.copies.size();
+    in.require(levels >= 1 && levels <= 4 && m.error.size() == levels && m.error_fraction.size() == levels &&
+                   m.error_px.size() == levels,
+               "/mesh_lod", "arrays of one to four levels, all as long");
+    r.mesh_lod = std::move(m);
+  }
   if (in.has("/instructions")) {
     in.object("/instructions");
     InstructionRecord i;
@@ -609,6 +627,7 @@ nlohmann::json result_to_json(const Result& r) {
   j["digest"] = r.digest;
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.animation) j["animation"] = animation_json(*r.animation);
+  if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);
   if (r.instructions) j["instructions"] = instructions_json(*r.instructions);
   if (r.partial) {
     j["partial"] = true;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "frame/crowd_bench.h"
+#include "frame/run_bench.h"
 #include "render_support.h"
 
 using namespace crowdprof;
@@ -106,4 +107,34 @@ TEST(MeshLodBench, CopiesOffScreenAreSkinnedAtTheCoarsestLevelWithCullingOff) {
     EXPECT_EQ(bench.mesh_level(i), 3u) << i;
   }
   EXPECT_GT(off_screen, 0u);
+}
+
+// The run's record: copies per level as the counters say, each level's error
+// (meshoptimizer's, growing level by level) in model units, as a share of the
+// height and in pixels where copies are drawn at it.
+TEST(MeshLodBench, TheRunRecordsEachLevelsCopiesAndError) {
+  CrowdBench bench(test::default_humanoid(), lod_config("threaded", 1, 1000));
+  Counters c = bench.step().counters;
+  RunReport report;
+  record_mesh_lod(bench, report);
+  ASSERT_TRUE(report.mesh_lod);
+  const MeshLodRecord& m = *report.mesh_lod;
+  ASSERT_EQ(m.copies.size(), 4u);
+  EXPECT_EQ(m.copies[0], c.lod0_copies);
+  EXPECT_EQ(m.copies[2], c.lod2_copies);
+  EXPECT_EQ(m.copies[3], c.lod3_copies);
+  EXPECT_EQ(m.error[0], 0.0);
+  for (size_t l = 1; l < 4; ++l) {
+    EXPECT_GT(m.error[l], m.error[l - 1]) << l;
+    EXPECT_NEAR(m.error_fraction[l], m.error[l] / bind_pose_height(test::default_humanoid().mesh), 1e-9) << l;
+    EXPECT_EQ(m.error_px[l] > 0, m.copies[l] > 0) << l;
+  }
+  // 1,000 humanoids from the default camera are a few dozen pixels tall: under a pixel of error.
+  EXPECT_LT(m.error_px[3], 1.0);
+  BenchConfig plain = lod_config("threaded", 1, 10);
+  plain.mode.mesh_lod = false;
+  CrowdBench without(test::default_humanoid(), plain);
+  RunReport none;
+  record_mesh_lod(without, none);
+  EXPECT_FALSE(none.mesh_lod);
 }

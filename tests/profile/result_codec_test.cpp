@@ -35,6 +35,7 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   report.run.lens = LensRecord{35.0, 32.0, 18.0, "auto"};
   report.run.gpu_skinning = GpuSkinningRecord{"baked", 4096, BakeRecord{30.0, 120, 1.5, 0.01, 0.002}};
   report.animation = AnimationRecord{{40, 0, 0, 0, 0, 0, 0}, 1, 0, 0.25, 0.01, 40, 3};
+  report.mesh_lod = MeshLodRecord{{2, 10, 20, 8}, {0, 0.001, 0.003, 0.006}, {0, 0.0005, 0.0015, 0.0035}, {0, 0.1, 0.2, 0.3}};
   report.partial = true;
   report.frames_planned = 10;
   json written = to_json(report);
@@ -49,6 +50,9 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   EXPECT_EQ(read.run.gpu_skinning->bake->samples, 120u);
   ASSERT_TRUE(read.animation);
   EXPECT_EQ(read.animation->copies_deviating, 3u);
+  ASSERT_TRUE(read.mesh_lod);
+  EXPECT_EQ(read.mesh_lod->copies[2], 20u);
+  EXPECT_DOUBLE_EQ(read.mesh_lod->error_px[3], 0.3);
   EXPECT_TRUE(read.partial);
   EXPECT_EQ(read.frames_planned, 10u);
 }
@@ -169,6 +173,10 @@ TEST(ResultCodec, ABadFieldIsNamed) {
       {"/scene/lens", json("wide"), "\"scene.lens\" should be an object"},
       {"/instructions", json::object({{"per_frame", "many"}}), "\"instructions.per_frame\" should be a number"},
       {"/switches/culling", json(7), "culling '7'"},
+      {"/mesh_lod", json::object({{"copies", {1, 2}}, {"error", {0.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
+       "\"mesh_lod\" should be arrays of one to four levels, all as long"},
+      {"/mesh_lod", json::object({{"copies", {1}}, {"error", {-1.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
+       "\"mesh_lod.error\" should be an array of distances"},
   };
   for (const Case& c : cases) {
     json bad = good;
