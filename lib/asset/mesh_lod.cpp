@@ -50,7 +50,11 @@ float bind_pose_height(const SkinnedMesh& mesh) {
 
 std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets) {
   std::vector<MeshLod> levels;
-  if (mesh.indices.size() < 3 || mesh.vertex_count() == 0) return levels;
+  // meshoptimizer asserts (aborts) on a partial triangle or an index past the
+  // vertices: the loader refuses both, but a mesh made elsewhere may not.
+  if (mesh.indices.size() < 3 || mesh.indices.size() % 3 != 0 || mesh.vertex_count() == 0) return levels;
+  for (uint32_t i : mesh.indices)
+    if (i >= mesh.vertex_count()) return levels;
   const float* positions = &mesh.positions[0].x;
   const float scale = meshopt_simplifyScale(positions, mesh.vertex_count(), sizeof(glm::vec3));
   size_t previous = mesh.indices.size();

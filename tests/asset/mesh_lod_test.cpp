@@ -62,7 +62,7 @@ TEST(MeshLod, TheLevelsAreTheSameEveryTime) {
   }
 }
 
-TEST(MeshLod, AMeshTooSmallToSimplifyHasNoLevels) {
+TEST(MeshLod, AMeshTooSmallOrMalformedHasNoLevels) {
   SkinnedMesh one;
   one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   one.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
@@ -72,4 +72,11 @@ TEST(MeshLod, AMeshTooSmallToSimplifyHasNoLevels) {
   one.primitives = {{0, 3, 0, 3}};
   EXPECT_TRUE(build_mesh_lods(one).empty());
   EXPECT_TRUE(build_mesh_lods(SkinnedMesh{}).empty());
+  // Not a mesh the simplifier takes (it would abort): no levels, no crash.
+  SkinnedMesh partial = test::default_humanoid().mesh;
+  partial.indices.pop_back();
+  EXPECT_TRUE(build_mesh_lods(partial).empty());
+  SkinnedMesh past = test::default_humanoid().mesh;
+  past.indices[7] = static_cast<uint32_t>(past.vertex_count());
+  EXPECT_TRUE(build_mesh_lods(past).empty());
 }
