@@ -263,7 +263,7 @@ void CrowdBench::update_scenegraph(Counters& counters) {
 
 void CrowdBench::count_gpu_culled_work(Counters& counters) {
   // The GPU's own counts; a GL that could not say leaves them all off screen.
-  if (!config_.renderer || !config_.renderer->gpu_visible_counts(gpu_visible_))
+  if (!config_.renderer || !config_.renderer->gpu_visible_counts(view_, gpu_visible_))
     throw std::runtime_error("the GPU's cull pass gave no count of the copies it found on screen");
   uint64_t visible = 0, culled = 0;
   for (size_t k = 0; k < characters_.size(); ++k) {
@@ -274,6 +274,8 @@ void CrowdBench::count_gpu_culled_work(Counters& counters) {
     for (size_t level = 0; level < kMeshLevels; ++level) {
       const uint64_t copies = gpu_visible_[k * kMeshLevels + level];
       if (copies == 0) continue;
+      // A level the character lacks was never appended to: a pass that says so is broken.
+      if (level >= prepared_[k].levels()) throw std::runtime_error("the GPU's cull pass drew a mesh level the character lacks");
       c.*kLodCopies[level] = copies;
       c.*kLodVertices[level] = copies * prepared_[k].vertices_of(level);
       c.*kLodTriangles[level] = copies * triangles_of(k, level);

@@ -63,11 +63,12 @@ class FrameRenderer {
   virtual void finish() = 0;
 
   // After finish(), with frustum gpu: how many copies of each character the
-  // GPU's cull pass found on screen this frame at each mesh level, into
+  // GPU's cull pass found on screen in `view`'s frame at each mesh level, into
   // `per_group` (character k's level l at k x kMeshLevels + l; level 0 alone
   // without mesh LOD). False (and nothing written) when the frame was not
   // culled on the GPU.
-  virtual bool gpu_visible_counts(std::span<uint64_t> per_group) const {
+  virtual bool gpu_visible_counts(const FrameView& view, std::span<uint64_t> per_group) const {
+    (void)view;
     (void)per_group;
     return false;
   }

@@ -198,8 +198,8 @@ void GlCrowdRenderer::finish() {
   check_gl("GPU Latency");
 }
 
-bool GlCrowdRenderer::gpu_visible_counts(std::span<uint64_t> per_group) const {
-  if (!baked_ || !baked_->visible_counts(per_group)) return false;
+bool GlCrowdRenderer::gpu_visible_counts(const FrameView& view, std::span<uint64_t> per_group) const {
+  if (!baked_ || !baked_->visible_counts(view, per_group)) return false;
   check_gl("Overhead (reading the cull pass's counts)");
   return true;
 }

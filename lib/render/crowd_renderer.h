@@ -82,7 +82,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   void draw(const FrameView& view, Counters& counters) override;
   // glFinish. Throws GlError "GL error ... during GPU Latency".
   void finish() override;
-  bool gpu_visible_counts(std::span<uint64_t> per_group) const override;
+  bool gpu_visible_counts(const FrameView& view, std::span<uint64_t> per_group) const override;
   std::string gpu_timing_missing() const override;
   std::string pipeline_statistics_missing() const override;
   size_t take_gpu_times(const FrameView* owner, uint64_t frame, std::span<GpuTime> out, bool wait) override;

@@ -83,3 +83,48 @@ TEST(MeshLodRender, TheGpuCullPicksTheLevelsTheCpuPicks) {
   ASSERT_GT(covered(cpu.rgba), pixels / 200);
   EXPECT_EQ(pixels_differing(cpu.rgba, gpu.rgba, 4), 0u);
 }
+
+// A compare draws every mode with one renderer: each bench's cull pass is its
+// own (mesh LOD or not, CPU-culled or not), whatever order they were made in
+// and run in. Once, the last bench prepared culled for all of them (a review
+// found it): the CPU-culled bench was drawn by the GPU's pass and the one
+// without mesh LOD read levels it lacked.
+TEST(MeshLodRender, BenchesSharingARendererEachCullAsTheirSwitchesSay) {
+  OPEN_GL_OR_SKIP(context);
+  context->make_current();
+  RendererConfig rc;
+  rc.width = kWidth;
+  rc.height = kHeight;
+  const Character& humanoid = default_humanoid();
+  GlCrowdRenderer renderer(*context, humanoid, 300, rc);
+  auto config = [&](FrustumTest frustum, bool mesh_lod) {
+    BenchConfig c;
+    c.mode = find_mode("baked")->switches;
+    c.mode.frustum = frustum;
+    c.mode.mesh_lod = mesh_lod;
+    c.crowd.copies = 300;
+    c.aspect = static_cast<float>(kWidth) / kHeight;
+    c.renderer = &renderer;
+    return c;
+  };
+  CrowdBench cpu(humanoid, config(FrustumTest::Cpu, false));
+  CrowdBench gpu(humanoid, config(FrustumTest::Gpu, false));
+  CrowdBench gpu_lod(humanoid, config(FrustumTest::Gpu, true));
+  for (int round = 0; round < 2; ++round) {
+    Counters c = cpu.step().counters;
+    std::vector<uint8_t> cpu_image = renderer.read_pixels();
+    Counters g = gpu.step().counters;
+    std::vector<uint8_t> gpu_image = renderer.read_pixels();
+    Counters l = gpu_lod.step().counters;
+    std::vector<uint8_t> lod_image = renderer.read_pixels();
+    EXPECT_EQ(c.bytes_uploaded, 16 * c.copies_visible) << "the CPU-culled bench sends its records";
+    EXPECT_EQ(g.bytes_uploaded, 20u) << "one command, no mesh LOD";
+    EXPECT_EQ(l.bytes_uploaded, 80u) << "four commands, one per level";
+    EXPECT_EQ(g.copies_visible, c.copies_visible);
+    EXPECT_EQ(g.lod0_copies, g.copies_visible);
+    EXPECT_EQ(l.lod0_copies + l.lod1_copies + l.lod2_copies + l.lod3_copies, c.copies_visible);
+    EXPECT_GT(l.lod2_copies + l.lod3_copies, 0u);
+    EXPECT_LE(pixels_differing(cpu_image, gpu_image, 4), cpu_image.size() / 4 * 5 / 10000) << round;
+    EXPECT_GT(pixels_differing(cpu_image, lod_image, 4), 0u) << round;
+  }
+}

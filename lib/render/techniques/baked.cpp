@@ -52,7 +52,9 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   }
   records_.reserve(copies);
   gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
-  gpu_cull_.reset();
+  // A view at the address of one prepared before (a bench made where an
+  // earlier one was) takes nothing of its cull pass.
+  std::erase_if(culls_, [&](const auto& entry) { return entry.first == &view; });
   if (view.mode.frustum != FrustumTest::Gpu) return;
   // Each character's and level's records in a range as long as the
   // character's copies (any of them may take any level): the cull pass
@@ -71,19 +73,28 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
                              GL_STREAM_DRAW);
     gpu_bytes_ = bytes + placements.size() * sizeof(glm::vec4) + instance_capacity_ * sizeof(InstanceRecord);
   }
-  gpu_cull_ = std::make_unique<GpuCull>(view, meshes, first, baked);
-  gpu_bytes_ += gpu_cull_->gpu_bytes();
+  culls_.emplace_back(&view, std::make_unique<GpuCull>(view, meshes, first, baked));
+  gpu_bytes_ += culls_.back().second->gpu_bytes();
 }
 
-bool BakedSkinning::visible_counts(std::span<uint64_t> per_group) const {
-  if (!gpu_cull_) return false;
-  gpu_cull_->visible_counts(per_group);
+GpuCull* BakedSkinning::cull_for(const FrameView& view) const {
+  if (view.mode.frustum != FrustumTest::Gpu) return nullptr;
+  for (const auto& [owner, cull] : culls_)
+    if (owner == &view) return cull.get();
+  return nullptr;
+}
+
+bool BakedSkinning::visible_counts(const FrameView& view, std::span<uint64_t> per_group) const {
+  const GpuCull* cull = cull_for(view);
+  if (!cull) return false;
+  cull->visible_counts(per_group);
   return true;
 }
 
 void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
   counters.gpu_palette_bytes = gpu_bytes_;
-  if (gpu_cull_) return gpu_cull_->run(view, instances_, counters);
+  if (GpuCull* cull = cull_for(view)) return cull->run(view, instances_, counters);
+  if (view.mode.frustum == FrustumTest::Gpu) throw GlError("frustum gpu asked of a renderer not prepared for this bench");
   // This frame's instances, grouped by character and mesh level: one instanced draw each.
   records_.clear();
   const size_t groups = meshes.size() * kMeshLevels;
@@ -109,18 +120,20 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
   counters.bytes_uploaded += static_cast<uint64_t>(bytes);
 }
 
-void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
-  if (records_.empty() && !gpu_cull_) return;
+void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
+                         Counters& counters) {
+  const GpuCull* gpu_cull = cull_for(view);
+  if (records_.empty() && !gpu_cull) return;
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, placements_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instances_);
   for (size_t k = 0; k < meshes.size(); ++k) {
-    if (gpu_cull_) {
+    if (gpu_cull) {
       if (k >= tables_.size() || !tables_[k]) continue;
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tables_[k]);
       glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
-      gpu_cull_->draw(k, meshes[k], first_instance_, counters);
+      gpu_cull->draw(k, meshes[k], first_instance_, counters);
       continue;
     }
     for (size_t l = 0; l < kMeshLevels; ++l) {
@@ -137,7 +150,7 @@ void BakedSkinning::draw(const FrameView&, const CharacterMeshes& meshes, const 
       ++counters.draw_calls;
     }
   }
-  if (gpu_cull_) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);  // no later draw reads commands by accident
+  if (gpu_cull) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);  // no later draw reads commands by accident
 }
 
 }  // namespace crowdprof

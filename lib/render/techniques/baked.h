@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "render/character_meshes.h"
@@ -31,10 +32,10 @@ class BakedSkinning final : public Technique {
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
-  // frustum gpu, after the frame has finished: the copies on screen per
+  // frustum gpu, after `view`'s frame has finished: the copies on screen per
   // character and mesh level (k x kMeshLevels + level), as the cull pass
   // counted them. False when the CPU culled.
-  bool visible_counts(std::span<uint64_t> per_group) const;
+  bool visible_counts(const FrameView& view, std::span<uint64_t> per_group) const;
 
  private:
   struct InstanceRecord {
@@ -49,7 +50,11 @@ class BakedSkinning final : public Technique {
   GLuint placements_ = 0, instances_ = 0;
   size_t instance_capacity_ = 0;
   uint64_t gpu_bytes_ = 0;
-  std::unique_ptr<GpuCull> gpu_cull_;   // frustum gpu: writes the records and draws
+  // frustum gpu: writes the records and draws. One per bench prepared (a
+  // compare's modes share the renderer, and each has its own switches: mesh
+  // LOD or not), found by the view it was made for; none for a CPU-culled view.
+  std::vector<std::pair<const FrameView*, std::unique_ptr<GpuCull>>> culls_;
+  GpuCull* cull_for(const FrameView& view) const;
   std::vector<InstanceRecord> records_;  // scratch: this frame's, grouped by character
   std::vector<size_t> first_;            // scratch: each draw group's (character, mesh level) first record, then the end
 };
