@@ -27,16 +27,17 @@ build_asan() {
   cmake --build "$asan_dir" -j"$jobs" ${targets:+--target $targets}
 }
 
-# explain_failures DIR: after a failed `ctest ... >DIR/ctest.log`, prints ctest's
-# summary, then each failed test's own output (why, not only which), then runs
-# the failed tests once more and says whether they fail again: a failure that
-# does not come back is still a failure, but a different one to look for.
+# explain_failures DIR [TEST_DIR]: after a failed `ctest --test-dir TEST_DIR ...
+# >DIR/ctest.log` (TEST_DIR: DIR unless given), prints ctest's summary, then
+# each failed test's own output (why, not only which), then runs the failed
+# tests once more and says whether they fail again: a failure that does not come
+# back is still a failure, but a different one to look for.
 explain_failures() {
-  local dir=$1
+  local dir=$1 test_dir=${2:-$1}
   sed -n '/% tests passed/,$p' "$dir/ctest.log"
   echo "--- the failed tests' output:"
   "$root/tests/ci/failed_output.sh" "$dir/ctest.log"
-  if ctest --test-dir "$dir" --rerun-failed --output-on-failure >"$dir/ctest-rerun.log" 2>&1; then
+  if ctest --test-dir "$test_dir" --rerun-failed --output-on-failure >"$dir/ctest-rerun.log" 2>&1; then
     echo "--- run again alone, the failed tests passed: a failure that depends on timing or on the tests beside it"
   else
     echo "--- run again alone, they failed again:"

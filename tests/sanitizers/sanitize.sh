@@ -36,9 +36,9 @@ timed "TSan build" build_tsan >/dev/null
 # The tests that run threads (the threaded mode, compare's and check's runs,
 # traces of workers) and the canary; TSan exits 66 on any report.
 threaded='^threaded\.|^tsan_canary\.'
-export TSAN_OPTIONS=second_deadlock_stack=1
+export TSAN_OPTIONS=second_deadlock_stack=1:suppressions=$root/tests/sanitizers/tsan.supp
 timed "TSan threaded tests" ctest --test-dir "$tsan_dir/crowdprof" -R "$threaded" -j"$jobs" --output-on-failure \
   >"$tsan_dir/ctest.log" 2>&1 ||
-  { explain_failures "$tsan_dir/crowdprof"; echo "sanitize: the threaded tests failed under TSan" >&2; exit 1; }
+  { explain_failures "$tsan_dir" "$tsan_dir/crowdprof"; echo "sanitize: the threaded tests failed under TSan" >&2; exit 1; }
 tail -n 3 "$tsan_dir/ctest.log"
 echo "sanitize: no sanitizer reports" >&2
