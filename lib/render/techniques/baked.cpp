@@ -95,22 +95,25 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
   counters.gpu_palette_bytes = gpu_bytes_;
   if (GpuCull* cull = cull_for(view)) return cull->run(view, instances_, counters);
   if (view.mode.frustum == FrustumTest::Gpu) throw GlError("frustum gpu asked of a renderer not prepared for this bench");
-  // This frame's instances, grouped by character and mesh level: one instanced draw each.
-  records_.clear();
+  // This frame's instances, grouped by character and mesh level (one
+  // instanced draw each), in copy order within a group: counted, then placed.
   const size_t groups = meshes.size() * kMeshLevels;
+  for (size_t k = 0; k < meshes.size(); ++k)
+    if (view.characters[k].site == SkinningSite::Baked && (k >= tables_.size() || !tables_[k]))
+      throw GlError("baked skinning asked of a renderer not prepared for it");
+  auto drawn = [&](size_t i) { return view.visible[i] && view.site_of(i) == SkinningSite::Baked; };
+  auto group = [&](size_t i) { return view.kind[i] * kMeshLevels + view.level_of(i); };
   first_.assign(groups + 1, 0);
-  for (size_t g = 0; g < groups; ++g) {
-    first_[g] = records_.size();
-    const size_t k = g / kMeshLevels;
-    if (view.characters[k].site != SkinningSite::Baked) continue;
-    if (k >= tables_.size() || !tables_[k]) throw GlError("baked skinning asked of a renderer not prepared for it");
-    for (size_t i = 0; i < view.copies(); ++i) {
-      if (!view.visible[i] || view.kind[i] != k || view.level_of(i) != g % kMeshLevels) continue;
-      const BakedInstance& b = view.baked[i];
-      records_.push_back({static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position});
-    }
+  for (size_t i = 0; i < view.copies(); ++i)
+    if (drawn(i)) ++first_[group(i) + 1];
+  for (size_t g = 0; g < groups; ++g) first_[g + 1] += first_[g];
+  next_.assign(first_.begin(), first_.end() - 1);
+  records_.resize(first_[groups]);
+  for (size_t i = 0; i < view.copies(); ++i) {
+    if (!drawn(i)) continue;
+    const BakedInstance& b = view.baked[i];
+    records_[next_[group(i)]++] = {static_cast<uint32_t>(i), b.first_sample, b.intervals, b.position};
   }
-  first_[groups] = records_.size();
   if (records_.empty()) return;
   auto bytes = static_cast<GLsizeiptr>(records_.size() * sizeof(InstanceRecord));
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, instances_);

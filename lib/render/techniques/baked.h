@@ -57,6 +57,7 @@ class BakedSkinning final : public Technique {
   GpuCull* cull_for(const FrameView& view) const;
   std::vector<InstanceRecord> records_;  // scratch: this frame's, grouped by character
   std::vector<size_t> first_;            // scratch: each draw group's (character, mesh level) first record, then the end
+  std::vector<size_t> next_;             // scratch: each draw group's next record to place
 };
 
 }  // namespace crowdprof

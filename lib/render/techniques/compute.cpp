@@ -106,7 +106,9 @@ void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes,
                            const BeginPass& begin_pass, Counters& counters) {
   for (size_t k = 0; k < meshes.size(); ++k)
     if (view.characters[k].site == SkinningSite::Compute) {
-      for (size_t level = 0; level < kMeshLevels; ++level) draw_kind(view, meshes[k], k, level, passes, begin_pass, counters);
+      // Without mesh LOD every copy is level 0: one scan of the crowd, not four.
+      const size_t levels = view.mesh_level.empty() ? 1 : kMeshLevels;
+      for (size_t level = 0; level < levels; ++level) draw_kind(view, meshes[k], k, level, passes, begin_pass, counters);
       counters.gpu_palette_bytes = gpu_bytes_;
     }
 }
