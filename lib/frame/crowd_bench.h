@@ -25,6 +25,7 @@
 #include "profile/counters.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
+#include "scene/culling_audit.h"
 
 namespace crowdprof {
 
@@ -150,6 +151,12 @@ class CrowdBench {
   // Mesh LOD: per level, the copies on screen and the error they are drawn
   // with, on a screen `screen_height_px` tall; all zero without mesh LOD.
   std::array<MeshLevelFidelity, kMeshLevels> mesh_lod_fidelity(int screen_height_px) const;
+  // The culling audit (scene/culling_audit.h): at most `max_copy_frames` copy
+  // poses, up to 16 poses a copy spread over the longest action (every
+  // copy_stride-th copy past that many copies), on the bench's threads. Exact
+  // poses whatever the mode; for the end of a run (allocates, takes time).
+  CullingAudit audit_culling(size_t max_copy_frames = kCullingAuditCopyFrames) const;
+  static constexpr size_t kCullingAuditCopyFrames = 40000;
   size_t frames_run() const { return frame_; }
   bool visible(size_t copy) const { return store_->visible[copy] != 0; }
   // Where this character's copies are skinned: the mode's site, or the CPU for

@@ -10,6 +10,7 @@
 
 #include "animation/pose.h"
 #include "asset/mesh_lod.h"
+#include "frame/bench_threads.h"
 #include "scene/screen_size.h"
 #include "skinning/skinning.h"
 
@@ -83,6 +84,29 @@ std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int scr
       f.error_px = std::max(f.error_px, error * screen_height_fraction(view_projection, box) * screen_height_px / box_height);
   }
   return levels;
+}
+
+CullingAudit CrowdBench::audit_culling(size_t max_copy_frames) const {
+  const size_t n = crowd_.size();
+  if (n == 0) return {};
+  max_copy_frames = std::max<size_t>(1, max_copy_frames);
+  const size_t stride = (n + max_copy_frames - 1) / max_copy_frames;
+  const size_t audited = (n + stride - 1) / stride;
+  const size_t frames = std::clamp<size_t>(max_copy_frames / audited, 1, 16);
+  // Poses spread over the longest action, so that each copy's whole action is
+  // seen (a run of a few frames covers a fraction of a second of it).
+  double span = 0;
+  for (const Character* character : characters_)
+    for (const Action& action : character->actions) span = std::max(span, static_cast<double>(action.duration()));
+  CullingAuditor auditor(characters_, crowd_, frustum_, stride);
+  std::shared_ptr<BenchThreads> threads = bench_threads(config_.mode.parallel ? config_.threads : 1);
+  std::vector<float> times(n, 0.0f);
+  for (size_t f = 0; f < frames; ++f) {
+    const double seconds = span * static_cast<double>(f) / static_cast<double>(frames);
+    for (size_t i = 0; i < n; ++i) times[i] = copy_time(i, seconds);
+    auditor.add_frame(times, threads->arena.get());
+  }
+  return auditor.audit();
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #include "profile/instruction_counter.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -150,6 +151,21 @@ void record_mesh_lod(const CrowdBench& bench, RunReport& report) {
   report.mesh_lod = std::move(m);
 }
 
+void record_culling_audit(const CrowdBench& bench, RunReport& report) {
+  const auto start = std::chrono::steady_clock::now();
+  const CullingAudit audit = bench.audit_culling();
+  if (audit.copies == 0) return;
+  CullingAuditRecord c{audit.frames, audit.copies, audit.copy_stride, audit.in_view, audit.outside, audit.undecided, {},
+                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
+  for (size_t b = 0; b < kCullBoxes; ++b) {
+    const CullBoxAudit& a = audit.boxes[b];
+    c.boxes.push_back(CullBoxRecord{std::string(cull_box_name(static_cast<CullBox>(b))), a.drawn, a.false_culls,
+                                    a.missed_culls, a.worst_frame_false_culls, a.worst_frame_missed_culls, a.slack_mean,
+                                    a.slack_max});
+  }
+  report.culling_audit = std::move(c);
+}
+
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
   for (const GpuTime& t : bench.gpu_times())
     if (t.frame >= warmup && t.frame - warmup < frames.size()) {
@@ -210,6 +226,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   record_character_counters(bench, report.run);
   record_animation(bench, report);
   record_mesh_lod(bench, report);
+  record_culling_audit(bench, report);
   return report;
 }
 

@@ -50,6 +50,9 @@ void check_fits_in_memory(std::span<const Character* const> characters, const Be
 void record_animation(const CrowdBench& bench, RunReport& report);
 // With mesh LOD: the copies per level and the error each is drawn with.
 void record_mesh_lod(const CrowdBench& bench, RunReport& report);
+// The culling audit of the bench's crowd and camera (any mode: it poses the
+// copies exactly itself); nothing for an empty crowd.
+void record_culling_audit(const CrowdBench& bench, RunReport& report);
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 

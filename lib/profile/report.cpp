@@ -111,6 +111,24 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
   return order[(order.size() - 1) / 2];
 }
 
+std::string format_culling_audit(const CullingAuditRecord& c) {
+  std::ostringstream out;
+  out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies
+      << " copies" << (c.copy_stride > 1 ? " (one in " + std::to_string(c.copy_stride) + ")" : std::string()) << " in "
+      << fixed(c.ms, 0) << " ms; " << c.in_view
+      << " in view, " << c.outside << " outside" << (c.undecided ? ", " + std::to_string(c.undecided) + " undecided" : "")
+      << "):";
+  for (size_t b = 0; b < c.boxes.size(); ++b) {
+    const CullBoxRecord& box = c.boxes[b];
+    std::string name = box.box;
+    std::replace(name.begin(), name.end(), '_', '-');
+    out << (b ? " |" : "") << " " << name << (box.box == "every_action" ? " (this run's)" : "") << " "
+        << box.false_culls << " false culls, " << box.missed_culls << " missed, slack " << fixed(box.slack_mean, 2) << "x";
+  }
+  out << "\n";
+  return out.str();
+}
+
 std::string format_profile(const RunReport& report) {
   std::ostringstream out;
   const RunDescription& run = report.run;
@@ -238,6 +256,7 @@ std::string format_profile(const RunReport& report) {
           << "% of height" << (m.copies[l] ? ", " + fixed(m.error_px[l], 2) + " px" : std::string()) << ")";
     out << "\n";
   }
+  if (report.culling_audit) out << format_culling_audit(*report.culling_audit);
   if (report.partial)
     out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
         << " frames; the figures above are of those\n";
@@ -317,6 +336,7 @@ Result make_result(const RunReport& report) {
   r.frames_planned = report.frames_planned;
   r.animation = report.animation;
   r.mesh_lod = report.mesh_lod;
+  r.culling_audit = report.culling_audit;
   if (!report.instruction_source.empty()) {
     // What a stored instruction baseline must match to be compared.
     InstructionRecord i;

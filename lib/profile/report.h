@@ -30,6 +30,7 @@ struct RunReport {
   std::optional<AnimationRecord> animation;
   // With mesh LOD (issue 29): copies per level and the error each is drawn with.
   std::optional<MeshLodRecord> mesh_lod;
+  std::optional<CullingAuditRecord> culling_audit;
   // How the frames' instructions were counted: "" (not asked), "perf_event",
   // "callgrind" (the total is read from callgrind's output by who ran it) or
   // "none" (asked, but nothing here counts; instruction_problem says why).
@@ -45,6 +46,9 @@ size_t median_frame(const std::vector<FrameRecord>& frames);
 
 // The BGE overlay for the median frame, then a line describing the run.
 std::string format_profile(const RunReport& report);
+// The culling audit's line under the table: per box, false and missed culls
+// (copy-frames) and its slack.
+std::string format_culling_audit(const CullingAuditRecord& audit);
 
 // Header, then one row per frame (docs/formats.md).
 void write_csv(const RunReport& report, std::ostream& out);

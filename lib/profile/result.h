@@ -88,6 +88,22 @@ struct MeshLodRecord {
   std::vector<double> error, error_fraction, error_px;
 };
 
+// The culling audit (issue 29): copies posed exactly over `frames` poses and
+// tested vertex by vertex against the frustum, beside what each box strategy
+// decided (scene/culling_audit.h). Counts are of copy-frames.
+struct CullBoxRecord {
+  std::string box;  // bind_pose, every_action (the run's own), own_action or tight
+  uint64_t drawn = 0, false_culls = 0, missed_culls = 0;
+  uint64_t worst_frame_false_culls = 0, worst_frame_missed_culls = 0;
+  double slack_mean = 0, slack_max = 0;  // box volume over the tight box's
+};
+struct CullingAuditRecord {
+  uint64_t frames = 0, copies = 0, copy_stride = 1;
+  uint64_t in_view = 0, outside = 0, undecided = 0;
+  std::vector<CullBoxRecord> boxes;
+  double ms = 0;  // what the audit took, after the run (wall clock)
+};
+
 // The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
 // read when the renderer was made; "unknown" where the GL says nothing, with
 // the largest storage block it allows.
@@ -183,6 +199,7 @@ struct Result {
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;
   std::optional<MeshLodRecord> mesh_lod;  // with --mesh-lod on
+  std::optional<CullingAuditRecord> culling_audit;
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
   std::optional<InstructionRecord> instructions;

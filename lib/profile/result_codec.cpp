@@ -74,6 +74,21 @@ json mesh_lod_json(const MeshLodRecord& m) {
   return {{"copies", m.copies}, {"error", m.error}, {"error_fraction", m.error_fraction}, {"error_px", m.error_px}};
 }
 
+json culling_audit_json(const CullingAuditRecord& c) {
+  json boxes = json::object();
+  for (const CullBoxRecord& b : c.boxes)
+    boxes[b.box] = {{"drawn", b.drawn},
+                    {"false_culls", b.false_culls},
+                    {"missed_culls", b.missed_culls},
+                    {"worst_frame_false_culls", b.worst_frame_false_culls},
+                    {"worst_frame_missed_culls", b.worst_frame_missed_culls},
+                    {"slack_mean", b.slack_mean},
+                    {"slack_max", b.slack_max}};
+  return {{"frames", c.frames},   {"copies", c.copies},       {"copy_stride", c.copy_stride},
+          {"in_view", c.in_view}, {"outside", c.outside}, {"undecided", c.undecided}, {"boxes", boxes},
+          {"ms", c.ms}};
+}
+
 json instructions_json(const InstructionRecord& i) {
   json j = {{"source", i.source}, {"threads", i.threads}, {"simd", i.simd}, {"compiler", i.compiler}};
   j["per_frame"] = i.per_frame ? json(*i.per_frame) : json(nullptr);
@@ -539,6 +554,34 @@ void read_extras(const Reader& in, Result& r) {
                "/mesh_lod", "arrays of one to four levels, all as long");
     r.mesh_lod = std::move(m);
   }
+  if (in.has("/culling_audit")) {
+    in.object("/culling_audit");
+    CullingAuditRecord c;
+    c.frames = in.count("/culling_audit/frames");
+    c.copies = in.count("/culling_audit/copies");
+    c.copy_stride = in.count("/culling_audit/copy_stride");
+    c.in_view = in.count("/culling_audit/in_view");
+    c.outside = in.count("/culling_audit/outside");
+    c.undecided = in.count("/culling_audit/undecided");
+    c.ms = in.number_or("/culling_audit/ms", 0.0);
+    for (const auto& [name, value] : in.object("/culling_audit/boxes").items()) {
+      in.require(name == "bind_pose" || name == "every_action" || name == "own_action" || name == "tight",
+                 "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
+      const std::string at = "/culling_audit/boxes/" + name;
+      in.object(at);
+      CullBoxRecord b;
+      b.box = name;
+      b.drawn = in.count(at + "/drawn");
+      b.false_culls = in.count(at + "/false_culls");
+      b.missed_culls = in.count(at + "/missed_culls");
+      b.worst_frame_false_culls = in.count(at + "/worst_frame_false_culls");
+      b.worst_frame_missed_culls = in.count(at + "/worst_frame_missed_culls");
+      b.slack_mean = in.number(at + "/slack_mean");
+      b.slack_max = in.number(at + "/slack_max");
+      c.boxes.push_back(std::move(b));
+    }
+    r.culling_audit = std::move(c);
+  }
   if (in.has("/instructions")) {
     in.object("/instructions");
     InstructionRecord i;
@@ -628,6 +671,7 @@ nlohmann::json result_to_json(const Result& r) {
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.animation) j["animation"] = animation_json(*r.animation);
   if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);
+  if (r.culling_audit) j["culling_audit"] = culling_audit_json(*r.culling_audit);
   if (r.instructions) j["instructions"] = instructions_json(*r.instructions);
   if (r.partial) {
     j["partial"] = true;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -44,7 +45,12 @@ void grow_by_pose(const Character& c, const SkinningPlan& plan, const LocalPose&
 
 }  // namespace
 
-Aabb animated_bounds(const Character& c, int samples_per_action, float padding) {
+namespace {
+
+// The box around the poses of the actions `actions` (and the rest pose when
+// `with_rest`), padded as animated_bounds says.
+Aabb bounds_of_poses(const Character& c, std::span<const size_t> actions, bool with_rest, int samples_per_action,
+                     float padding) {
   Aabb box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
   if (c.mesh.vertex_count() == 0) return Aabb{};
   SkinningPlan plan;
@@ -56,8 +62,9 @@ Aabb animated_bounds(const Character& c, int samples_per_action, float padding) 
   std::vector<glm::vec3> positions(c.mesh.vertex_count()), normals(c.mesh.vertex_count());
   LocalPose local;
   reset_to_rest(c.skeleton, &local);
-  grow_by_pose(c, plan, local, model, palette, positions, normals, box);
-  for (const Action& action : c.actions) {
+  if (with_rest || actions.empty()) grow_by_pose(c, plan, local, model, palette, positions, normals, box);
+  for (size_t a : actions) {
+    const Action& action = c.actions.at(a);
     ActionBindings bindings = bind_action(c.skeleton, action);
     SamplingCursor cursor;
     reset_cursor(action, &cursor);
@@ -78,6 +85,30 @@ Aabb animated_bounds(const Character& c, int samples_per_action, float padding) 
   glm::vec3 pad(glm::length(box.size()) * padding);
   box.min -= pad;
   box.max += pad;
+  return box;
+}
+
+}  // namespace
+
+Aabb animated_bounds(const Character& c, int samples_per_action, float padding) {
+  std::vector<size_t> every(c.actions.size());
+  for (size_t a = 0; a < every.size(); ++a) every[a] = a;
+  return bounds_of_poses(c, every, true, samples_per_action, padding);
+}
+
+Aabb action_bounds(const Character& c, size_t action, int samples_per_action, float padding) {
+  const size_t one[] = {action};
+  return bounds_of_poses(c, c.actions.empty() ? std::span<const size_t>() : std::span<const size_t>(one), false,
+                         samples_per_action, padding);
+}
+
+Aabb bind_pose_bounds(const Character& c) {
+  if (c.mesh.positions.empty()) return Aabb{};
+  Aabb box{c.mesh.positions.front(), c.mesh.positions.front()};
+  for (const glm::vec3& p : c.mesh.positions) {
+    box.min = glm::min(box.min, p);
+    box.max = glm::max(box.max, p);
+  }
   return box;
 }
 

@@ -25,4 +25,13 @@ Aabb transform_aabb(const Aabb& aabb, const glm::mat4& transform);
 // copy's visibility never depends on the pose it was culled in.
 Aabb animated_bounds(const Character& character, int samples_per_action = 32, float padding = 0.05f);
 
+// As animated_bounds, around the poses of one action only (the rest pose not
+// included; a character without actions: the rest pose). The tighter box an
+// engine gets by bounding each clip (the culling audit's "own action").
+Aabb action_bounds(const Character& character, size_t action, int samples_per_action = 32, float padding = 0.05f);
+
+// The mesh's own box as stored (its bind pose), unpadded: what an engine culls
+// with when it takes a skinned mesh's bounds from the file.
+Aabb bind_pose_bounds(const Character& character);
+
 }  // namespace crowdprof

@@ -36,6 +36,9 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   report.run.gpu_skinning = GpuSkinningRecord{"baked", 4096, BakeRecord{30.0, 120, 1.5, 0.01, 0.002}};
   report.animation = AnimationRecord{{40, 0, 0, 0, 0, 0, 0}, 1, 0, 0.25, 0.01, 40, 3};
   report.mesh_lod = MeshLodRecord{{2, 10, 20, 8}, {0, 0.001, 0.003, 0.006}, {0, 0.0005, 0.0015, 0.0035}, {0, 0.1, 0.2, 0.3}};
+  report.culling_audit = CullingAuditRecord{16, 160, 1, 1800, 700, 60, {}};
+  for (const char* box : {"bind_pose", "every_action", "own_action", "tight"})
+    report.culling_audit->boxes.push_back(CullBoxRecord{box, 2000, 3, 130, 1, 12, 4.5, 9.0});
   report.partial = true;
   report.frames_planned = 10;
   json written = to_json(report);
@@ -53,6 +56,10 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   ASSERT_TRUE(read.mesh_lod);
   EXPECT_EQ(read.mesh_lod->copies[2], 20u);
   EXPECT_DOUBLE_EQ(read.mesh_lod->error_px[3], 0.3);
+  ASSERT_TRUE(read.culling_audit);
+  ASSERT_EQ(read.culling_audit->boxes.size(), 4u);
+  EXPECT_EQ(read.culling_audit->boxes[1].box, "every_action") << "in the strategies' own order";
+  EXPECT_EQ(read.culling_audit->boxes[3].worst_frame_missed_culls, 12u);
   EXPECT_TRUE(read.partial);
   EXPECT_EQ(read.frames_planned, 10u);
 }
@@ -177,6 +184,10 @@ TEST(ResultCodec, ABadFieldIsNamed) {
        "\"mesh_lod\" should be arrays of one to four levels, all as long"},
       {"/mesh_lod", json::object({{"copies", {1}}, {"error", {-1.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
        "\"mesh_lod.error\" should be an array of distances"},
+      {"/culling_audit", json::object({{"frames", 1}, {"copies", 1}, {"copy_stride", 1}, {"in_view", 1}, {"outside", 0},
+                                       {"undecided", 0}, {"boxes", {{"a/b", json::object()}}}}),
+       "\"culling_audit.boxes\" should be an object of bind_pose"},
+      {"/culling_audit", json::object({{"frames", -1}}), "\"culling_audit.frames\" should be a whole number"},
   };
   for (const Case& c : cases) {
     json bad = good;
