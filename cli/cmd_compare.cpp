@@ -286,7 +286,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--gbench-json", options->gbench_json,
                   "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
                   "github-action-benchmark or Bencher");
-  cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, sweep");
+  cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
   cmd->add_option("--html", options->bench.html,
                   "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
   cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");

@@ -63,6 +63,7 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
     record_character_counters(*benches[b], reports[b].run);
     record_animation(*benches[b], reports[b]);
     record_mesh_lod(*benches[b], reports[b]);
+    record_drawn_error(*benches[b], reports[b]);
     // Every mode culls the same crowd from the same camera: one audit serves all.
     if (b == 0) record_culling_audit(*benches[b], reports[b]);
     else reports[b].culling_audit = reports[0].culling_audit;

@@ -83,6 +83,23 @@ struct MeshLevelFidelity {
   double error = 0, error_fraction = 0, error_px = 0;
 };
 
+// What a run's savings cost in fidelity (issue 29 item 2): the last frame's
+// copies on screen as drawn (the pose they show: shared, held by update-rate
+// LOD or the budget, a baked blend; at their mesh level) against their exact,
+// full-detail pose. Per drawn vertex: its distance from the same vertex posed
+// exactly, plus its level's error (meshoptimizer's bound on the level's
+// distance from the full surface; 0 at level 0).
+struct DrawnError {
+  uint64_t copies_checked = 0;    // copies on screen compared
+  uint64_t copies_deviating = 0;  // of those, drawn other than exactly
+  uint64_t vertices = 0;          // drawn vertices compared
+  size_t copy_stride = 1;         // every copy_stride-th copy on screen was compared
+  double max = 0, rms = 0;                    // model units
+  double max_fraction = 0, rms_fraction = 0;  // of each copy's character's height
+  double max_px = 0, rms_px = 0;              // pixels of the frame's height, at each copy's size
+  double mesh_max = 0;  // the largest level error among them (model units)
+};
+
 // Empty when a bench of this config can run, else why not: switches that
 // conflict, skinning on the GPU without a renderer, a bake rate that is not a
 // positive number.
@@ -145,6 +162,10 @@ class CrowdBench {
   // Exact times against what the last frame drew; skins every copy on screen
   // twice, so it is for the end of a run (allocates, takes time).
   AnimationFidelity measure_fidelity() const;
+  // The last frame against exact, full-detail poses (DrawnError), on a
+  // screen `screen_height_px` tall; at most `max_copies` copies (every Nth
+  // past that), in parallel on the bench's threads. For the end of a run.
+  DrawnError measure_drawn_error(int screen_height_px, size_t max_copies = 40000) const;
   const UpdateSchedule& schedule() const { return planner_->schedule(); }
   // Mesh LOD: the level copy `copy` draws (0, the full mesh, without it).
   size_t mesh_level(size_t copy) const { return level_of(copy); }

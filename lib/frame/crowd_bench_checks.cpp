@@ -5,8 +5,13 @@
 #include "animation/run_job.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include "animation/pose.h"
 #include "asset/mesh_lod.h"
@@ -54,6 +59,123 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
     if (height > 0) fidelity.deviation_fraction = std::max(fidelity.deviation_fraction, worst / height);
   }
   return fidelity;
+}
+
+namespace {
+
+// One copy's share of DrawnError.
+struct CopyError {
+  bool checked = false, deviating = false;
+  uint64_t vertices = 0;
+  double max = 0, sum_squares = 0, height = 0, px_per_unit = 0, level_error = 0;
+};
+
+struct ErrorScratch {
+  LocalPose pose;
+  SamplingCursor cursor;
+  std::vector<glm::mat4> model;
+  std::vector<SkinMatrix> exact, drawn;
+  std::vector<glm::vec3> drawn_positions, exact_positions, normals;
+};
+
+}  // namespace
+
+DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copies) const {
+  DrawnError error;
+  if (frame_ == 0) return error;
+  // The last frame's exact clock (frustum gpu keeps no times on the CPU).
+  const double seconds = static_cast<double>(frame_ - 1) / config_.fps;
+  const glm::mat4 view_projection = camera_.view_projection();
+  std::vector<size_t> on_screen;
+  for (size_t i = 0; i < crowd_.size(); ++i)
+    if (intersects(frustum_, crowd_.world_boxes[i])) on_screen.push_back(i);
+  error.copy_stride = std::max<size_t>(1, (on_screen.size() + max_copies - 1) / std::max<size_t>(1, max_copies));
+  std::vector<CopyError> copies((on_screen.size() + error.copy_stride - 1) / error.copy_stride);
+  std::vector<float> heights;
+  for (const Character* character : characters_) heights.push_back(bind_pose_height(character->mesh));
+  tbb::enumerable_thread_specific<ErrorScratch> scratches;
+  auto measure = [&](const tbb::blocked_range<size_t>& range) {
+    ErrorScratch& s = scratches.local();
+    for (size_t n = range.begin(); n != range.end(); ++n) {
+      const size_t i = on_screen[n * error.copy_stride];
+      const size_t k = crowd_.kind[i];
+      const PreparedCharacter& kind = prepared_[k];
+      const Character& character = *characters_[k];
+      if (kind.vertices == 0) continue;
+      CopyError& e = copies[n];
+      e.checked = true;
+      const float time = copy_time(i, seconds);
+      // The exact palette.
+      s.model.resize(kind.joints);
+      s.exact.resize(kind.joints);
+      reset_to_rest(character.skeleton, &s.pose);
+      if (!character.actions.empty()) {
+        const Action& action = character.actions[crowd_.action[i]];
+        reset_cursor(action, &s.cursor);
+        run_job(SamplingJob{&action, time, kind.bindings[crowd_.action[i]].targets, &s.cursor, &s.pose}, "SamplingJob");
+      }
+      run_job(LocalToModelJob{&character.skeleton, &s.pose, s.model}, "LocalToModelJob");
+      run_job(SkinningMatricesJob{&character.skeleton, s.model, s.exact}, "SkinningMatricesJob");
+      // The palette drawn: the baked blend the shader makes, or the pose storage's.
+      std::span<const SkinMatrix> drawn = skinning_matrices(i);
+      if (kind.site == SkinningSite::Baked) {
+        const BakedInstance instance = baked_instance(i, time);
+        s.drawn.resize(kind.joints);
+        const auto first = static_cast<size_t>(instance.first_sample) * kind.joints;
+        run_job(BakedPaletteJob{std::span(kind.baked.matrices).subspan(first, (instance.intervals + 1) * kind.joints),
+                                kind.joints, instance.position, s.drawn},
+                "BakedPaletteJob");
+        drawn = s.drawn;
+      }
+      const size_t level = level_of(i);
+      const size_t vertices = kind.vertices_of(level);
+      for (auto* v : {&s.drawn_positions, &s.exact_positions, &s.normals}) v->resize(vertices);
+      run_job(SkinningJob{drawn, &kind.plan_of(level), 0, vertices, s.drawn_positions, s.normals}, "SkinningJob");
+      run_job(SkinningJob{s.exact, &kind.plan_of(level), 0, vertices, s.exact_positions, s.normals}, "SkinningJob");
+      e.level_error = level == 0 ? 0.0 : static_cast<double>(kind.mesh_lods[level - 1].error);
+      e.vertices = vertices;
+      double pose_max = 0;
+      for (size_t v = 0; v < vertices; ++v) {
+        const double d = glm::distance(s.drawn_positions[v], s.exact_positions[v]);
+        pose_max = std::max(pose_max, d);
+        e.sum_squares += (d + e.level_error) * (d + e.level_error);
+      }
+      e.max = pose_max + e.level_error;
+      e.deviating = e.max > 0;
+      e.height = heights[k];
+      const Aabb& box = crowd_.world_boxes[i];
+      const double box_height = box.max.y - box.min.y;
+      e.px_per_unit = box_height > 0
+                          ? screen_height_fraction(view_projection, box) * screen_height_px / box_height
+                          : 0.0;
+    }
+  };
+  auto run = [&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, copies.size(), 8), measure); };
+  bench_threads(config_.mode.parallel ? config_.threads : 1)->arena->execute(run);
+  // Summed in copy order: the same figures on any thread count.
+  double sum_squares = 0, sum_fraction = 0, sum_px = 0;
+  for (const CopyError& e : copies) {
+    if (!e.checked) continue;
+    ++error.copies_checked;
+    error.copies_deviating += e.deviating;
+    error.vertices += e.vertices;
+    error.max = std::max(error.max, e.max);
+    error.mesh_max = std::max(error.mesh_max, e.level_error);
+    error.max_px = std::max(error.max_px, e.max * e.px_per_unit);
+    sum_squares += e.sum_squares;
+    sum_px += e.sum_squares * e.px_per_unit * e.px_per_unit;
+    if (e.height > 0) {
+      error.max_fraction = std::max(error.max_fraction, e.max / e.height);
+      sum_fraction += e.sum_squares / (e.height * e.height);
+    }
+  }
+  if (error.vertices) {
+    const double n = static_cast<double>(error.vertices);
+    error.rms = std::sqrt(sum_squares / n);
+    error.rms_fraction = std::sqrt(sum_fraction / n);
+    error.rms_px = std::sqrt(sum_px / n);
+  }
+  return error;
 }
 
 std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int screen_height_px) const {

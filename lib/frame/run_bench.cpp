@@ -151,6 +151,24 @@ void record_mesh_lod(const CrowdBench& bench, RunReport& report) {
   report.mesh_lod = std::move(m);
 }
 
+void record_drawn_error(const CrowdBench& bench, RunReport& report) {
+  const DrawnError e = bench.measure_drawn_error(resolution_size(bench.config().resolution).second);
+  if (e.copies_checked == 0) return;
+  const double seconds = static_cast<double>(bench.frames_run()) / bench.config().fps;
+  report.drawn_error = DrawnErrorRecord{e.copies_checked,
+                                        e.copies_deviating,
+                                        e.vertices,
+                                        e.copy_stride,
+                                        e.max,
+                                        e.rms,
+                                        e.max_fraction,
+                                        e.rms_fraction,
+                                        e.max_px,
+                                        e.rms_px,
+                                        e.mesh_max,
+                                        seconds > 0 ? static_cast<double>(bench.schedule().rate_switches) / seconds : 0.0};
+}
+
 void record_culling_audit(const CrowdBench& bench, RunReport& report) {
   const auto start = std::chrono::steady_clock::now();
   const CullingAudit audit = bench.audit_culling();
@@ -226,6 +244,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   record_character_counters(bench, report.run);
   record_animation(bench, report);
   record_mesh_lod(bench, report);
+  record_drawn_error(bench, report);
   record_culling_audit(bench, report);
   return report;
 }

@@ -53,6 +53,9 @@ void record_mesh_lod(const CrowdBench& bench, RunReport& report);
 // The culling audit of the bench's crowd and camera (any mode: it poses the
 // copies exactly itself); nothing for an empty crowd.
 void record_culling_audit(const CrowdBench& bench, RunReport& report);
+// The last frame's drawn error against exact, full-detail poses (any mode: an
+// exact one reports 0, the point a saving is weighed against).
+void record_drawn_error(const CrowdBench& bench, RunReport& report);
 
 RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
 

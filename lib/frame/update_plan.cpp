@@ -43,8 +43,12 @@ void UpdatePlanner::run_budget(const PlanInput& input) {
   if (mode_.anim_budget_ms <= 0 || input.frame == 0) return;
   run_job(AnimBudgetJob{&budget_plan_, mode_.anim_budget_ms, input.animations_ms, last_updates_, &schedule_.demotions},
           "AnimBudgetJob");
-  for (size_t r = 0; r < budget_plan_.size(); ++r)
-    shift_[budget_plan_.order[r]] = budget_plan_.demoted_shift(r, schedule_.demotions);
+  for (size_t r = 0; r < budget_plan_.size(); ++r) {
+    const uint8_t shift = budget_plan_.demoted_shift(r, schedule_.demotions);
+    uint8_t& current = shift_[budget_plan_.order[r]];
+    schedule_.rate_switches += shift != current;
+    current = shift;
+  }
 }
 
 std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& counters) {

@@ -35,6 +35,9 @@ struct UpdateSchedule {
   // Copies posed in the last frame, by period: copies[s] are updated every 2^s frames.
   std::array<uint64_t, kRateCount> copies_by_rate{};
   uint64_t demotions = 0;  // the budget's doublings in the last frame
+  // Changes of a copy's period over the run (the budget's: LOD periods follow
+  // screen sizes, which never change): each one a visible change of pace.
+  uint64_t rate_switches = 0;
 };
 
 // What a frame's plan reads.

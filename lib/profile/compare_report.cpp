@@ -1,5 +1,7 @@
 #include "profile/compare_report.h"
 
+#include "profile/cost_error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -76,6 +78,19 @@ std::vector<Category> shown_categories(const std::vector<ModeMedians>& medians) 
   return shown;
 }
 
+namespace {
+
+// Each mode's medians and drawn error, for the cost/error table and chart.
+std::vector<CostErrorPoint> comparison_costs(const Comparison& comparison, const std::vector<ModeMedians>& medians) {
+  std::vector<CostErrorInput> costs;
+  for (size_t r = 0; r < medians.size() && r < comparison.runs.size(); ++r)
+    costs.push_back({medians[r].mode, medians[r].frame_ms,
+                     medians[r].category_ms[static_cast<size_t>(Category::Animations)], comparison.runs[r].drawn_error});
+  return cost_error_points(costs);
+}
+
+}  // namespace
+
 std::string format_comparison(const Comparison& comparison) {
   std::vector<ModeMedians> medians = mode_medians(comparison.runs);
   std::vector<Category> shown = shown_categories(medians);
@@ -117,6 +132,7 @@ std::string format_comparison(const Comparison& comparison) {
     out += "median of " + std::to_string(comparison.runs.front().frames.size()) + " frames per mode, run in blocks of " +
            std::to_string(comparison.block) + " frames; speedup_x = " + comparison.runs.front().run.mode +
            "'s frame_ms / the mode's\n";
+  out += format_cost_error(comparison_costs(comparison, medians));
   if (comparison.sweep.empty()) return out;
   rows.clear();
   const SweepAxis axis = comparison.sweep_axis;
@@ -204,6 +220,10 @@ std::string comparison_svg(const Comparison& comparison, const std::vector<std::
     bars.values.push_back(values);
   }
   svg.add(bars);
+  if (std::optional<LineChart> costs = cost_error_chart(comparison_costs(comparison, medians), colours)) {
+    costs->title += scene;
+    svg.add(*costs);
+  }
 
   if (!comparison.sweep.empty()) {
     std::vector<SweepPoint> points;

@@ -649,6 +649,10 @@ std::string html_report(const HtmlReportInput& given) {
     SvgDocument svg;
     svg.add(modes_chart(input.runs));
     charts += "m";
+    if (std::optional<LineChart> costs = cost_error_chart(input.runs, colours)) {
+      svg.add(*costs);
+      charts += "e";
+    }
     body += "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
   }
 

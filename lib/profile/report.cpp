@@ -111,6 +111,18 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
   return order[(order.size() - 1) / 2];
 }
 
+std::string format_drawn_error(const DrawnErrorRecord& e) {
+  std::ostringstream out;
+  out << "drawn error against exact full-detail poses: max " << fixed(e.max * 1000.0, 2) << " mm ("
+      << fixed(e.max_fraction * 100.0, 3) << "% of height, " << fixed(e.max_px, 2) << " px), RMS "
+      << fixed(e.rms * 1000.0, 2) << " mm (" << fixed(e.rms_px, 2) << " px) over " << e.copies_checked
+      << " copies on screen" << (e.copy_stride > 1 ? " (one in " + std::to_string(e.copy_stride) + ")" : "") << ", "
+      << e.copies_deviating << " drawn inexactly";
+  if (e.mesh_max > 0) out << ", mesh levels up to " << fixed(e.mesh_max * 1000.0, 2) << " mm of it";
+  out << "; " << fixed(e.switches_per_second, 1) << " rate switches/s\n";
+  return out.str();
+}
+
 std::string format_culling_audit(const CullingAuditRecord& c) {
   std::ostringstream out;
   out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies
@@ -256,6 +268,7 @@ std::string format_profile(const RunReport& report) {
           << "% of height" << (m.copies[l] ? ", " + fixed(m.error_px[l], 2) + " px" : std::string()) << ")";
     out << "\n";
   }
+  if (report.drawn_error) out << format_drawn_error(*report.drawn_error);
   if (report.culling_audit) out << format_culling_audit(*report.culling_audit);
   if (report.partial)
     out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
@@ -337,6 +350,7 @@ Result make_result(const RunReport& report) {
   r.animation = report.animation;
   r.mesh_lod = report.mesh_lod;
   r.culling_audit = report.culling_audit;
+  r.drawn_error = report.drawn_error;
   if (!report.instruction_source.empty()) {
     // What a stored instruction baseline must match to be compared.
     InstructionRecord i;

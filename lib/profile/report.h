@@ -31,6 +31,7 @@ struct RunReport {
   // With mesh LOD (issue 29): copies per level and the error each is drawn with.
   std::optional<MeshLodRecord> mesh_lod;
   std::optional<CullingAuditRecord> culling_audit;
+  std::optional<DrawnErrorRecord> drawn_error;
   // How the frames' instructions were counted: "" (not asked), "perf_event",
   // "callgrind" (the total is read from callgrind's output by who ran it) or
   // "none" (asked, but nothing here counts; instruction_problem says why).
@@ -49,6 +50,8 @@ std::string format_profile(const RunReport& report);
 // The culling audit's line under the table: per box, false and missed culls
 // (copy-frames) and its slack.
 std::string format_culling_audit(const CullingAuditRecord& audit);
+// The drawn error's line under the table, in millimetres (model units x 1000).
+std::string format_drawn_error(const DrawnErrorRecord& error);
 
 // Header, then one row per frame (docs/formats.md).
 void write_csv(const RunReport& report, std::ostream& out);

@@ -1,5 +1,7 @@
 #include "profile/report_charts.h"
 
+#include "profile/cost_error.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -90,6 +92,36 @@ StackedArea categories_chart(const ReportRun& run) {
     if (std::none_of(ms.begin(), ms.end(), [](double v) { return v > 0; })) continue;
     chart.layers.push_back({std::string(category_name(category)), category_colour(category), std::move(ms)});
   }
+  return chart;
+}
+
+std::optional<LineChart> cost_error_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
+  std::vector<CostErrorInput> inputs;
+  for (const ReportRun& run : runs)
+    inputs.push_back({run.label, quantile(result_samples(run.result, "frame_ms"), 0.5),
+                      quantile(result_samples(run.result, series_name(Category::Animations)), 0.5),
+                      run.result.drawn_error});
+  return cost_error_chart(cost_error_points(inputs), colours);
+}
+
+std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours) {
+  if (points.empty()) return std::nullopt;
+  LineChart chart{"Cost against error: median frame, largest drawn error on screen", "median frame time (ms)",
+                  "largest drawn error (px)", {}, true};
+  chart.id = "cost-error";
+  // The front first, so that each mode's dot is drawn over it.
+  std::vector<const CostErrorPoint*> front;
+  for (const CostErrorPoint& p : points)
+    if (p.front) front.push_back(&p);
+  std::sort(front.begin(), front.end(), [](auto* a, auto* b) { return a->frame_ms < b->frame_ms; });
+  LineSeries line{"Pareto front", {}, {}, "#999"};
+  for (const CostErrorPoint* p : front) {
+    line.x.push_back(p->frame_ms);
+    line.y.push_back(p->error.max_px);
+  }
+  chart.series.push_back(std::move(line));
+  for (const CostErrorPoint& p : points)
+    chart.series.push_back({p.mode, {p.frame_ms}, {p.error.max_px}, colours.colour(p.mode)});
   return chart;
 }
 

@@ -11,6 +11,7 @@
 #include "profile/chart_colours.h"
 #include "profile/regression.h"
 #include "profile/result.h"
+#include "profile/cost_error.h"
 #include "profile/svg_chart.h"
 #include "profile/sweep_axis.h"
 
@@ -64,6 +65,12 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs);
 // budget (capacity's), the budget as a line.
 LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, const std::string& caption, ModeColours& colours,
                       std::optional<double> budget_ms = std::nullopt);
+
+// Each run's median frame time against its largest drawn error (px), a dot
+// per run and the Pareto front as a line (profile/cost_error.h); nullopt when
+// fewer than two runs carry a drawn error.
+std::optional<LineChart> cost_error_chart(const std::vector<ReportRun>& runs, ModeColours& colours);
+std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours);
 
 // check's verdict per metric against the tolerance band.
 VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options);

@@ -88,6 +88,19 @@ struct MeshLodRecord {
   std::vector<double> error, error_fraction, error_px;
 };
 
+// What the run's savings cost in fidelity (issue 29 item 2; frame/crowd_bench.h's
+// DrawnError): the last frame's copies on screen as drawn against their exact,
+// full-detail pose, per drawn vertex; and how often copies changed their
+// update period (popping), per second of the run.
+struct DrawnErrorRecord {
+  uint64_t copies_checked = 0, copies_deviating = 0, vertices = 0, copy_stride = 1;
+  double max = 0, rms = 0;                    // model units (mm = x 1000 for glTF's metres)
+  double max_fraction = 0, rms_fraction = 0;  // of the character's height
+  double max_px = 0, rms_px = 0;
+  double mesh_max = 0;              // the largest mesh-level error included (model units)
+  double switches_per_second = 0;   // changes of update period, all copies
+};
+
 // The culling audit (issue 29): copies posed exactly over `frames` poses and
 // tested vertex by vertex against the frustum, beside what each box strategy
 // decided (scene/culling_audit.h). Counts are of copy-frames.
@@ -200,6 +213,7 @@ struct Result {
   std::optional<AnimationRecord> animation;
   std::optional<MeshLodRecord> mesh_lod;  // with --mesh-lod on
   std::optional<CullingAuditRecord> culling_audit;
+  std::optional<DrawnErrorRecord> drawn_error;
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
   std::optional<InstructionRecord> instructions;

@@ -74,6 +74,15 @@ json mesh_lod_json(const MeshLodRecord& m) {
   return {{"copies", m.copies}, {"error", m.error}, {"error_fraction", m.error_fraction}, {"error_px", m.error_px}};
 }
 
+json drawn_error_json(const DrawnErrorRecord& e) {
+  return {{"copies_checked", e.copies_checked}, {"copies_deviating", e.copies_deviating},
+          {"vertices", e.vertices},             {"copy_stride", e.copy_stride},
+          {"max", e.max},                       {"rms", e.rms},
+          {"max_fraction", e.max_fraction},     {"rms_fraction", e.rms_fraction},
+          {"max_px", e.max_px},                 {"rms_px", e.rms_px},
+          {"mesh_max", e.mesh_max},             {"switches_per_second", e.switches_per_second}};
+}
+
 json culling_audit_json(const CullingAuditRecord& c) {
   json boxes = json::object();
   for (const CullBoxRecord& b : c.boxes)
@@ -554,6 +563,24 @@ void read_extras(const Reader& in, Result& r) {
                "/mesh_lod", "arrays of one to four levels, all as long");
     r.mesh_lod = std::move(m);
   }
+  if (in.has("/drawn_error")) {
+    in.object("/drawn_error");
+    DrawnErrorRecord e;
+    e.copies_checked = in.count("/drawn_error/copies_checked");
+    e.copies_deviating = in.count("/drawn_error/copies_deviating");
+    e.vertices = in.count("/drawn_error/vertices");
+    e.copy_stride = in.count("/drawn_error/copy_stride");
+    double* numbers[] = {&e.max, &e.rms, &e.max_fraction, &e.rms_fraction, &e.max_px, &e.rms_px, &e.mesh_max,
+                         &e.switches_per_second};
+    const char* names[] = {"max", "rms", "max_fraction", "rms_fraction", "max_px", "rms_px", "mesh_max",
+                           "switches_per_second"};
+    for (size_t n = 0; n < std::size(names); ++n) {
+      const std::string at = std::string("/drawn_error/") + names[n];
+      *numbers[n] = in.number(at);
+      in.require(*numbers[n] >= 0, at, "a number, 0 or more");
+    }
+    r.drawn_error = std::move(e);
+  }
   if (in.has("/culling_audit")) {
     in.object("/culling_audit");
     CullingAuditRecord c;
@@ -671,6 +698,7 @@ nlohmann::json result_to_json(const Result& r) {
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.animation) j["animation"] = animation_json(*r.animation);
   if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);
+  if (r.drawn_error) j["drawn_error"] = drawn_error_json(*r.drawn_error);
   if (r.culling_audit) j["culling_audit"] = culling_audit_json(*r.culling_audit);
   if (r.instructions) j["instructions"] = instructions_json(*r.instructions);
   if (r.partial) {

@@ -39,6 +39,7 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   report.culling_audit = CullingAuditRecord{16, 160, 1, 1800, 700, 60, {}};
   for (const char* box : {"bind_pose", "every_action", "own_action", "tight"})
     report.culling_audit->boxes.push_back(CullBoxRecord{box, 2000, 3, 130, 1, 12, 4.5, 9.0});
+  report.drawn_error = DrawnErrorRecord{100, 40, 495100, 1, 0.15, 0.02, 0.08, 0.01, 3.5, 0.4, 0.006, 12.5};
   report.partial = true;
   report.frames_planned = 10;
   json written = to_json(report);
@@ -56,6 +57,9 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   ASSERT_TRUE(read.mesh_lod);
   EXPECT_EQ(read.mesh_lod->copies[2], 20u);
   EXPECT_DOUBLE_EQ(read.mesh_lod->error_px[3], 0.3);
+  ASSERT_TRUE(read.drawn_error);
+  EXPECT_DOUBLE_EQ(read.drawn_error->switches_per_second, 12.5);
+  EXPECT_EQ(read.drawn_error->vertices, 495100u);
   ASSERT_TRUE(read.culling_audit);
   ASSERT_EQ(read.culling_audit->boxes.size(), 4u);
   EXPECT_EQ(read.culling_audit->boxes[1].box, "every_action") << "in the strategies' own order";
@@ -188,6 +192,10 @@ TEST(ResultCodec, ABadFieldIsNamed) {
                                        {"undecided", 0}, {"boxes", {{"a/b", json::object()}}}}),
        "\"culling_audit.boxes\" should be an object of bind_pose"},
       {"/culling_audit", json::object({{"frames", -1}}), "\"culling_audit.frames\" should be a whole number"},
+      {"/drawn_error", json::object({{"copies_checked", 1}, {"copies_deviating", 0}, {"vertices", 3}, {"copy_stride", 1},
+                                     {"max", -1.0}, {"rms", 0}, {"max_fraction", 0}, {"rms_fraction", 0}, {"max_px", 0},
+                                     {"rms_px", 0}, {"mesh_max", 0}, {"switches_per_second", 0}}),
+       "\"drawn_error.max\" should be a number, 0 or more"},
   };
   for (const Case& c : cases) {
     json bad = good;
