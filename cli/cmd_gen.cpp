@@ -30,6 +30,8 @@ int gen(const GenArgs& args) {
   uintmax_t bytes = std::filesystem::file_size(args.output, error);
   std::cout << "wrote " << args.output << ": " << character.skeleton.joint_count() << " joints, "
             << character.mesh.vertex_count() << " vertices, " << character.actions.size() << " actions"
+            << (character.file_lods.empty() ? std::string()
+                                            : ", " + std::to_string(character.file_lods.size()) + " MSFT_lod levels")
             << (error ? std::string() : ", " + std::to_string(bytes) + " bytes") << "\n";
   return crowdprof::kExitOk;
 }
@@ -45,6 +47,11 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
   cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 2,500,000 (the most the loader takes back)")->capture_default_str();
   cmd->add_option("--seed", args->humanoid.seed, "Varies proportions and motion slightly")->capture_default_str();
+  cmd->add_option("--lods", args->humanoid.lod_levels,
+                  "Also write this many coarser tessellations of the body (1/2, 1/4, 1/10 of the vertices, at least "
+                  "500) as the file's own levels of detail (MSFT_lod), 0 to 3; --mesh-lod on draws them instead of "
+                  "simplifying")
+      ->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
   cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");
   cmd->callback([&run, args] { run = [args] { return gen(*args); }; });

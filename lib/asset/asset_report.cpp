@@ -49,11 +49,12 @@ std::array<size_t, 4> influence_histogram(const SkinnedMesh& mesh) {
 
 namespace {
 
-// The levels `--mesh-lod on` would build from the character (asset/mesh_lod.h).
-nlohmann::json describe_mesh_lods(const SkinnedMesh& mesh) {
+// The levels `--mesh-lod on` would draw for the character (asset/mesh_lod.h):
+// the file's own or meshoptimizer's.
+nlohmann::json describe_mesh_lods(const Character& character) {
   nlohmann::json levels = nlohmann::json::array();
-  const float height = bind_pose_height(mesh);
-  for (const MeshLod& lod : build_mesh_lods(mesh))
+  const float height = bind_pose_height(character.mesh);
+  for (const MeshLod& lod : mesh_lods_of(character))
     levels.push_back({{"triangles", lod.mesh.triangle_count()},
                       {"vertices", lod.mesh.vertex_count()},
                       {"error", lod.error},
@@ -84,7 +85,8 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
                                  {"fixups", describe_fixups(c.fixups)},
                                  {"actions", actions},
                                  {"draco_decoded", c.draco_decoded},
-                                 {"mesh_lods", describe_mesh_lods(c.mesh)},
+                                 {"mesh_lods", describe_mesh_lods(c)},
+                                 {"mesh_lods_source", mesh_lods_source(c)},
                                  {"shared_bytes", c.shared_bytes()}});
   }
   if (asset.characters.empty()) {
@@ -118,8 +120,11 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "  triangles:   " << c.mesh.triangle_count() << "\n";
     out << "  primitives:  " << c.mesh.primitives.size() << "\n";
     out << "  mesh LOD:    ";
-    const nlohmann::json lods = describe_mesh_lods(c.mesh);
+    const nlohmann::json lods = describe_mesh_lods(c);
     if (lods.empty()) out << "none (the simplifier found nothing to remove within its error limits)";
+    if (!c.file_lods.empty())
+      out << "the file's own (MSFT_lod, " << c.file_lods.size() << " level" << (c.file_lods.size() > 1 ? "s" : "")
+          << (c.file_lods.size() + 1 > kMeshLevels ? ", the first 3 used" : "") << "; error: surface distance)\n               ";
     for (size_t l = 0; l < lods.size(); ++l) {
       char error[64];
       std::snprintf(error, sizeof error, "%.2f mm, %.2f%% of its height", 1000.0 * lods[l]["error"].get<double>(),

@@ -43,6 +43,9 @@ size_t Character::shared_bytes() const {
                  bytes_of(s.rest_scales) + bytes_of(s.inverse_binds) + bytes_of(s.parent_offsets);
   bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.joints) +
            bytes_of(mesh.weights) + bytes_of(mesh.indices) + bytes_of(mesh.primitives);
+  for (const SkinnedMesh& lod : file_lods)
+    bytes += bytes_of(lod.positions) + bytes_of(lod.normals) + bytes_of(lod.joints) + bytes_of(lod.weights) +
+             bytes_of(lod.indices) + bytes_of(lod.primitives);
   for (const Action& action : actions)
     for (const Channel& channel : action.channels)
       bytes += bytes_of(channel.times) + bytes_of(channel.values);

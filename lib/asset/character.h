@@ -102,6 +102,10 @@ struct Character {
   std::string name;
   Skeleton skeleton;
   SkinnedMesh mesh;
+  // Coarser meshes the file gives itself (MSFT_lod on the skinned mesh's
+  // nodes), finest first, bound to the same skeleton; empty when it gives none
+  // (mesh LOD then simplifies `mesh`, asset/mesh_lod.h).
+  std::vector<SkinnedMesh> file_lods;
   std::vector<Action> actions;
   Fixups fixups;
   bool draco_decoded = false;

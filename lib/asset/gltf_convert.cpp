@@ -308,6 +308,41 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
 // The last check before a character leaves the loader. Values read from the file
 // were checked as they were read; this catches what was computed from them
 // (normals of huge triangles, decomposed matrices, sums of huge weights).
+// Per node: the nodes its MSFT_lod names, coarser in turn (empty without),
+// for the nodes of skin `s` with a mesh. Each must be another node of that
+// skin with a mesh and no MSFT_lod of its own, named once.
+std::vector<std::vector<int>> lod_chains(const tinygltf::Model& model, int s, const std::string& file) {
+  std::vector<std::vector<int>> chains(model.nodes.size());
+  std::set<int> named;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const tinygltf::Node& node = model.nodes[n];
+    auto it = node.extensions.find("MSFT_lod");
+    if (node.skin != s || node.mesh < 0 || it == node.extensions.end()) continue;
+    const std::string where = "node " + str(n) + "'s MSFT_lod";
+    if (!it->second.IsObject() || !it->second.Has("ids") || !it->second.Get("ids").IsArray())
+      throw InputError(file, where + " has no \"ids\" array");
+    const tinygltf::Value& ids = it->second.Get("ids");
+    if (ids.ArrayLen() > 16) throw InputError(file, where + " names " + str(ids.ArrayLen()) + " levels; at most 16");
+    for (size_t k = 0; k < ids.ArrayLen(); ++k) {
+      const tinygltf::Value& id = ids.Get(static_cast<int>(k));
+      if (!id.IsInt() || id.Get<int>() < 0 || static_cast<size_t>(id.Get<int>()) >= model.nodes.size())
+        throw InputError(file, where + " names a node that is not there (ids[" + str(k) + "])");
+      const int lod = id.Get<int>();
+      const tinygltf::Node& target = model.nodes[static_cast<size_t>(lod)];
+      if (static_cast<size_t>(lod) == n || target.mesh < 0 || target.skin != s)
+        throw InputError(file, where + " names node " + str(static_cast<size_t>(lod)) +
+                                   ", which is not another node with a mesh bound to skin " +
+                                   str(static_cast<size_t>(s)));
+      if (target.extensions.count("MSFT_lod"))
+        throw InputError(file, where + " names node " + str(static_cast<size_t>(lod)) + ", which has levels of its own");
+      if (!named.insert(lod).second)
+        throw InputError(file, where + " names node " + str(static_cast<size_t>(lod)) + " a second time");
+      chains[n].push_back(lod);
+    }
+  }
+  return chains;
+}
+
 void check_finite(const Character& c, int s, const std::string& file) {
   auto fail = [&](const std::string& what) {
     throw InputError(file, "skin " + str(static_cast<size_t>(s)) + ": " + what +
@@ -324,6 +359,11 @@ void check_finite(const Character& c, int s, const std::string& file) {
   for (size_t v = 0; v < c.mesh.vertex_count(); ++v)
     if (!finite(c.mesh.positions[v]) || !finite(c.mesh.normals[v]) || !finite(c.mesh.weights[v]))
       fail("vertex " + str(v));
+  for (size_t l = 0; l < c.file_lods.size(); ++l)
+    for (size_t v = 0; v < c.file_lods[l].vertex_count(); ++v)
+      if (!finite(c.file_lods[l].positions[v]) || !finite(c.file_lods[l].normals[v]) ||
+          !finite(c.file_lods[l].weights[v]))
+        fail("MSFT_lod level " + str(l + 1) + " vertex " + str(v));
   for (const Action& action : c.actions)
     for (const Channel& channel : action.channels)
       for (float x : channel.values)
@@ -391,13 +431,38 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
   character.skeleton = build_skeleton(model, parents, order, skin, s, file, character.fixups);
   std::string mesh_node_name;
   std::set<int> meshes_done;
+  const std::vector<std::vector<int>> chains = lod_chains(model, s, file);
+  std::set<int> lod_nodes;  // drawn only as levels, never with the full mesh
+  for (const std::vector<int>& chain : chains) lod_nodes.insert(chain.begin(), chain.end());
+  size_t levels = 0;
+  for (const std::vector<int>& chain : chains) levels = std::max(levels, chain.size());
+  character.file_lods.resize(levels);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const tinygltf::Node& node = model.nodes[n];
-    if (node.skin != s || node.mesh < 0 || !meshes_done.insert(node.mesh).second) continue;
+    if (node.skin != s || node.mesh < 0 || lod_nodes.count(static_cast<int>(n)) ||
+        !meshes_done.insert(node.mesh).second)
+      continue;
     if (mesh_node_name.empty()) mesh_node_name = node.name;
     size_t m = static_cast<size_t>(node.mesh);
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
       append_primitive(model, m, p, order, skin.joints.size(), file, character.mesh, character.fixups);
+    // Each level of the file's: this node's own at that level, its coarsest
+    // past the end of its chain, or its full mesh when it has none (what a
+    // viewer of MSFT_lod draws for a part without levels).
+    for (size_t level = 0; level < levels; ++level) {
+      const std::vector<int>& chain = chains[n];
+      const size_t lod_mesh = chain.empty() ? m : static_cast<size_t>(model.nodes[static_cast<size_t>(
+                                                      chain[std::min(level, chain.size() - 1)])].mesh);
+      for (size_t p = 0; p < model.meshes[lod_mesh].primitives.size(); ++p) {
+        append_primitive(model, lod_mesh, p, order, skin.joints.size(), file, character.file_lods[level],
+                         character.fixups);
+        size_t in_all = 0;
+        for (const SkinnedMesh& lod : character.file_lods) in_all += lod.vertex_count();
+        if (in_all > kMaxMeshVertices)
+          throw InputError(file, "its MSFT_lod levels hold more than " + str(kMaxMeshVertices) +
+                                     " vertices in all; refused as absurd");
+      }
+    }
   }
   character.actions = convert_actions(model, order.node_to_joint, file, &character.fixups);
   character.name = !skin.name.empty() ? skin.name : !mesh_node_name.empty() ? mesh_node_name : "skin" + str(static_cast<size_t>(s));

@@ -74,4 +74,73 @@ std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const Me
   return levels;
 }
 
+namespace {
+
+// The closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5).
+glm::vec3 closest_on_triangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const glm::vec3 bp = p - b;
+  const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const glm::vec3 cp = p - c;
+  const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const float denom = va + vb + vc;
+  if (!(denom > 0)) return a;  // a degenerate triangle: its first corner
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+// The largest distance from a vertex of `from` to the triangles of `to`.
+float one_sided_distance(const SkinnedMesh& from, const SkinnedMesh& to) {
+  const size_t triangles = to.indices.size() / 3;
+  if (from.positions.empty() || triangles == 0) return 0.0f;
+  constexpr size_t kPairs = 50'000'000;
+  const size_t stride = std::max<size_t>(1, from.positions.size() * triangles / kPairs);
+  float worst = 0;
+  for (size_t v = 0; v < from.positions.size(); v += stride) {
+    const glm::vec3& p = from.positions[v];
+    float best = std::numeric_limits<float>::max();
+    for (size_t t = 0; t < triangles && best > worst; ++t) {
+      const glm::vec3 q = closest_on_triangle(p, to.positions[to.indices[3 * t]], to.positions[to.indices[3 * t + 1]],
+                                              to.positions[to.indices[3 * t + 2]]);
+      const glm::vec3 d = p - q;
+      best = std::min(best, glm::dot(d, d));
+    }
+    worst = std::max(worst, best);  // no closer triangle than the worst so far: it cannot raise it
+  }
+  return std::sqrt(worst);
+}
+
+}  // namespace
+
+float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b) {
+  return std::max(one_sided_distance(a, b), one_sided_distance(b, a));
+}
+
+std::vector<MeshLod> mesh_lods_of(const Character& character) {
+  if (character.file_lods.empty()) return build_mesh_lods(character.mesh);
+  std::vector<MeshLod> lods;
+  const double full = static_cast<double>(std::max<size_t>(1, character.mesh.triangle_count()));
+  for (size_t l = 0; l < character.file_lods.size() && l + 1 < kMeshLevels; ++l) {
+    MeshLod lod;
+    lod.mesh = character.file_lods[l];
+    lod.target_share = static_cast<float>(static_cast<double>(lod.mesh.triangle_count()) / full);
+    lod.error = surface_distance(character.mesh, lod.mesh);
+    lods.push_back(std::move(lod));
+  }
+  return lods;
+}
+
+const char* mesh_lods_source(const Character& character) {
+  return character.file_lods.empty() ? "meshoptimizer" : "MSFT_lod";
+}
+
 }  // namespace crowdprof

@@ -42,4 +42,18 @@ float bind_pose_height(const SkinnedMesh& mesh);
 // vertex fetch order), its triangles in vertex-cache order. Allocates.
 std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets = kMeshLodTargets);
 
+// How far two surfaces stray from each other (bind pose, the meshes' units):
+// the largest distance from a vertex of either to the other's triangles (a
+// symmetric, vertex-sampled Hausdorff distance). Past 50 million vertex-
+// triangle pairs a side, every Nth vertex of that side is taken. Allocates nothing.
+float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b);
+
+// The levels mesh LOD draws for `character`: the file's own (MSFT_lod,
+// Character::file_lods; the first three, each with its surface_distance from
+// the full mesh as its error and its share of the triangles as its target),
+// else build_mesh_lods of its mesh. Allocates.
+std::vector<MeshLod> mesh_lods_of(const Character& character);
+// "MSFT_lod" when mesh_lods_of takes the file's levels, else "meshoptimizer".
+const char* mesh_lods_source(const Character& character);
+
 }  // namespace crowdprof

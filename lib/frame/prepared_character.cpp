@@ -32,7 +32,7 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
     p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
     p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
     if (mode.mesh_lod) {
-      p.mesh_lods = build_mesh_lods(character.mesh);
+      p.mesh_lods = mesh_lods_of(character);
       for (const MeshLod& level : p.mesh_lods) {
         SkinningPlan& plan = p.lod_plans.emplace_back();
         if (std::string why = build_skinning_plan(level.mesh, p.joints, &plan); !why.empty())

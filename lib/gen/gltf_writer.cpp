@@ -66,20 +66,25 @@ void check(const Character& c) {
     fail("skeleton arrays differ in length");
   for (size_t j = 0; j < joints; ++j)
     if (s.parents[j] >= static_cast<int>(j)) fail("joint " + std::to_string(j) + " comes before its parent");
-  const SkinnedMesh& m = c.mesh;
-  const size_t n = m.vertex_count();
-  if (m.normals.size() != n || m.joints.size() != n || m.weights.size() != n) fail("mesh arrays differ in length");
-  for (const glm::u16vec4& v : m.joints)
-    for (int k = 0; k < 4; ++k)
-      if (v[k] >= joints) fail("a vertex names a joint past the skeleton");
-  for (const Primitive& p : m.primitives) {
-    if (size_t(p.first_vertex) + p.vertex_count > n || size_t(p.first_index) + p.index_count > m.indices.size() ||
-        p.index_count % 3 != 0)
-      fail("a primitive lies outside the mesh");
-    for (uint32_t i = p.first_index; i < p.first_index + p.index_count; ++i)
-      if (m.indices[i] < p.first_vertex || m.indices[i] - p.first_vertex >= p.vertex_count)
-        fail("a primitive's index leaves its vertex range");
+  std::vector<const SkinnedMesh*> meshes = {&c.mesh};
+  for (const SkinnedMesh& lod : c.file_lods) meshes.push_back(&lod);
+  for (const SkinnedMesh* mesh : meshes) {
+    const SkinnedMesh& m = *mesh;
+    const size_t n = m.vertex_count();
+    if (m.normals.size() != n || m.joints.size() != n || m.weights.size() != n) fail("mesh arrays differ in length");
+    for (const glm::u16vec4& v : m.joints)
+      for (int k = 0; k < 4; ++k)
+        if (v[k] >= joints) fail("a vertex names a joint past the skeleton");
+    for (const Primitive& p : m.primitives) {
+      if (size_t(p.first_vertex) + p.vertex_count > n || size_t(p.first_index) + p.index_count > m.indices.size() ||
+          p.index_count % 3 != 0)
+        fail("a primitive lies outside the mesh");
+      for (uint32_t i = p.first_index; i < p.first_index + p.index_count; ++i)
+        if (m.indices[i] < p.first_vertex || m.indices[i] - p.first_vertex >= p.vertex_count)
+          fail("a primitive's index leaves its vertex range");
+    }
   }
+  if (!c.file_lods.empty() && c.mesh.vertex_count() == 0) fail("levels of detail without a mesh");
   for (const Action& a : c.actions)
     for (const Channel& ch : a.channels) {
       size_t per_key = static_cast<size_t>(ch.components()) * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
@@ -216,14 +221,27 @@ std::vector<uint8_t> encode_gltf(const Character& c, const GltfWriteOptions& opt
 
   if (c.mesh.vertex_count() > 0) {
     const bool joints_u8 = c.skeleton.joint_count() <= 256;
-    std::vector<Primitive> primitives = c.mesh.primitives;
-    if (primitives.empty())
-      primitives.push_back({0, uint32_t(c.mesh.indices.size()), 0, uint32_t(c.mesh.vertex_count())});
-    Json prims = Json::array();
-    for (const Primitive& p : primitives) prims.push_back(write_primitive(doc, c.mesh, p, joints_u8, options.draco));
-    doc.push("meshes", {{"name", c.name}, {"primitives", std::move(prims)}});
+    auto write_mesh = [&](const SkinnedMesh& mesh, const std::string& name) {
+      std::vector<Primitive> primitives = mesh.primitives;
+      if (primitives.empty())
+        primitives.push_back({0, uint32_t(mesh.indices.size()), 0, uint32_t(mesh.vertex_count())});
+      Json prims = Json::array();
+      for (const Primitive& p : primitives) prims.push_back(write_primitive(doc, mesh, p, joints_u8, options.draco));
+      return doc.push("meshes", {{"name", name}, {"primitives", std::move(prims)}});
+    };
     // glTF ignores a skinned mesh node's own transform; it sits at the scene root.
-    scene_nodes.push_back(doc.push("nodes", {{"name", c.name}, {"mesh", 0}, {"skin", 0}}));
+    Json node = {{"name", c.name}, {"mesh", write_mesh(c.mesh, c.name)}, {"skin", 0}};
+    if (!c.file_lods.empty()) {
+      // MSFT_lod: the coarser levels on nodes of their own, outside the scene
+      // (a viewer without the extension draws the full mesh alone).
+      Json ids = Json::array();
+      for (size_t l = 0; l < c.file_lods.size(); ++l) {
+        const std::string name = c.name + ".lod" + std::to_string(l + 1);
+        ids.push_back(doc.push("nodes", {{"name", name}, {"mesh", write_mesh(c.file_lods[l], name)}, {"skin", 0}}));
+      }
+      node["extensions"] = {{"MSFT_lod", {{"ids", std::move(ids)}}}};
+    }
+    scene_nodes.push_back(doc.push("nodes", std::move(node)));
   }
   write_actions(doc, c.actions);
   doc.root["scene"] = 0;
@@ -232,6 +250,7 @@ std::vector<uint8_t> encode_gltf(const Character& c, const GltfWriteOptions& opt
     doc.root["extensionsUsed"] = Json::array({"KHR_draco_mesh_compression"});
     doc.root["extensionsRequired"] = Json::array({"KHR_draco_mesh_compression"});
   }
+  if (!c.file_lods.empty() && c.mesh.vertex_count() > 0) doc.root["extensionsUsed"].push_back("MSFT_lod");
   Json buffer = {{"byteLength", doc.bin.size()}};
   if (!options.binary) buffer["uri"] = "data:application/octet-stream;base64," + base64(doc.bin);
   doc.root["buffers"] = Json::array({std::move(buffer)});

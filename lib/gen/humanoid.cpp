@@ -284,6 +284,16 @@ Character generate_humanoid(const HumanoidOptions& options) {
   character.name = "humanoid";
   character.skeleton = humanoid::make_skeleton(rig);
   character.mesh = humanoid::build_mesh(rig, options.vertices);
+  if (options.lod_levels < 0 || options.lod_levels > 3)
+    throw UsageError("humanoid LOD levels must be in [0, 3], got " + std::to_string(options.lod_levels));
+  constexpr int kLevelDivisor[] = {2, 4, 10};
+  int previous = options.vertices;
+  for (int l = 0; l < options.lod_levels; ++l) {
+    const int vertices = std::max(kHumanoidMinVertices, options.vertices / kLevelDivisor[l]);
+    if (vertices >= previous) break;  // no coarser body to make
+    character.file_lods.push_back(humanoid::build_mesh(rig, vertices));
+    previous = vertices;
+  }
   character.actions = humanoid::build_actions(rig, character.skeleton, options.seed);
   return character;
 }

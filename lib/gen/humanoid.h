@@ -13,6 +13,11 @@ struct HumanoidOptions {
   int bones = 69;       // exact joint count, kHumanoidMinBones..kHumanoidMaxBones
   int vertices = 4951;  // exact vertex count, kHumanoidMinVertices..kHumanoidMaxVertices
   uint32_t seed = 1;    // varies proportions and motion slightly
+  // 0 to 3: coarser tessellations of the same body on the same rig, with a
+  // half, a quarter and a tenth of the vertices (at least kHumanoidMinVertices,
+  // each fewer than the one before), as Character::file_lods: what a glTF
+  // file's own levels (MSFT_lod) look like when gltf_writer writes them.
+  int lod_levels = 0;
 };
 
 inline constexpr int kHumanoidMinBones = 20;  // hips, spine, neck, head, limbs without fingers
