@@ -5,6 +5,7 @@
 // Per-item times are in the counters: ns_per_joint, ns_per_vertex (seconds with
 // an SI prefix: "3.1n" is 3.1 ns), and GB/s for the bandwidth probe.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -12,7 +13,9 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
@@ -24,6 +27,8 @@
 #include "animation/sampling.h"
 #include "asset/gltf_loader.h"
 #include "skinning/output_buffer.h"
+#include "skinning/output_stores.h"
+#include "skinning/packed_vertex.h"
 #include "skinning/simd_target.h"
 #include "skinning/skinning.h"
 #include "skinning/skinning_plan.h"
@@ -229,6 +234,98 @@ void BM_Skinning(benchmark::State& state, std::string target) {
   state.counters["joints_per_batch"] = plan.batches.empty() ? 0.0 : double(joints) / double(plan.batches.size());
 }
 
+// Output for `copies` copies of the humanoid as the frame lays it out (each
+// copy's positions, then its normals, in arrays of their own, every copy
+// starting on a cache line), made once per size and faulted in: a frame
+// rewrites the same memory every frame. Empty when the machine lacks the
+// memory (with room to spare).
+struct CrowdOutput {
+  size_t copies = 0, stride = 0;  // stride: vec3s from one copy's start to the next's
+  std::unique_ptr<OutputMemory> positions, normals;
+  std::string missing;  // why not, when it could not be made
+};
+
+CrowdOutput& crowd_output(size_t copies, size_t vertices) {
+  static std::map<size_t, CrowdOutput> outputs;
+  CrowdOutput& out = outputs[copies];
+  if (out.copies == copies || !out.missing.empty()) return out;
+  // At least one cache line a copy, so each copy's output starts on one (the
+  // frame rounds its offsets the same way: frame/copy_store.cpp).
+  out.stride = vertices;
+  while ((out.stride * sizeof(glm::vec3)) % 64) ++out.stride;
+  const size_t bytes = copies * out.stride * sizeof(glm::vec3);
+  const double available =
+      static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  if (2.0 * static_cast<double>(bytes) > 0.8 * available) {
+    out.missing = "needs " + std::to_string(2 * bytes >> 20) + " MiB, the machine has " +
+                  std::to_string(static_cast<size_t>(available) >> 20) + " MiB free";
+    return out;
+  }
+  out.positions = std::make_unique<OutputMemory>(bytes);
+  out.normals = std::make_unique<OutputMemory>(bytes);
+  std::memset(out.positions->get(), 0, bytes);
+  std::memset(out.normals->get(), 0, bytes);
+  out.copies = copies;
+  return out;
+}
+
+// Skinning a crowd's worth of copies, the working set a frame has (not one
+// copy in L1): arg 0 copies of the humanoid, each with its own output (160
+// palettes cycled: posing is not measured here), split between the
+// benchmark's threads, on one SIMD target. Streams its output past 64 MiB, as
+// the frame does (skinning/output_stores.h). Counters: vertices_per_second and
+// bytes_per_second (skinned output written, float format) of all threads
+// together; GB/s is the same bandwidth in the memory probes' unit, to set
+// against BM_MemoryWriteStreaming's. (With threads, the Time column is per
+// thread's iteration: read the counters.)
+void BM_SkinningCrowd(benchmark::State& state, std::string target) {
+  const size_t copies = static_cast<size_t>(state.range(0));
+  static Copy* copy = new Copy;  // one pose, shared by the threads (read-only)
+  const size_t n = copy->c.mesh.vertex_count();
+  static std::mutex setup;
+  CrowdOutput* out = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(setup);
+    out = &crowd_output(copies, n);
+  }
+  if (!out->missing.empty()) {
+    state.SkipWithError(out->missing.c_str());
+    return;
+  }
+  if (std::string why = force_simd_target(target); !why.empty()) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  SkinningPlan plan;
+  build_skinning_plan(copy->c.mesh, copy->c.skeleton.joint_count(), &plan);
+  const bool streaming = stream_skinned_output(copies * n * kFloatVertexBytes);
+  // This thread's share of the copies.
+  const size_t threads = static_cast<size_t>(state.threads()), t = static_cast<size_t>(state.thread_index());
+  const size_t first = copies * t / threads, last = copies * (t + 1) / threads;
+  auto* positions = reinterpret_cast<glm::vec3*>(out->positions->get());
+  auto* normals = reinterpret_cast<glm::vec3*>(out->normals->get());
+  for (auto _ : state) {
+    for (size_t i = first; i < last; ++i) {
+      const size_t at = i * out->stride;
+      SkinningJob job{copy->palette, &plan, 0, n, std::span(positions + at, n), std::span(normals + at, n)};
+      job.streaming_stores = streaming;
+      run_job(job, "SkinningJob");
+    }
+    benchmark::ClobberMemory();
+  }
+  // Each thread's share per iteration: Google Benchmark's rate of a thread
+  // counts every thread's iterations, so the threads' rates are averaged
+  // (total_rate's reasoning) to give the crowd's.
+  const size_t mine = last - first;
+  const auto all_threads = benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kAvgThreads;
+  state.counters["vertices_per_second"] = benchmark::Counter(static_cast<double>(mine * n), all_threads);
+  state.counters["bytes_per_second"] = benchmark::Counter(static_cast<double>(mine * n * kFloatVertexBytes), all_threads);
+  state.counters["GB/s"] = total_rate(mine * n * kFloatVertexBytes);
+  state.counters["streaming"] = benchmark::Counter(streaming ? 1 : 0, benchmark::Counter::kAvgThreads);
+  state.SetLabel(target);
+  if (t == 0) force_simd_target("");
+}
+
 // Skinning into the packed format (--vertex-format packed, 10 bytes a vertex)
 // against the float one (24 bytes) on the best target: the whole mesh, quantised
 // in a box around it. bytes_per_second: skinned output written.
@@ -288,10 +385,19 @@ BENCHMARK(BM_PoseAndSkin)->Unit(benchmark::kMicrosecond);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  for (const std::string& target : crowdprof::available_simd_targets())
+  for (const std::string& target : crowdprof::available_simd_targets()) {
     benchmark::RegisterBenchmark(("BM_Skinning/" + target).c_str(), crowdprof::BM_Skinning, target)
         ->DenseRange(0, 4)
         ->ArgName("influences");
+    benchmark::RegisterBenchmark(("BM_SkinningCrowd/" + target).c_str(), crowdprof::BM_SkinningCrowd, target)
+        ->Arg(160)
+        ->Arg(100000)
+        ->ArgName("copies")
+        ->Threads(1)
+        ->Threads(2)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -124,7 +124,7 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     if (lods.empty()) out << "none (the simplifier found nothing to remove within its error limits)";
     if (!c.file_lods.empty())
       out << "the file's own (MSFT_lod, " << c.file_lods.size() << " level" << (c.file_lods.size() > 1 ? "s" : "")
-          << (c.file_lods.size() + 1 > kMeshLevels ? ", the first 3 used" : "") << "; error: surface distance)\n               ";
+          << " used; error: surface distance)\n               ";
     for (size_t l = 0; l < lods.size(); ++l) {
       char error[64];
       std::snprintf(error, sizeof error, "%.2f mm, %.2f%% of its height", 1000.0 * lods[l]["error"].get<double>(),

@@ -106,6 +106,9 @@ struct Character {
   // nodes), finest first, bound to the same skeleton; empty when it gives none
   // (mesh LOD then simplifies `mesh`, asset/mesh_lod.h).
   std::vector<SkinnedMesh> file_lods;
+  // Per file level: its surface distance from `mesh` (asset/mesh_lod.h's
+  // surface_distance), measured at load.
+  std::vector<float> file_lod_errors;
   std::vector<Action> actions;
   Fixups fixups;
   bool draco_decoded = false;

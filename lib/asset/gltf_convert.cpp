@@ -17,6 +17,7 @@
 #include "asset/errors.h"
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_container.h"
+#include "asset/mesh_lod.h"
 #include "asset/mesh_normals.h"
 
 namespace crowdprof {
@@ -325,7 +326,8 @@ std::vector<std::vector<int>> lod_chains(const tinygltf::Model& model, int s, co
     if (ids.ArrayLen() > 16) throw InputError(file, where + " names " + str(ids.ArrayLen()) + " levels; at most 16");
     for (size_t k = 0; k < ids.ArrayLen(); ++k) {
       const tinygltf::Value& id = ids.Get(static_cast<int>(k));
-      if (!id.IsInt() || id.Get<int>() < 0 || static_cast<size_t>(id.Get<int>()) >= model.nodes.size())
+      if (!id.IsInt()) throw InputError(file, where + ": ids[" + str(k) + "] is not a node index");
+      if (id.Get<int>() < 0 || static_cast<size_t>(id.Get<int>()) >= model.nodes.size())
         throw InputError(file, where + " names a node that is not there (ids[" + str(k) + "])");
       const int lod = id.Get<int>();
       const tinygltf::Node& target = model.nodes[static_cast<size_t>(lod)];
@@ -341,6 +343,23 @@ std::vector<std::vector<int>> lod_chains(const tinygltf::Model& model, int s, co
     }
   }
   return chains;
+}
+
+// Keeps the file's levels that are coarser than the one before (fewer
+// vertices, at least one triangle): a copy's room for vertices is the full
+// mesh's, and a level with nothing to draw would count as exact. Measures
+// each kept level's surface distance from the full mesh, once, here.
+void keep_coarser_levels(Character& c) {
+  std::vector<SkinnedMesh> kept;
+  size_t previous = c.mesh.vertex_count();
+  for (SkinnedMesh& lod : c.file_lods) {
+    if (lod.triangle_count() == 0 || lod.vertex_count() >= previous) continue;
+    previous = lod.vertex_count();
+    kept.push_back(std::move(lod));
+  }
+  c.file_lods = std::move(kept);
+  c.file_lod_errors.clear();
+  for (const SkinnedMesh& lod : c.file_lods) c.file_lod_errors.push_back(surface_distance(c.mesh, lod));
 }
 
 void check_finite(const Character& c, int s, const std::string& file) {
@@ -436,6 +455,7 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
   for (const std::vector<int>& chain : chains) lod_nodes.insert(chain.begin(), chain.end());
   size_t levels = 0;
   for (const std::vector<int>& chain : chains) levels = std::max(levels, chain.size());
+  levels = std::min(levels, kMeshLevels - 1);  // mesh LOD draws no more: the rest are not read
   character.file_lods.resize(levels);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const tinygltf::Node& node = model.nodes[n];
@@ -464,6 +484,7 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
       }
     }
   }
+  keep_coarser_levels(character);
   character.actions = convert_actions(model, order.node_to_joint, file, &character.fixups);
   character.name = !skin.name.empty() ? skin.name : !mesh_node_name.empty() ? mesh_node_name : "skin" + str(static_cast<size_t>(s));
   check_finite(character, s, file);

@@ -103,7 +103,7 @@ float one_sided_distance(const SkinnedMesh& from, const SkinnedMesh& to) {
   const size_t triangles = to.indices.size() / 3;
   if (from.positions.empty() || triangles == 0) return 0.0f;
   constexpr size_t kPairs = 50'000'000;
-  const size_t stride = std::max<size_t>(1, from.positions.size() * triangles / kPairs);
+  const size_t stride = std::max<size_t>(1, (from.positions.size() * triangles + kPairs - 1) / kPairs);
   float worst = 0;
   for (size_t v = 0; v < from.positions.size(); v += stride) {
     const glm::vec3& p = from.positions[v];
@@ -133,7 +133,8 @@ std::vector<MeshLod> mesh_lods_of(const Character& character) {
     MeshLod lod;
     lod.mesh = character.file_lods[l];
     lod.target_share = static_cast<float>(static_cast<double>(lod.mesh.triangle_count()) / full);
-    lod.error = surface_distance(character.mesh, lod.mesh);
+    lod.error = l < character.file_lod_errors.size() ? character.file_lod_errors[l]
+                                                     : surface_distance(character.mesh, lod.mesh);
     lods.push_back(std::move(lod));
   }
   return lods;

@@ -49,9 +49,10 @@ std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const Me
 float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b);
 
 // The levels mesh LOD draws for `character`: the file's own (MSFT_lod,
-// Character::file_lods; the first three, each with its surface_distance from
-// the full mesh as its error and its share of the triangles as its target),
-// else build_mesh_lods of its mesh. Allocates.
+// Character::file_lods, which the loader keeps to the first three that are
+// each coarser than the one before; its surface distance from the full mesh,
+// measured at load, as each one's error and its share of the triangles as
+// its target), else build_mesh_lods of its mesh. Allocates.
 std::vector<MeshLod> mesh_lods_of(const Character& character);
 // "MSFT_lod" when mesh_lods_of takes the file's levels, else "meshoptimizer".
 const char* mesh_lods_source(const Character& character);

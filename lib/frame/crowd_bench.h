@@ -87,8 +87,10 @@ struct MeshLevelFidelity {
 // copies on screen as drawn (the pose they show: shared, held by update-rate
 // LOD or the budget, a baked blend; at their mesh level) against their exact,
 // full-detail pose. Per drawn vertex: its distance from the same vertex posed
-// exactly, plus its level's error (meshoptimizer's bound on the level's
-// distance from the full surface; 0 at level 0).
+// exactly, plus its level's error (the level's distance from the full surface:
+// meshoptimizer's estimate, or for a file's own levels the surface distance
+// measured at load; 0 at level 0). Float positions: packed vertices'
+// quantisation is not in it.
 struct DrawnError {
   uint64_t copies_checked = 0;    // copies on screen compared
   uint64_t copies_deviating = 0;  // of those, drawn other than exactly
@@ -163,8 +165,9 @@ class CrowdBench {
   // twice, so it is for the end of a run (allocates, takes time).
   AnimationFidelity measure_fidelity() const;
   // The last frame against exact, full-detail poses (DrawnError), on a
-  // screen `screen_height_px` tall; at most `max_copies` copies (every Nth
-  // past that), in parallel on the bench's threads. For the end of a run.
+  // screen `screen_height_px` tall; at most `max_copies` copies (fewer for
+  // meshes over 5,000 vertices: 2e8 vertices skinned at most; every Nth past
+  // that), in parallel on the bench's threads. For the end of a run.
   DrawnError measure_drawn_error(int screen_height_px, size_t max_copies = 40000) const;
   const UpdateSchedule& schedule() const { return planner_->schedule(); }
   // Mesh LOD: the level copy `copy` draws (0, the full mesh, without it).
@@ -173,7 +176,8 @@ class CrowdBench {
   // with, on a screen `screen_height_px` tall; all zero without mesh LOD.
   std::array<MeshLevelFidelity, kMeshLevels> mesh_lod_fidelity(int screen_height_px) const;
   // The culling audit (scene/culling_audit.h): at most `max_copy_frames` copy
-  // poses, up to 16 poses a copy spread over the longest action (every
+  // poses (fewer for meshes over 5,000 vertices: 2e8 vertices skinned at
+  // most), up to 16 poses a copy spread over the longest action (every
   // copy_stride-th copy past that many copies), on the bench's threads. Exact
   // poses whatever the mode; for the end of a run (allocates, takes time).
   CullingAudit audit_culling(size_t max_copy_frames = kCullingAuditCopyFrames) const;

@@ -63,6 +63,14 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
 
 namespace {
 
+// Copies (or copy-poses) an end-of-run check may skin: `limit`, fewer for big
+// meshes, so that it skins at most `vertex_budget` vertices whatever the mesh.
+size_t checked_copies(std::span<const Character* const> characters, size_t limit, size_t vertex_budget) {
+  size_t largest = 1;
+  for (const Character* character : characters) largest = std::max(largest, character->mesh.vertex_count());
+  return std::max<size_t>(1, std::min(limit, vertex_budget / largest));
+}
+
 // One copy's share of DrawnError.
 struct CopyError {
   bool checked = false, deviating = false;
@@ -89,6 +97,7 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
   std::vector<size_t> on_screen;
   for (size_t i = 0; i < crowd_.size(); ++i)
     if (intersects(frustum_, crowd_.world_boxes[i])) on_screen.push_back(i);
+  max_copies = checked_copies(characters_, max_copies, 200'000'000);  // each copy skinned twice
   error.copy_stride = std::max<size_t>(1, (on_screen.size() + max_copies - 1) / std::max<size_t>(1, max_copies));
   std::vector<CopyError> copies((on_screen.size() + error.copy_stride - 1) / error.copy_stride);
   std::vector<float> heights;
@@ -211,7 +220,8 @@ std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int scr
 CullingAudit CrowdBench::audit_culling(size_t max_copy_frames) const {
   const size_t n = crowd_.size();
   if (n == 0) return {};
-  max_copy_frames = std::max<size_t>(1, max_copy_frames);
+  // 40,000 poses of the humanoid are 2e8 vertices: no more for a bigger mesh.
+  max_copy_frames = checked_copies(characters_, max_copy_frames, 200'000'000);
   const size_t stride = (n + max_copy_frames - 1) / max_copy_frames;
   const size_t audited = (n + stride - 1) / stride;
   const size_t frames = std::clamp<size_t>(max_copy_frames / audited, 1, 16);

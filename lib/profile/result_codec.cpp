@@ -570,6 +570,9 @@ void read_extras(const Reader& in, Result& r) {
     e.copies_deviating = in.count("/drawn_error/copies_deviating");
     e.vertices = in.count("/drawn_error/vertices");
     e.copy_stride = in.count("/drawn_error/copy_stride");
+    in.require(e.copy_stride >= 1, "/drawn_error/copy_stride", "a whole number, 1 or more");
+    in.require(e.copies_deviating <= e.copies_checked, "/drawn_error/copies_deviating",
+               "a whole number, at most copies_checked");
     double* numbers[] = {&e.max, &e.rms, &e.max_fraction, &e.rms_fraction, &e.max_px, &e.rms_px, &e.mesh_max,
                          &e.switches_per_second};
     const char* names[] = {"max", "rms", "max_fraction", "rms_fraction", "max_px", "rms_px", "mesh_max",
@@ -591,6 +594,8 @@ void read_extras(const Reader& in, Result& r) {
     c.outside = in.count("/culling_audit/outside");
     c.undecided = in.count("/culling_audit/undecided");
     c.ms = in.number_or("/culling_audit/ms", 0.0);
+    in.require(c.copy_stride >= 1, "/culling_audit/copy_stride", "a whole number, 1 or more");
+    in.require(c.ms >= 0, "/culling_audit/ms", "a number, 0 or more");
     for (const auto& [name, value] : in.object("/culling_audit/boxes").items()) {
       in.require(name == "bind_pose" || name == "every_action" || name == "own_action" || name == "tight",
                  "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
@@ -607,6 +612,7 @@ void read_extras(const Reader& in, Result& r) {
       b.slack_max = in.number(at + "/slack_max");
       c.boxes.push_back(std::move(b));
     }
+    in.require(c.boxes.size() == 4, "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
     r.culling_audit = std::move(c);
   }
   if (in.has("/instructions")) {

@@ -124,7 +124,7 @@ TEST(MsftLod, ABrokenExtensionIsRefusedSayingWhy) {
       {nlohmann::json{ids[0], main}, "which is not another node with a mesh bound to skin 0"},
       {nlohmann::json{ids[0], 0}, "names node 0, which is not another node with a mesh"},
       {nlohmann::json{ids[0], ids[0]}, "a second time"},
-      {nlohmann::json{ids[0], "one"}, "names a node that is not there"},
+      {nlohmann::json{ids[0], "one"}, "ids[1] is not a node index"},
       {nlohmann::json("all"), "has no \"ids\" array"},
   };
   for (const Case& c : cases) {
@@ -139,4 +139,31 @@ TEST(MsftLod, ABrokenExtensionIsRefusedSayingWhy) {
   nested["nodes"][ids[0].get<size_t>()]["extensions"] = {{"MSFT_lod", {{"ids", {ids[1]}}}}};
   EXPECT_NE(refusal(nested).find("which has levels of its own"), std::string::npos) << refusal(nested);
   EXPECT_EQ(refusal(good), "loaded");
+}
+
+TEST(MsftLod, LevelsNoCoarserThanTheOneBeforeAreSkipped) {
+  nlohmann::json doc = as_json(humanoid_with_levels(2));
+  size_t main = 0;
+  for (size_t n = 0; n < doc["nodes"].size(); ++n)
+    if (doc["nodes"][n].contains("extensions")) main = n;
+  const nlohmann::json ids = doc["nodes"][main]["extensions"]["MSFT_lod"]["ids"];
+  auto read = [](const nlohmann::json& d) {
+    const std::string text = d.dump();
+    return load(std::vector<uint8_t>(text.begin(), text.end()), "skip.gltf");
+  };
+  // Level 1 drawn with the full mesh: as many vertices as level 0, skipped
+  // (a copy has room for the full mesh's vertices, no more).
+  nlohmann::json same = doc;
+  same["nodes"][ids[0].get<size_t>()]["mesh"] = doc["nodes"][main]["mesh"];
+  Character c = read(same);
+  ASSERT_EQ(c.file_lods.size(), 1u);
+  EXPECT_LT(c.file_lods[0].vertex_count(), c.mesh.vertex_count());
+  EXPECT_EQ(c.file_lod_errors.size(), 1u);
+  // A level with nothing to draw: skipped, not counted as exact.
+  nlohmann::json empty = doc;
+  empty["meshes"].push_back({{"name", "nothing"}, {"primitives", nlohmann::json::array()}});
+  empty["nodes"][ids[1].get<size_t>()]["mesh"] = empty["meshes"].size() - 1;
+  c = read(empty);
+  ASSERT_EQ(c.file_lods.size(), 1u);
+  EXPECT_GT(c.file_lods[0].triangle_count(), 0u);
 }
