@@ -155,7 +155,7 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
       const Aabb& box = crowd_.world_boxes[i];
       const double box_height = box.max.y - box.min.y;
       e.px_per_unit = box_height > 0
-                          ? screen_height_fraction(view_projection, box) * screen_height_px / box_height
+                          ? screen_height_fraction(view_projection, box) * static_cast<double>(screen_height_px) / box_height
                           : 0.0;
     }
   };

@@ -1,0 +1,71 @@
+#!/bin/bash
+# crowdprof beside ozz-animation on the same work (issue 31), not in CI:
+#   bench/ozz/compare_ozz.sh OZZ_SOURCE [PAIRS]
+# Builds ozz-animation from OZZ_SOURCE (release 0.16, e.g. ../shared/ozz-animation-0.16)
+# three times (-march=native, -mavx2 -mfma, -msse4.2), each with ozz_driver
+# (bench/ozz/ozz_driver.cpp) linked against this checkout's library, then runs
+# 160 copies of scenes/humanoid.glb, culling off, one thread: crowdprof at
+# its best target, --simd AVX2 and --simd SSE4 against each ozz build, PAIRS
+# (default 8) interleaved pairs of processes each. Prints per pair the
+# crowdprof/ozz ratio of median frame times and the median and spread of the
+# ratios, the work both counted (copies posed, vertices skinned) and how far
+# ozz's vertices are from crowdprof's. Needs ./setup.sh build done first.
+# WORK (default /tmp/crowdprof-ozz) holds the builds; FRAMES (120) per run.
+set -euo pipefail
+ozz_source=$(realpath "${1:?usage: bench/ozz/compare_ozz.sh OZZ_SOURCE [PAIRS]}")
+pairs=${2:-8}
+frames=${FRAMES:-120}
+root=$(cd "$(dirname "$0")/../.." && pwd)
+work=${WORK:-/tmp/crowdprof-ozz}
+crowdprof="$root/build/crowdprof"
+scene="$root/scenes/humanoid.glb"
+[ -x "$crowdprof" ] || { echo "compare_ozz.sh: $crowdprof is missing: run ./setup.sh build first" >&2; exit 2; }
+[ -f "$ozz_source/include/ozz/animation/runtime/sampling_job.h" ] ||
+  { echo "compare_ozz.sh: $ozz_source is not an ozz-animation source tree" >&2; exit 2; }
+mkdir -p "$work"
+cmake --install "$root/build" --prefix "$work/prefix" --component development > /dev/null
+declare -A flags=([native]="-march=native" [avx2]="-mavx2 -mfma" [sse4]="-msse4.2")
+for variant in native avx2 sse4; do
+  if [ ! -x "$work/$variant/ozz_driver" ]; then
+    cmake -S "$root/bench/ozz" -B "$work/$variant" -DCMAKE_BUILD_TYPE=Release -DOZZ_SOURCE="$ozz_source" \
+      -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="${flags[$variant]}" > "$work/$variant.log" 2>&1 ||
+      { cat "$work/$variant.log" >&2; exit 1; }
+    cmake --build "$work/$variant" -j"$(nproc)" --target ozz_driver >> "$work/$variant.log" 2>&1 ||
+      { tail -30 "$work/$variant.log" >&2; exit 1; }
+  fi
+done
+
+crowdprof_run() {  # SIMD -> "median_ms poses vertices" of one crowdprof run
+  local out="$work/run.json"
+  CROWDPROF_SIMD="$1" "$crowdprof" bench "$scene" -n 160 --mode threaded --threads 1 --culling off \
+    --actions shared --frames "$frames" --warmup 10 --json "$out" > /dev/null
+  python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); c=r["counters"]
+print(r["frame"]["median_ms"], c["poses_updated"], c["vertices_skinned"])' "$out"
+}
+ozz_run() { "$work/$1/ozz_driver" "$scene" 160 "$frames" 10; }
+field() { python3 -c 'import json,sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"; }
+
+echo "160 copies of $(basename "$scene"), culling off, one thread, $pairs interleaved pairs, $frames frames each"
+best=$("$crowdprof" --version | sed -n 's/.*SIMD \([A-Z0-9_]*\).*/\1/p')
+for pair in "$best native" "AVX2 native" "AVX2 avx2" "SSE4 native" "SSE4 sse4"; do
+  read -r simd variant <<< "$pair"
+  ratios=()
+  for ((i = 0; i < pairs; i++)); do
+    read -r c poses vertices <<< "$(crowdprof_run "$simd")"
+    o=$(ozz_run "$variant")
+    if [ "$poses" != "$(field "$o" poses_updated)" ] || [ "$vertices" != "$(field "$o" vertices_skinned)" ]; then
+      echo "compare_ozz.sh: not the same work: crowdprof $poses poses, $vertices vertices; ozz $o" >&2
+      exit 1
+    fi
+    ratios+=("$(python3 -c "print($c / $(field "$o" median_ms))")")
+    printf '  crowdprof %-7s %.3f ms | ozz %-6s %.3f ms\n' "$simd" "$c" "$variant" "$(field "$o" median_ms)"
+  done
+  python3 - "$simd" "$variant" "$o" "${ratios[@]}" <<'PY'
+import json, statistics, sys
+simd, variant, last = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+r = sorted(float(x) for x in sys.argv[4:])
+print(f"crowdprof {simd} / ozz {variant}: ratio median {statistics.median(r):.2f} (range {r[0]:.2f}-{r[-1]:.2f}); "
+      f"both counted {last['poses_updated']} poses, {last['vertices_skinned']} vertices a frame; ozz's vertices within "
+      f"{last['max_delta']:.2g} of crowdprof's ({100 * last['max_delta_of_height']:.3f}% of the height)")
+PY
+done

@@ -1,0 +1,285 @@
+// crowdprof's CPU work done by ozz-animation, for bench/ozz/compare_ozz.sh
+// (issue 31): N copies of a character, every copy posed (ozz SamplingJob,
+// LocalToModelJob, model x inverse bind) and skinned (ozz SkinningJob, one
+// job per influence count, positions and normals) every frame, on one thread,
+// as `crowdprof bench FILE -n N --mode threaded --threads 1 --culling off
+// --actions shared` does. The character is crowdprof's (its loader), handed
+// to ozz's offline builders, so both run on the same skeleton, keys and mesh.
+// Prints one JSON line: the median frame, the work counted as crowdprof
+// counts it, and how far ozz's skinned vertices are from crowdprof's at the
+// last frame (ozz quantises keys: not bit for bit).
+//
+// This file is the project's own; it links ozz-animation built from a source
+// tree the script is given (none of ozz's code is in the project).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "animation/binding.h"
+#include "animation/local_pose.h"
+#include "animation/pose.h"
+#include "animation/run_job.h"
+#include "animation/sampling.h"
+#include "asset/gltf_loader.h"
+#include "asset/mesh_lod.h"
+#include "skinning/skinning.h"
+#include "skinning/skinning_plan.h"
+
+#include "ozz/animation/offline/animation_builder.h"
+#include "ozz/animation/offline/raw_animation.h"
+#include "ozz/animation/offline/raw_skeleton.h"
+#include "ozz/animation/offline/skeleton_builder.h"
+#include "ozz/animation/runtime/animation.h"
+#include "ozz/animation/runtime/local_to_model_job.h"
+#include "ozz/animation/runtime/sampling_job.h"
+#include "ozz/animation/runtime/skeleton.h"
+#include "ozz/base/maths/simd_math.h"
+#include "ozz/base/maths/soa_transform.h"
+#include "ozz/geometry/runtime/skinning_job.h"
+
+namespace {
+
+using crowdprof::Character;
+namespace oa = ozz::animation;
+
+[[noreturn]] void fail(const std::string& why) {
+  std::fprintf(stderr, "ozz_driver: %s\n", why.c_str());
+  std::exit(1);
+}
+
+// The skeleton as ozz's raw hierarchy (joint j's children in joint order).
+void add_children(const Character& c, int parent, oa::offline::RawSkeleton::Joint::Children& into) {
+  const crowdprof::Skeleton& s = c.skeleton;
+  for (size_t j = 0; j < s.joint_count(); ++j) {
+    if (s.parents[j] != parent) continue;
+    oa::offline::RawSkeleton::Joint joint;
+    joint.name = s.names[j].c_str();
+    const glm::vec3 t = s.rest_translations[j], sc = s.rest_scales[j];
+    const glm::quat r = s.rest_rotations[j];
+    joint.transform.translation = ozz::math::Float3(t.x, t.y, t.z);
+    joint.transform.rotation = ozz::math::Quaternion(r.x, r.y, r.z, r.w);
+    joint.transform.scale = ozz::math::Float3(sc.x, sc.y, sc.z);
+    add_children(c, static_cast<int>(j), joint.children);
+    into.push_back(std::move(joint));
+  }
+}
+
+// One action as ozz's raw animation, keys shifted to start at 0 (LINEAR only).
+oa::offline::RawAnimation raw_animation(const Character& c, const crowdprof::Action& action,
+                                        const std::vector<int>& ozz_of_joint, int ozz_joints) {
+  oa::offline::RawAnimation raw;
+  raw.duration = std::max(action.duration(), 1e-3f);
+  raw.tracks.resize(static_cast<size_t>(ozz_joints));
+  const crowdprof::Skeleton& s = c.skeleton;
+  // Joints no channel drives hold their rest pose, as crowdprof's do.
+  for (size_t j = 0; j < s.joint_count(); ++j) {
+    auto& track = raw.tracks[static_cast<size_t>(ozz_of_joint[j])];
+    const glm::vec3 t = s.rest_translations[j], sc = s.rest_scales[j];
+    const glm::quat r = s.rest_rotations[j];
+    track.translations.push_back({0.0f, ozz::math::Float3(t.x, t.y, t.z)});
+    track.rotations.push_back({0.0f, ozz::math::Quaternion(r.x, r.y, r.z, r.w)});
+    track.scales.push_back({0.0f, ozz::math::Float3(sc.x, sc.y, sc.z)});
+  }
+  std::vector<bool> driven(3 * s.joint_count(), false);
+  for (const crowdprof::Channel& ch : action.channels) {
+    if (ch.interpolation != crowdprof::Interpolation::Linear) fail("only LINEAR channels are compared");
+    auto& track = raw.tracks[static_cast<size_t>(ozz_of_joint[static_cast<size_t>(ch.joint)])];
+    const size_t slot = 3 * static_cast<size_t>(ch.joint) + static_cast<size_t>(ch.path);
+    if (!driven[slot]) {  // the rest key gives way to the channel's keys
+      driven[slot] = true;
+      if (ch.path == crowdprof::ChannelPath::Translation) track.translations.clear();
+      if (ch.path == crowdprof::ChannelPath::Rotation) track.rotations.clear();
+      if (ch.path == crowdprof::ChannelPath::Scale) track.scales.clear();
+    }
+    for (size_t k = 0; k < ch.key_count(); ++k) {
+      const float time = ch.times[k] - action.start;
+      const float* v = &ch.values[k * static_cast<size_t>(ch.components())];
+      if (ch.path == crowdprof::ChannelPath::Translation)
+        track.translations.push_back({time, ozz::math::Float3(v[0], v[1], v[2])});
+      else if (ch.path == crowdprof::ChannelPath::Rotation)
+        track.rotations.push_back({time, ozz::math::Quaternion(v[0], v[1], v[2], v[3])});
+      else
+        track.scales.push_back({time, ozz::math::Float3(v[0], v[1], v[2])});
+    }
+  }
+  return raw;
+}
+
+ozz::math::Float4x4 to_ozz(const glm::mat4& m) {
+  ozz::math::Float4x4 out;
+  for (int c = 0; c < 4; ++c) out.cols[c] = ozz::math::simd_float4::Load(m[c][0], m[c][1], m[c][2], m[c][3]);
+  return out;
+}
+
+// The mesh cut into parts of equal influence count (ozz's layout): per part,
+// its vertices' positions, normals, joint indices (ozz's joint order) and
+// all weights but the last.
+struct Part {
+  int influences = 1;
+  std::vector<uint32_t> vertex;  // the crowdprof vertex each one is
+  std::vector<float> positions, normals, weights;
+  std::vector<uint16_t> joints;
+};
+
+std::vector<Part> parts_of(const crowdprof::SkinnedMesh& mesh, const std::vector<int>& ozz_of_joint) {
+  std::vector<Part> parts(4);
+  for (int k = 0; k < 4; ++k) parts[static_cast<size_t>(k)].influences = k + 1;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const glm::vec4 w = mesh.weights[v];
+    const int n = std::max(1, (w.x != 0) + (w.y != 0) + (w.z != 0) + (w.w != 0));
+    Part& p = parts[static_cast<size_t>(n - 1)];
+    p.vertex.push_back(static_cast<uint32_t>(v));
+    for (int a = 0; a < 3; ++a) {
+      p.positions.push_back(mesh.positions[v][a]);
+      p.normals.push_back(mesh.normals[v][a]);
+    }
+    for (int i = 0; i < n; ++i) p.joints.push_back(static_cast<uint16_t>(ozz_of_joint[mesh.joints[v][i]]));
+    for (int i = 0; i + 1 < n; ++i) p.weights.push_back(w[i]);
+  }
+  std::erase_if(parts, [](const Part& p) { return p.vertex.empty(); });
+  return parts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: ozz_driver CHARACTER.glb [COPIES [FRAMES [WARMUP]]]\n");
+    return 2;
+  }
+  const size_t copies = argc > 2 ? std::stoul(argv[2]) : 160;
+  const size_t frames = argc > 3 ? std::stoul(argv[3]) : 120;
+  const size_t warmup = argc > 4 ? std::stoul(argv[4]) : 10;
+  const Character c = crowdprof::load_character(argv[1]);
+  if (c.actions.empty()) fail("the character has no action");
+  const crowdprof::Skeleton& s = c.skeleton;
+  for (const glm::mat4& offset : s.parent_offsets)
+    if (offset != glm::mat4(1.0f)) fail("joints with non-joint nodes between them are not compared");
+
+  oa::offline::RawSkeleton raw_skeleton;
+  add_children(c, -1, raw_skeleton.roots);
+  ozz::unique_ptr<oa::Skeleton> skeleton = oa::offline::SkeletonBuilder()(raw_skeleton);
+  if (!skeleton) fail("ozz's SkeletonBuilder refused the skeleton");
+  // ozz orders joints its own way: match them by name.
+  std::map<std::string, int> ozz_index;
+  for (int j = 0; j < skeleton->num_joints(); ++j) ozz_index[skeleton->joint_names()[static_cast<size_t>(j)]] = j;
+  std::vector<int> ozz_of_joint(s.joint_count());
+  for (size_t j = 0; j < s.joint_count(); ++j) {
+    auto it = ozz_index.find(s.names[j]);
+    if (it == ozz_index.end()) fail("joint names are not unique");
+    ozz_of_joint[j] = it->second;
+  }
+  const crowdprof::Action& action = c.actions.front();  // --actions shared plays the first
+  ozz::unique_ptr<oa::Animation> animation =
+      oa::offline::AnimationBuilder()(raw_animation(c, action, ozz_of_joint, skeleton->num_joints()));
+  if (!animation) fail("ozz's AnimationBuilder refused the action");
+
+  const int joints = skeleton->num_joints();
+  std::vector<ozz::math::Float4x4> inverse_binds(static_cast<size_t>(joints));
+  for (size_t j = 0; j < s.joint_count(); ++j)
+    inverse_binds[static_cast<size_t>(ozz_of_joint[j])] = to_ozz(s.inverse_binds[j]);
+  const std::vector<Part> parts = parts_of(c.mesh, ozz_of_joint);
+
+  // Per copy, as crowdprof keeps it: a sampling context, local and model
+  // transforms, skinning matrices and its own output.
+  struct CopyState {
+    oa::SamplingJob::Context context;
+    std::vector<ozz::math::SoaTransform> locals;
+    std::vector<ozz::math::Float4x4> models, skinning;
+    std::vector<std::vector<float>> positions, normals;  // per part
+  };
+  std::vector<CopyState> state(copies);
+  for (CopyState& cs : state) {
+    cs.context.Resize(joints);
+    cs.locals.resize(static_cast<size_t>(skeleton->num_soa_joints()));
+    cs.models.resize(static_cast<size_t>(joints));
+    cs.skinning.resize(static_cast<size_t>(joints));
+    for (const Part& p : parts) {
+      cs.positions.emplace_back(p.positions.size());
+      cs.normals.emplace_back(p.normals.size());
+    }
+  }
+
+  const double fps = 60.0, duration = action.duration();
+  std::vector<double> frame_ms;
+  float last_time = 0;
+  for (size_t f = 0; f < warmup + frames; ++f) {
+    const double t = duration > 0 ? std::fmod(static_cast<double>(f) / fps, duration) : 0.0;
+    last_time = action.start + static_cast<float>(t);
+    const auto start = std::chrono::steady_clock::now();
+    for (CopyState& cs : state) {
+      oa::SamplingJob sampling;
+      sampling.animation = animation.get();
+      sampling.context = &cs.context;
+      sampling.ratio = duration > 0 ? static_cast<float>(t / duration) : 0.0f;
+      sampling.output = ozz::make_span(cs.locals);
+      if (!sampling.Run()) fail("SamplingJob");
+      oa::LocalToModelJob ltm;
+      ltm.skeleton = skeleton.get();
+      ltm.input = ozz::make_span(cs.locals);
+      ltm.output = ozz::make_span(cs.models);
+      if (!ltm.Run()) fail("LocalToModelJob");
+      for (size_t j = 0; j < cs.models.size(); ++j) cs.skinning[j] = cs.models[j] * inverse_binds[j];
+      for (size_t p = 0; p < parts.size(); ++p) {
+        const Part& part = parts[p];
+        ozz::geometry::SkinningJob skin;
+        skin.vertex_count = static_cast<int>(part.vertex.size());
+        skin.influences_count = part.influences;
+        skin.joint_matrices = ozz::make_span(cs.skinning);
+        skin.joint_indices = ozz::make_span(part.joints);
+        skin.joint_indices_stride = sizeof(uint16_t) * static_cast<size_t>(part.influences);
+        if (part.influences > 1) {
+          skin.joint_weights = ozz::make_span(part.weights);
+          skin.joint_weights_stride = sizeof(float) * static_cast<size_t>(part.influences - 1);
+        }
+        skin.in_positions = ozz::make_span(part.positions);
+        skin.in_positions_stride = 3 * sizeof(float);
+        skin.in_normals = ozz::make_span(part.normals);
+        skin.in_normals_stride = 3 * sizeof(float);
+        skin.out_positions = ozz::make_span(cs.positions[p]);
+        skin.out_positions_stride = 3 * sizeof(float);
+        skin.out_normals = ozz::make_span(cs.normals[p]);
+        skin.out_normals_stride = 3 * sizeof(float);
+        if (!skin.Run()) fail("SkinningJob");
+      }
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (f >= warmup) frame_ms.push_back(ms);
+  }
+  std::sort(frame_ms.begin(), frame_ms.end());
+  const double median = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
+
+  // The same copy by crowdprof's jobs at the last frame's time: how far ozz's vertices are.
+  crowdprof::LocalPose pose;
+  crowdprof::SamplingCursor cursor;
+  crowdprof::reset_to_rest(s, &pose);
+  crowdprof::reset_cursor(action, &cursor);
+  const crowdprof::ActionBindings bindings = crowdprof::bind_action(s, action);
+  std::vector<glm::mat4> model(s.joint_count());
+  std::vector<crowdprof::SkinMatrix> palette(s.joint_count());
+  crowdprof::run_job(crowdprof::SamplingJob{&action, last_time, bindings.targets, &cursor, &pose}, "SamplingJob");
+  crowdprof::run_job(crowdprof::LocalToModelJob{&s, &pose, model}, "LocalToModelJob");
+  crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, model, palette}, "SkinningMatricesJob");
+  crowdprof::SkinningPlan plan;
+  crowdprof::build_skinning_plan(c.mesh, s.joint_count(), &plan);
+  const size_t n = c.mesh.vertex_count();
+  std::vector<glm::vec3> positions(n), normals(n);
+  crowdprof::run_job(crowdprof::SkinningJob{palette, &plan, 0, n, positions, normals}, "SkinningJob");
+  double max_delta = 0;
+  for (size_t p = 0; p < parts.size(); ++p)
+    for (size_t i = 0; i < parts[p].vertex.size(); ++i) {
+      const glm::vec3 ozz_position(state.back().positions[p][3 * i], state.back().positions[p][3 * i + 1],
+                                   state.back().positions[p][3 * i + 2]);
+      max_delta = std::max(max_delta, static_cast<double>(glm::distance(ozz_position, positions[parts[p].vertex[i]])));
+    }
+  const double height = crowdprof::bind_pose_height(c.mesh);
+  std::printf(
+      "{\"median_ms\": %.4f, \"frames\": %zu, \"copies\": %zu, \"vertices_skinned\": %zu, \"poses_updated\": %zu, "
+      "\"max_delta\": %.3g, \"max_delta_of_height\": %.3g}\n",
+      median, frame_ms.size(), copies, copies * n, copies, max_delta, height > 0 ? max_delta / height : 0.0);
+  return 0;
+}
