@@ -13,6 +13,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "animation/exact_palette.h"
 #include "animation/pose.h"
 #include "asset/mesh_lod.h"
 #include "frame/bench_threads.h"
@@ -25,10 +26,7 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
   AnimationFidelity fidelity;
   std::vector<float> heights;
   for (const Character* character : characters_) heights.push_back(bind_pose_height(character->mesh));
-  LocalPose pose;
-  SamplingCursor cursor;
-  std::vector<glm::mat4> model;
-  std::vector<SkinMatrix> palette;
+  ExactPalette reference;
   std::vector<glm::vec3> drawn, drawn_normals, exact, exact_normals;
   for (size_t i = 0; i < crowd_.size(); ++i) {
     if (!store_->visible[i] || !planner_->poses(i, store_->visible)) continue;
@@ -38,14 +36,9 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
     ++fidelity.copies_deviating;
     const Character& character = character_of(i);
     const PreparedCharacter& kind = prepared_[crowd_.kind[i]];
-    const Action& action = character.actions[crowd_.action[i]];
-    reset_to_rest(character.skeleton, &pose);
-    reset_cursor(action, &cursor);
-    model.resize(kind.joints);
-    palette.resize(kind.joints);
-    run_job(SamplingJob{&action, store_->times[i], kind.bindings[crowd_.action[i]].targets, &cursor, &pose}, "SamplingJob");
-    run_job(LocalToModelJob{&character.skeleton, &pose, model}, "LocalToModelJob");
-    run_job(SkinningMatricesJob{&character.skeleton, model, palette}, "SkinningMatricesJob");
+    const std::span<const SkinMatrix> palette =
+        reference.at(character.skeleton, &character.actions[crowd_.action[i]],
+                     kind.bindings[crowd_.action[i]].targets, store_->times[i]);
     for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
     // Both skinned here, so that a copy skinned on the GPU is measured too.
     run_job(SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals},
@@ -79,10 +72,8 @@ struct CopyError {
 };
 
 struct ErrorScratch {
-  LocalPose pose;
-  SamplingCursor cursor;
-  std::vector<glm::mat4> model;
-  std::vector<SkinMatrix> exact, drawn;
+  ExactPalette reference;
+  std::vector<SkinMatrix> drawn;
   std::vector<glm::vec3> drawn_positions, exact_positions, normals;
 };
 
@@ -114,17 +105,10 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
       CopyError& e = copies[n];
       e.checked = true;
       const float time = copy_time(i, seconds);
-      // The exact palette.
-      s.model.resize(kind.joints);
-      s.exact.resize(kind.joints);
-      reset_to_rest(character.skeleton, &s.pose);
-      if (!character.actions.empty()) {
-        const Action& action = character.actions[crowd_.action[i]];
-        reset_cursor(action, &s.cursor);
-        run_job(SamplingJob{&action, time, kind.bindings[crowd_.action[i]].targets, &s.cursor, &s.pose}, "SamplingJob");
-      }
-      run_job(LocalToModelJob{&character.skeleton, &s.pose, s.model}, "LocalToModelJob");
-      run_job(SkinningMatricesJob{&character.skeleton, s.model, s.exact}, "SkinningMatricesJob");
+      const Action* action = character.actions.empty() ? nullptr : &character.actions[crowd_.action[i]];
+      std::span<const int32_t> targets;
+      if (action) targets = kind.bindings[crowd_.action[i]].targets;
+      const std::span<const SkinMatrix> exact = s.reference.at(character.skeleton, action, targets, time);
       // The palette drawn: the baked blend the shader makes, or the pose storage's.
       std::span<const SkinMatrix> drawn = skinning_matrices(i);
       if (kind.site == SkinningSite::Baked) {
@@ -140,7 +124,7 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
       const size_t vertices = kind.vertices_of(level);
       for (auto* v : {&s.drawn_positions, &s.exact_positions, &s.normals}) v->resize(vertices);
       run_job(SkinningJob{drawn, &kind.plan_of(level), 0, vertices, s.drawn_positions, s.normals}, "SkinningJob");
-      run_job(SkinningJob{s.exact, &kind.plan_of(level), 0, vertices, s.exact_positions, s.normals}, "SkinningJob");
+      run_job(SkinningJob{exact, &kind.plan_of(level), 0, vertices, s.exact_positions, s.normals}, "SkinningJob");
       e.level_error = level == 0 ? 0.0 : static_cast<double>(kind.mesh_lods[level - 1].error);
       e.vertices = vertices;
       double pose_max = 0;

@@ -11,9 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "animation/binding.h"
-#include "animation/local_pose.h"
-#include "animation/pose.h"
-#include "animation/sampling.h"
+#include "animation/exact_palette.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -38,10 +36,7 @@ struct CullingAuditor::CharacterData {
 };
 
 struct CullingAuditor::Scratch {
-  LocalPose pose;
-  SamplingCursor cursor;
-  std::vector<glm::mat4> model;
-  std::vector<SkinMatrix> palette;
+  ExactPalette reference;
   std::vector<glm::vec3> positions, normals;
 };
 
@@ -107,21 +102,13 @@ void CullingAuditor::add_frame(std::span<const float> action_times, tbb::task_ar
       verdict = Verdict{};
       const size_t vertices = c.mesh.vertex_count();
       if (vertices == 0) continue;
-      const size_t joints = c.skeleton.joint_count();
-      s.model.resize(joints);
-      s.palette.resize(joints);
       s.positions.resize(vertices);
       s.normals.resize(vertices);
-      reset_to_rest(c.skeleton, &s.pose);
-      if (!c.actions.empty()) {
-        const Action& action = c.actions[crowd_.action[i]];
-        reset_cursor(action, &s.cursor);
-        run_job(SamplingJob{&action, action_times[i], data.bindings[crowd_.action[i]].targets, &s.cursor, &s.pose},
-                "SamplingJob");
-      }
-      run_job(LocalToModelJob{&c.skeleton, &s.pose, s.model}, "LocalToModelJob");
-      run_job(SkinningMatricesJob{&c.skeleton, s.model, s.palette}, "SkinningMatricesJob");
-      run_job(SkinningJob{s.palette, &data.plan, 0, vertices, s.positions, s.normals}, "SkinningJob");
+      const Action* action = c.actions.empty() ? nullptr : &c.actions[crowd_.action[i]];
+      std::span<const int32_t> targets;
+      if (action) targets = data.bindings[crowd_.action[i]].targets;
+      const std::span<const SkinMatrix> palette = s.reference.at(c.skeleton, action, targets, action_times[i]);
+      run_job(SkinningJob{palette, &data.plan, 0, vertices, s.positions, s.normals}, "SkinningJob");
       // The truth from the vertices: one inside every plane, or all outside one plane.
       Aabb tight = empty_box();
       bool any_inside = false;
