@@ -25,6 +25,9 @@ for ((r = 1; r <= runs; ++r)); do
     -q --json "$work/two-$r.json"
 done
 "$bin" bench "$scene" -n 160 --mode threaded --backend none --frames 10 --warmup 0 -q --json "$work/work.json"
+# The other arithmetic's digest (skinning fuses multiply-adds on AVX2 and up).
+"$bin" --simd SSE4 bench "$scene" -n 160 --mode threaded --backend none --frames 10 --warmup 0 -q \
+  --json "$work/work-sse4.json"
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 "$bin" bench "$scene" -n 160 --frames 120 -q --html "$work/bench.html"
 if command -v chromium >/dev/null; then
@@ -52,6 +55,7 @@ for label, kind, mode in [("master", "one", "master"), ("culled", "one", "culled
     rows.append(f"| {label} | {med(frame):.2f} ({min(frame):.2f}–{max(frame):.2f}) | {med(anim):.2f} | "
                 f"{med(rast):.2f} | {med(ratio):.2f}× |")
 work_json = json.load(open(f"{work}/work.json"))
+sse4_json = json.load(open(f"{work}/work-sse4.json"))
 c = work_json["counters"]
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "unknown CPU")
 cores = subprocess.run(["nproc"], capture_output=True, text=True).stdout.strip()
@@ -68,7 +72,8 @@ frames after 20, medians of {runs} processes (min–max of the frame's medians):
 The work of a frame is the same on every machine:
 `bench scenes/humanoid.glb -n 160 --mode threaded --frames 10 --warmup 0` updates
 {c['poses_updated']} poses and skins {c['vertices_skinned']:,} vertices a frame ({c['copies_visible']} copies on
-screen, {c['copies_culled']} culled), digest `{work_json['digest']}`.
+screen, {c['copies_culled']} culled), digest `{work_json['digest']}` on CPUs with AVX2 (fused
+multiply-adds), `{sse4_json['digest']}` on SSE4 and below.
 <!-- figures:end -->"""
 readme = open("README.md").read()
 new, n = re.subn(r"<!-- figures:begin.*?<!-- figures:end -->", lambda m: block, readme, flags=re.S)

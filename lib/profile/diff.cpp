@@ -158,8 +158,8 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
       out << "counter " << d.name << ": " << d.baseline << " -> " << d.current << " per frame: CHANGED\n";
     for (const std::string& name : r.counters_missing) out << "counter " << name << ": in A, missing in B: CHANGED\n";
     out << "digest: " << r.baseline_digest;
-    if (r.digest_differs()) out << " -> " << r.current_digest << ": CHANGED\n";
-    else out << ", same\n";
+    if (r.baseline_digest == r.current_digest) out << ", same\n";
+    else out << " -> " << r.current_digest << ": " << r.digest_note() << "\n";
     for (const std::string& note : pair.notes) out << "note: " << note << "\n";
   }
   out << (diff.regressed() ? "REGRESSION: B is slower or does other work than A\n" : "ok: B is not slower than A and does the same work\n");
@@ -191,7 +191,8 @@ nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options) {
     p["counters"] = json::array();
     for (const CounterDifference& d : r.counters) p["counters"].push_back({{"name", d.name}, {"a", d.baseline}, {"b", d.current}});
     for (const std::string& name : r.counters_missing) p["counters"].push_back({{"name", name}, {"a", nullptr}, {"b", nullptr}});
-    p["digest"] = {{"a", r.baseline_digest}, {"b", r.current_digest}, {"same", !r.digest_differs()}};
+    p["digest"] = {{"a", r.baseline_digest}, {"b", r.current_digest}, {"same", r.baseline_digest == r.current_digest}};
+    if (r.arithmetic_differs() && r.baseline_digest != r.current_digest) p["digest"]["note"] = r.digest_note();
     j["pairs"].push_back(p);
   }
   j["regressed"] = diff.regressed();

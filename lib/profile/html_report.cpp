@@ -549,7 +549,10 @@ std::string check_section(const CheckSection& check, std::string& charts) {
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
          "significance level " + report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
-  if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs()) out += "Counters and digest match the baseline.";
+  const bool digests_equal = r.baseline_digest == r.current_digest;
+  if (r.counters.empty() && r.counters_missing.empty() && digests_equal) out += "Counters and digest match the baseline.";
+  else if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs())
+    out += "Counters match the baseline; digest " + h(r.digest_note()) + ".";
   for (const CounterDifference& d : r.counters)
     out += "<span class=\"regression\">Counter " + h(d.name) + " changed: " + std::to_string(d.baseline) + " &#8594; " +
            std::to_string(d.current) + " per frame.</span><br>";

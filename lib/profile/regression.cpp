@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "profile/number_text.h"
+#include "skinning/simd_target.h"
 
 namespace crowdprof {
 
@@ -34,6 +35,19 @@ std::vector<double> run_medians(const Result& result, const std::string& key, si
 }
 
 }  // namespace
+
+bool CheckResult::arithmetic_differs() const {
+  return !baseline_simd.empty() && !current_simd.empty() &&
+         target_fuses_multiply_add(baseline_simd) != target_fuses_multiply_add(current_simd);
+}
+
+std::string CheckResult::digest_note() const {
+  if (baseline_digest == current_digest) return "same";
+  if (digest_differs()) return "CHANGED";
+  const bool fused = target_fuses_multiply_add(baseline_simd);
+  return "not compared: " + (fused ? baseline_simd : current_simd) + " fuses multiply-adds, " +
+         (fused ? current_simd : baseline_simd) + " does not (their last bits differ)";
+}
 
 bool CheckResult::regressed() const {
   if (digest_differs() || !counters.empty() || !counters_missing.empty()) return true;
@@ -127,6 +141,8 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   }
   result.baseline_digest = baseline.digest;
   result.current_digest = current.digest;
+  result.baseline_simd = baseline.environment.simd;
+  result.current_simd = current.environment.simd;
   return result;
 }
 
@@ -164,6 +180,8 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   if (result.digest_differs())
     out << "CHANGED digest: " << result.baseline_digest << " -> " << result.current_digest
         << " (the last frame's poses or skinned vertices differ)\n";
+  else if (result.baseline_digest != result.current_digest)
+    out << "digest " << result.baseline_digest << " -> " << result.current_digest << " " << result.digest_note() << "\n";
   if (result.regressed()) return out.str();
   // One line: every metric's verdict, then the exact checks.
   out << "ok";

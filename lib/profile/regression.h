@@ -44,7 +44,15 @@ struct CheckResult {
   std::vector<CounterDifference> counters;  // only those that differ
   std::vector<std::string> counters_missing;  // in the baseline, not in the current result
   std::string baseline_digest, current_digest;
-  bool digest_differs() const { return baseline_digest != current_digest; }
+  // The SIMD targets the two ran on (environment.simd; "" when not recorded).
+  std::string baseline_simd, current_simd;
+  // One target fuses multiplies and adds and the other does not: their last
+  // bits differ by design (within 1e-5 of the height), so digests are not
+  // compared.
+  bool arithmetic_differs() const;
+  bool digest_differs() const { return baseline_digest != current_digest && !arithmetic_differs(); }
+  // What to say of the digests: "same", "CHANGED" or why they were not compared.
+  std::string digest_note() const;
   bool regressed() const;
 };
 

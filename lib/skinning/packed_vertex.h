@@ -6,8 +6,8 @@
 // two's complement, value = code / 511; the 2-bit w is 0).
 //
 // These scalar functions are the definition; the SIMD kernels
-// (skinning_kernels.cpp) compute the same codes on every target, which
-// skinning_test.cpp checks vertex by vertex.
+// (skinning_kernels.cpp) compute the same codes from the floats they skinned,
+// on every target, which skinning_test.cpp checks vertex by vertex.
 #pragma once
 
 #include <cstddef>

@@ -26,9 +26,11 @@ namespace crowdprof {
 // that blends to zero length comes out zero.
 //
 // The kernels run 16 vertices at a time on the widest SIMD target the CPU has
-// (simd_target.h), multiplies and adds kept apart (no fused multiply-add) and in
-// the same order on every target: every target, and any split of a mesh into
-// ranges on any threads, gives the same bits. A vertex's batch blends every
+// (simd_target.h), in the same order on every target. Any split of a mesh into
+// ranges on any threads gives the same bits; so does every target of one
+// arithmetic: fused multiply-adds on AVX2 and up, separate multiplies and adds
+// on SSE4 and below (skinning_fuses_multiply_add). The two agree within 1e-5
+// of the character's height (tested), not bit for bit. A vertex's batch blends every
 // joint the batch uses, with weight 0 for those the vertex does not: a NaN or
 // infinite matrix spreads to the batch's other vertices.
 struct SkinningJob {

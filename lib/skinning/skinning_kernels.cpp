@@ -19,8 +19,6 @@ namespace crowdprof {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Lanes [lane, lane + Lanes(d)) of one batch. Mul and Add, never MulAdd: the
-// targets with FMA would otherwise round differently from those without.
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
 // Indices for two-table permutes that interleave 16 x, 16 y and 16 z into 48
 // floats: for output vector o, kXy[o] takes x (0-15) and y (16-31) into their
@@ -105,6 +103,29 @@ HWY_INLINE void StorePacked(D d, const V (&position)[3], const V (&normal)[3], c
   hn::StoreU(hn::BitCast(du32, word), du32, out.normals);
 }
 
+// a x b + c: fused, with one rounding, on the targets that have FMA (AVX2 and
+// up: Highway's AVX2 target requires it); a multiply, then an add, on the
+// others. Fused takes about a third of the kernel's floating-point operations
+// away: 0.80x the time at AVX2 and 0.81x at AVX3 (medians of 30 interleaved
+// pairs of BM_SkinningCrowd, docs/performance.md). Each target's bits are the
+// same on every CPU, thread count and split into ranges, and the targets with
+// FMA agree with each other bit for bit (one rounding is one rounding); the two
+// arithmetics differ in the last places (tests/skinning/simd_test.cpp).
+#if HWY_TARGET <= HWY_AVX2 && HWY_ARCH_X86
+constexpr bool kFusedMultiplyAdd = true;
+#else
+constexpr bool kFusedMultiplyAdd = false;
+#endif
+template <class V>
+HWY_INLINE V MulAdd(V a, V b, V c) {
+  if constexpr (kFusedMultiplyAdd)
+    return hn::MulAdd(a, b, c);
+  else
+    return hn::Add(hn::Mul(a, b), c);
+}
+
+// Lanes [lane, lane + Lanes(d)) of one batch, each step in the same order on
+// every target.
 template <bool kPacked, bool kStream, class D>
 HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                           const float* palette, bool normalise, float* positions, float* normals,
@@ -125,15 +146,19 @@ HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* j
     const V w = hn::Load(d, rows + (6 + u) * kSkinBatch + lane);
     const float* m = palette + 16 * size_t{joints[u]};
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) a[c][r] = hn::Add(a[c][r], hn::Mul(w, hn::Set(d, m[4 * c + r])));
+      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(w, hn::Set(d, m[4 * c + r]), a[c][r]);
   }
   const V px = hn::Load(d, rows + 0 * kSkinBatch + lane);
   const V py = hn::Load(d, rows + 1 * kSkinBatch + lane);
   const V pz = hn::Load(d, rows + 2 * kSkinBatch + lane);
   V position[3];
   for (int r = 0; r < 3; ++r)
-    position[r] =
-        hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)), a[3][r]);
+    // Fused, the translation starts the chain; separate, it comes last (the
+    // order these kernels always had: SSE4's digests did not change).
+    position[r] = kFusedMultiplyAdd
+                      ? MulAdd(a[2][r], pz, MulAdd(a[1][r], py, MulAdd(a[0][r], px, a[3][r])))
+                      : hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)),
+                                a[3][r]);
   if constexpr (!kPacked) StoreXyz<kStream>(d, position[0], position[1], position[2], positions);
   V out[3];
 
@@ -141,10 +166,9 @@ HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* j
   const V ny = hn::Load(d, rows + 4 * kSkinBatch + lane);
   const V nz = hn::Load(d, rows + 5 * kSkinBatch + lane);
   for (int r = 0; r < 3; ++r)
-    out[r] = hn::Add(hn::Add(hn::Mul(a[0][r], nx), hn::Mul(a[1][r], ny)), hn::Mul(a[2][r], nz));
+    out[r] = MulAdd(a[2][r], nz, MulAdd(a[1][r], ny, hn::Mul(a[0][r], nx)));
   if (normalise) {
-    const V length2 =
-        hn::Add(hn::Add(hn::Mul(out[0], out[0]), hn::Mul(out[1], out[1])), hn::Mul(out[2], out[2]));
+    const V length2 = MulAdd(out[2], out[2], MulAdd(out[1], out[1], hn::Mul(out[0], out[0])));
     // The correctly rounded square root and divide (never an approximate
     // reciprocal square root, whose bits differ between CPU makers); a normal
     // of zero (or NaN) length comes out zero.
@@ -226,6 +250,8 @@ void SkinBatches(const SkinKernelArgs& args) {
   if (!kPacked && args.stream) hwy::FlushStream();
 }
 
+bool FusesMultiplyAdd() { return kFusedMultiplyAdd; }
+
 void SkinVertices(const SkinKernelArgs& args) {
   if (args.packed_positions)
     SkinBatches<true>(args);
@@ -241,8 +267,11 @@ HWY_AFTER_NAMESPACE();
 namespace crowdprof {
 
 HWY_EXPORT(SkinVertices);
+HWY_EXPORT(FusesMultiplyAdd);
 
 void run_skinning_kernel(const SkinKernelArgs& args) { HWY_DYNAMIC_DISPATCH(SkinVertices)(args); }
+
+bool skinning_fuses_multiply_add() { return HWY_DYNAMIC_DISPATCH(FusesMultiplyAdd)(); }
 
 }  // namespace crowdprof
 #endif

@@ -32,4 +32,9 @@ struct SkinKernelArgs {
 // Skins the vertices [first_vertex, end_vertex) (checked by SkinningJob).
 void run_skinning_kernel(const SkinKernelArgs& args);
 
+// Whether the kernels run_skinning_kernel calls now fuse multiplies and adds
+// (AVX2 and up) or round each (SSE4 and below): the two give different last
+// bits, so a digest is the same only between targets that answer alike.
+bool skinning_fuses_multiply_add();
+
 }  // namespace crowdprof

@@ -15,7 +15,7 @@ namespace crowdprof {
 
 // Vertices per batch. One batch is one AVX-512 vector per coordinate, two AVX2
 // vectors, four SSE vectors: the plan is the same for every SIMD target, so
-// every target does the same arithmetic on every vertex (the same bits).
+// every target does the same steps on every vertex, in the same order.
 constexpr size_t kSkinBatch = 16;
 
 // One batch of kSkinBatch consecutive vertices (the last one padded).

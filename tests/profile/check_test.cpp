@@ -151,6 +151,27 @@ TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
   CheckResult digest = check_results(baseline, other_digest, options);
   EXPECT_TRUE(digest.regressed());
   EXPECT_NE(format_check(digest, options).find("CHANGED digest"), std::string::npos);
+
+  // Targets of different arithmetics give other digests by design: not
+  // compared (and said so), while the counters still are. Of one arithmetic,
+  // or with a target not recorded, compared as before.
+  Result avx3 = baseline, sse4 = other_digest;
+  avx3.environment.simd = "AVX3";
+  sse4.environment.simd = "SSE4";
+  CheckResult across = check_results(avx3, sse4, options);
+  EXPECT_FALSE(across.digest_differs());
+  EXPECT_FALSE(across.regressed());
+  EXPECT_NE(format_check(across, options).find("not compared: AVX3 fuses multiply-adds, SSE4 does not"),
+            std::string::npos)
+      << format_check(across, options);
+  sse4.counters.values.vertices_skinned += 1;
+  EXPECT_TRUE(check_results(avx3, sse4, options).regressed());
+  Result avx2 = other_digest;
+  avx2.environment.simd = "AVX2";
+  EXPECT_TRUE(check_results(avx3, avx2, options).digest_differs());
+  Result unknown = other_digest;
+  unknown.environment.simd = "";
+  EXPECT_TRUE(check_results(avx3, unknown, options).digest_differs());
 }
 
 TEST(Check, ResultsOfAnotherRunAreRefused) {

@@ -6,13 +6,17 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <random>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "frame/crowd_bench.h"
 #include "gen/humanoid.h"
+#include "asset/mesh_lod.h"
 #include "skinning/simd_target.h"
+#include "skinning/skinning_kernels.h"
 #include "test_support.h"
 #include "characters.h"
 
@@ -40,8 +44,8 @@ const Character& uneven_humanoid() {
   return character;
 }
 
-std::string digest_of(const Character& character, int threads, ActionChoice actions,
-                      VertexFormat format = VertexFormat::Float) {
+// 12 copies, mode threaded, no culling.
+BenchConfig twelve_copies(int threads, ActionChoice actions, VertexFormat format = VertexFormat::Float) {
   BenchConfig config;
   config.mode = find_mode("threaded")->switches;
   config.mode.vertex_format = format;
@@ -50,7 +54,12 @@ std::string digest_of(const Character& character, int threads, ActionChoice acti
   config.crowd.copies = 12;
   config.crowd.actions = actions;
   config.crowd.seed = 5;
-  CrowdBench bench(character, config);
+  return config;
+}
+
+std::string digest_of(const Character& character, int threads, ActionChoice actions,
+                      VertexFormat format = VertexFormat::Float) {
+  CrowdBench bench(character, twelve_copies(threads, actions, format));
   for (int i = 0; i < 3; ++i) bench.step();
   return bench.digest();
 }
@@ -72,21 +81,31 @@ TEST_F(SimdTargetTest, EveryTargetAndThreadCountGivesTheSameDigest) {
   EXPECT_TRUE(targets.back() == "SCALAR" || targets.back() == "EMU128") << targets.back();
   const std::string best = active_simd_target();
   EXPECT_EQ(best, targets.front());
-  // Packed vertices (their bytes are hashed then) too: the codes are rounded
-  // from the same floats the same way on every target.
+  // Every target of one arithmetic (fused multiply-adds on AVX2 and up,
+  // separate below) gives the same digest; packed vertices (their bytes are
+  // hashed then) too: the codes are rounded from the floats the same way.
+  std::set<bool> arithmetics;
   for (VertexFormat format : {VertexFormat::Float, VertexFormat::Packed}) {
-    std::string expected_shared, expected_random;
+    std::map<bool, std::pair<std::string, std::string>> expected;  // by arithmetic: shared, random
     for (const std::string& target : targets) {
       ASSERT_EQ("", force_simd_target(target));
       ASSERT_EQ(target, active_simd_target());
+      const bool fused = skinning_fuses_multiply_add();
+      arithmetics.insert(fused);
+      EXPECT_EQ(fused, target.rfind("AVX", 0) == 0) << target;
       for (int threads : {1, 2, 3}) {
         const std::string shared = digest_of(small_humanoid(), threads, ActionChoice::Shared, format);
         const std::string random = digest_of(uneven_humanoid(), threads, ActionChoice::Random, format);
+        auto& [expected_shared, expected_random] = expected[fused];
         if (expected_shared.empty()) expected_shared = shared, expected_random = random;
         EXPECT_EQ(expected_shared, shared) << target << ", " << threads << " threads, " << to_string(format);
         EXPECT_EQ(expected_random, random) << target << ", " << threads << " threads, " << to_string(format);
       }
     }
+  }
+  // Both arithmetics were compared here unless this CPU has no AVX2.
+  if (targets.front().rfind("AVX", 0) == 0) {
+    EXPECT_EQ(2u, arithmetics.size());
   }
   EXPECT_NE(digest_of(small_humanoid(), 1, ActionChoice::Shared, VertexFormat::Float),
             digest_of(small_humanoid(), 1, ActionChoice::Shared, VertexFormat::Packed));
@@ -106,6 +125,42 @@ TEST_F(SimdTargetTest, ForcingAnUnknownTargetChangesNothing) {
   EXPECT_EQ("SSSE3", active_simd_target());
   ASSERT_EQ("", force_simd_target(""));
   EXPECT_EQ(targets.front(), active_simd_target());
+}
+
+// The two arithmetics agree within 1e-5 of the character's height at every
+// vertex of every copy (positions; normals within 1e-5 of unit length), on the
+// uneven humanoid whose weights make fused and separate rounding differ.
+TEST_F(SimdTargetTest, FusedAndSeparateArithmeticAgreeWithinATolerance) {
+  const std::vector<std::string> targets = available_simd_targets();
+  if (targets.front().rfind("AVX", 0) != 0) GTEST_SKIP() << "no AVX2 here: one arithmetic only";
+  auto skinned = [&](const std::string& target) {
+    EXPECT_EQ("", force_simd_target(target));
+    CrowdBench bench(uneven_humanoid(), twelve_copies(1, ActionChoice::Random));
+    for (int i = 0; i < 3; ++i) bench.step();
+    std::vector<glm::vec3> positions, normals;
+    for (size_t copy = 0; copy < 12; ++copy) {
+      auto p = bench.skinned_positions(copy);
+      auto n = bench.skinned_normals(copy);
+      positions.insert(positions.end(), p.begin(), p.end());
+      normals.insert(normals.end(), n.begin(), n.end());
+    }
+    return std::pair(positions, normals);
+  };
+  const auto [fused_p, fused_n] = skinned(targets.front());
+  const auto [separate_p, separate_n] = skinned(targets.back());
+  ASSERT_EQ(fused_p.size(), separate_p.size());
+  const double height = bind_pose_height(uneven_humanoid().mesh);
+  ASSERT_GT(height, 0.0);
+  double worst = 0, worst_normal = 0;
+  size_t differing = 0;
+  for (size_t v = 0; v < fused_p.size(); ++v) {
+    worst = std::max(worst, static_cast<double>(glm::distance(fused_p[v], separate_p[v])));
+    worst_normal = std::max(worst_normal, static_cast<double>(glm::distance(fused_n[v], separate_n[v])));
+    differing += fused_p[v] != separate_p[v];
+  }
+  EXPECT_LE(worst, 1e-5 * height);
+  EXPECT_LE(worst_normal, 1e-5);
+  EXPECT_GT(differing, 0u) << "the arithmetics gave the same bits: is FMA in use?";
 }
 
 TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {

@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "skinning/skinning.h"
+#include "skinning/skinning_kernels.h"
 #include "skinning/skinning_plan.h"
 
 namespace crowdprof {
@@ -247,9 +248,15 @@ TEST(Skinning, SingleInfluenceNormalsKeepTheirLengthOnlyUnderRotations) {
   Skinned out = skin(mesh, {glm::mat4(1), rotation});
   const glm::vec3 rotated = glm::vec3(rotation * glm::vec4(normal, 0.0f));
   EXPECT_NEAR(glm::length(out.normals[5]), 1.0f, 1.5e-5f);
-  // Exactly the rotated normal (terms added in the kernel's order), not renormalised.
-  const glm::vec3 expected = (glm::vec3(rotation[0]) * normal.x + glm::vec3(rotation[1]) * normal.y) +
-                             glm::vec3(rotation[2]) * normal.z;
+  // Exactly the rotated normal (terms added in the kernel's order, fused where
+  // the kernel fuses), not renormalised.
+  glm::vec3 expected;
+  for (int a = 0; a < 3; ++a) {
+    const float x = rotation[0][a] * normal.x;
+    expected[a] = skinning_fuses_multiply_add()
+                      ? std::fma(rotation[2][a], normal.z, std::fma(rotation[1][a], normal.y, x))
+                      : (x + rotation[1][a] * normal.y) + rotation[2][a] * normal.z;
+  }
   EXPECT_EQ(expected, out.normals[5]);
   EXPECT_NEAR(glm::distance(rotated, out.normals[5]), 0.0f, 1e-6f);
 
