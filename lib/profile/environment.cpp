@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "skinning/simd_target.h"
+#include "skinning/skinning_kernels.h"
 
 // Defined in the source cmake/commit_stamp.cmake writes at every build.
 const char* crowdprof_build_commit();
@@ -19,6 +20,7 @@ Environment current_environment() {
   env.compiler = CROWDPROF_COMPILER;
   env.build_type = CROWDPROF_BUILD_TYPE;
   env.simd = simd_target();
+  env.fused_multiply_add = skinning_fuses_multiply_add();
   env.cores = std::thread::hardware_concurrency();
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;

@@ -12,6 +12,10 @@ struct Environment {
   unsigned cores = 0;
   std::string compiler, build_type;
   std::string simd;  // the SIMD target skinning runs on now (simd_target())
+  // Whether its kernels fuse multiply-adds (skinning_kernels.h): digests of
+  // runs that differ here differ by design. False in results written before
+  // the kernels fused (environment.fused_multiply_add absent): they did not.
+  bool fused_multiply_add = false;
 };
 
 Environment current_environment();

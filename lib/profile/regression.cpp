@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "profile/number_text.h"
-#include "skinning/simd_target.h"
 
 namespace crowdprof {
 
@@ -36,17 +35,13 @@ std::vector<double> run_medians(const Result& result, const std::string& key, si
 
 }  // namespace
 
-bool CheckResult::arithmetic_differs() const {
-  return !baseline_simd.empty() && !current_simd.empty() &&
-         target_fuses_multiply_add(baseline_simd) != target_fuses_multiply_add(current_simd);
-}
-
 std::string CheckResult::digest_note() const {
   if (baseline_digest == current_digest) return "same";
   if (digest_differs()) return "CHANGED";
-  const bool fused = target_fuses_multiply_add(baseline_simd);
-  return "not compared: " + (fused ? baseline_simd : current_simd) + " fuses multiply-adds, " +
-         (fused ? current_simd : baseline_simd) + " does not (their last bits differ)";
+  auto name = [](const std::string& simd, const char* which) { return simd.empty() ? std::string(which) : simd; };
+  const std::string fused = baseline_fused ? name(baseline_simd, "the baseline") : name(current_simd, "this run");
+  const std::string separate = baseline_fused ? name(current_simd, "this run") : name(baseline_simd, "the baseline");
+  return "not compared: " + fused + " fused multiply-adds, " + separate + " did not (their last bits differ)";
 }
 
 bool CheckResult::regressed() const {
@@ -143,6 +138,8 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   result.current_digest = current.digest;
   result.baseline_simd = baseline.environment.simd;
   result.current_simd = current.environment.simd;
+  result.baseline_fused = baseline.environment.fused_multiply_add;
+  result.current_fused = current.environment.fused_multiply_add;
   return result;
 }
 
@@ -198,7 +195,12 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   if (!result.metrics.empty())
     out << " " << result.metrics.front().test.n2 << " vs " << result.metrics.front().test.n1 << " "
         << result.metrics.front().unit << ";";
-  out << (options.compare_work ? " counters and digest match\n" : " counters and digest not compared\n");
+  if (!options.compare_work)
+    out << " counters and digest not compared\n";
+  else if (result.baseline_digest != result.current_digest)
+    out << " counters match, digest not compared (other arithmetic)\n";
+  else
+    out << " counters and digest match\n";
   return out.str();
 }
 

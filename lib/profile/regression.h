@@ -44,12 +44,14 @@ struct CheckResult {
   std::vector<CounterDifference> counters;  // only those that differ
   std::vector<std::string> counters_missing;  // in the baseline, not in the current result
   std::string baseline_digest, current_digest;
-  // The SIMD targets the two ran on (environment.simd; "" when not recorded).
+  // The SIMD targets the two ran on and whether their kernels fused
+  // multiply-adds (environment.simd, environment.fused_multiply_add).
   std::string baseline_simd, current_simd;
-  // One target fuses multiplies and adds and the other does not: their last
-  // bits differ by design (within 1e-5 of the height), so digests are not
+  bool baseline_fused = false, current_fused = false;
+  // One run's kernels fused multiplies and adds and the other's did not: their
+  // last bits differ by design (within 1e-5 of the height), so digests are not
   // compared.
-  bool arithmetic_differs() const;
+  bool arithmetic_differs() const { return baseline_fused != current_fused; }
   bool digest_differs() const { return baseline_digest != current_digest && !arithmetic_differs(); }
   // What to say of the digests: "same", "CHANGED" or why they were not compared.
   std::string digest_note() const;

@@ -306,6 +306,7 @@ void read_environment(const Reader& in, Result& r) {
   e.compiler = in.text_or("/environment/compiler", "");
   e.build_type = in.text_or("/environment/build_type", "");
   e.simd = in.text_or("/environment/simd", "");
+  e.fused_multiply_add = in.flag_or("/environment/fused_multiply_add", false);
   r.run.backend = in.text_or("/environment/backend", "none");
   r.run.renderer = in.text_or("/environment/renderer", "none");
 }
@@ -642,7 +643,8 @@ void read_extras(const Reader& in, Result& r) {
 nlohmann::json environment_to_json(const Result& r) {
   const Environment& env = r.environment;
   return {{"cpu", env.cpu},         {"cores", env.cores},         {"compiler", env.compiler},
-          {"build_type", env.build_type}, {"simd", env.simd}, {"backend", r.run.backend}, {"renderer", r.run.renderer}};
+          {"build_type", env.build_type}, {"simd", env.simd}, {"fused_multiply_add", env.fused_multiply_add},
+          {"backend", r.run.backend}, {"renderer", r.run.renderer}};
 }
 
 nlohmann::json result_to_json(const Result& r) {

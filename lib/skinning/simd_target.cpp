@@ -70,10 +70,4 @@ std::string force_simd_target(std::string_view name) {
   return {};
 }
 
-bool target_fuses_multiply_add(std::string_view name) {
-  for (std::string_view fused : {"AVX2", "AVX3", "AVX3_DL", "AVX3_ZEN4", "AVX3_SPR"})
-    if (equals_ignoring_case(name, fused)) return true;
-  return false;
-}
-
 }  // namespace crowdprof

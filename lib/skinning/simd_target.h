@@ -21,12 +21,6 @@ std::vector<std::string> available_simd_targets();
 // not (unknown target, or one this CPU or build cannot run).
 std::string force_simd_target(std::string_view name);
 
-// Whether skinning on the target named `name` (Highway's name, as results
-// record it in environment.simd) fuses multiplies and adds: AVX2 and up. Runs
-// on targets that answer differently give different last bits, hence other
-// digests (skinning_kernels.h); false for a name it does not know, "" too.
-bool target_fuses_multiply_add(std::string_view name);
-
 // The environment variable that forces a target as --simd does.
 constexpr const char* kSimdEnvironmentVariable = "CROWDPROF_SIMD";
 

@@ -111,6 +111,9 @@ HWY_INLINE void StorePacked(D d, const V (&position)[3], const V (&normal)[3], c
 // same on every CPU, thread count and split into ranges, and the targets with
 // FMA agree with each other bit for bit (one rounding is one rounding); the two
 // arithmetics differ in the last places (tests/skinning/simd_test.cpp).
+#if defined(HWY_DISABLE_BMI2_FMA)
+#error "HWY_DISABLE_BMI2_FMA makes AVX2's MulAdd round twice while AVX3's fuses: one arithmetic would give two digests"
+#endif
 #if HWY_TARGET <= HWY_AVX2 && HWY_ARCH_X86
 constexpr bool kFusedMultiplyAdd = true;
 #else

@@ -11,7 +11,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "skinning/simd_target.h"
 #include "test_support.h"
 
 namespace crowdprof::test {
@@ -50,7 +49,7 @@ TEST(ReadmeFigures, TheWorkOfAFrameIsThisBuilds) {
   EXPECT_EQ(std::to_string(c["copies_visible"].get<uint64_t>()), m[3].str());
   EXPECT_EQ(std::to_string(c["copies_culled"].get<uint64_t>()), m[4].str());
   // The digest of this machine's arithmetic (skinning_kernels.h).
-  const bool fused = target_fuses_multiply_add(result["environment"]["simd"].get<std::string>());
+  const bool fused = result["environment"]["fused_multiply_add"].get<bool>();
   EXPECT_EQ(result["digest"].get<std::string>(), fused ? m[5].str() : m[6].str())
       << "README.md's figures are not this build's: ./setup.sh docs";
   EXPECT_NE(block.find("load average"), std::string::npos) << "the figures say the load they ran under";

@@ -157,21 +157,28 @@ TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
   // or with a target not recorded, compared as before.
   Result avx3 = baseline, sse4 = other_digest;
   avx3.environment.simd = "AVX3";
+  avx3.environment.fused_multiply_add = true;
   sse4.environment.simd = "SSE4";
+  sse4.environment.fused_multiply_add = false;
   CheckResult across = check_results(avx3, sse4, options);
   EXPECT_FALSE(across.digest_differs());
   EXPECT_FALSE(across.regressed());
-  EXPECT_NE(format_check(across, options).find("not compared: AVX3 fuses multiply-adds, SSE4 does not"),
+  EXPECT_NE(format_check(across, options).find("not compared: AVX3 fused multiply-adds, SSE4 did not"),
             std::string::npos)
       << format_check(across, options);
+  EXPECT_NE(format_check(across, options).find("counters match, digest not compared"), std::string::npos);
   sse4.counters.values.vertices_skinned += 1;
   EXPECT_TRUE(check_results(avx3, sse4, options).regressed());
   Result avx2 = other_digest;
   avx2.environment.simd = "AVX2";
+  avx2.environment.fused_multiply_add = true;
   EXPECT_TRUE(check_results(avx3, avx2, options).digest_differs());
-  Result unknown = other_digest;
-  unknown.environment.simd = "";
-  EXPECT_TRUE(check_results(avx3, unknown, options).digest_differs());
+  // A result from before the kernels fused records no field: separate, like SSE4.
+  Result before = baseline;
+  before.environment.simd = "AVX3";
+  before.environment.fused_multiply_add = false;
+  EXPECT_TRUE(check_results(before, sse4, options).digest_differs());
+  EXPECT_FALSE(check_results(before, avx2, options).digest_differs());
 }
 
 TEST(Check, ResultsOfAnotherRunAreRefused) {

@@ -15,6 +15,7 @@
 #include "frame/crowd_bench.h"
 #include "gen/humanoid.h"
 #include "asset/mesh_lod.h"
+#include "profile/environment.h"
 #include "skinning/simd_target.h"
 #include "skinning/skinning_kernels.h"
 #include "test_support.h"
@@ -93,6 +94,7 @@ TEST_F(SimdTargetTest, EveryTargetAndThreadCountGivesTheSameDigest) {
       const bool fused = skinning_fuses_multiply_add();
       arithmetics.insert(fused);
       EXPECT_EQ(fused, target.rfind("AVX", 0) == 0) << target;
+      EXPECT_EQ(fused, current_environment().fused_multiply_add) << target;
       for (int threads : {1, 2, 3}) {
         const std::string shared = digest_of(small_humanoid(), threads, ActionChoice::Shared, format);
         const std::string random = digest_of(uneven_humanoid(), threads, ActionChoice::Random, format);
