@@ -141,6 +141,8 @@ TEST(PackedVertex, EveryTargetPacksExactlyWhatTheScalarDefinitionGives) {
 
   for (const std::string& target : available_simd_targets()) {
     ASSERT_EQ("", force_simd_target(target));
+    // The floats this target skins (its arithmetic's last bits: skinning_kernels.h).
+    ASSERT_TRUE((SkinningJob{palette, &plan, 0, n, positions, normals}.Run()));
     // The whole mesh, and a range that starts and ends inside batches.
     for (auto [first, count] : {std::pair<size_t, size_t>{0, n}, {5, n - 23}}) {
       PackedOut out{std::vector<uint16_t>(3 * count), std::vector<uint32_t>(count)};
