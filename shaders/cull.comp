@@ -3,18 +3,21 @@
 // copy tests its world box against the camera's six planes, as the CPU's
 // Scenegraph does (scene/camera.cpp: intersects); a copy on screen takes the
 // next slot of its character's indirect draw (an atomic add on the command's
-// instance count) and writes its baked record there: which samples and where
-// between them, from the simulated clock, as CrowdBench::update_logic and
-// baked_position compute them on the CPU. With mesh LOD it also picks the
+// instance count) and writes its record there, as the CPU-culled path sends it
+// (render/gpu_frame_buffers.h, GpuInstance: the instanced path's records): its
+// model matrix and colour, which samples and where between them, from the
+// simulated clock, as CrowdBench::update_logic and baked_position compute them
+// on the CPU. With mesh LOD it also picks the
 // copy's mesh level from the share of the screen's height its box spans, as
 // scene/screen_size.cpp does, and appends it to that level's draw.
 layout(local_size_x = 64) in;
 
 struct CullCopy {
+  mat4 model;    // the copy's placement
   vec4 box_min;  // xyz: the copy's world box
   vec4 box_max;
   uint kind;          // its character: the command it is drawn by
-  uint first_sample;  // its action's sample 0 in the baked table
+  uint first_row;     // its action's sample 0 in the baked table, in rows (3 x sample x joints)
   uint intervals;     // the action's samples - 1
   float phase;        // seconds into its action at time 0
   float start;        // the action's first key time
@@ -24,18 +27,19 @@ struct CullCopy {
 };
 layout(std430, binding = 0) readonly buffer Copies { CullCopy copies[]; };
 
-// As baked.vert reads them.
+// As baked.vert reads them (std430, 80 bytes: GpuInstance).
 struct Instance {
-  uint copy;
-  uint first_sample;
-  uint intervals;
-  float position;
+  mat4 model;
+  uint first_row;  // GpuInstance.palette_base
+  uint colour;
+  uint intervals;  // source[0]
+  uint position;   // source[1]: a float's bits
 };
 layout(std430, binding = 1) writeonly buffer Instances { Instance instances[]; };
 
 // glDrawElementsIndirect's command, one per character, or with mesh LOD one
-// per character and level (kind x 4 + level); base_instance is where its records start in instances (baked.vert
-// is told it as first_instance).
+// per character and level (kind x 4 + level); base_instance is where its
+// records start in instances (the draw fetches its per-instance attributes from there).
 struct Command {
   uint count;
   uint instance_count;
@@ -51,6 +55,7 @@ uniform float lod_thresholds[3];  // mesh LOD: level 1 below [0], 2 below [1], 3
 uniform uint commands_per_kind;   // 4 with mesh LOD, else 1
 uniform double seconds;  // the frame's time, in double as the CPU's clock
 uniform uint copy_count;
+uniform uint colour_count;  // the copy colours a record indexes (kCopyColours)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -88,5 +93,6 @@ void main() {
   }
   uint command = c.kind * commands_per_kind + level;
   uint slot = atomicAdd(commands[command].instance_count, 1u);
-  instances[commands[command].base_instance + slot] = Instance(i, c.first_sample, c.intervals, position);
+  instances[commands[command].base_instance + slot] =
+      Instance(c.model, c.first_row, i % colour_count, c.intervals, floatBitsToUint(position));
 }

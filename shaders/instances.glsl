@@ -9,6 +9,6 @@ layout(std430, binding = 0) readonly buffer Palettes {
 };
 
 // The instanced draws' records (render/gpu_frame_buffers.h, GpuInstance: a
-// mat4 model, then palette_base, colour and two words free for another
-// skinning source) reach the vertex shader as per-instance attributes, not as
+// mat4 model, then palette_base, colour and two words of the skinning
+// source's: unused here, baked.vert's interval count and position) reach the vertex shader as per-instance attributes, not as
 // a storage block: no block-size limit bounds how many copies a draw takes.

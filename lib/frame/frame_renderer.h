@@ -39,13 +39,13 @@ class FrameRenderer {
   virtual void require(const ModeSwitches& mode) const = 0;
 
   // At load, from the bench's constructor (its view complete, frame 0 not
-  // run): upload what the mode needs and never changes (baked tables, per-copy
-  // placements) and make the buffers its frames fill. Throws GlUnavailable
+  // run): upload what the mode needs and never changes (baked tables, the GPU
+  // cull pass's copies) and make the buffers its frames fill. Throws GlUnavailable
   // (gl_errors.h) when the context lacks a feature the mode needs, naming it.
   virtual void prepare(const FrameView& view) = 0;
 
   // Bytes the renderer holds on the GPU for animation and skinning data: baked
-  // tables, palette, placement and instance buffers, compute output buffers
+  // tables, palette and instance buffers, compute output buffers
   // (meshes and index buffers not counted).
   virtual uint64_t animation_gpu_bytes() const = 0;
 

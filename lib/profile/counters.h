@@ -24,8 +24,9 @@ struct Counters {
   // GPU memory the palettes of GPU-skinned copies live in: the uniform array
   // (--palettes uniforms), or the storage buffers of every copy's palette (and
   // with --draw instanced, their instance records); with skinning compute, its
-  // palette and skinned-vertex buffers; with baked, its baked tables, placements
-  // and instance records; 0 when none is skinned there.
+  // palette and skinned-vertex buffers; with baked, its baked tables and
+  // instance records (and frustum gpu's copies and commands); 0 when none is
+  // skinned there.
   uint64_t gpu_palette_bytes = 0;
   // Issue 13: copies that took a new pose this frame (shared or their own),
   // copies on their update-rate LOD or budget's off frame that held their last

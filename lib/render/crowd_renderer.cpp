@@ -11,20 +11,20 @@ namespace crowdprof {
 namespace {
 
 // Storage buffers compute and baked each bind in one stage (skin.comp: rest,
-// bones, skinned; baked.vert: table, placements, instances).
-constexpr GLint kStorageBlocksNeeded = 3;
+// bones, skinned; baked.vert: its table, the records arriving as attributes).
+constexpr GLint kComputeStorageBlocks = 3, kBakedStorageBlocks = 1;
 
 }  // namespace
 
 std::string missing_gl_feature(SkinningSite site, const GlFeatures& features) {
-  if (site == SkinningSite::Compute && features.compute_storage_blocks < kStorageBlocksNeeded)
-    return "compute shaders with " + std::to_string(kStorageBlocksNeeded) +
+  if (site == SkinningSite::Compute && features.compute_storage_blocks < kComputeStorageBlocks)
+    return "compute shaders with " + std::to_string(kComputeStorageBlocks) +
            " shader storage buffers (GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS is " +
            std::to_string(features.compute_storage_blocks) + ")";
   if (site == SkinningSite::Baked &&
-      (features.vertex_storage_blocks < kStorageBlocksNeeded || features.max_storage_block_bytes <= 0))
-    return "shader storage buffers in the vertex shader, " + std::to_string(kStorageBlocksNeeded) +
-           " of them (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is " + std::to_string(features.vertex_storage_blocks) + ")";
+      (features.vertex_storage_blocks < kBakedStorageBlocks || features.max_storage_block_bytes <= 0))
+    return "shader storage buffers in the vertex shader (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is " +
+           std::to_string(features.vertex_storage_blocks) + ")";
   return {};
 }
 
@@ -104,7 +104,7 @@ void GlCrowdRenderer::prepare(const FrameView& view) {
     bytes += compute_->gpu_bytes();
   }
   if (any_baked) {
-    if (!baked_) baked_ = std::make_unique<BakedSkinning>();
+    if (!baked_) baked_ = std::make_unique<BakedSkinning>(features_);
     baked_->prepare(view, meshes_);
     bytes += baked_->gpu_bytes();
   }

@@ -73,7 +73,7 @@ class GlCrowdRenderer final : public FrameRenderer {
   void require(const ModeSwitches& mode) const override;
   const GlFeatures& features() const { return features_; }
   // Modes compute and baked: builds their programs and buffers, and uploads
-  // the baked tables and every copy's placement.
+  // the baked tables (and, frustum gpu, every copy's box, clock and placement).
   void prepare(const FrameView& view) override;
   uint64_t animation_gpu_bytes() const override { return animation_gpu_bytes_; }
   GpuMemoryRecord gpu_memory() const override;

@@ -29,21 +29,22 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
   const auto block = static_cast<uint64_t>(std::max<int64_t>(gl.max_storage_block_bytes, 0));
   const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.storage_offset_alignment, 1));
   page_rows_ = block / align * align / sizeof(glm::vec4);
-  if (page_rows_ == 0 || largest_rows > page_rows_)
+  if (largest_rows > 0 && (page_rows_ == 0 || largest_rows > page_rows_))
     throw GlUnavailable("a palette of " + std::to_string(largest_rows / 3) + " joints needs " +
                             mib(largest_rows * sizeof(glm::vec4)) + "; a page of this GL's palette buffer holds " +
                             mib(page_rows_ * sizeof(glm::vec4)) +
                             " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, on GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT): ",
                         "skin it on the CPU, {skinning} animations");
-  // The records are read as per-instance vertex attributes (instanced only),
-  // which no storage-block limit bounds.
+  // The records are read as per-instance vertex attributes (instanced and
+  // baked), which no storage-block limit bounds.
   const uint64_t instance_bytes = with_instances ? std::max<uint64_t>(instances, 1) * sizeof(GpuInstance) : 0;
   // In one page, the rows themselves; past it, a page leaves less than its
   // largest palette empty at its end.
   const uint64_t pages = page_rows_ > largest_rows ? rows / (page_rows_ - largest_rows) + 1 : std::max<size_t>(instances, 1);
   const uint64_t palette_rows =
       rows <= page_rows_ ? rows : std::min<uint64_t>(rows + pages * largest_rows, pages * page_rows_);
-  const uint64_t palette_bytes = std::max<uint64_t>(palette_rows, 1) * sizeof(glm::vec4);
+  // Records only (another skinning source's): no palette buffer.
+  const uint64_t palette_bytes = largest_rows == 0 ? 0 : std::max<uint64_t>(palette_rows, 1) * sizeof(glm::vec4);
   if (gl.memory_free_kib >= 0 && instances > 0) {
     const uint64_t free_bytes = static_cast<uint64_t>(gl.memory_free_kib) << 10;
     const uint64_t per_copy = (rows + instances - 1) / instances * sizeof(glm::vec4) + instance_bytes / instances;
@@ -60,7 +61,29 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
   if (!palette_buffer_) glGenBuffers(1, &palette_buffer_);
   if (!instance_buffer_) glGenBuffers(1, &instance_buffer_);
   palette_capacity_bytes_ = std::max(palette_capacity_bytes_, palette_bytes);
-  instance_capacity_bytes_ = std::max(instance_capacity_bytes_, instance_bytes);
+  grow_instance_storage(instance_bytes);
+}
+
+void GpuFrameBuffers::reserve_gpu_records(size_t records, const GlFeatures& gl) {
+  const uint64_t bytes = std::max<uint64_t>(records, 1) * sizeof(GpuInstance);
+  if (gl.memory_free_kib >= 0 && bytes > static_cast<uint64_t>(gl.memory_free_kib) << 10) {
+    const uint64_t free_bytes = static_cast<uint64_t>(gl.memory_free_kib) << 10;
+    throw GlUnavailable(std::to_string(records) + " instance records need " + mib(bytes) + "; the GPU has " +
+                            mib(free_bytes) + " free (" + gl.memory_source + "), room for about " +
+                            std::to_string(free_bytes / sizeof(GpuInstance)) + ": ",
+                        "use fewer copies");
+  }
+  if (!instance_buffer_) glGenBuffers(1, &instance_buffer_);
+  grow_instance_storage(bytes);
+}
+
+void GpuFrameBuffers::grow_instance_storage(uint64_t bytes) {
+  if (bytes <= instance_capacity_bytes_) return;
+  // Storage now, for a compute pass that writes the records (upload() orphans it each frame).
+  instance_capacity_bytes_ = bytes;
+  glBindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_capacity_bytes_), nullptr, GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 void GpuFrameBuffers::begin(std::span<const uint32_t> counts) {
@@ -92,6 +115,12 @@ std::span<glm::vec4> GpuFrameBuffers::add(size_t kind, const glm::mat4& model, u
   return rows;
 }
 
+void GpuFrameBuffers::add_record(size_t kind, const GpuInstance& record) {
+  const uint32_t index = runs_[kind].first + filled_[kind]++;
+  instances_[index] = record;
+  page_of_[index] = 0;
+}
+
 InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {
   const uint32_t end = runs_[kind].first + runs_[kind].count;
   uint32_t last = from;
@@ -100,6 +129,7 @@ InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {
 }
 
 void GpuFrameBuffers::bind_page(uint32_t page) const {
+  if (palette_capacity_bytes_ == 0) return;  // records only
   const uint64_t page_bytes = page_rows_ * sizeof(glm::vec4);
   const uint64_t offset = page * page_bytes;
   const uint64_t size = std::min(page_bytes, palette_capacity_bytes_ - offset);
@@ -111,10 +141,12 @@ uint64_t GpuFrameBuffers::upload(bool with_instances) {
   // The rows left empty at pages' ends go up too (one upload).
   uint64_t sent = rows_used_ * sizeof(glm::vec4);
   palette_capacity_bytes_ = std::max(palette_capacity_bytes_, sent);
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, palette_buffer_);
-  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(palette_capacity_bytes_), nullptr, GL_STREAM_DRAW);
-  if (rows_used_) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(sent), rows_.data());
-  bind_page(0);
+  if (palette_capacity_bytes_ > 0) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, palette_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(palette_capacity_bytes_), nullptr, GL_STREAM_DRAW);
+    if (rows_used_) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(sent), rows_.data());
+    bind_page(0);
+  }
   if (with_instances) {
     uint32_t records = 0;
     for (const InstanceRun& run : runs_) records += run.count;

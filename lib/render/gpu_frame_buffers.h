@@ -1,7 +1,9 @@
-// The per-frame buffers of GPU-skinned copies in the buffer and instanced
-// modes: every palette drawn this frame in one shader storage buffer, and one
-// record per instance (transform, palette offset, colour) in another, read as
-// per-instance vertex attributes (shaders/instances.glsl says the layout).
+// The per-frame buffers of GPU-skinned copies in the buffer, instanced and
+// baked modes: every palette drawn this frame in one shader storage buffer
+// (none for baked, whose palettes are its table), and one record per instance
+// (transform, palette offset, colour, two words of the skinning source's) in
+// another, read as per-instance vertex attributes (shaders/instances.glsl says
+// the layout).
 //
 // Paged palettes (issue 30): a shader may see at most one storage block of the
 // palette buffer (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe: about
@@ -11,16 +13,21 @@
 // binds its page's range (bind_page) first: per copy, or one instanced draw per
 // run of a kind's records on one page (page_run).
 //
-// How another skinning source plugs in (baked animation, say): reserve the
-// frame's runs with begin(), and for each copy add() an instance whose
-// palette_rows is 0 (it sends no palette) with its own per-instance values in
-// `source` (an action and a time); upload(), then bind its own tables at a
-// further binding and draw each kind's run with one instanced draw. Its vertex
-// shader reads the records as per-instance attributes (not a storage block,
-// whose size limit would cap the copies a draw takes): instance_buffer()
-// bound at vertex binding kInstanceStream with offset first x 80 and divisor 1, the model's columns at locations 4-7 and
-// (palette_base, colour, source0, source1) as a uvec4 at location 8, as the
-// renderer's own instanced VAOs do (render/character_meshes.cpp).
+// Another skinning source draws through the same records (mode baked: its
+// actions' samples in a table of its own): reserve() with no palette rows,
+// then each frame begin() the runs and add_record() each copy's record, whose
+// palette_base and source words are the source's own (baked: where the copy's
+// action starts in the table, its interval count and its position among its
+// samples), upload(), bind its own table at kPaletteBinding and draw with
+// draw_instance_runs (render/techniques/instanced.h), as instanced does. Its
+// vertex shader reads the records as per-instance attributes (not a storage
+// block, whose size limit would cap the copies a draw takes): instance_buffer()
+// at vertex binding kInstanceStream with offset first x 80 and divisor 1, the
+// model's columns at locations 4-7 and (palette_base, colour, source0, source1)
+// as a uvec4 at location 8, as the renderer's instanced VAOs do
+// (render/character_meshes.cpp). A compute pass may write the records itself
+// (frustum gpu: render/techniques/gpu_cull.h): reserve_gpu_records() gives the
+// buffer its storage.
 #pragma once
 
 #include <cstdint>
@@ -34,10 +41,10 @@
 
 namespace crowdprof {
 
-// One record of Instances (shaders/instances.glsl).
+// One record of Instances (shaders/instances.glsl; baked.vert reads the same).
 struct GpuInstance {
   glm::mat4 model{1.0f};
-  uint32_t palette_base = 0;  // the palette's first row in the palette buffer
+  uint32_t palette_base = 0;  // the palette's first row in the palette buffer (baked: its action's in the table)
   uint32_t colour = 0;        // index into the frame's colours
   uint32_t source[2] = {0, 0};
 };
@@ -63,10 +70,17 @@ class GpuFrameBuffers {
   // Makes room (on the CPU and the GPU) for `instances` records (sent only
   // `with_instances`) and `rows` palette rows, none longer than `largest_rows`,
   // in pages of the largest storage block `gl` allows; growing keeps nothing.
+  // With no rows (largest_rows 0) there is no palette buffer: records only.
   // Throws GlUnavailable, naming the limit and the most copies that fit, when a
   // palette exceeds a page or the buffers the GPU's free memory (where the GL
   // says it). The records are read as vertex attributes: no block bounds them.
   void reserve(size_t instances, size_t rows, size_t largest_rows, bool with_instances, const GlFeatures& gl);
+
+  // Room on the GPU only for `records` records that a compute pass writes
+  // (frustum gpu: gpu_cull.h) and the draws read; the CPU keeps none. Throws
+  // GlUnavailable past the GPU's free memory (where the GL says it), naming it
+  // and how many records fit.
+  void reserve_gpu_records(size_t records, const GlFeatures& gl);
 
   // Starts a frame: kind k gets `counts[k]` records, one run after another,
   // which add() fills in order. `counts` must fit the reservation.
@@ -74,6 +88,9 @@ class GpuFrameBuffers {
   // Appends a record for `kind`; returns its 3 x joints palette rows (empty
   // for 0) to fill, which it points palette_base at.
   std::span<glm::vec4> add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows);
+  // Appends a record for `kind` that sends no palette (another skinning
+  // source: its palette_base and source words as given); on page 0.
+  void add_record(size_t kind, const GpuInstance& record);
   // The records and rows added since begin().
   InstanceRun run(size_t kind) const { return runs_[kind]; }
   // Counted from the start of the record's page.
@@ -81,12 +98,14 @@ class GpuFrameBuffers {
   uint32_t page_of(uint32_t record) const { return page_of_[record]; }
   // The records of `kind`'s run from `from` on that are on from's page.
   InstanceRun page_run(size_t kind, uint32_t from) const;
-  // Binds page `page` of the palettes at kPaletteBinding.
+  // Binds page `page` of the palettes at kPaletteBinding (nothing when the
+  // buffers hold records only).
   void bind_page(uint32_t page) const;
 
   // Sends the palette rows (and, with `with_instances`, the records) to the GPU
   // in fresh storage (orphaned, so no draw of the last frame is waited for) and
   // binds the palettes' first page at kPaletteBinding. Returns the bytes sent.
+  // The records sent are those of the runs begin() reserved.
   uint64_t upload(bool with_instances);
 
   // Bytes of GPU storage the two buffers hold.
@@ -96,6 +115,9 @@ class GpuFrameBuffers {
   GLuint instance_buffer() const { return instance_buffer_; }
 
  private:
+  // Gives the records' buffer storage for `bytes` now, when it has less.
+  void grow_instance_storage(uint64_t bytes);
+
   std::vector<GpuInstance> instances_;
   std::vector<glm::vec4> rows_;
   std::vector<InstanceRun> runs_;

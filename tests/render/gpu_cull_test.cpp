@@ -10,6 +10,7 @@
 #include "frame/modes.h"
 #include "frame/switch_table.h"
 #include "render/gl_errors.h"
+#include "render/gpu_frame_buffers.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -85,7 +86,7 @@ TEST(GpuCull, WhatTheCpuSendsAndSubmitsDoesNotGrowWithTheCrowd) {
   // The CPU-culled path sends a record per copy on screen.
   shot.frustum = FrustumTest::Cpu;
   Frame cpu = render(*context, both, shot);
-  EXPECT_EQ(cpu.counters.bytes_uploaded, 16 * cpu.counters.copies_visible);
+  EXPECT_EQ(cpu.counters.bytes_uploaded, sizeof(GpuInstance) * cpu.counters.copies_visible);
 }
 
 TEST(GpuCull, AGlWithoutComputeShadersIsRefusedNamingThem) {
@@ -101,6 +102,30 @@ TEST(GpuCull, AGlWithoutComputeShadersIsRefusedNamingThem) {
   } catch (const GlUnavailable& e) {
     EXPECT_NE(std::string(e.what()).find("frustum gpu needs compute shaders"), std::string::npos) << e.what();
   }
+}
+
+// The pass reads the copies (128 bytes each) and writes their records (80 a
+// mesh level) as storage blocks: a crowd past one block is refused at load,
+// naming the limit and how many copies fit (64 KiB: 512).
+TEST(GpuCull, ACrowdPastAStorageBlockIsRefusedSayingHowManyFit) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  shot.mode = "baked";
+  shot.copies = 600;
+  shot.frustum = FrustumTest::Gpu;
+  shot.bake_rate = 5.0f;  // a table that fits 64 KiB
+  shot.hide_features = "small-blocks";
+  try {
+    render(*context, thirty_bone_humanoid(), shot);
+    FAIL() << "600 copies' records and boxes were bound past a 64 KiB block";
+  } catch (const GlUnavailable& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << what;
+    EXPECT_NE(what.find("room for 512 copies, not 600"), std::string::npos) << what;
+    EXPECT_NE(what.find("frustum cpu"), std::string::npos) << what;
+  }
+  shot.copies = 500;  // fits: drawn
+  EXPECT_GT(render(*context, thirty_bone_humanoid(), shot).counters.copies_visible, 0u);
 }
 
 TEST(GpuCull, IsASwitchThatNeedsBakedSkinning) {

@@ -16,6 +16,7 @@
 #include "gen/humanoid.h"
 #include "render/crowd_renderer.h"
 #include "render/gl_errors.h"
+#include "render/gpu_frame_buffers.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -145,7 +146,8 @@ TEST(GpuSkinning, ComputeAndBakedCountWhatTheySend) {
   Frame baked = render(*context, c, shot);
   EXPECT_EQ(baked.counters.copies_visible, 124u);
   EXPECT_EQ(baked.counters.draw_calls, 1u);  // one character, one material: one instanced draw
-  EXPECT_EQ(baked.counters.bytes_uploaded, baked.counters.copies_visible * 16);  // <= 32 a copy
+  // Instanced's record a copy (model, colour, samples, position): no palette.
+  EXPECT_EQ(baked.counters.bytes_uploaded, baked.counters.copies_visible * sizeof(GpuInstance));
   EXPECT_EQ(baked.counters.poses_updated, 0u);  // no pose is built on the CPU
   EXPECT_EQ(baked.counters.vertices_skinned, 0u);
 }
@@ -166,8 +168,8 @@ TEST(GpuSkinning, BakedAndComputeMemoryOnTheGpuIsWhatTheyHold) {
   {
     CrowdBench bench(c, config);
     EXPECT_EQ(bench.bake_summary().samples, samples);
-    // The table (48 bytes a joint a sample), placements (80 a copy), instances (16 a copy).
-    EXPECT_EQ(bench.animation_gpu_bytes(), samples * c.skeleton.joint_count() * 48 + 160 * 80 + 160 * 16);
+    // The table (48 bytes a joint a sample) and room for a record a copy (80 bytes).
+    EXPECT_EQ(bench.animation_gpu_bytes(), samples * c.skeleton.joint_count() * 48 + 160 * sizeof(GpuInstance));
     EXPECT_EQ(bench.step().counters.gpu_palette_bytes, bench.animation_gpu_bytes());
     EXPECT_GT(bench.bake_summary().bake_ms, 0.0);
   }
@@ -238,6 +240,6 @@ TEST(GpuSkinning, BakedDrawsOnceACharacterWhateverTheCrowd) {
     Frame f = render(*context, both, shot);
     EXPECT_EQ(f.counters.copies_visible, copies);
     EXPECT_EQ(f.counters.draw_calls, 2u) << copies << " copies of two characters";
-    EXPECT_EQ(f.counters.bytes_uploaded, 16 * copies);
+    EXPECT_EQ(f.counters.bytes_uploaded, sizeof(GpuInstance) * copies);
   }
 }

@@ -2,7 +2,8 @@
 // past one storage block are cut into pages, each bound as a range of one
 // buffer. With storage blocks of 64 KiB (CROWDPROF_GL_HIDE=small-blocks: about
 // 19 humanoid palettes a page) `buffer` and `instanced` draw the image they draw
-// in one page, `instanced` with one draw per page; a crowd past the GPU's free
+// in one page, `instanced` with one draw per page; `baked` draws its records
+// through instanced's path whatever the block; a crowd past the GPU's free
 // memory is refused, naming the limit and how many copies would fit.
 #include <gtest/gtest.h>
 
@@ -49,21 +50,48 @@ TEST(PagedPalettes, SmallBlocksDrawTheSameImage) {
 }
 
 // More records than a 64 KiB block holds (819): they are vertex attributes,
-// so the crowd is drawn, not refused, and draws the image it draws unpaged.
+// so the crowd is drawn, not refused, and draws the image it draws unpaged;
+// baked draws through the same records (before, its placements lived in a
+// storage block: 1,200 of them need 96,000 bytes).
 TEST(PagedPalettes, InstancedRecordsPastOneBlockAreDrawn) {
   OPEN_GL_OR_SKIP(context);
+  for (const char* mode : {"instanced", "baked"}) {
+    Shot shot;
+    shot.mode = mode;
+    shot.copies = 1200;
+    shot.frame = 1;
+    shot.bake_rate = 5.0f;  // 30 joints: at 30 Hz its table needs 198,720 bytes, at 5 Hz it fits 64 KiB
+    Frame whole = render(*context, thirty_bone_humanoid(), shot);
+    shot.hide_features = "small-blocks";
+    Frame paged = render(*context, thirty_bone_humanoid(), shot);
+    ASSERT_GT(whole.counters.copies_visible, 819u) << mode;
+    EXPECT_EQ(paged.counters.copies_visible, whole.counters.copies_visible) << mode;
+    if (std::string(mode) == "baked") {
+      EXPECT_EQ(paged.counters.draw_calls, 1u) << "no palette to page: one draw";
+    }
+    EXPECT_EQ(paged.digest, whole.digest) << mode;
+    ASSERT_GT(covered(whole.rgba), whole.rgba.size() / 4 / 200) << mode;
+    EXPECT_EQ(pixels_differing(whole.rgba, paged.rgba, 4), 0u) << mode;
+  }
+}
+
+// A baked table is one storage block in the vertex shader: one larger than the
+// GL's block is refused at load, naming the limit and what to change.
+TEST(PagedPalettes, ABakedTablePastOneBlockIsRefusedNamingTheLimit) {
+  OPEN_GL_OR_SKIP(context);
   Shot shot;
-  shot.mode = "instanced";
-  shot.copies = 1200;
-  shot.frame = 1;
-  Frame whole = render(*context, thirty_bone_humanoid(), shot);
+  shot.mode = "baked";
+  shot.copies = 4;
   shot.hide_features = "small-blocks";
-  Frame paged = render(*context, thirty_bone_humanoid(), shot);
-  ASSERT_GT(whole.counters.copies_visible, 819u);
-  EXPECT_EQ(paged.counters.copies_visible, whole.counters.copies_visible);
-  EXPECT_EQ(paged.digest, whole.digest);
-  ASSERT_GT(covered(whole.rgba), whole.rgba.size() / 4 / 200);
-  EXPECT_EQ(pixels_differing(whole.rgba, paged.rgba, 4), 0u);
+  try {
+    render(*context, default_humanoid(), shot);  // 69 joints: 3,312 bytes a sample, 64 KiB hold 19
+    ADD_FAILURE() << "a table past the block was accepted";
+  } catch (const GlUnavailable& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << what;
+    EXPECT_NE(what.find("65536"), std::string::npos) << what;
+    EXPECT_NE(what.find("bake_rate"), std::string::npos) << what << ": says what to change";
+  }
 }
 
 TEST(PagedPalettes, ACrowdPastTheGpusFreeMemoryIsRefusedSayingHowManyFit) {

@@ -8,6 +8,7 @@
 
 #include "frame/frame_view.h"
 #include "render/shader_sources.h"
+#include "render/techniques/instanced.h"
 
 namespace crowdprof {
 
@@ -23,7 +24,7 @@ bool palette_copy(const FrameView& view, size_t copy) {
 
 std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
   std::string defines =
-      instanced ? "#define INSTANCED\n#define COLOURS " + std::to_string(kCopyColours.size()) + "\n" : "";
+      instanced ? "#define INSTANCED\n" + copy_colours_define() : "";
   defines += std::string(embedded_shader("shaders/instances.glsl"));
   return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }

@@ -6,6 +6,7 @@
 
 #include "frame/frame_view.h"
 #include "render/character_meshes.h"
+#include "render/gpu_frame_buffers.h"
 #include "render/shader_sources.h"
 #include "render/techniques/technique.h"
 #include "scene/camera.h"
@@ -16,14 +17,15 @@ namespace {
 
 constexpr GLuint kCullGroup = 64;  // cull.comp's local_size_x
 
-// cull.comp's CullCopy, std430: two vec4, then eight 4-byte fields.
+// cull.comp's CullCopy, std430: a mat4, two vec4, then eight 4-byte fields.
 struct CullCopy {
+  glm::mat4 model;
   glm::vec4 box_min, box_max;
-  uint32_t kind, first_sample, intervals;
+  uint32_t kind, first_row, intervals;
   float phase, start, end, duration;
   uint32_t levels = 1;  // mesh levels of its character (1: no mesh LOD)
 };
-static_assert(sizeof(CullCopy) == 64);
+static_assert(sizeof(CullCopy) == GpuCull::kBytesPerCopy);
 
 }  // namespace
 
@@ -38,6 +40,7 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   per_kind_uniform_ = program_.uniform("commands_per_kind");
   seconds_ = program_.uniform("seconds");
   copy_count_ = program_.uniform("copy_count");
+  colour_count_ = program_.uniform("colour_count");
   copy_count_value_ = view.copies();
   std::vector<CullCopy> copies(std::max<size_t>(copy_count_value_, 1));
   for (size_t i = 0; i < copy_count_value_; ++i) {
@@ -45,7 +48,8 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
     const BakedClock& clock = view.baked_clocks[i];
     const auto levels = static_cast<uint32_t>(
         view.mode.mesh_lod ? std::min(view.character_of(i).mesh_lods.size() + 1, kMeshLevels) : 1);
-    copies[i] = {glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], clock.first_sample,
+    const auto first_row = static_cast<uint32_t>(3 * clock.first_sample * meshes[view.kind[i]].joints);
+    copies[i] = {view.world[i], glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], first_row,
                  clock.intervals, clock.phase, clock.start, clock.end, clock.duration, levels};
   }
   copies_ = make_buffer(GL_SHADER_STORAGE_BUFFER, copies.size() * sizeof(CullCopy), copies.data(), GL_STATIC_DRAW);
@@ -88,25 +92,28 @@ void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
   glUniform1ui(per_kind_uniform_, static_cast<GLuint>(per_kind_));
   glUniform1d(seconds_, view.seconds);
   glUniform1ui(copy_count_, static_cast<GLuint>(copy_count_value_));
+  glUniform1ui(colour_count_, static_cast<GLuint>(kCopyColours.size()));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, copies_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, instances);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, commands_);
   glDispatchCompute(static_cast<GLuint>((copy_count_value_ + kCullGroup - 1) / kCullGroup), 1, 1);
-  // The draws read the records from storage and their counts as commands; the
-  // counts are read back, and the commands cleared next frame, by buffer calls.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // The draws read the records as per-instance attributes and their counts as
+  // commands; the counts are read back, and the commands cleared next frame, by
+  // buffer calls.
+  glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
-void GpuCull::draw(size_t k, const CharacterMesh& mesh, GLint first_instance_uniform, Counters& counters) const {
+void GpuCull::draw(size_t k, const CharacterMesh& mesh, GLuint instances, Counters& counters) const {
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_);
   // The CPU does not know how many copies are on screen: one draw per character
   // and level, always (a level's own vertex array holds its indices).
   for (size_t level = 0; level < per_kind_; ++level) {
     const size_t g = k * per_kind_ + level;
     if (!drawn_[g]) continue;
-    glUniform1ui(first_instance_uniform, cleared_[g].base_instance);
-    glBindVertexArray(mesh.draw_of(level, true).vao);
+    // The command's base_instance is where the level's records start.
+    glBindVertexArray(mesh.draw_of(level, true).instanced_vao);
+    glBindVertexBuffer(kInstanceStream, instances, 0, sizeof(GpuInstance));
     glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
                            reinterpret_cast<const void*>(static_cast<uintptr_t>(g * sizeof(Command))));
     ++counters.draw_calls;

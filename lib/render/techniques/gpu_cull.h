@@ -1,8 +1,9 @@
 // The GPU-driven crowd's cull pass (frustum gpu, issue 30): a compute shader
 // (shaders/cull.comp) tests every copy's world box against the camera and,
 // for each copy on screen, picks its mesh level (mesh LOD; else level 0),
-// appends its baked record to its character's and level's range of the
-// instance buffer and counts it in that range's indirect draw command. The
+// appends its record (the instanced path's GpuInstance, as baked's CPU-culled
+// frames send it) to its character's and level's range of the instance buffer
+// and counts it in that range's indirect draw command. The
 // CPU's work per frame is a few uniforms, one dispatch and one indirect draw
 // per character and level: it does not grow with the crowd.
 #pragma once
@@ -24,6 +25,9 @@ struct CharacterMesh;
 
 class GpuCull {
  public:
+  // Bytes a copy's placement, box and clock take on the GPU (cull.comp's CullCopy).
+  static constexpr uint64_t kBytesPerCopy = 128;
+
   // `first_record`: per character, or with mesh LOD per character and level
   // (k x kMeshLevels + level), where its records start in the instance buffer
   // (its character's copy count apart), and the end; `baked`: per character, whether it is drawn from a
@@ -35,15 +39,16 @@ class GpuCull {
   GpuCull& operator=(const GpuCull&) = delete;
 
   // Once a frame, before the passes: clears the instance counts and runs the
-  // pass, writing into `instances` (bound as the records baked.vert reads).
+  // pass, writing the records into `instances` (GpuFrameBuffers::instance_buffer).
   void run(const FrameView& view, GLuint instances, Counters& counters);
   // Draws character k's copies on screen, level by level, with the program
-  // bound (baked.vert, whose first_instance uniform is `first_instance_uniform`).
-  void draw(size_t k, const CharacterMesh& mesh, GLint first_instance_uniform, Counters& counters) const;
+  // bound (baked.vert), reading the records from `instances` as per-instance
+  // attributes through the level's instanced VAO.
+  void draw(size_t k, const CharacterMesh& mesh, GLuint instances, Counters& counters) const;
   // After the frame has finished: the copies on screen per character and mesh
   // level (k x kMeshLevels + level).
   void visible_counts(std::span<uint64_t> per_group) const;
-  // GPU storage held: the copies' boxes and clocks, the commands.
+  // GPU storage held: the copies' placements, boxes and clocks, the commands.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
  private:
@@ -55,7 +60,8 @@ class GpuCull {
   static_assert(sizeof(Command) == 20);
 
   GlProgram program_;
-  GLint planes_ = -1, view_projection_ = -1, thresholds_ = -1, per_kind_uniform_ = -1, seconds_ = -1, copy_count_ = -1;
+  GLint planes_ = -1, view_projection_ = -1, thresholds_ = -1, per_kind_uniform_ = -1, seconds_ = -1, copy_count_ = -1,
+        colour_count_ = -1;
   GLuint copies_ = 0, commands_ = 0;
   std::vector<Command> cleared_;  // the commands with no instance: each frame starts from them
   std::vector<uint8_t> drawn_;    // per character and level: drawn (a baked character's level it has)

@@ -24,19 +24,27 @@ void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Cou
 void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
-  glUniform3fv(program_.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
-               glm::value_ptr(kCopyColours[0]));
+  set_copy_colours(program_);
+  draw_instance_runs(buffers_, meshes, [](size_t) {}, counters);
+}
+
+void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes,
+                        const std::function<void(size_t)>& bind_character, Counters& counters) {
+  size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
-    const InstanceRun run = buffers_.run(group);
+    const InstanceRun run = buffers.run(group);
     if (run.count == 0) continue;
+    const size_t k = group / kMeshLevels;
+    if (k != bound) bind_character(bound = k);
     // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
-    const MeshLevelDraw level = meshes[group / kMeshLevels].draw_of(group % kMeshLevels, true);
+    const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true);
     glBindVertexArray(level.instanced_vao);
-    // One instanced draw per page the group's palettes take (one, below the storage-block limit).
+    // One instanced draw per page the group's palettes take (one, below the
+    // storage-block limit, and for records with no palette).
     for (uint32_t from = run.first; from < run.first + run.count;) {
-      const InstanceRun part = buffers_.page_run(group, from);
-      buffers_.bind_page(buffers_.page_of(from));
-      glBindVertexBuffer(kInstanceStream, buffers_.instance_buffer(),
+      const InstanceRun part = buffers.page_run(group, from);
+      buffers.bind_page(buffers.page_of(from));
+      glBindVertexBuffer(kInstanceStream, buffers.instance_buffer(),
                          static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
                          sizeof(GpuInstance));
       glDrawElementsInstancedBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index,
@@ -46,5 +54,12 @@ void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const Draw
     }
   }
 }
+
+void set_copy_colours(const GlProgram& program) {
+  glUniform3fv(program.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
+               glm::value_ptr(kCopyColours[0]));
+}
+
+std::string copy_colours_define() { return "#define COLOURS " + std::to_string(kCopyColours.size()) + "\n"; }
 
 }  // namespace crowdprof

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "render/character_meshes.h"
@@ -13,6 +15,21 @@
 #include "render/techniques/technique.h"
 
 namespace crowdprof {
+
+// The instanced path that instanced and baked share: one instanced draw per
+// draw group (character and mesh level: draw_group) and palette page of the
+// runs begin() reserved in `buffers`, each instance reading its record as
+// per-instance attributes through the level's instanced VAO. The program is
+// bound; `bind_character(k)` binds what character k's draws read besides
+// (baked: its table and joint count), before its first draw.
+void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes,
+                        const std::function<void(size_t)>& bind_character, Counters& counters);
+
+// kCopyColours into `program`'s uniform `colours`, which a record's colour
+// indexes; its shader is compiled with copy_colours_define() (COLOURS, their
+// number).
+void set_copy_colours(const GlProgram& program);
+std::string copy_colours_define();
 
 class Instanced final : public Technique {
  public:
