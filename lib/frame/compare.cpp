@@ -59,6 +59,7 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
   }
   for (size_t b = 0; b < benches.size(); ++b) {
     reports[b].digest = benches[b]->digest();
+    reports[b].digest_cpu_vertices = !benches[b]->gpu_skinned();
     reports[b].stores = benches[b]->streams_output() ? "streaming" : "regular";
     record_character_counters(*benches[b], reports[b].run);
     record_animation(*benches[b], reports[b]);

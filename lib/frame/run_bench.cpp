@@ -239,6 +239,7 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
   bench.collect_gpu_times();
   place_gpu_times(bench, options.warmup, report.frames);
   report.digest = bench.digest();
+  report.digest_cpu_vertices = !bench.gpu_skinned();
   if (probe) report.calibration_probe = kCalibrationProbeVersion;
   report.stores = bench.streams_output() ? "streaming" : "regular";
   record_character_counters(bench, report.run);

@@ -48,9 +48,9 @@ struct CheckResult {
   // multiply-adds (environment.simd, environment.fused_multiply_add).
   std::string baseline_simd, current_simd;
   bool baseline_fused = false, current_fused = false;
-  // Whether a digest hashes vertices the SIMD kernels skinned: false only when
-  // both runs recorded vertices_skinned 0 (every copy skinned on the GPU: the
-  // digest hashes palettes and records, which no kernel computes).
+  // Whether either digest hashes vertices the SIMD kernels skinned
+  // (Result::digest_cpu_vertices): false when both runs' renderers skinned
+  // every character, whose digests hash palettes and records no kernel computes.
   bool digest_of_kernels = true;
   // One run's kernels fused multiplies and adds and the other's did not, and
   // the digests hash their vertices: their last bits differ by design (within

@@ -344,6 +344,7 @@ Result make_result(const RunReport& report) {
   }
   r.counters.present.fill(true);
   r.digest = report.digest;
+  r.digest_cpu_vertices = report.digest_cpu_vertices;
   r.stores = report.stores;
   r.partial = report.partial;
   r.frames_planned = report.frames_planned;

@@ -19,6 +19,11 @@ struct RunReport {
   Environment environment;
   std::vector<FrameRecord> frames;  // after warm-up
   std::string digest;
+  // Whether the digest hashes vertices skinned on the CPU (by the SIMD
+  // kernels): false when the renderer skins every character (hwskin within its
+  // bone limit, buffer, instanced, compute, baked), whose digest hashes
+  // palettes and records no kernel computes, alike on every arithmetic.
+  bool digest_cpu_vertices = true;
   // How CPU skinning stored float vertices: "streaming" or "regular"
   // (skinning/output_stores.h); left out of the JSON when empty.
   std::string stores;

@@ -207,6 +207,12 @@ struct Result {
   ResultSamples samples;
   RecordedCounters counters;
   std::string digest;
+  // Whether the digest hashes vertices skinned on the CPU (by the SIMD
+  // kernels): false when the renderer skins every character (hwskin within its
+  // bone limit, buffer, instanced, compute, baked), whose digest hashes
+  // palettes and records no kernel computes, alike on every arithmetic.
+  // Absent in older results: true, as they may have.
+  bool digest_cpu_vertices = true;
   std::string stores;  // "streaming" or "regular" (skinning/output_stores.h); "" when not recorded
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames

@@ -27,8 +27,6 @@ using result_keys::counter_field;
 using result_keys::kCharacterCounters;
 using result_keys::pass_samples_key;
 
-// Every field is checked before use.
-
 // "/scene/file" as users read it: "scene.file".
 std::string dotted(const std::string& pointer) {
   std::string out = pointer.substr(1);
@@ -391,6 +389,7 @@ void read_runs(const Reader& in, Result& r) {
 
 void read_extras(const Reader& in, Result& r) {
   r.digest = in.text("/digest");
+  r.digest_cpu_vertices = in.flag_or("/digest_cpu_vertices", true);
   r.stores = in.text_or("/stores", "");
   r.partial = in.flag_or("/partial", false);
   r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;

@@ -1,5 +1,7 @@
 #include "profile/result_codec.h"
 
+#include <cmath>
+
 #include "frame/switch_table.h"
 #include "profile/result_keys.h"
 #include "profile/stats.h"
@@ -212,6 +214,7 @@ nlohmann::json result_to_json(const Result& r) {
   for (size_t i = 0; i < kCounterFields.size(); ++i)
     if (r.counters.present[i]) j["counters"][std::string(kCounterFields[i].name)] = r.counters.values.*kCounterFields[i].member;
   j["digest"] = r.digest;
+  j["digest_cpu_vertices"] = r.digest_cpu_vertices;
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.animation) j["animation"] = animation_json(*r.animation);
   if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);

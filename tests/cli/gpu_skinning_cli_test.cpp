@@ -43,6 +43,7 @@ TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
   EXPECT_LT(g.at("max_deviation_fraction").get<double>(), 0.05);  // a few percent would be visibly wrong
   EXPECT_GT(g.at("gpu_bytes").get<uint64_t>(), 0u);
   EXPECT_EQ(j.at("switches").at("skinning"), "baked");
+  EXPECT_EQ(j.at("digest_cpu_vertices"), false) << "the renderer skinned every copy";
   const nlohmann::json& k = j.at("counters");
   EXPECT_EQ(k.at("draw_calls"), 1);
   // An 80-byte record a copy on screen (render/gpu_frame_buffers.h, GpuInstance).

@@ -213,6 +213,25 @@ TEST(ResultCodec, ABadFieldIsNamed) {
   EXPECT_NE(refusal(no_digest).find("no \"digest\""), std::string::npos);
 }
 
+// Whether the digest hashes CPU-skinned vertices: written and read back; a
+// result from before the field reads as true (it may have); not a flag: named.
+TEST(ResultCodec, WhetherTheDigestHashesCpuVerticesReadsBack) {
+  json doc = to_json(test::fake_run("hwskin", 4, {1.0, 3.0, 2.0}, 0.5));
+  EXPECT_EQ(doc.at("digest_cpu_vertices"), true);
+  doc["digest_cpu_vertices"] = false;
+  EXPECT_FALSE(result_from_json(doc, "r.json").digest_cpu_vertices);
+  EXPECT_EQ(result_to_json(result_from_json(doc, "r.json")).at("digest_cpu_vertices"), false);
+  doc.erase("digest_cpu_vertices");
+  EXPECT_TRUE(result_from_json(doc, "r.json").digest_cpu_vertices);
+  doc["digest_cpu_vertices"] = "no";
+  try {
+    result_from_json(doc, "r.json");
+    ADD_FAILURE() << "a string was read as a flag";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("digest_cpu_vertices"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
