@@ -10,8 +10,8 @@
 // last frame (ozz quantises keys: not bit for bit).
 //
 // crowdprof's kernels renormalise every blended normal (a blend of rotations
-// shortens it; only a rigid joint's single-influence vertices keep theirs);
-// ozz's SkinningJob does not. With RENORMALISE 1 the driver does it after each
+// shortens it; only batches of 16 single-influence vertices on rigid joints
+// keep theirs); ozz's SkinningJob does not. With RENORMALISE 1 the driver does it after each
 // job, as an ozz user would, with the same guarded, correctly rounded square
 // root and divide, 4 normals at a time (ozz's SIMD width), so that both do the
 // same work.

@@ -1,7 +1,8 @@
 // The one reader and writer of results (docs/formats.md; result_reader.cpp,
 // result_writer.cpp): JSON in, a checked Result out, and back. Nothing else in
-// crowdprof reads a result's fields by name. Inputs may come from strangers: every field is checked before use and
-// a bad one is an InputError naming the file and the field.
+// crowdprof reads a result's fields by name. Inputs may come from strangers:
+// every field is checked before use and a bad one is an InputError naming the
+// file and the field.
 #pragma once
 
 #include <string>

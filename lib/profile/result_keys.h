@@ -2,11 +2,12 @@
 // reader (result_reader.cpp) share. Internal to those two.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 #include "profile/counters.h"
-#include "profile/result.h"
+#include "profile/gpu_passes.h"
 
 namespace crowdprof::result_keys {
 
