@@ -127,34 +127,35 @@ HWY_INLINE V MulAdd(V a, V b, V c) {
     return hn::Add(hn::Mul(a, b), c);
 }
 
-// Lanes [lane, lane + Lanes(d)) of one batch, each step in the same order on
-// every target.
-template <bool kPacked, bool kStream, class D>
-HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
-                          const float* palette, bool normalise, float* positions, float* normals,
-                          const SkinKernelArgs& args, PackedOut packed) {
-  using V = hn::Vec<D>;
-  // The blended matrix's 3x4 part, a[column][row], one lane per vertex.
-  V a[4][3];
+// The stages of skinning lanes [lane, lane + Lanes(d)) of one batch, each step
+// in the same order on every target.
+
+// The blended matrix's 3x4 part, a[column][row], one lane per vertex.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void BlendMatrices(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
+                              const float* palette, V (&a)[4][3]) {
   if (joint_count == 0) {
     for (auto& column : a)
       for (V& v : column) v = hn::Zero(d);
-  } else {
-    const V w = hn::Load(d, rows + 6 * kSkinBatch + lane);
-    const float* m = palette + 16 * size_t{joints[0]};
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, hn::Set(d, m[4 * c + r]));
+    return;
   }
+  const V w = hn::Load(d, rows + 6 * kSkinBatch + lane);
+  const float* m = palette + 16 * size_t{joints[0]};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, hn::Set(d, m[4 * c + r]));
   for (size_t u = 1; u < joint_count; ++u) {
-    const V w = hn::Load(d, rows + (6 + u) * kSkinBatch + lane);
-    const float* m = palette + 16 * size_t{joints[u]};
+    const V wu = hn::Load(d, rows + (6 + u) * kSkinBatch + lane);
+    const float* mu = palette + 16 * size_t{joints[u]};
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(w, hn::Set(d, m[4 * c + r]), a[c][r]);
+      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(wu, hn::Set(d, mu[4 * c + r]), a[c][r]);
   }
+}
+
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void TransformPosition(D d, const V (&a)[4][3], const float* rows, size_t lane, V (&position)[3]) {
   const V px = hn::Load(d, rows + 0 * kSkinBatch + lane);
   const V py = hn::Load(d, rows + 1 * kSkinBatch + lane);
   const V pz = hn::Load(d, rows + 2 * kSkinBatch + lane);
-  V position[3];
   for (int r = 0; r < 3; ++r)
     // Fused, the translation starts the chain; separate, it comes last (the
     // order these kernels always had: SSE4's digests did not change).
@@ -162,32 +163,93 @@ HWY_INLINE void SkinLanes(D d, const float* rows, size_t lane, const uint16_t* j
                       ? MulAdd(a[2][r], pz, MulAdd(a[1][r], py, MulAdd(a[0][r], px, a[3][r])))
                       : hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)),
                                 a[3][r]);
-  if constexpr (!kPacked) StoreXyz<kStream>(d, position[0], position[1], position[2], positions);
-  V out[3];
+}
 
+// The normal by the 3x3 part, not yet renormalised.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void TransformNormal(D d, const V (&a)[4][3], const float* rows, size_t lane, V (&normal)[3]) {
   const V nx = hn::Load(d, rows + 3 * kSkinBatch + lane);
   const V ny = hn::Load(d, rows + 4 * kSkinBatch + lane);
   const V nz = hn::Load(d, rows + 5 * kSkinBatch + lane);
-  for (int r = 0; r < 3; ++r)
-    out[r] = MulAdd(a[2][r], nz, MulAdd(a[1][r], ny, hn::Mul(a[0][r], nx)));
+  for (int r = 0; r < 3; ++r) normal[r] = MulAdd(a[2][r], nz, MulAdd(a[1][r], ny, hn::Mul(a[0][r], nx)));
+}
+
+// 1 / |normal|: the correctly rounded square root and divide (never an
+// approximate reciprocal square root, whose bits differ between CPU makers); a
+// normal of zero (or NaN) length gets 0, so it comes out zero.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V InverseLength(D d, const V (&normal)[3]) {
+  const V length2 = MulAdd(normal[2], normal[2], MulAdd(normal[1], normal[1], hn::Mul(normal[0], normal[0])));
+  return hn::IfThenElseZero(hn::Gt(length2, hn::Zero(d)), hn::Div(hn::Set(d, 1.0f), hn::Sqrt(length2)));
+}
+
+// Packed output: every stage of the lanes, then their codes.
+template <class D>
+HWY_INLINE void SkinLanesPacked(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
+                                const float* palette, bool normalise, const SkinKernelArgs& args, PackedOut out) {
+  using V = hn::Vec<D>;
+  V a[4][3], position[3], normal[3];
+  BlendMatrices(d, rows, lane, joints, joint_count, palette, a);
+  TransformPosition(d, a, rows, lane, position);
+  TransformNormal(d, a, rows, lane, normal);
   if (normalise) {
-    const V length2 = MulAdd(out[2], out[2], MulAdd(out[1], out[1], hn::Mul(out[0], out[0])));
-    // The correctly rounded square root and divide (never an approximate
-    // reciprocal square root, whose bits differ between CPU makers); a normal
-    // of zero (or NaN) length comes out zero.
-    const V inverse =
-        hn::IfThenElseZero(hn::Gt(length2, hn::Zero(d)), hn::Div(hn::Set(d, 1.0f), hn::Sqrt(length2)));
-    for (V& v : out) v = hn::Mul(v, inverse);
+    const V inverse = InverseLength(d, normal);
+    for (V& v : normal) v = hn::Mul(v, inverse);
   }
-  if constexpr (kPacked)
-    StorePacked(d, position, out, args, packed);
+  StorePacked(d, position, normal, args, out);
+}
+
+// Float output is software-pipelined: a group of lanes' normal waits for its
+// square root and divide (about 36 cycles on AVX-512) while the next group's
+// matrices blend, instead of holding the out-of-order window until they end
+// (0.94x the time at AVX3 and AVX2, docs/performance.md). Same steps, same bits.
+template <class D>
+struct PendingNormal {
+  hn::Vec<D> normal[3];
+  hn::Vec<D> inverse;
+  float* out = nullptr;  // nullptr: nothing pending
+  bool normalise = false;
+  bool stream = false;
+};
+
+template <class D>
+HWY_INLINE void StoreNormal(D d, PendingNormal<D>& pending) {
+  if (!pending.out) return;
+  if (pending.normalise)
+    for (auto& v : pending.normal) v = hn::Mul(v, pending.inverse);
+  if (pending.stream)
+    StoreXyz<true>(d, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
   else
-    StoreXyz<kStream>(d, out[0], out[1], out[2], normals);
+    StoreXyz<false>(d, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
+  pending.out = nullptr;
+}
+
+// Skins lanes into float positions (stored) and `pending` (the normal, stored
+// by the next call or StoreNormal), after storing the normal pending before.
+template <class D>
+HWY_INLINE void SkinLanesFloat(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
+                               const float* palette, bool normalise, bool stream, float* positions, float* normals,
+                               PendingNormal<D>& pending) {
+  using V = hn::Vec<D>;
+  V a[4][3], position[3];
+  BlendMatrices(d, rows, lane, joints, joint_count, palette, a);
+  StoreNormal(d, pending);
+  TransformNormal(d, a, rows, lane, pending.normal);
+  if (normalise) pending.inverse = InverseLength(d, pending.normal);
+  pending.out = normals;
+  pending.normalise = normalise;
+  pending.stream = stream;
+  TransformPosition(d, a, rows, lane, position);
+  if (stream)
+    StoreXyz<true>(d, position[0], position[1], position[2], positions);
+  else
+    StoreXyz<false>(d, position[0], position[1], position[2], positions);
 }
 
 template <bool kPacked>
 void SkinBatches(const SkinKernelArgs& args) {
-  const hn::CappedTag<float, kSkinBatch> d;
+  using D = hn::CappedTag<float, kSkinBatch>;
+  const D d;
   const size_t lanes = hn::Lanes(d);
   const SkinningPlan& plan = *args.plan;
   const size_t first_batch = args.first_vertex / kSkinBatch;
@@ -196,6 +258,7 @@ void SkinBatches(const SkinKernelArgs& args) {
   alignas(64) float scratch_normals[3 * kSkinBatch];
   alignas(64) uint16_t scratch_codes[3 * kSkinBatch];
   alignas(64) uint32_t scratch_words[kSkinBatch];
+  PendingNormal<D> pending;
   for (size_t b = first_batch; b < end_batch; ++b) {
     const SkinBatch& batch = plan.batches[b];
     const float* rows = plan.data.data() + batch.data;
@@ -206,31 +269,22 @@ void SkinBatches(const SkinKernelArgs& args) {
     // ends go through scratch and only the range's vertices are copied out.
     const bool whole = first >= args.first_vertex && first + kSkinBatch <= args.end_vertex;
     const size_t at = first - args.first_vertex;  // wraps when !whole, then unused
-    float* positions = nullptr;
-    float* normals = nullptr;
-    PackedOut packed{nullptr, nullptr};
-    if constexpr (kPacked)
-      packed = whole ? PackedOut{args.packed_positions + 3 * at, args.packed_normals + at}
-                     : PackedOut{scratch_codes, scratch_words};
-    else {
-      positions = whole ? args.positions + 3 * at : scratch_positions;
-      normals = whole ? args.normals + 3 * at : scratch_normals;
-    }
-    // Streamed: whole batches whose outputs start on a cache line (a batch is
-    // 192 bytes of positions and as many of normals, three lines each).
-    const bool stream = !kPacked && args.stream && whole && reinterpret_cast<uintptr_t>(positions) % 64 == 0 &&
-                        reinterpret_cast<uintptr_t>(normals) % 64 == 0;
-    for (size_t lane = 0; lane < kSkinBatch; lane += lanes) {
-      PackedOut lane_out{nullptr, nullptr};
-      if constexpr (kPacked) lane_out = PackedOut{packed.positions + 3 * lane, packed.normals + lane};
-      float* lane_positions = kPacked ? nullptr : positions + 3 * lane;
-      float* lane_normals = kPacked ? nullptr : normals + 3 * lane;
-      if (stream)
-        SkinLanes<kPacked, true>(d, rows, lane, joints, batch.joint_count, args.palette, normalise, lane_positions,
-                                 lane_normals, args, lane_out);
-      else
-        SkinLanes<kPacked, false>(d, rows, lane, joints, batch.joint_count, args.palette, normalise,
-                                  lane_positions, lane_normals, args, lane_out);
+    if constexpr (kPacked) {
+      const PackedOut out = whole ? PackedOut{args.packed_positions + 3 * at, args.packed_normals + at}
+                                  : PackedOut{scratch_codes, scratch_words};
+      for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
+        SkinLanesPacked(d, rows, lane, joints, batch.joint_count, args.palette, normalise, args,
+                        PackedOut{out.positions + 3 * lane, out.normals + lane});
+    } else {
+      float* positions = whole ? args.positions + 3 * at : scratch_positions;
+      float* normals = whole ? args.normals + 3 * at : scratch_normals;
+      // Streamed: whole batches whose outputs start on a cache line (a batch is
+      // 192 bytes of positions and as many of normals, three lines each).
+      const bool stream = args.stream && whole && reinterpret_cast<uintptr_t>(positions) % 64 == 0 &&
+                          reinterpret_cast<uintptr_t>(normals) % 64 == 0;
+      for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
+        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, args.palette, normalise, stream,
+                       positions + 3 * lane, normals + 3 * lane, pending);
     }
     if (!whole) {
       const size_t from = std::max(first, args.first_vertex);
@@ -241,6 +295,7 @@ void SkinBatches(const SkinKernelArgs& args) {
         std::memcpy(args.packed_normals + (from - args.first_vertex), scratch_words + (from - first),
                     (to - from) * sizeof(uint32_t));
       } else {
+        StoreNormal(d, pending);  // into scratch, before it is copied out
         std::memcpy(args.positions + 3 * (from - args.first_vertex), scratch_positions + 3 * (from - first),
                     3 * (to - from) * sizeof(float));
         std::memcpy(args.normals + 3 * (from - args.first_vertex), scratch_normals + 3 * (from - first),
@@ -248,6 +303,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       }
     }
   }
+  if constexpr (!kPacked) StoreNormal(d, pending);
   // Streamed stores are weakly ordered: fenced before this thread hands the
   // output on (a task's end, a join), so that whoever reads it next sees it.
   if (!kPacked && args.stream) hwy::FlushStream();
