@@ -70,8 +70,7 @@ HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
   }
 }
 
-// Where one batch's lanes go: float x, y, z, or the packed format's codes
-// (packed_vertex.h), quantised with min and scale.
+// Where a group of lanes' packed codes go (packed_vertex.h).
 struct PackedOut {
   uint16_t* positions;
   uint32_t* normals;
@@ -202,7 +201,7 @@ HWY_INLINE void SkinLanesPacked(D d, const float* rows, size_t lane, const uint1
 // Float output is software-pipelined: a group of lanes' normal waits for its
 // square root and divide (about 36 cycles on AVX-512) while the next group's
 // matrices blend, instead of holding the out-of-order window until they end
-// (0.94x the time at AVX3 and AVX2, docs/performance.md). Same steps, same bits.
+// (0.92-0.97x the time, docs/performance.md). Same steps, same bits.
 template <class D>
 struct PendingNormal {
   hn::Vec<D> normal[3];
