@@ -13,6 +13,10 @@
 # the blended normals, which crowdprof's kernels do: the rows marked
 # "+ renormalised" have ozz's driver do it after each job, so that both do the
 # same work (and ozz's normals then lie within a rounding of crowdprof's).
+# Then the same rows in one process each: ozz_driver runs crowdprof's jobs too
+# (the library's, as the frame runs them), in blocks of 10 frames alternating
+# with ozz's, so that the host's changes of speed between processes, which
+# move the pairs' ratios, hit both alike.
 # Needs ./setup.sh build done first.
 # WORK (default /tmp/crowdprof-ozz) holds the builds; FRAMES (120) per run.
 set -euo pipefail
@@ -76,4 +80,17 @@ print(f"crowdprof {simd} / ozz {variant}: ratio median {statistics.median(r):.2f
       f"both counted {last['poses_updated']} poses, {last['vertices_skinned']} vertices a frame; ozz's vertices within "
       f"{last['max_delta']:.2g} of crowdprof's ({100 * last['max_delta_of_height']:.3f}% of the height)")
 PY
+done
+
+echo "In one process each, 2 x $frames frames in blocks of 10 alternating (ozz_driver INTERLEAVE)"
+for row in "$best native 0" "AVX2 avx2 0" "SSE4 sse4 0" "$best native 1" "AVX2 avx2 1" "SSE4 sse4 1"; do
+  read -r simd variant renormalise <<< "$row"
+  CROWDPROF_SIMD="$simd" "$work/$variant/ozz_driver" "$scene" 160 $((2 * frames)) 10 "$renormalise" 1 |
+    python3 -c 'import json, sys
+r, variant = json.load(sys.stdin), sys.argv[1]
+if r["renormalised"]: variant += " + renormalised"
+q1, med, q3, ours, theirs, target = (r[k] for k in ("ratio_q1", "ratio_median", "ratio_q3",
+                                                     "crowdprof_median_ms", "median_ms", "simd"))
+print(f"crowdprof {target} / ozz {variant}: ratio median {med:.2f} (quartiles {q1:.2f}-{q3:.2f}); "
+      f"frame medians {ours:.3f} and {theirs:.3f} ms")' "$variant"
 done

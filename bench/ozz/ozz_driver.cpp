@@ -24,7 +24,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,10 @@
 #include "animation/sampling.h"
 #include "asset/gltf_loader.h"
 #include "asset/mesh_lod.h"
+#include "skinning/output_buffer.h"
+#include "skinning/output_stores.h"
+#include "skinning/packed_vertex.h"
+#include "skinning/simd_target.h"
 #include "skinning/skinning.h"
 #include "skinning/skinning_plan.h"
 
@@ -192,13 +198,19 @@ std::vector<Part> parts_of(const crowdprof::SkinnedMesh& mesh, const std::vector
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: ozz_driver CHARACTER.glb [COPIES [FRAMES [WARMUP [RENORMALISE]]]]\n");
+    std::fprintf(stderr, "usage: ozz_driver CHARACTER.glb [COPIES [FRAMES [WARMUP [RENORMALISE [INTERLEAVE]]]]]\n");
     return 2;
   }
   const size_t copies = argc > 2 ? std::stoul(argv[2]) : 160;
   const size_t frames = argc > 3 ? std::stoul(argv[3]) : 120;
   const size_t warmup = argc > 4 ? std::stoul(argv[4]) : 10;
   const bool renormalise = argc > 5 && std::stoul(argv[5]) != 0;
+  // INTERLEAVE 1: crowdprof's jobs do the same frames too, in this process, in
+  // blocks alternating with ozz's, so that a host that changes speed between
+  // processes changes both alike (docs/performance.md).
+  const bool interleave = argc > 6 && std::stoul(argv[6]) != 0;
+  if (const char* simd = std::getenv(crowdprof::kSimdEnvironmentVariable); simd && *simd)
+    if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why.c_str());
   const Character c = crowdprof::load_character(argv[1]);
   if (c.actions.empty()) fail("the character has no action");
   const crowdprof::Skeleton& s = c.skeleton;
@@ -249,13 +261,51 @@ int main(int argc, char** argv) {
     }
   }
 
+  // crowdprof's side of an interleaved run: its jobs, per copy, as its frame
+  // runs them with culling off (threaded mode's bundled bindings, one thread),
+  // into output laid out as the frame lays it out: every copy's positions in
+  // one allocation, its normals in another, each copy on a cache line (huge
+  // pages where Linux gives them, output_buffer.h).
+  struct CrowdprofCopy {
+    crowdprof::LocalPose pose;
+    crowdprof::SamplingCursor cursor;
+    std::vector<glm::mat4> model;
+    std::vector<crowdprof::SkinMatrix> palette;
+  };
+  const crowdprof::ActionBindings bindings = crowdprof::bind_action(s, action);
+  crowdprof::SkinningPlan plan;
+  crowdprof::build_skinning_plan(c.mesh, s.joint_count(), &plan);
+  const size_t n = c.mesh.vertex_count();
+  std::vector<CrowdprofCopy> ours(interleave ? copies : 0);
+  for (CrowdprofCopy& cc : ours) {
+    crowdprof::reset_to_rest(s, &cc.pose);
+    crowdprof::reset_cursor(action, &cc.cursor);
+    cc.model.resize(s.joint_count());
+    cc.palette.resize(s.joint_count());
+  }
+  size_t stride = n;  // vec3s from one copy's output to the next's
+  while ((stride * sizeof(glm::vec3)) % 64) ++stride;
+  using Output = std::vector<glm::vec3, crowdprof::CacheLineAllocator<glm::vec3>>;
+  Output our_positions(ours.size() * stride), our_normals(ours.size() * stride);
+  const bool streaming = crowdprof::stream_skinned_output(ours.size() * n * crowdprof::kFloatVertexBytes);
+  auto crowdprof_frame = [&](float time) {
+    for (size_t i = 0; i < ours.size(); ++i) {
+      CrowdprofCopy& cc = ours[i];
+      crowdprof::run_job(crowdprof::SamplingJob{&action, time, bindings.targets, &cc.cursor, &cc.pose}, "SamplingJob");
+      crowdprof::run_job(crowdprof::LocalToModelJob{&s, &cc.pose, cc.model}, "LocalToModelJob");
+      crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, cc.model, cc.palette}, "SkinningMatricesJob");
+      crowdprof::SkinningJob skin{cc.palette, &plan, 0, n, std::span(our_positions.data() + i * stride, n),
+                                  std::span(our_normals.data() + i * stride, n)};
+      skin.streaming_stores = streaming;
+      crowdprof::run_job(skin, "SkinningJob");
+    }
+  };
+  auto ms_since = [](std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
+
   const double fps = 60.0, duration = action.duration();
-  std::vector<double> frame_ms;
-  float last_time = 0;
-  for (size_t f = 0; f < warmup + frames; ++f) {
-    const double t = duration > 0 ? std::fmod(static_cast<double>(f) / fps, duration) : 0.0;
-    last_time = action.start + static_cast<float>(t);
-    const auto start = std::chrono::steady_clock::now();
+  auto ozz_frame = [&](double t) {
     for (CopyState& cs : state) {
       oa::SamplingJob sampling;
       sampling.animation = animation.get();
@@ -293,26 +343,60 @@ int main(int argc, char** argv) {
         if (renormalise && part.influences > 1) renormalise_normals(cs.normals[p].data(), part.vertex.size());
       }
     }
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (f >= warmup) frame_ms.push_back(ms);
+  };
+  // Frame f's time in the action, as crowdprof's --actions shared plays it.
+  auto time_of = [&](size_t f) { return duration > 0 ? std::fmod(static_cast<double>(f) / fps, duration) : 0.0; };
+  std::vector<double> frame_ms, crowdprof_ms, ratios;
+  if (!interleave) {
+    for (size_t f = 0; f < warmup + frames; ++f) {
+      const auto start = std::chrono::steady_clock::now();
+      ozz_frame(time_of(f));
+      if (f >= warmup) frame_ms.push_back(ms_since(start));
+    }
+  } else {
+    // Blocks of 10 frames, ozz's then crowdprof's over the same frame times,
+    // which goes first alternating: one block's ratio is the two sums'.
+    // Alternating every frame cost crowdprof's side about 1.2x (ratio 0.49
+    // against 0.36-0.41 in blocks of 10 or 40): the switch, not the work.
+    constexpr size_t kBlock = 10;
+    for (size_t f = 0; f < warmup; ++f) {
+      ozz_frame(time_of(f));
+      crowdprof_frame(action.start + static_cast<float>(time_of(f)));
+    }
+    for (size_t first = warmup, block = 0; first < warmup + frames; first += kBlock, ++block) {
+      const size_t end = std::min(first + kBlock, warmup + frames);
+      double sums[2] = {0, 0};  // ozz, crowdprof
+      for (int side : {static_cast<int>(block % 2), static_cast<int>(1 - block % 2)})
+        for (size_t f = first; f < end; ++f) {
+          const auto start = std::chrono::steady_clock::now();
+          if (side == 0)
+            ozz_frame(time_of(f));
+          else
+            crowdprof_frame(action.start + static_cast<float>(time_of(f)));
+          const double ms = ms_since(start);
+          sums[side] += ms;
+          (side == 0 ? frame_ms : crowdprof_ms).push_back(ms);
+        }
+      ratios.push_back(sums[1] / sums[0]);
+    }
   }
-  std::sort(frame_ms.begin(), frame_ms.end());
-  const double median = frame_ms.empty() ? 0.0 : frame_ms[frame_ms.size() / 2];
+  const float last_time = action.start + static_cast<float>(time_of(warmup + frames - 1));
+  auto quantile = [](std::vector<double> v, size_t num, size_t den) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[(v.size() - 1) * num / den];
+  };
+  const double median = quantile(frame_ms, 1, 2);
 
   // The same copy by crowdprof's jobs at the last frame's time: how far ozz's vertices are.
   crowdprof::LocalPose pose;
   crowdprof::SamplingCursor cursor;
   crowdprof::reset_to_rest(s, &pose);
   crowdprof::reset_cursor(action, &cursor);
-  const crowdprof::ActionBindings bindings = crowdprof::bind_action(s, action);
   std::vector<glm::mat4> model(s.joint_count());
   std::vector<crowdprof::SkinMatrix> palette(s.joint_count());
   crowdprof::run_job(crowdprof::SamplingJob{&action, last_time, bindings.targets, &cursor, &pose}, "SamplingJob");
   crowdprof::run_job(crowdprof::LocalToModelJob{&s, &pose, model}, "LocalToModelJob");
   crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, model, palette}, "SkinningMatricesJob");
-  crowdprof::SkinningPlan plan;
-  crowdprof::build_skinning_plan(c.mesh, s.joint_count(), &plan);
-  const size_t n = c.mesh.vertex_count();
   std::vector<glm::vec3> positions(n), normals(n);
   crowdprof::run_job(crowdprof::SkinningJob{palette, &plan, 0, n, positions, normals}, "SkinningJob");
   double max_delta = 0, max_normal_delta = 0;
@@ -329,8 +413,12 @@ int main(int argc, char** argv) {
   const double height = crowdprof::bind_pose_height(c.mesh);
   std::printf(
       "{\"median_ms\": %.4f, \"frames\": %zu, \"copies\": %zu, \"vertices_skinned\": %zu, \"poses_updated\": %zu, "
-      "\"max_delta\": %.3g, \"max_delta_of_height\": %.3g, \"renormalised\": %s, \"max_normal_delta\": %.3g}\n",
+      "\"max_delta\": %.3g, \"max_delta_of_height\": %.3g, \"renormalised\": %s, \"max_normal_delta\": %.3g, "
+      "\"simd\": \"%s\", \"interleaved\": %s, \"crowdprof_median_ms\": %.4f, \"ratio_q1\": %.4f, "
+      "\"ratio_median\": %.4f, \"ratio_q3\": %.4f}\n",
       median, frame_ms.size(), copies, copies * n, copies, max_delta, height > 0 ? max_delta / height : 0.0,
-      renormalise ? "true" : "false", max_normal_delta);
+      renormalise ? "true" : "false", max_normal_delta, crowdprof::active_simd_target().c_str(),
+      interleave ? "true" : "false", quantile(crowdprof_ms, 1, 2), quantile(ratios, 1, 4), quantile(ratios, 1, 2),
+      quantile(ratios, 3, 4));
   return 0;
 }
