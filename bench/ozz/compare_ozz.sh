@@ -55,6 +55,7 @@ field() { python3 -c 'import json,sys; print(json.loads(sys.argv[1])[sys.argv[2]
 
 echo "160 copies of $(basename "$scene"), culling off, one thread, $pairs interleaved pairs, $frames frames each"
 best=$("$crowdprof" --version | sed -n 's/.*SIMD \([A-Z0-9_]*\).*/\1/p')
+[ -n "$best" ] || { echo "compare_ozz.sh: no SIMD target in \`$crowdprof --version\`" >&2; exit 1; }
 for pair in "$best native 0" "AVX2 native 0" "AVX2 avx2 0" "SSE4 native 0" "SSE4 sse4 0" \
   "$best native 1" "AVX2 avx2 1" "SSE4 sse4 1"; do
   read -r simd variant renormalise <<< "$pair"

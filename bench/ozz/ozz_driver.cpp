@@ -209,8 +209,9 @@ int main(int argc, char** argv) {
   // blocks alternating with ozz's, so that a host that changes speed between
   // processes changes both alike (docs/performance.md).
   const bool interleave = argc > 6 && std::stoul(argv[6]) != 0;
+  if (copies == 0 || frames == 0) fail("COPIES and FRAMES must be at least 1");
   if (const char* simd = std::getenv(crowdprof::kSimdEnvironmentVariable); simd && *simd)
-    if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why.c_str());
+    if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why);
   const Character c = crowdprof::load_character(argv[1]);
   if (c.actions.empty()) fail("the character has no action");
   const crowdprof::Skeleton& s = c.skeleton;
@@ -261,16 +262,15 @@ int main(int argc, char** argv) {
     }
   }
 
-  // crowdprof's side of an interleaved run: its jobs, per copy, as its frame
-  // runs them with culling off (threaded mode's bundled bindings, one thread),
-  // into output laid out as the frame lays it out: every copy's positions in
-  // one allocation, its normals in another, each copy on a cache line (huge
-  // pages where Linux gives them, output_buffer.h).
+  // crowdprof's side of an interleaved run: its jobs per copy with culling
+  // off (the action's bundled bindings, one thread), with the frame's memory:
+  // one model-space scratch for every copy (the frame keeps one a thread), all
+  // palettes in one array, every copy's positions in one allocation and its
+  // normals in another, each copy on a cache line (huge pages where Linux gives
+  // them, output_buffer.h).
   struct CrowdprofCopy {
     crowdprof::LocalPose pose;
     crowdprof::SamplingCursor cursor;
-    std::vector<glm::mat4> model;
-    std::vector<crowdprof::SkinMatrix> palette;
   };
   const crowdprof::ActionBindings bindings = crowdprof::bind_action(s, action);
   crowdprof::SkinningPlan plan;
@@ -280,9 +280,10 @@ int main(int argc, char** argv) {
   for (CrowdprofCopy& cc : ours) {
     crowdprof::reset_to_rest(s, &cc.pose);
     crowdprof::reset_cursor(action, &cc.cursor);
-    cc.model.resize(s.joint_count());
-    cc.palette.resize(s.joint_count());
   }
+  const size_t joint_count = s.joint_count();
+  std::vector<glm::mat4> our_model(joint_count);
+  std::vector<crowdprof::SkinMatrix> our_palettes(ours.size() * joint_count);
   size_t stride = n;  // vec3s from one copy's output to the next's
   while ((stride * sizeof(glm::vec3)) % 64) ++stride;
   using Output = std::vector<glm::vec3, crowdprof::CacheLineAllocator<glm::vec3>>;
@@ -292,9 +293,10 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < ours.size(); ++i) {
       CrowdprofCopy& cc = ours[i];
       crowdprof::run_job(crowdprof::SamplingJob{&action, time, bindings.targets, &cc.cursor, &cc.pose}, "SamplingJob");
-      crowdprof::run_job(crowdprof::LocalToModelJob{&s, &cc.pose, cc.model}, "LocalToModelJob");
-      crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, cc.model, cc.palette}, "SkinningMatricesJob");
-      crowdprof::SkinningJob skin{cc.palette, &plan, 0, n, std::span(our_positions.data() + i * stride, n),
+      const std::span<crowdprof::SkinMatrix> palette(our_palettes.data() + i * joint_count, joint_count);
+      crowdprof::run_job(crowdprof::LocalToModelJob{&s, &cc.pose, our_model}, "LocalToModelJob");
+      crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, our_model, palette}, "SkinningMatricesJob");
+      crowdprof::SkinningJob skin{palette, &plan, 0, n, std::span(our_positions.data() + i * stride, n),
                                   std::span(our_normals.data() + i * stride, n)};
       skin.streaming_stores = streaming;
       crowdprof::run_job(skin, "SkinningJob");
@@ -377,13 +379,18 @@ int main(int argc, char** argv) {
           sums[side] += ms;
           (side == 0 ? frame_ms : crowdprof_ms).push_back(ms);
         }
-      ratios.push_back(sums[1] / sums[0]);
+      if (sums[0] > 0) ratios.push_back(sums[1] / sums[0]);
     }
   }
   const float last_time = action.start + static_cast<float>(time_of(warmup + frames - 1));
+  // Interpolated between order statistics, as crowdprof's medians are.
   auto quantile = [](std::vector<double> v, size_t num, size_t den) {
+    if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[(v.size() - 1) * num / den];
+    const double at = static_cast<double>((v.size() - 1) * num) / static_cast<double>(den);
+    const size_t below = static_cast<size_t>(at);
+    const double above = below + 1 < v.size() ? v[below + 1] : v[below];
+    return v[below] + (above - v[below]) * (at - static_cast<double>(below));
   };
   const double median = quantile(frame_ms, 1, 2);
 
