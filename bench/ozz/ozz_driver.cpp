@@ -289,18 +289,22 @@ int main(int argc, char** argv) {
   using Output = std::vector<glm::vec3, crowdprof::CacheLineAllocator<glm::vec3>>;
   Output our_positions(ours.size() * stride), our_normals(ours.size() * stride);
   const bool streaming = crowdprof::stream_skinned_output(ours.size() * n * crowdprof::kFloatVertexBytes);
+  // One copy's frame by crowdprof's jobs: sample, pose, palette, skin.
+  auto skin_copy = [&](float time, CrowdprofCopy& cc, std::span<glm::mat4> model,
+                       std::span<crowdprof::SkinMatrix> palette, std::span<glm::vec3> positions,
+                       std::span<glm::vec3> normals, bool streaming_stores) {
+    crowdprof::run_job(crowdprof::SamplingJob{&action, time, bindings.targets, &cc.cursor, &cc.pose}, "SamplingJob");
+    crowdprof::run_job(crowdprof::LocalToModelJob{&s, &cc.pose, model}, "LocalToModelJob");
+    crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, model, palette}, "SkinningMatricesJob");
+    crowdprof::SkinningJob skin{palette, &plan, 0, n, positions, normals};
+    skin.streaming_stores = streaming_stores;
+    crowdprof::run_job(skin, "SkinningJob");
+  };
   auto crowdprof_frame = [&](float time) {
-    for (size_t i = 0; i < ours.size(); ++i) {
-      CrowdprofCopy& cc = ours[i];
-      crowdprof::run_job(crowdprof::SamplingJob{&action, time, bindings.targets, &cc.cursor, &cc.pose}, "SamplingJob");
-      const std::span<crowdprof::SkinMatrix> palette(our_palettes.data() + i * joint_count, joint_count);
-      crowdprof::run_job(crowdprof::LocalToModelJob{&s, &cc.pose, our_model}, "LocalToModelJob");
-      crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, our_model, palette}, "SkinningMatricesJob");
-      crowdprof::SkinningJob skin{palette, &plan, 0, n, std::span(our_positions.data() + i * stride, n),
-                                  std::span(our_normals.data() + i * stride, n)};
-      skin.streaming_stores = streaming;
-      crowdprof::run_job(skin, "SkinningJob");
-    }
+    for (size_t i = 0; i < ours.size(); ++i)
+      skin_copy(time, ours[i], our_model, std::span(our_palettes.data() + i * joint_count, joint_count),
+                std::span(our_positions.data() + i * stride, n), std::span(our_normals.data() + i * stride, n),
+                streaming);
   };
   auto ms_since = [](std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -395,17 +399,13 @@ int main(int argc, char** argv) {
   const double median = quantile(frame_ms, 1, 2);
 
   // The same copy by crowdprof's jobs at the last frame's time: how far ozz's vertices are.
-  crowdprof::LocalPose pose;
-  crowdprof::SamplingCursor cursor;
-  crowdprof::reset_to_rest(s, &pose);
-  crowdprof::reset_cursor(action, &cursor);
-  std::vector<glm::mat4> model(s.joint_count());
-  std::vector<crowdprof::SkinMatrix> palette(s.joint_count());
-  crowdprof::run_job(crowdprof::SamplingJob{&action, last_time, bindings.targets, &cursor, &pose}, "SamplingJob");
-  crowdprof::run_job(crowdprof::LocalToModelJob{&s, &pose, model}, "LocalToModelJob");
-  crowdprof::run_job(crowdprof::SkinningMatricesJob{&s, model, palette}, "SkinningMatricesJob");
+  CrowdprofCopy reference;
+  crowdprof::reset_to_rest(s, &reference.pose);
+  crowdprof::reset_cursor(action, &reference.cursor);
+  std::vector<glm::mat4> model(joint_count);
+  std::vector<crowdprof::SkinMatrix> palette(joint_count);
   std::vector<glm::vec3> positions(n), normals(n);
-  crowdprof::run_job(crowdprof::SkinningJob{palette, &plan, 0, n, positions, normals}, "SkinningJob");
+  skin_copy(last_time, reference, model, palette, positions, normals, false);
   double max_delta = 0, max_normal_delta = 0;
   for (size_t p = 0; p < parts.size(); ++p)
     for (size_t i = 0; i < parts[p].vertex.size(); ++i) {

@@ -211,15 +211,21 @@ struct PendingNormal {
   bool stream = false;
 };
 
+// StoreXyz with the kind of stores chosen at run time (per batch).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void StoreXyzAs(D d, bool stream, V x, V y, V z, float* HWY_RESTRICT out) {
+  if (stream)
+    StoreXyz<true>(d, x, y, z, out);
+  else
+    StoreXyz<false>(d, x, y, z, out);
+}
+
 template <class D>
 HWY_INLINE void StoreNormal(D d, PendingNormal<D>& pending) {
   if (!pending.out) return;
   if (pending.normalise)
     for (auto& v : pending.normal) v = hn::Mul(v, pending.inverse);
-  if (pending.stream)
-    StoreXyz<true>(d, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
-  else
-    StoreXyz<false>(d, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
+  StoreXyzAs(d, pending.stream, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
   pending.out = nullptr;
 }
 
@@ -239,10 +245,7 @@ HWY_INLINE void SkinLanesFloat(D d, const float* rows, size_t lane, const uint16
   pending.normalise = normalise;
   pending.stream = stream;
   TransformPosition(d, a, rows, lane, position);
-  if (stream)
-    StoreXyz<true>(d, position[0], position[1], position[2], positions);
-  else
-    StoreXyz<false>(d, position[0], position[1], position[2], positions);
+  StoreXyzAs(d, stream, position[0], position[1], position[2], positions);
 }
 
 template <bool kPacked>
