@@ -37,6 +37,7 @@
 #include "animation/sampling.h"
 #include "asset/gltf_loader.h"
 #include "asset/mesh_lod.h"
+#include "asset/vertex_order.h"
 #include "skinning/output_buffer.h"
 #include "skinning/output_stores.h"
 #include "skinning/packed_vertex.h"
@@ -212,7 +213,9 @@ int main(int argc, char** argv) {
   if (copies == 0 || frames == 0) fail("COPIES and FRAMES must be at least 1");
   if (const char* simd = std::getenv(crowdprof::kSimdEnvironmentVariable); simd && *simd)
     if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why);
-  const Character c = crowdprof::load_character(argv[1]);
+  // Vertices in the order crowdprof's bench skins them; both sides get this mesh.
+  Character c = crowdprof::load_character(argv[1]);
+  crowdprof::order_vertices_for_skinning(c);
   if (c.actions.empty()) fail("the character has no action");
   const crowdprof::Skeleton& s = c.skeleton;
   for (const glm::mat4& offset : s.parent_offsets)

@@ -4,12 +4,14 @@
 
 #include <meshoptimizer.h>
 
+#include "asset/vertex_order.h"
+
 namespace crowdprof {
 
 namespace {
 
 // Level `indices` (into the full mesh) with its own vertices: those the
-// triangles use, in the order they first use them.
+// triangles use, ordered by their joints (asset/vertex_order.h).
 MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
   const size_t full_vertices = full.vertex_count();
   meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), full_vertices);
@@ -34,6 +36,11 @@ MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
   m.indices.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) m.indices[i] = remap[indices[i]];
   m.primitives.push_back({0, static_cast<uint32_t>(m.indices.size()), 0, static_cast<uint32_t>(kept)});
+  // Then for skinning, as the loader orders the full mesh's.
+  const std::vector<uint32_t> old_of_new = order_vertices_by_joints(m);
+  std::vector<uint32_t> source(kept);
+  for (size_t v = 0; v < kept; ++v) source[v] = level.source_vertex[old_of_new[v]];
+  level.source_vertex = std::move(source);
   return level;
 }
 
