@@ -36,7 +36,7 @@ MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
   m.indices.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) m.indices[i] = remap[indices[i]];
   m.primitives.push_back({0, static_cast<uint32_t>(m.indices.size()), 0, static_cast<uint32_t>(kept)});
-  // Then for skinning, as the loader orders the full mesh's.
+  // Then for skinning (asset/vertex_order.h), as a bench orders the full mesh's.
   const std::vector<uint32_t> old_of_new = order_vertices_by_joints(m);
   std::vector<uint32_t> source(kept);
   for (size_t v = 0; v < kept; ++v) source[v] = level.source_vertex[old_of_new[v]];
@@ -133,7 +133,13 @@ float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b) {
 }
 
 std::vector<MeshLod> mesh_lods_of(const Character& character) {
-  if (character.file_lods.empty()) return build_mesh_lods(character.mesh);
+  if (character.file_lods.empty()) {
+    // meshoptimizer breaks ties by vertex index: simplified from one order,
+    // the levels are the same for a bench's ordered character and `info`'s.
+    SkinnedMesh ordered = character.mesh;
+    order_vertices_by_joints(ordered);
+    return build_mesh_lods(ordered);
+  }
   std::vector<MeshLod> lods;
   const double full = static_cast<double>(std::max<size_t>(1, character.mesh.triangle_count()));
   for (size_t l = 0; l < character.file_lods.size() && l + 1 < kMeshLevels; ++l) {

@@ -38,8 +38,9 @@ float bind_pose_height(const SkinnedMesh& mesh);
 // Simplifies `mesh` (bind pose) to each target in turn, each level from the
 // full mesh. A level that would not have fewer triangles than the one before
 // it is left out, so a small mesh may get fewer levels (or none). The vertices
-// of each level are in the order its triangles first use them (meshoptimizer's
-// vertex fetch order), its triangles in vertex-cache order. Allocates.
+// of each level are ordered by their joints (asset/vertex_order.h), ties in
+// the order its triangles first use them (meshoptimizer's vertex fetch order);
+// its triangles are in vertex-cache order. Allocates.
 std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets = kMeshLodTargets);
 
 // How far two surfaces stray from each other (bind pose, the meshes' units):
@@ -52,7 +53,9 @@ float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b);
 // Character::file_lods, which the loader keeps to the first three that are
 // each coarser than the one before; its surface distance from the full mesh,
 // measured at load, as each one's error and its share of the triangles as
-// its target), else build_mesh_lods of its mesh. Allocates.
+// its target), else build_mesh_lods of its mesh ordered by joints
+// (asset/vertex_order.h; source_vertex then numbers that order's vertices), so
+// a character gives the same levels ordered or not. Allocates.
 std::vector<MeshLod> mesh_lods_of(const Character& character);
 // "MSFT_lod" when mesh_lods_of takes the file's levels, else "meshoptimizer".
 const char* mesh_lods_source(const Character& character);

@@ -192,7 +192,7 @@ nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options) {
     for (const CounterDifference& d : r.counters) p["counters"].push_back({{"name", d.name}, {"a", d.baseline}, {"b", d.current}});
     for (const std::string& name : r.counters_missing) p["counters"].push_back({{"name", name}, {"a", nullptr}, {"b", nullptr}});
     p["digest"] = {{"a", r.baseline_digest}, {"b", r.current_digest}, {"same", r.baseline_digest == r.current_digest}};
-    if (r.arithmetic_differs() && r.baseline_digest != r.current_digest) p["digest"]["note"] = r.digest_note();
+    if (r.digest_not_comparable()) p["digest"]["note"] = r.digest_note();
     j["pairs"].push_back(p);
   }
   j["regressed"] = diff.regressed();

@@ -38,6 +38,11 @@ std::vector<double> run_medians(const Result& result, const std::string& key, si
 std::string CheckResult::digest_note() const {
   if (baseline_digest == current_digest) return "same";
   if (digest_differs()) return "CHANGED";
+  if (order_differs()) {
+    auto order = [](const std::string& o) { return o == "file" ? "in the file's order" : "ordered by their joints"; };
+    return std::string("not compared: the baseline hashed its vertices ") + order(baseline_vertex_order) + ", this run " +
+           order(current_vertex_order) + " (record the baseline again to compare digests)";
+  }
   auto name = [](const std::string& simd, const char* which) { return simd.empty() ? std::string(which) : simd; };
   const std::string fused = baseline_fused ? name(baseline_simd, "the baseline") : name(current_simd, "this run");
   const std::string separate = baseline_fused ? name(current_simd, "this run") : name(baseline_simd, "the baseline");
@@ -141,6 +146,8 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   result.baseline_fused = baseline.environment.fused_multiply_add;
   result.current_fused = current.environment.fused_multiply_add;
   result.digest_of_kernels = baseline.digest_cpu_vertices || current.digest_cpu_vertices;
+  result.baseline_vertex_order = baseline.vertex_order;
+  result.current_vertex_order = current.vertex_order;
   return result;
 }
 

@@ -213,6 +213,11 @@ struct Result {
   // palettes and records no kernel computes, alike on every arithmetic.
   // Absent in older results: true, as they may have.
   bool digest_cpu_vertices = true;
+  // The order the digest hashes each character's vertices in, the order the
+  // bench skinned them: "joints" (ordered by their joints after loading,
+  // asset/vertex_order.h, since 2026-11-27), or "file" (the file's order:
+  // results without the key). Digests of runs that differ here differ by design.
+  std::string vertex_order = "joints";
   std::string stores;  // "streaming" or "regular" (skinning/output_stores.h); "" when not recorded
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames

@@ -390,6 +390,8 @@ void read_runs(const Reader& in, Result& r) {
 void read_extras(const Reader& in, Result& r) {
   r.digest = in.text("/digest");
   r.digest_cpu_vertices = in.flag_or("/digest_cpu_vertices", true);
+  r.vertex_order = in.text_or("/vertex_order", "file");
+  in.require(r.vertex_order == "file" || r.vertex_order == "joints", "/vertex_order", "\"file\" or \"joints\"");
   r.stores = in.text_or("/stores", "");
   r.partial = in.flag_or("/partial", false);
   r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;

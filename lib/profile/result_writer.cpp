@@ -215,6 +215,7 @@ nlohmann::json result_to_json(const Result& r) {
     if (r.counters.present[i]) j["counters"][std::string(kCounterFields[i].name)] = r.counters.values.*kCounterFields[i].member;
   j["digest"] = r.digest;
   j["digest_cpu_vertices"] = r.digest_cpu_vertices;
+  j["vertex_order"] = r.vertex_order;
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.animation) j["animation"] = animation_json(*r.animation);
   if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);

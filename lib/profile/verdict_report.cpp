@@ -121,7 +121,7 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
   table.work_compared = options.compare_work;
   table.work_equal = !result.digest_differs() && result.counters.empty() && result.counters_missing.empty();
   table.work_detail = work_digest_detail(result.baseline_digest, result.current_digest);
-  if (result.arithmetic_differs() && result.baseline_digest != result.current_digest)
+  if (result.digest_not_comparable())
     table.work_detail += " (" + result.digest_note() + ")";
   if (!result.counters.empty()) table.work_detail += "; " + counters_detail(result.counters);
   for (const std::string& name : result.counters_missing) table.work_detail += "; no counter " + name;

@@ -1,14 +1,19 @@
 // Vertices ordered for skinning (lib/asset/vertex_order.h): each primitive's
 // vertices sorted by their joints, the same triangles, and the same skinned
-// vertex wherever a vertex lands; fewer joints blended a batch.
+// vertex wherever a vertex lands; fewer joints blended a batch. A bench's
+// characters and the mesh levels come ordered.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "asset/mesh_lod.h"
 #include "asset/vertex_order.h"
+#include "frame/bench_setup.h"
 #include "render_support.h"
 #include "skinning/skinning.h"
 #include "skinning/skinning_plan.h"
@@ -16,20 +21,44 @@
 namespace crowdprof {
 namespace {
 
-// Two primitives of three vertices each; vertex v sits at (v, 0, 0).
+// A vertex's joints of non-zero weight, ascending, padded past any joint (as
+// the library compares them: {1, 3, 5} before {1, 3}).
+std::array<int, 4> joint_set(const SkinnedMesh& m, size_t v) {
+  std::array<int, 4> set{1 << 20, 1 << 20, 1 << 20, 1 << 20};
+  size_t used = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (m.weights[v][k] == 0.0f) continue;
+    size_t at = used++;  // insertion: GCC 12 warns falsely on std::sort of a few
+    for (; at > 0 && set[at - 1] > m.joints[v][k]; --at) set[at] = set[at - 1];
+    set[at] = m.joints[v][k];
+  }
+  return set;
+}
+
+// Every primitive's vertices in ascending joint sets.
+bool ordered_by_joints(const SkinnedMesh& m) {
+  for (const Primitive& p : m.primitives)
+    for (size_t v = p.first_vertex + 1; v < p.first_vertex + p.vertex_count; ++v)
+      if (joint_set(m, v) < joint_set(m, v - 1)) return false;
+  return true;
+}
+
+// Two primitives, of four vertices and of three; vertex v sits at (v, 0, 0)
+// with a normal of its own.
 SkinnedMesh two_primitives() {
   SkinnedMesh m;
-  const glm::u16vec4 joints[6] = {{3, 1, 0, 0}, {2, 0, 0, 0}, {1, 3, 0, 0}, {5, 0, 0, 0}, {4, 5, 0, 0}, {0, 0, 0, 0}};
-  const glm::vec4 weights[6] = {{0.5f, 0.5f, 0, 0}, {1, 0, 0, 0}, {0.7f, 0.3f, 0, 0},
-                                {1, 0, 0, 0},       {0.6f, 0.4f, 0, 0}, {1, 0, 0, 0}};
-  for (int v = 0; v < 6; ++v) {
+  const glm::u16vec4 joints[7] = {{3, 0, 0, 0}, {1, 3, 0, 0}, {2, 0, 0, 0}, {3, 1, 0, 0},
+                                  {5, 0, 0, 0}, {0, 0, 0, 0}, {4, 5, 0, 0}};
+  const glm::vec4 weights[7] = {{1, 0, 0, 0}, {0.5f, 0.5f, 0, 0}, {1, 0, 0, 0}, {0.7f, 0.3f, 0, 0},
+                                {1, 0, 0, 0}, {1, 0, 0, 0},       {0.6f, 0.4f, 0, 0}};
+  for (int v = 0; v < 7; ++v) {
     m.positions.push_back({float(v), 0, 0});
-    m.normals.push_back({0, 0, 1});
+    m.normals.push_back(glm::normalize(glm::vec3(0, 0.1f * float(v), 1)));
     m.joints.push_back(joints[v]);
     m.weights.push_back(weights[v]);
   }
-  m.indices = {0, 1, 2, 2, 1, 0, 3, 4, 5};
-  m.primitives = {{0, 6, 0, 3}, {6, 3, 3, 3}};
+  m.indices = {0, 1, 2, 2, 3, 0, 4, 5, 6};
+  m.primitives = {{0, 6, 0, 4}, {6, 3, 4, 3}};
   return m;
 }
 
@@ -37,27 +66,34 @@ TEST(VertexOrder, EachPrimitiveIsSortedByItsJointsAndDrawsTheSameTriangles) {
   const SkinnedMesh before = two_primitives();
   SkinnedMesh after = before;
   const std::vector<uint32_t> old_of_new = order_vertices_by_joints(after);
-  // {1,3} {1,3} {2} in the first range (file order kept within a set), {0} {4,5} {5} in the second.
-  EXPECT_EQ(old_of_new, (std::vector<uint32_t>{0, 2, 1, 5, 4, 3}));
-  for (size_t v = 0; v < 6; ++v) {
+  // {1,3} {1,3} (the file's order kept within a set) {2} {3}; then {0} {4,5} {5}.
+  // Not its own inverse, so new and old numbers swapped would show.
+  EXPECT_EQ(old_of_new, (std::vector<uint32_t>{1, 3, 2, 0, 5, 6, 4}));
+  for (size_t v = 0; v < before.vertex_count(); ++v) {
     EXPECT_EQ(after.positions[v], before.positions[old_of_new[v]]);
+    EXPECT_EQ(after.normals[v], before.normals[old_of_new[v]]);
     EXPECT_EQ(after.joints[v], before.joints[old_of_new[v]]);
     EXPECT_EQ(after.weights[v], before.weights[old_of_new[v]]);
   }
   ASSERT_EQ(after.indices.size(), before.indices.size());
   for (size_t i = 0; i < after.indices.size(); ++i)
     EXPECT_EQ(after.positions[after.indices[i]], before.positions[before.indices[i]]) << "index " << i;
-  EXPECT_EQ(after.primitives.size(), before.primitives.size());
+  EXPECT_TRUE(ordered_by_joints(after));
+  // Ordered already: nothing moves.
+  SkinnedMesh again = after;
+  EXPECT_EQ(order_vertices_by_joints(again), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(again.indices, after.indices);
 }
 
 TEST(VertexOrder, PrimitivesThatOverlapOrLeaveVerticesOutAreLeftAsTheyAre) {
-  for (int broken = 0; broken < 3; ++broken) {
+  for (int broken = 0; broken < 4; ++broken) {
     SkinnedMesh m = two_primitives();
-    if (broken == 0) m.primitives[1].first_vertex = 2;  // overlaps the first
-    if (broken == 1) m.primitives[1].vertex_count = 2;  // vertex 5 in none
+    if (broken == 0) m.primitives[1].first_vertex = 3;  // overlaps the first
+    if (broken == 1) m.primitives[1].vertex_count = 2;  // vertex 6 in none
     if (broken == 2) m.primitives[1].vertex_count = 9;  // past the arrays
+    if (broken == 3) m.primitives.clear();              // vertices in none
     const SkinnedMesh before = m;
-    EXPECT_EQ(order_vertices_by_joints(m), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5})) << broken;
+    EXPECT_EQ(order_vertices_by_joints(m), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6})) << broken;
     EXPECT_EQ(m.joints, before.joints) << broken;
     EXPECT_EQ(m.indices, before.indices) << broken;
   }
@@ -79,6 +115,8 @@ TEST(VertexOrder, TheHumanoidBlendsFewerJointsAndSkinsEveryVertexAlike) {
   const size_t joints = humanoid.skeleton.joint_count();
   // 3.06 joints a batch in the file's order, 2.64 in this one.
   EXPECT_LT(joints_blended(after, joints) * 100, joints_blended(before, joints) * 90);
+  for (size_t i = 0; i < after.indices.size(); ++i)
+    ASSERT_EQ(after.positions[after.indices[i]], before.positions[before.indices[i]]) << "index " << i;
 
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -106,6 +144,27 @@ TEST(VertexOrder, TheHumanoidBlendsFewerJointsAndSkinsEveryVertexAlike) {
     moved += old_of_new[v] != v;
   }
   EXPECT_GT(moved, n / 2);
+}
+
+TEST(VertexOrder, ABenchsCharacterAndItsMeshLevelsComeOrdered) {
+  RunSpec spec;
+  spec.file = (test::source_dir() / "scenes" / "humanoid.glb").string();
+  const BenchScene scene = load_bench_scene(spec);
+  const Character& loaded = test::default_humanoid();  // the file's order
+  ASSERT_FALSE(ordered_by_joints(loaded.mesh));
+  EXPECT_TRUE(ordered_by_joints(scene.first().mesh));
+  const std::vector<MeshLod> levels = mesh_lods_of(scene.first());
+  ASSERT_FALSE(levels.empty());
+  for (const MeshLod& level : levels) EXPECT_TRUE(ordered_by_joints(level.mesh));
+  // The same levels whether the character came ordered or not (meshoptimizer
+  // breaks ties by vertex index): what `info` says is what a bench draws.
+  const std::vector<MeshLod> file_levels = mesh_lods_of(loaded);
+  ASSERT_EQ(file_levels.size(), levels.size());
+  for (size_t l = 0; l < levels.size(); ++l) {
+    EXPECT_EQ(file_levels[l].mesh.indices, levels[l].mesh.indices) << l;
+    EXPECT_EQ(file_levels[l].mesh.positions, levels[l].mesh.positions) << l;
+    EXPECT_EQ(file_levels[l].error, levels[l].error) << l;
+  }
 }
 
 }  // namespace

@@ -195,6 +195,27 @@ TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
   gpu_sse4.digest = "0000000000000000";
   gpu_sse4.digest_cpu_vertices = true;
   EXPECT_FALSE(check_results(gpu_avx3, gpu_sse4, options).digest_differs());
+
+  // A baseline from before the bench ordered vertices by their joints (no
+  // vertex_order: the file's order) hashed them in another order: not
+  // compared, and said so; the counters still are.
+  Result file_order = baseline, joint_order = other_digest;
+  file_order.vertex_order = "file";
+  joint_order.vertex_order = "joints";
+  CheckResult reordered = check_results(file_order, joint_order, options);
+  EXPECT_FALSE(reordered.digest_differs());
+  EXPECT_FALSE(reordered.regressed());
+  EXPECT_NE(format_check(reordered, options)
+                .find("not compared: the baseline hashed its vertices in the file's order, this run ordered by their joints"),
+            std::string::npos)
+      << format_check(reordered, options);
+  joint_order.counters.values.vertices_skinned += 1;
+  EXPECT_TRUE(check_results(file_order, joint_order, options).regressed());
+  // Palettes have no vertex order: GPU-skinned digests are compared.
+  Result gpu_file = file_order, gpu_joints = other_digest;
+  gpu_joints.vertex_order = "joints";
+  gpu_file.digest_cpu_vertices = gpu_joints.digest_cpu_vertices = false;
+  EXPECT_TRUE(check_results(gpu_file, gpu_joints, options).digest_differs());
 }
 
 TEST(Check, ResultsOfAnotherRunAreRefused) {

@@ -232,6 +232,27 @@ TEST(ResultCodec, WhetherTheDigestHashesCpuVerticesReadsBack) {
   }
 }
 
+// The order the digest hashed vertices in: "joints" from this build, read
+// back; a result from before the field reads as the file's order; anything
+// else is named.
+TEST(ResultCodec, TheVertexOrderReadsBack) {
+  json doc = to_json(test::fake_run("threaded", 4, {1.0, 3.0, 2.0}, 0.5));
+  EXPECT_EQ(doc.at("vertex_order"), "joints");
+  EXPECT_EQ(result_from_json(doc, "r.json").vertex_order, "joints");
+  doc.erase("vertex_order");
+  EXPECT_EQ(result_from_json(doc, "r.json").vertex_order, "file");
+  EXPECT_EQ(result_to_json(result_from_json(doc, "r.json")).at("vertex_order"), "file");
+  for (const json& bad : {json("sorted"), json(1)}) {
+    doc["vertex_order"] = bad;
+    try {
+      result_from_json(doc, "r.json");
+      ADD_FAILURE() << bad << " was read as an order";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("vertex_order"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
