@@ -9,7 +9,8 @@ namespace crowdprof {
 namespace {
 
 // A vertex's joints of non-zero weight, ascending, then 65536s (past any
-// joint, so a vertex of fewer joints sorts before one that adds to them).
+// joint, so a vertex of fewer joints sorts after one that adds to them:
+// {1, 3, 5} before {1, 3}).
 using JointSet = std::array<uint32_t, 4>;
 
 JointSet joint_set(const SkinnedMesh& mesh, size_t v) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "profile/result_codec.h"
+#include "profile/regression.h"
 #include "profile/stats.h"
 
 namespace crowdprof {
@@ -13,6 +14,8 @@ AbProcess ab_process(const Result& result) {
   // A frame whose GPU time was not read back holds NaN, which the median skips.
   for (const std::string& key : recorded_metrics(result)) process.median_ms[key] = metric_median(result, key);
   process.digest = result.digest;
+  process.digest_cpu_vertices = result.digest_cpu_vertices;
+  process.vertex_order = result.vertex_order;
   process.counters = result.counters;
   return process;
 }
@@ -59,7 +62,12 @@ AbWork compare_work(const std::vector<AbGroup>& groups) {
     uint64_t now = current.counters.present[i] ? current.counters.values.*kCounterFields[i].member : 0;
     if (now != was) work.counters.push_back({std::string(kCounterFields[i].name), was, now});
   }
-  work.equal = work.base_digest == work.current_digest && work.counters.empty() && work.inconsistent.empty();
+  const bool reordered = base.vertex_order != current.vertex_order &&
+                         (base.digest_cpu_vertices || current.digest_cpu_vertices);
+  if (reordered && work.base_digest != work.current_digest)
+    work.digest_note = "not compared: " + vertex_order_note(base.vertex_order, current.vertex_order);
+  work.equal = (work.base_digest == work.current_digest || !work.digest_note.empty()) && work.counters.empty() &&
+               work.inconsistent.empty();
   return work;
 }
 

@@ -24,6 +24,8 @@ namespace crowdprof {
 struct AbProcess {
   std::map<std::string, double> median_ms;  // per samples key ("frame_ms", "cpu_ms", categories)
   std::string digest;
+  bool digest_cpu_vertices = true;     // Result::digest_cpu_vertices
+  std::string vertex_order = "joints";  // Result::vertex_order
   RecordedCounters counters;
 };
 
@@ -69,6 +71,9 @@ struct AbWork {
   bool compared = false;
   bool equal = true;
   std::string base_digest, current_digest;
+  // Set when the builds hashed their vertices in other orders (one from before
+  // the bench ordered them by joints): the digests are not compared, and why.
+  std::string digest_note;
   std::vector<CounterDifference> counters;  // base's first process against current's first, those that differ
   std::string inconsistent;  // a build whose own processes did different work, if any
   std::string run_difference;  // set by the caller: the runs' settings differ (require_same_run's words)

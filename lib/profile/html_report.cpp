@@ -561,6 +561,8 @@ std::string check_section(const CheckSection& check, std::string& charts) {
   if (r.digest_differs())
     out += "<span class=\"regression\">Digest changed: " + h(r.baseline_digest) + " &#8594; " + h(r.current_digest) +
            "</span>";
+  else if (r.digest_not_comparable() && !(r.counters.empty() && r.counters_missing.empty()))
+    out += "Digest " + h(r.digest_note()) + ".";
   return out + "</p></section>\n";
 }
 

@@ -35,18 +35,30 @@ std::vector<double> run_medians(const Result& result, const std::string& key, si
 
 }  // namespace
 
+std::string vertex_order_note(const std::string& baseline, const std::string& current) {
+  auto order = [](const std::string& o) { return o == "file" ? "in the file's order" : "ordered by their joints"; };
+  return std::string("the baseline hashed its vertices ") + order(baseline) + ", this run " + order(current) +
+         " (record the baseline again to compare digests)";
+}
+
 std::string CheckResult::digest_note() const {
   if (baseline_digest == current_digest) return "same";
   if (digest_differs()) return "CHANGED";
-  if (order_differs()) {
-    auto order = [](const std::string& o) { return o == "file" ? "in the file's order" : "ordered by their joints"; };
-    return std::string("not compared: the baseline hashed its vertices ") + order(baseline_vertex_order) + ", this run " +
-           order(current_vertex_order) + " (record the baseline again to compare digests)";
+  std::string why;
+  if (arithmetic_differs()) {
+    auto name = [](const std::string& simd, const char* which) { return simd.empty() ? std::string(which) : simd; };
+    const std::string fused = baseline_fused ? name(baseline_simd, "the baseline") : name(current_simd, "this run");
+    const std::string separate = baseline_fused ? name(current_simd, "this run") : name(baseline_simd, "the baseline");
+    why = fused + " fused multiply-adds, " + separate + " did not (their last bits differ)";
   }
-  auto name = [](const std::string& simd, const char* which) { return simd.empty() ? std::string(which) : simd; };
-  const std::string fused = baseline_fused ? name(baseline_simd, "the baseline") : name(current_simd, "this run");
-  const std::string separate = baseline_fused ? name(current_simd, "this run") : name(baseline_simd, "the baseline");
-  return "not compared: " + fused + " fused multiply-adds, " + separate + " did not (their last bits differ)";
+  if (order_differs())
+    why += (why.empty() ? "" : "; ") + vertex_order_note(baseline_vertex_order, current_vertex_order);
+  return "not compared: " + why;
+}
+
+std::string CheckResult::digest_not_compared_why() const {
+  if (arithmetic_differs() && order_differs()) return "other arithmetic and vertex order";
+  return arithmetic_differs() ? "other arithmetic" : "other vertex order";
 }
 
 bool CheckResult::regressed() const {
@@ -206,7 +218,7 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   if (!options.compare_work)
     out << " counters and digest not compared\n";
   else if (result.baseline_digest != result.current_digest)
-    out << " counters match, digest not compared (other arithmetic)\n";
+    out << " counters match, digest not compared (" << result.digest_not_compared_why() << ")\n";
   else
     out << " counters and digest match\n";
   return out.str();

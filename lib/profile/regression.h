@@ -68,8 +68,16 @@ struct CheckResult {
   bool digest_differs() const { return baseline_digest != current_digest && !arithmetic_differs() && !order_differs(); }
   // What to say of the digests: "same", "CHANGED" or why they were not compared.
   std::string digest_note() const;
+  // digest_not_comparable's reason in a few words: "other arithmetic", "other
+  // vertex order" or both.
+  std::string digest_not_compared_why() const;
   bool regressed() const;
 };
+
+// Why digests hashed in two vertex orders (Result::vertex_order) are not
+// compared, in words: "the baseline hashed its vertices in the file's order,
+// this run ordered by their joints (record the baseline again ...)".
+std::string vertex_order_note(const std::string& baseline, const std::string& current);
 
 // Judges one metric's samples: regressed when the median grew by more than the
 // tolerance and by more than `floor` ms, and the U test says the shift is

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "asset/errors.h"
+#include "asset/gltf_container.h"
 #include "frame/switch_table.h"
 #include "profile/result_keys.h"
 #include "profile/stats.h"
@@ -391,7 +392,8 @@ void read_extras(const Reader& in, Result& r) {
   r.digest = in.text("/digest");
   r.digest_cpu_vertices = in.flag_or("/digest_cpu_vertices", true);
   r.vertex_order = in.text_or("/vertex_order", "file");
-  in.require(r.vertex_order == "file" || r.vertex_order == "joints", "/vertex_order", "\"file\" or \"joints\"");
+  if (r.vertex_order != "file" && r.vertex_order != "joints")
+    in.fail("\"vertex_order\" is \"" + printable(r.vertex_order, 40) + "\"; it should be \"file\" or \"joints\"");
   r.stores = in.text_or("/stores", "");
   r.partial = in.flag_or("/partial", false);
   r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;

@@ -91,6 +91,7 @@ GateTable ab_verdict_table(const AbResult& result, const AbOptions& options) {
   table.work_equal = result.work.equal;
   if (result.work.compared) {
     table.work_detail = work_digest_detail(result.work.base_digest, result.work.current_digest);
+    if (!result.work.digest_note.empty()) table.work_detail += " (" + result.work.digest_note + ")";
     if (!result.work.counters.empty()) table.work_detail += "; " + counters_detail(result.work.counters);
     if (!result.work.run_difference.empty()) table.work_detail += "; the runs differ: " + result.work.run_difference;
     if (!result.work.inconsistent.empty())

@@ -150,6 +150,34 @@ TEST(AbGate, OtherWorkFailsWhateverTheTimes) {
   EXPECT_FALSE(judge_ab(other, timings_only).regressed());
 }
 
+// A base built before the bench ordered vertices by their joints hashed them
+// in the file's order: its digest is not compared, and the verdict says why;
+// its counters are.
+TEST(AbGate, DigestsOfOtherVertexOrdersAreNotCompared) {
+  std::vector<AbGroup> g = groups(1.0);
+  for (AbGroup& group : g)
+    for (AbProcess& p : group.base) {
+      p.digest = "file-order";
+      p.vertex_order = "file";
+    }
+  AbResult reordered = judge_ab(g, {});
+  EXPECT_TRUE(reordered.work.equal);
+  EXPECT_FALSE(reordered.regressed());
+  GateTable table = ab_verdict_table(reordered, {});
+  EXPECT_NE(table.work_detail.find("not compared: the baseline hashed its vertices in the file's order"),
+            std::string::npos)
+      << table.work_detail;
+  for (AbGroup& group : g)
+    for (AbProcess& p : group.current) p.counters.values.vertices_skinned = 101;
+  EXPECT_TRUE(judge_ab(g, {}).regressed());
+  // Palettes (every character GPU-skinned) have no vertex order: compared.
+  for (AbGroup& group : g) {
+    for (AbProcess& p : group.base) p.digest_cpu_vertices = false;
+    for (AbProcess& p : group.current) p.digest_cpu_vertices = false, p.counters.values.vertices_skinned = 100;
+  }
+  EXPECT_FALSE(judge_ab(g, {}).work.equal);
+}
+
 TEST(AbGate, MetricsAreHolmCorrectedTogether) {
   AbOptions options;
   options.metrics = {"frame_ms", "cpu_ms"};

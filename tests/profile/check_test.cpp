@@ -209,6 +209,21 @@ TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
                 .find("not compared: the baseline hashed its vertices in the file's order, this run ordered by their joints"),
             std::string::npos)
       << format_check(reordered, options);
+  EXPECT_NE(format_check(reordered, options).find("counters match, digest not compared (other vertex order)"),
+            std::string::npos)
+      << format_check(reordered, options);
+  // Both reasons at once: both said.
+  Result file_sse4 = file_order;
+  file_sse4.environment.simd = "SSE4";
+  file_sse4.environment.fused_multiply_add = false;
+  Result joints_avx3 = joint_order;
+  joints_avx3.environment.simd = "AVX3";
+  joints_avx3.environment.fused_multiply_add = true;
+  const std::string both = format_check(check_results(file_sse4, joints_avx3, options), options);
+  EXPECT_NE(both.find("AVX3 fused multiply-adds, SSE4 did not (their last bits differ); the baseline hashed"),
+            std::string::npos)
+      << both;
+  EXPECT_NE(both.find("(other arithmetic and vertex order)"), std::string::npos) << both;
   joint_order.counters.values.vertices_skinned += 1;
   EXPECT_TRUE(check_results(file_order, joint_order, options).regressed());
   // Palettes have no vertex order: GPU-skinned digests are compared.

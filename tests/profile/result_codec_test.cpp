@@ -249,6 +249,9 @@ TEST(ResultCodec, TheVertexOrderReadsBack) {
       ADD_FAILURE() << bad << " was read as an order";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("vertex_order"), std::string::npos) << e.what();
+      if (bad.is_string()) {
+        EXPECT_NE(std::string(e.what()).find("\"sorted\""), std::string::npos) << e.what();
+      }
     }
   }
 }
