@@ -65,7 +65,7 @@ struct CheckResult {
   bool digest_not_comparable() const {
     return baseline_digest != current_digest && (arithmetic_differs() || order_differs());
   }
-  bool digest_differs() const { return baseline_digest != current_digest && !arithmetic_differs() && !order_differs(); }
+  bool digest_differs() const { return baseline_digest != current_digest && !digest_not_comparable(); }
   // What to say of the digests: "same", "CHANGED" or why they were not compared.
   std::string digest_note() const;
   // digest_not_comparable's reason in a few words: "other arithmetic", "other
