@@ -42,12 +42,14 @@ constexpr Interleave3Tables kInterleave3{};
 #endif
 
 // Stores x, y, z interleaved (x0 y0 z0 x1 ...): the same bytes whichever way.
-// kStream: non-temporal stores (`out` then 64-byte aligned), which write whole
-// cache lines to memory without reading them first (see SkinKernelArgs::stream).
+// kStream (AVX-512 only, whose vector is a whole batch): non-temporal stores
+// (`out` then 64-byte aligned), which write whole cache lines to memory without
+// reading them first (see SkinKernelArgs::stream). Narrower vectors stream
+// through StageLines.
 template <bool kStream, class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-  if constexpr (hn::MaxLanes(d) == 16) {
+  if constexpr (hn::MaxLanes(d) == kSkinBatch) {
     for (int o = 0; o < 3; ++o) {
       const __m512 xy = _mm512_permutex2var_ps(x.raw, _mm512_load_si512(kInterleave3.xy[o]), y.raw);
       const __m512 xyz = _mm512_permutex2var_ps(xy, _mm512_load_si512(kInterleave3.z[o]), z.raw);
@@ -56,18 +58,29 @@ HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
       else
         _mm512_storeu_ps(out + 16 * o, xyz);
     }
-    return;
-  }
+  } else  // NOLINT(readability/braces): the branch below is every other width
 #endif
-  if constexpr (kStream) {
-    // Interleaved in L1 first, then streamed a whole vector at a time.
-    const size_t n = hn::Lanes(d);
-    alignas(64) float xyz[3 * hn::MaxLanes(d)];
-    hn::StoreInterleaved3(x, y, z, d, xyz);
-    for (size_t i = 0; i < 3 * n; i += n) hn::Stream(hn::Load(d, xyz + i), d, out + i);
-  } else {
+  {
+    static_assert(!kStream, "below a batch's width, streamed output is staged (StageLines)");
     hn::StoreInterleaved3(x, y, z, d, out);
   }
+}
+
+// Narrower vectors than a batch each write part of a cache line (an AVX2 group
+// of 8 vertices, 96 bytes, ends mid-line): streamed straight, a line's parts
+// leave apart, and may leave as partial writes when other misses need the fill
+// buffers. So a streamed batch is skinned into L1 and streamed from there as
+// whole lines: 0.81-0.88x the time at AVX2 at 100,000 copies, the same at SSE4
+// (docs/performance.md).
+struct StageLines {
+  alignas(64) float positions[3 * kSkinBatch];
+  alignas(64) float normals[3 * kSkinBatch];
+};
+
+// Streams one staged array of a batch (3 cache lines) to `out`, 64-byte aligned.
+template <class D>
+HWY_INLINE void StreamBatchLines(D d, const float* HWY_RESTRICT staged, float* HWY_RESTRICT out) {
+  for (size_t i = 0; i < 3 * kSkinBatch; i += hn::Lanes(d)) hn::Stream(hn::Load(d, staged + i), d, out + i);
 }
 
 // Where a group of lanes' packed codes go (packed_vertex.h).
@@ -209,15 +222,22 @@ struct PendingNormal {
   float* out = nullptr;  // nullptr: nothing pending
   bool normalise = false;
   bool stream = false;
+  // The last group of a staged batch: once stored, its batch's normals are
+  // whole, and go from StageLines::normals to here.
+  float* stream_batch_to = nullptr;
+  const float* staged_normals = nullptr;
 };
 
 // StoreXyz with the kind of stores chosen at run time (per batch).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyzAs(D d, bool stream, V x, V y, V z, float* HWY_RESTRICT out) {
-  if (stream)
-    StoreXyz<true>(d, x, y, z, out);
-  else
-    StoreXyz<false>(d, x, y, z, out);
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+  if constexpr (hn::MaxLanes(d) == kSkinBatch) {
+    if (stream) return StoreXyz<true>(d, x, y, z, out);
+  }
+#endif
+  (void)stream;  // narrower: never set, such batches are staged (StageLines)
+  StoreXyz<false>(d, x, y, z, out);
 }
 
 template <class D>
@@ -227,6 +247,12 @@ HWY_INLINE void StoreNormal(D d, PendingNormal<D>& pending) {
     for (auto& v : pending.normal) v = hn::Mul(v, pending.inverse);
   StoreXyzAs(d, pending.stream, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
   pending.out = nullptr;
+  if constexpr (hn::MaxLanes(d) < kSkinBatch) {
+    if (pending.stream_batch_to) {
+      StreamBatchLines(d, pending.staged_normals, pending.stream_batch_to);
+      pending.stream_batch_to = nullptr;
+    }
+  }
 }
 
 // Skins lanes into float positions (stored) and `pending` (the normal, stored
@@ -260,6 +286,7 @@ void SkinBatches(const SkinKernelArgs& args) {
   alignas(64) float scratch_normals[3 * kSkinBatch];
   alignas(64) uint16_t scratch_codes[3 * kSkinBatch];
   alignas(64) uint32_t scratch_words[kSkinBatch];
+  StageLines stage;
   PendingNormal<D> pending;
   for (size_t b = first_batch; b < end_batch; ++b) {
     const SkinBatch& batch = plan.batches[b];
@@ -284,9 +311,17 @@ void SkinBatches(const SkinKernelArgs& args) {
       // 192 bytes of positions and as many of normals, three lines each).
       const bool stream = args.stream && whole && reinterpret_cast<uintptr_t>(positions) % 64 == 0 &&
                           reinterpret_cast<uintptr_t>(normals) % 64 == 0;
+      const bool staged = hn::MaxLanes(d) < kSkinBatch && stream;
+      float* skin_positions = staged ? stage.positions : positions;
+      float* skin_normals = staged ? stage.normals : normals;
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
-        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, args.palette, normalise, stream,
-                       positions + 3 * lane, normals + 3 * lane, pending);
+        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, args.palette, normalise, stream && !staged,
+                       skin_positions + 3 * lane, skin_normals + 3 * lane, pending);
+      if (staged) {
+        StreamBatchLines(d, stage.positions, positions);
+        pending.stream_batch_to = normals;  // the last group's normal is still pending
+        pending.staged_normals = stage.normals;
+      }
     }
     if (!whole) {
       const size_t from = std::max(first, args.first_vertex);
