@@ -1,6 +1,7 @@
 // Micro-benchmarks of one copy's frame stages on the thesis's character
-// (scenes/humanoid.glb), and the machine's memory write bandwidth to set them
-// against. Run: ./setup.sh bench [Google Benchmark options], e.g.
+// (scenes/humanoid.glb), and the machine's memory write bandwidth and vector
+// multiply-add rate to set them against. Run: ./setup.sh bench [Google
+// Benchmark options], e.g.
 //   ./setup.sh bench --benchmark_filter=Skinning --benchmark_repetitions=5
 // Per-item times are in the counters: ns_per_joint, ns_per_vertex (seconds with
 // an SI prefix: "3.1n" is 3.1 ns), and GB/s for the bandwidth probe.
@@ -8,6 +9,9 @@
 #include <unistd.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if defined(__x86_64__)
+#include <immintrin.h>
 #endif
 
 #include <atomic>
@@ -137,6 +141,45 @@ void BM_MemoryWriteStreaming(benchmark::State& state) {
   state.counters["GB/s"] = total_rate(bytes);
 }
 BENCHMARK(BM_MemoryWriteStreaming)->Threads(1)->Threads(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+#endif
+
+#if defined(__x86_64__)
+// The cores' arithmetic beside the memory probes: how many vector multiply-adds
+// one thread retires a nanosecond, twelve independent chains (enough to fill
+// every multiply-add port), and one dependent chain (its latency, 4 cycles on
+// recent Intel cores, gives the clock the vector units run at). The skinning
+// kernel's port bound is its multiply-adds a batch over the first figure
+// (docs/performance.md). Compiled for each width here, run where the CPU has it.
+// Vectors stay inside the functions compiled for their width (no vector in an
+// interface of baseline x86-64 code, whose ABI differs).
+#define CROWDPROF_MULTIPLY_ADD_RATE(V, FMA, SET)                                             \
+  volatile float one = 1.0000001f, tiny = 1e-7f;                                            \
+  const V x = SET(one), y = SET(tiny);                                                      \
+  V a[12];                                                                                  \
+  for (int i = 0; i < 12; ++i) a[i] = SET(static_cast<float>(i));                           \
+  V chain = SET(1.0f);                                                                      \
+  constexpr int64_t kSteps = 1 << 16;                                                       \
+  const bool dependent = state.range(0) == 1;                                               \
+  for (auto _ : state) {                                                                    \
+    if (dependent) {                                                                        \
+      for (int64_t k = 0; k < kSteps; ++k) chain = FMA(chain, x, y);                        \
+      benchmark::DoNotOptimize(chain);                                                      \
+    } else {                                                                                \
+      for (int64_t k = 0; k < kSteps; ++k)                                                  \
+        for (V & v : a) v = FMA(v, x, y);                                                   \
+      for (V & v : a) benchmark::DoNotOptimize(v);                                          \
+    }                                                                                       \
+  }                                                                                         \
+  state.counters["multiply_adds_per_second"] = benchmark::Counter(                          \
+      static_cast<double>(dependent ? kSteps : 12 * kSteps), benchmark::Counter::kIsIterationInvariantRate)
+
+[[gnu::target("avx2,fma")]] void BM_MultiplyAddRateAVX2(benchmark::State& state) {
+  CROWDPROF_MULTIPLY_ADD_RATE(__m256, _mm256_fmadd_ps, _mm256_set1_ps);
+}
+[[gnu::target("avx512f")]] void BM_MultiplyAddRateAVX3(benchmark::State& state) {
+  CROWDPROF_MULTIPLY_ADD_RATE(__m512, _mm512_fmadd_ps, _mm512_set1_ps);
+}
+#undef CROWDPROF_MULTIPLY_ADD_RATE
 #endif
 
 // The time for one thread to signal another and see its answer, through one
@@ -404,6 +447,15 @@ int main(int argc, char** argv) {
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
+#if defined(__x86_64__)
+  // Vector multiply-adds a second: twelve independent chains (0) or one (1).
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    benchmark::RegisterBenchmark("BM_MultiplyAddRate/AVX2", crowdprof::BM_MultiplyAddRateAVX2)
+        ->Arg(0)->Arg(1)->ArgName("dependent");
+  if (__builtin_cpu_supports("avx512f"))
+    benchmark::RegisterBenchmark("BM_MultiplyAddRate/AVX3", crowdprof::BM_MultiplyAddRateAVX3)
+        ->Arg(0)->Arg(1)->ArgName("dependent");
+#endif
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
