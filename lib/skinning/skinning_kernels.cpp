@@ -19,13 +19,23 @@ namespace crowdprof {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// Whether a vector of D is a whole batch that streams straight from registers
+// (AVX-512, through the permutes below); every other width streams a batch
+// through StageLines, so that only whole cache lines leave.
+template <class D>
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+constexpr bool kStreamsFromRegisters = hn::MaxLanes(D()) == kSkinBatch;
+#else
+constexpr bool kStreamsFromRegisters = false;
+#endif
+
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
 // Indices for two-table permutes that interleave 16 x, 16 y and 16 z into 48
 // floats: for output vector o, kXy[o] takes x (0-15) and y (16-31) into their
 // places, then kZ[o] keeps those (its own lane i) and takes z (16-31) into the
 // rest. Two permutes a vector, six in all, where Highway 1.0.3's generic
 // StoreInterleaved3 spends about fourteen shuffles: on this CPU the shuffles
-// share ports with the multiplies the kernel is bound by.
+// share a port with the multiplies.
 struct Interleave3Tables {
   alignas(64) int32_t xy[3][16];
   alignas(64) int32_t z[3][16];
@@ -49,7 +59,7 @@ constexpr Interleave3Tables kInterleave3{};
 template <bool kStream, class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-  if constexpr (hn::MaxLanes(d) == kSkinBatch) {
+  if constexpr (kStreamsFromRegisters<D>) {
     for (int o = 0; o < 3; ++o) {
       const __m512 xy = _mm512_permutex2var_ps(x.raw, _mm512_load_si512(kInterleave3.xy[o]), y.raw);
       const __m512 xyz = _mm512_permutex2var_ps(xy, _mm512_load_si512(kInterleave3.z[o]), z.raw);
@@ -231,12 +241,10 @@ struct PendingNormal {
 // StoreXyz with the kind of stores chosen at run time (per batch).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyzAs(D d, bool stream, V x, V y, V z, float* HWY_RESTRICT out) {
-#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-  if constexpr (hn::MaxLanes(d) == kSkinBatch) {
+  if constexpr (kStreamsFromRegisters<D>) {
     if (stream) return StoreXyz<true>(d, x, y, z, out);
   }
-#endif
-  (void)stream;  // narrower: never set, such batches are staged (StageLines)
+  (void)stream;  // otherwise never set: such batches are staged (StageLines)
   StoreXyz<false>(d, x, y, z, out);
 }
 
@@ -247,7 +255,7 @@ HWY_INLINE void StoreNormal(D d, PendingNormal<D>& pending) {
     for (auto& v : pending.normal) v = hn::Mul(v, pending.inverse);
   StoreXyzAs(d, pending.stream, pending.normal[0], pending.normal[1], pending.normal[2], pending.out);
   pending.out = nullptr;
-  if constexpr (hn::MaxLanes(d) < kSkinBatch) {
+  if constexpr (!kStreamsFromRegisters<D>) {
     if (pending.stream_batch_to) {
       StreamBatchLines(d, pending.staged_normals, pending.stream_batch_to);
       pending.stream_batch_to = nullptr;
@@ -311,7 +319,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       // 192 bytes of positions and as many of normals, three lines each).
       const bool stream = args.stream && whole && reinterpret_cast<uintptr_t>(positions) % 64 == 0 &&
                           reinterpret_cast<uintptr_t>(normals) % 64 == 0;
-      const bool staged = hn::MaxLanes(d) < kSkinBatch && stream;
+      const bool staged = !kStreamsFromRegisters<D> && stream;
       float* skin_positions = staged ? stage.positions : positions;
       float* skin_normals = staged ? stage.normals : normals;
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
