@@ -62,8 +62,8 @@ AbWork compare_work(const std::vector<AbGroup>& groups) {
     uint64_t now = current.counters.present[i] ? current.counters.values.*kCounterFields[i].member : 0;
     if (now != was) work.counters.push_back({std::string(kCounterFields[i].name), was, now});
   }
-  const bool reordered = base.vertex_order != current.vertex_order &&
-                         (base.digest_cpu_vertices || current.digest_cpu_vertices);
+  const bool reordered = vertex_orders_differ(base.vertex_order, current.vertex_order,
+                                              base.digest_cpu_vertices || current.digest_cpu_vertices);
   if (reordered && work.base_digest != work.current_digest)
     work.digest_note = "not compared: " + vertex_order_note(base.vertex_order, current.vertex_order);
   work.equal = (work.base_digest == work.current_digest || !work.digest_note.empty()) && work.counters.empty() &&

@@ -39,6 +39,13 @@ struct CounterDifference {
   uint64_t baseline = 0, current = 0;
 };
 
+// Whether two runs hashed their vertices in different orders: a difference
+// only where a digest hashes vertices at all (`digest_of_kernels`: either run's
+// Result::digest_cpu_vertices), since palettes have no order.
+inline bool vertex_orders_differ(const std::string& baseline, const std::string& current, bool digest_of_kernels) {
+  return digest_of_kernels && baseline != current;
+}
+
 struct CheckResult {
   std::vector<MetricCheck> metrics;
   std::vector<CounterDifference> counters;  // only those that differ
@@ -60,7 +67,9 @@ struct CheckResult {
   // recorded before the bench ordered vertices by joints hashes them in the
   // file's, so digests are not compared either (palettes have no order).
   std::string baseline_vertex_order = "joints", current_vertex_order = "joints";
-  bool order_differs() const { return digest_of_kernels && baseline_vertex_order != current_vertex_order; }
+  bool order_differs() const {
+    return vertex_orders_differ(baseline_vertex_order, current_vertex_order, digest_of_kernels);
+  }
   // The digests differ and say nothing: one of the two reasons above.
   bool digest_not_comparable() const {
     return baseline_digest != current_digest && (arithmetic_differs() || order_differs());
