@@ -3,6 +3,7 @@
 // one the CPU supports (or the one simd_target.h forces).
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_kernels.h"
@@ -152,7 +153,46 @@ HWY_INLINE V MulAdd(V a, V b, V c) {
 // The stages of skinning lanes [lane, lane + Lanes(d)) of one batch, each step
 // in the same order on every target.
 
+// Whether the blend reads its matrix elements broadcast already, from a table
+// built once a call (BroadcastPalette). Without AVX, broadcasting an element
+// from the palette is a load and a shuffle, and the shuffles share a port with
+// the interleaving; from the table it is a load folded into the multiply: 0.86x
+// the time at SSE4 and SSSE3. AVX2 broadcasts with a load alone and reads 8
+// times the bytes from a table: 1.08x the time there, so it does not (docs/performance.md).
+#if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX2 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
+constexpr bool kBroadcastTable = true;
+#else
+constexpr bool kBroadcastTable = false;
+#endif
+
+// The 3x4 part of each joint the plan uses, every element broadcast to a vector
+// of D: element (column c, row r) of joint j at table[(12 j + 3 c + r) Lanes].
+// One table a thread, grown to the largest skeleton it has seen.
+template <class D>
+HWY_INLINE const float* BroadcastPalette(D d, const float* palette, const SkinningPlan& plan) {
+  thread_local std::vector<float, CacheLineAllocator<float>> table;
+  const size_t lanes = hn::Lanes(d);
+  if (table.size() < 12 * lanes * plan.joint_count) table.resize(12 * lanes * plan.joint_count);
+  for (uint16_t j : plan.skin_joints) {
+    float* t = table.data() + 12 * lanes * j;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r, t += lanes) hn::Store(hn::Set(d, palette[16 * size_t{j} + 4 * c + r]), d, t);
+  }
+  return table.data();
+}
+
+// Element (column c, row r) of the joint at `m` as a vector: `m` points into
+// the palette (16 floats a joint) or into BroadcastPalette's table.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V MatrixElement(D d, const float* m, int c, int r) {
+  if constexpr (kBroadcastTable)
+    return hn::Load(d, m + (3 * c + r) * hn::Lanes(d));
+  else
+    return hn::Set(d, m[4 * c + r]);
+}
+
 // The blended matrix's 3x4 part, a[column][row], one lane per vertex.
+// `palette` is the table where kBroadcastTable.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE void BlendMatrices(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                               const float* palette, V (&a)[4][3]) {
@@ -161,15 +201,16 @@ HWY_INLINE void BlendMatrices(D d, const float* rows, size_t lane, const uint16_
       for (V& v : column) v = hn::Zero(d);
     return;
   }
+  const size_t stride = kBroadcastTable ? 12 * hn::Lanes(d) : 16;  // floats a joint
   const V w = hn::Load(d, rows + 6 * kSkinBatch + lane);
-  const float* m = palette + 16 * size_t{joints[0]};
+  const float* m = palette + stride * joints[0];
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, hn::Set(d, m[4 * c + r]));
+    for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, MatrixElement(d, m, c, r));
   for (size_t u = 1; u < joint_count; ++u) {
     const V wu = hn::Load(d, rows + (6 + u) * kSkinBatch + lane);
-    const float* mu = palette + 16 * size_t{joints[u]};
+    const float* mu = palette + stride * joints[u];
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(wu, hn::Set(d, mu[4 * c + r]), a[c][r]);
+      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(wu, MatrixElement(d, mu, c, r), a[c][r]);
   }
 }
 
@@ -288,6 +329,7 @@ void SkinBatches(const SkinKernelArgs& args) {
   const D d;
   const size_t lanes = hn::Lanes(d);
   const SkinningPlan& plan = *args.plan;
+  const float* palette = kBroadcastTable ? BroadcastPalette(d, args.palette, plan) : args.palette;
   const size_t first_batch = args.first_vertex / kSkinBatch;
   const size_t end_batch = (args.end_vertex + kSkinBatch - 1) / kSkinBatch;
   alignas(64) float scratch_positions[3 * kSkinBatch];
@@ -310,7 +352,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       const PackedOut out = whole ? PackedOut{args.packed_positions + 3 * at, args.packed_normals + at}
                                   : PackedOut{scratch_codes, scratch_words};
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
-        SkinLanesPacked(d, rows, lane, joints, batch.joint_count, args.palette, normalise, args,
+        SkinLanesPacked(d, rows, lane, joints, batch.joint_count, palette, normalise, args,
                         PackedOut{out.positions + 3 * lane, out.normals + lane});
     } else {
       float* positions = whole ? args.positions + 3 * at : scratch_positions;
@@ -323,7 +365,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       float* skin_positions = staged ? stage.positions : positions;
       float* skin_normals = staged ? stage.normals : normals;
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
-        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, args.palette, normalise, stream && !staged,
+        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, palette, normalise, stream && !staged,
                        skin_positions + 3 * lane, skin_normals + 3 * lane, pending);
       if (staged) {
         StreamBatchLines(d, stage.positions, positions);

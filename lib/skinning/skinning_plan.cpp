@@ -70,8 +70,13 @@ std::string build_skinning_plan(const SkinnedMesh& mesh, size_t joint_count, Ski
       }
     }
   }
-  std::sort(out.single_joints.begin(), out.single_joints.end());
-  out.single_joints.erase(std::unique(out.single_joints.begin(), out.single_joints.end()), out.single_joints.end());
+  auto sort_unique = [](std::vector<uint16_t>& list) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  };
+  sort_unique(out.single_joints);
+  out.skin_joints = out.joints;
+  sort_unique(out.skin_joints);
   if (out.data.size() > UINT32_MAX) return "too many vertices for one skinning plan";
   *plan = std::move(out);
   return {};
