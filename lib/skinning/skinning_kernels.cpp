@@ -3,7 +3,6 @@
 // one the CPU supports (or the one simd_target.h forces).
 #include <algorithm>
 #include <cstring>
-#include <vector>
 
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_kernels.h"
@@ -154,46 +153,49 @@ HWY_INLINE V MulAdd(V a, V b, V c) {
 // in the same order on every target.
 
 // Whether the blend reads its matrix elements broadcast already, from a table
-// built once a call (BroadcastPalette). Without AVX, broadcasting an element
-// from the palette is a load and a shuffle, and the shuffles share a port with
-// the interleaving; from the table it is a load folded into the multiply: 0.86x
-// the time at SSE4 and SSSE3. AVX2 broadcasts with a load alone and reads 8
-// times the bytes from a table: 1.08x the time there, so it does not (docs/performance.md).
+// the kernel fills once a call (BroadcastPalette). Without AVX, broadcasting an
+// element from the palette is a load and a shuffle, and the shuffles share a
+// port with the interleaving; from the table it is a load folded into the
+// multiply: 0.86x the time at SSE4 and SSSE3. AVX2 broadcasts with a load alone
+// and would read 8 times the bytes from a table: 1.08x the time there, so it
+// does not (docs/performance.md).
 #if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX2 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
 constexpr bool kBroadcastTable = true;
 #else
 constexpr bool kBroadcastTable = false;
 #endif
 
-// The 3x4 part of each joint the plan uses, every element broadcast to a vector
-// of D: element (column c, row r) of joint j at table[(12 j + 3 c + r) Lanes].
-// One table a thread, grown to the largest skeleton it has seen.
+// The largest skeleton whose table the kernel keeps on its stack (24 KB at
+// SSE4), so that skinning allocates nothing; a larger one broadcasts from the
+// palette as AVX2 does. 128 is the thesis's bone limit for hardware skinning.
+constexpr size_t kTableJoints = 128;
+
+// Fills `table` with the 3x4 part of each joint the plan uses, every element
+// broadcast to a vector of D: element (column c, row r) of joint j at
+// table[(12 j + 3 c + r) Lanes]. Needs plan.joint_count <= kTableJoints.
 template <class D>
-HWY_INLINE const float* BroadcastPalette(D d, const float* palette, const SkinningPlan& plan) {
-  thread_local std::vector<float, CacheLineAllocator<float>> table;
+HWY_INLINE void BroadcastPalette(D d, const float* palette, const SkinningPlan& plan, float* HWY_RESTRICT table) {
   const size_t lanes = hn::Lanes(d);
-  if (table.size() < 12 * lanes * plan.joint_count) table.resize(12 * lanes * plan.joint_count);
   for (uint16_t j : plan.skin_joints) {
-    float* t = table.data() + 12 * lanes * j;
+    float* t = table + 12 * lanes * j;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 3; ++r, t += lanes) hn::Store(hn::Set(d, palette[16 * size_t{j} + 4 * c + r]), d, t);
   }
-  return table.data();
 }
 
 // Element (column c, row r) of the joint at `m` as a vector: `m` points into
-// the palette (16 floats a joint) or into BroadcastPalette's table.
-template <class D, class V = hn::Vec<D>>
+// BroadcastPalette's table (kTable) or into the palette (16 floats a joint).
+template <bool kTable, class D, class V = hn::Vec<D>>
 HWY_INLINE V MatrixElement(D d, const float* m, int c, int r) {
-  if constexpr (kBroadcastTable)
+  if constexpr (kTable)
     return hn::Load(d, m + (3 * c + r) * hn::Lanes(d));
   else
     return hn::Set(d, m[4 * c + r]);
 }
 
 // The blended matrix's 3x4 part, a[column][row], one lane per vertex.
-// `palette` is the table where kBroadcastTable.
-template <class D, class V = hn::Vec<D>>
+// `palette` is BroadcastPalette's table where kTable.
+template <bool kTable, class D, class V = hn::Vec<D>>
 HWY_INLINE void BlendMatrices(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                               const float* palette, V (&a)[4][3]) {
   if (joint_count == 0) {
@@ -201,16 +203,16 @@ HWY_INLINE void BlendMatrices(D d, const float* rows, size_t lane, const uint16_
       for (V& v : column) v = hn::Zero(d);
     return;
   }
-  const size_t stride = kBroadcastTable ? 12 * hn::Lanes(d) : 16;  // floats a joint
+  const size_t stride = kTable ? 12 * hn::Lanes(d) : 16;  // floats a joint
   const V w = hn::Load(d, rows + 6 * kSkinBatch + lane);
   const float* m = palette + stride * joints[0];
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, MatrixElement(d, m, c, r));
+    for (int r = 0; r < 3; ++r) a[c][r] = hn::Mul(w, MatrixElement<kTable>(d, m, c, r));
   for (size_t u = 1; u < joint_count; ++u) {
     const V wu = hn::Load(d, rows + (6 + u) * kSkinBatch + lane);
     const float* mu = palette + stride * joints[u];
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(wu, MatrixElement(d, mu, c, r), a[c][r]);
+      for (int r = 0; r < 3; ++r) a[c][r] = MulAdd(wu, MatrixElement<kTable>(d, mu, c, r), a[c][r]);
   }
 }
 
@@ -247,12 +249,12 @@ HWY_INLINE V InverseLength(D d, const V (&normal)[3]) {
 }
 
 // Packed output: every stage of the lanes, then their codes.
-template <class D>
+template <bool kTable, class D>
 HWY_INLINE void SkinLanesPacked(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                                 const float* palette, bool normalise, const SkinKernelArgs& args, PackedOut out) {
   using V = hn::Vec<D>;
   V a[4][3], position[3], normal[3];
-  BlendMatrices(d, rows, lane, joints, joint_count, palette, a);
+  BlendMatrices<kTable>(d, rows, lane, joints, joint_count, palette, a);
   TransformPosition(d, a, rows, lane, position);
   TransformNormal(d, a, rows, lane, normal);
   if (normalise) {
@@ -306,13 +308,13 @@ HWY_INLINE void StoreNormal(D d, PendingNormal<D>& pending) {
 
 // Skins lanes into float positions (stored) and `pending` (the normal, stored
 // by the next call or StoreNormal), after storing the normal pending before.
-template <class D>
+template <bool kTable, class D>
 HWY_INLINE void SkinLanesFloat(D d, const float* rows, size_t lane, const uint16_t* joints, size_t joint_count,
                                const float* palette, bool normalise, bool stream, float* positions, float* normals,
                                PendingNormal<D>& pending) {
   using V = hn::Vec<D>;
   V a[4][3], position[3];
-  BlendMatrices(d, rows, lane, joints, joint_count, palette, a);
+  BlendMatrices<kTable>(d, rows, lane, joints, joint_count, palette, a);
   StoreNormal(d, pending);
   TransformNormal(d, a, rows, lane, pending.normal);
   if (normalise) pending.inverse = InverseLength(d, pending.normal);
@@ -323,13 +325,15 @@ HWY_INLINE void SkinLanesFloat(D d, const float* rows, size_t lane, const uint16
   StoreXyzAs(d, stream, position[0], position[1], position[2], positions);
 }
 
-template <bool kPacked>
+template <bool kPacked, bool kTable>
 void SkinBatches(const SkinKernelArgs& args) {
   using D = hn::CappedTag<float, kSkinBatch>;
   const D d;
   const size_t lanes = hn::Lanes(d);
   const SkinningPlan& plan = *args.plan;
-  const float* palette = kBroadcastTable ? BroadcastPalette(d, args.palette, plan) : args.palette;
+  HWY_ALIGN float table[kTable ? 12 * hn::MaxLanes(D()) * kTableJoints : 1];
+  if constexpr (kTable) BroadcastPalette(d, args.palette, plan, table);
+  const float* palette = kTable ? table : args.palette;
   const size_t first_batch = args.first_vertex / kSkinBatch;
   const size_t end_batch = (args.end_vertex + kSkinBatch - 1) / kSkinBatch;
   alignas(64) float scratch_positions[3 * kSkinBatch];
@@ -352,7 +356,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       const PackedOut out = whole ? PackedOut{args.packed_positions + 3 * at, args.packed_normals + at}
                                   : PackedOut{scratch_codes, scratch_words};
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
-        SkinLanesPacked(d, rows, lane, joints, batch.joint_count, palette, normalise, args,
+        SkinLanesPacked<kTable>(d, rows, lane, joints, batch.joint_count, palette, normalise, args,
                         PackedOut{out.positions + 3 * lane, out.normals + lane});
     } else {
       float* positions = whole ? args.positions + 3 * at : scratch_positions;
@@ -365,7 +369,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       float* skin_positions = staged ? stage.positions : positions;
       float* skin_normals = staged ? stage.normals : normals;
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
-        SkinLanesFloat(d, rows, lane, joints, batch.joint_count, palette, normalise, stream && !staged,
+        SkinLanesFloat<kTable>(d, rows, lane, joints, batch.joint_count, palette, normalise, stream && !staged,
                        skin_positions + 3 * lane, skin_normals + 3 * lane, pending);
       if (staged) {
         StreamBatchLines(d, stage.positions, positions);
@@ -399,10 +403,14 @@ void SkinBatches(const SkinKernelArgs& args) {
 bool FusesMultiplyAdd() { return kFusedMultiplyAdd; }
 
 void SkinVertices(const SkinKernelArgs& args) {
+  if constexpr (kBroadcastTable) {
+    if (args.plan->joint_count <= kTableJoints)
+      return args.packed_positions ? SkinBatches<true, true>(args) : SkinBatches<false, true>(args);
+  }
   if (args.packed_positions)
-    SkinBatches<true>(args);
+    SkinBatches<true, false>(args);
   else
-    SkinBatches<false>(args);
+    SkinBatches<false, false>(args);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -44,15 +44,10 @@ struct SkinningPlan {
   // job checks these skinning matrices for scale before skipping renormalisation.
   std::vector<uint16_t> single_joints;
   // Every joint some batch uses, ascending, without repeats: the kernels that
-  // broadcast the palette into a table first (SSE4 and below) fill these only.
+  // broadcast the palette into a table first (SSE4 and SSSE3) fill these only.
   std::vector<uint16_t> skin_joints;
 
   size_t batch_count() const { return batches.size(); }
-  // Bytes of the plan (what every copy's skinning reads besides its palette).
-  size_t bytes() const {
-    return batches.size() * sizeof(SkinBatch) + joints.size() * sizeof(uint16_t) + data.size() * sizeof(float) +
-           (single_joints.size() + skin_joints.size()) * sizeof(uint16_t);
-  }
 };
 
 // Fills `plan` from `mesh`, whose joint indices must all be below `joint_count`
