@@ -156,9 +156,9 @@ HWY_INLINE V MulAdd(V a, V b, V c) {
 // the kernel fills once a call (BroadcastPalette). Without AVX, broadcasting an
 // element from the palette is a load and a shuffle, and the shuffles share a
 // port with the interleaving; from the table it is a load folded into the
-// multiply: 0.86x the time at SSE4 and SSSE3. AVX2 broadcasts with a load alone
-// and would read 8 times the bytes from a table: 1.08x the time there, so it
-// does not (docs/performance.md).
+// multiply: 0.86-0.89x the time at SSE4 and SSSE3. AVX2 broadcasts with a load
+// alone and would read 8 times the bytes from a table: 1.08x the time there, so
+// it does not (docs/performance.md).
 #if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX2 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
 constexpr bool kBroadcastTable = true;
 #else
