@@ -1,6 +1,10 @@
 // Local to model space in parent order (with glTF's parent offsets), and
 // skinning matrices, against matrices worked out by hand.
 #include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -131,6 +135,60 @@ TEST(Pose, JobsValidateTheirInput) {
   EXPECT_FALSE((SkinningMatricesJob{&s, short_model, skin}.Run()));
   EXPECT_FALSE((SkinningMatricesJob{nullptr, model, skin}.Run()));
   EXPECT_TRUE((SkinningMatricesJob{&s, model, skin}.Run()));
+}
+
+// Roots only, each under `offset` where `offset_every` divides its index.
+Skeleton roots(size_t n, const glm::mat4& offset, size_t offset_every) {
+  Skeleton s;
+  for (size_t j = 0; j < n; ++j) {
+    s.names.push_back("joint " + std::to_string(j));
+    s.parents.push_back(-1);
+    s.rest_translations.emplace_back(0.0f);
+    s.rest_rotations.emplace_back(1.0f, 0.0f, 0.0f, 0.0f);
+    s.rest_scales.emplace_back(1.0f);
+    s.parent_offsets.push_back(j % offset_every == 0 ? offset : glm::mat4(1.0f));
+    s.inverse_binds.emplace_back(1.0f);
+  }
+  return s;
+}
+
+// The job turns rotations and scales into axes four joints at a time (one per
+// lane): each joint's matrix is the same, bit for bit, as that joint's on its
+// own, in every lane of a block and in a last block of 1 to 3, and it is the
+// offset times its TRS.
+TEST(Pose, EveryJointOfABlockOfFourIsTheSameAsOnItsOwn) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.25f, 3.0f);
+  const glm::mat4 offset = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, -2.0f, 4.0f)) *
+                           glm::mat4_cast(glm::normalize(glm::quat(0.9f, 0.1f, -0.3f, 0.2f)));
+  for (size_t n = 1; n <= 9; ++n) {
+    const Skeleton s = roots(n, offset, 3);
+    LocalPose pose;
+    reset_to_rest(s, &pose);
+    for (size_t j = 0; j < n; ++j) {
+      pose.translations[j] = glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
+      pose.rotations[j] = glm::normalize(glm::quat(unit(rng), unit(rng), unit(rng), unit(rng)));
+      pose.scales[j] = glm::vec3(scale(rng), scale(rng), scale(rng));
+    }
+    std::vector<glm::mat4> model(n);
+    ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+    for (size_t j = 0; j < n; ++j) {
+      const Skeleton one = roots(1, s.parent_offsets[j], 1);
+      LocalPose alone;
+      reset_to_rest(one, &alone);
+      alone.translations[0] = pose.translations[j];
+      alone.rotations[0] = pose.rotations[j];
+      alone.scales[0] = pose.scales[j];
+      std::vector<glm::mat4> own(1);
+      ASSERT_TRUE((LocalToModelJob{&one, &alone, own}.Run()));
+      EXPECT_EQ(0, std::memcmp(&model[j], &own[0], sizeof(glm::mat4))) << n << " joints, joint " << j;
+      const glm::mat4 expected = s.parent_offsets[j] * glm::translate(glm::mat4(1.0f), pose.translations[j]) *
+                                 glm::mat4_cast(pose.rotations[j]) * glm::scale(glm::mat4(1.0f), pose.scales[j]);
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          EXPECT_NEAR(model[j][c][r], expected[c][r], 2e-5f) << n << " joints, joint " << j << " [" << c << "][" << r << "]";
+    }
+  }
 }
 
 }  // namespace
