@@ -73,10 +73,12 @@ int run_command(int argc, char** argv) {
     simd_error = crowdprof::force_simd_target(from_env);
   bool version = false;
   app.add_flag("-v,--version", version, "Print the version, commit, build type, compiler and SIMD target on one line");
+  std::string compiled;  // the targets of this build, which Highway's version decides
+  for (const std::string& name : crowdprof::compiled_simd_targets()) compiled += (compiled.empty() ? "" : ", ") + name;
   app.add_option_function<std::string>(
          "--simd", [&](const std::string& name) { simd_error = crowdprof::force_simd_target(name); },
-         "Run skinning on this SIMD target instead of the CPU's best (SCALAR, SSSE3, SSE4, AVX2, AVX3, AVX3_DL; "
-         "also the environment variable CROWDPROF_SIMD)")
+         "Run skinning on this SIMD target instead of the CPU's best (this build: " + compiled +
+             "; AVX3 is AVX-512; also the environment variable CROWDPROF_SIMD)")
       ->trigger_on_parse();
   // How skinned vertices are stored (output_stores.h): CROWDPROF_STORES, else --stores.
   std::string stores_error;

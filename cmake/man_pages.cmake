@@ -29,10 +29,10 @@ endforeach()
 list(JOIN see_also ",\n" see_also)
 file(WRITE ${man_dir}/extra-sections.h2m "[FILES]
 .TP
-\\fI/usr/share/crowdprof/scenes/\\fR
+\\fIshare/crowdprof/scenes/\\fR under the install prefix (\\fI/usr\\fR for the .deb packages, \\fI/usr/local\\fR for \\fBcmake --install\\fR by default)
 The default scenes: \\fIthesis.json\\fR (the thesis's 160 dancing copies, what the examples bench),
 \\fImixed.json\\fR (three characters) and \\fIhumanoid.glb\\fR; the examples' \\fIscenes/\\fR paths are relative to
-\\fI/usr/share/crowdprof\\fR, or to a source checkout.
+\\fIshare/crowdprof\\fR there, or to a source checkout.
 [SEE ALSO]
 \\fBcrowdprof\\fR(1),
 ${see_also}

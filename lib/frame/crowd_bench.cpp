@@ -23,7 +23,8 @@ SettingText why_cannot_run(const BenchConfig& config) {
     return "{passes} " + std::to_string(config.mode.passes) +
            " draws the crowd several times a frame, which needs a GL backend: {backend} auto, egl or osmesa";
   if (config.mode.skinning == SkinningSite::Baked && !(config.bake_rate_hz > 0.0f && config.bake_rate_hz <= 10000.0f))
-    return "{bake_rate} " + std::to_string(config.bake_rate_hz) + ": expected 0 to 10000 samples per second";
+    return "{bake_rate} " + std::to_string(config.bake_rate_hz) +
+           ": expected more than 0 and at most 10000 samples per second";
   return {};
 }
 

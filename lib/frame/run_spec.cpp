@@ -102,8 +102,8 @@ const std::array kSettings = {
                 "30",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
-                  if (!v) return "expected a number (0 to 10000 samples per second)";
-                  if (!(*v > 0) || !(*v <= 10000)) return "expected 0 to 10000 samples per second";
+                  if (!v) return "expected a number (more than 0, at most 10000 samples per second)";
+                  if (!(*v > 0) || !(*v <= 10000)) return "expected more than 0 and at most 10000 samples per second";
                   s.bake_rate = *v;
                   return {};
                 }, "GPU"},

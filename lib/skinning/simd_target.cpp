@@ -13,6 +13,13 @@ namespace {
 // lower bits are better targets.
 int64_t runnable() { return hwy::SupportedTargets() & HWY_TARGETS; }
 
+// Highway's names of the targets in `targets`, best (the lowest bit) first.
+std::vector<std::string> names_of(int64_t targets) {
+  std::vector<std::string> names;
+  for (int64_t bits = targets; bits != 0; bits &= bits - 1) names.push_back(hwy::TargetName(bits & -bits));
+  return names;
+}
+
 bool equals_ignoring_case(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
@@ -45,11 +52,9 @@ std::string active_simd_target() {
   return hwy::TargetName(bits & -bits);
 }
 
-std::vector<std::string> available_simd_targets() {
-  std::vector<std::string> names;
-  for (int64_t bits = runnable(); bits != 0; bits &= bits - 1) names.push_back(hwy::TargetName(bits & -bits));
-  return names;
-}
+std::vector<std::string> available_simd_targets() { return names_of(runnable()); }
+
+std::vector<std::string> compiled_simd_targets() { return names_of(HWY_TARGETS); }
 
 std::string force_simd_target(std::string_view name) {
   const int64_t before = g_forced;

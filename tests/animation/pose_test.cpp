@@ -186,7 +186,8 @@ TEST(Pose, EveryJointOfABlockOfFourIsTheSameAsOnItsOwn) {
                                  glm::mat4_cast(pose.rotations[j]) * glm::scale(glm::mat4(1.0f), pose.scales[j]);
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-          EXPECT_NEAR(model[j][c][r], expected[c][r], 2e-5f) << n << " joints, joint " << j << " [" << c << "][" << r << "]";
+          EXPECT_NEAR(model[j][c][r], expected[c][r], 2e-5f)
+              << n << " joints, joint " << j << " [" << c << "][" << r << "]";
     }
   }
 }
