@@ -1,6 +1,7 @@
 #include "animation/pose.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 namespace crowdprof {
@@ -47,13 +48,17 @@ struct ScaledAxes {
   Float4 axis[9];
 };
 
-// A quaternion's x, y, z, w; a vec3's x, y, z, then 0. Built in registers: a
-// vector loaded from smaller stores just made would wait for them.
+// A quaternion's x, y, z, w, loaded as one vector (glm stores them in that
+// order unless GLM_FORCE_QUAT_DATA_WXYZ).
+static_assert(sizeof(glm::quat) == 16 && offsetof(glm::quat, x) == 0 && offsetof(glm::quat, w) == 12);
 Float4 load_quat(const glm::quat& q) {
   Float4 v;
-  std::memcpy(&v, &q.x, sizeof v);
+  std::memcpy(&v, &q, sizeof v);
   return v;
 }
+
+// A vec3's x, y, z, then 0, built in registers: copied as 12 bytes into a
+// vector in memory and loaded, the load waited for the smaller stores.
 Float4 load_vec3(const glm::vec3& p) { return Float4{p.x, p.y, p.z, 0.0f}; }
 
 // Transposes the 4x4 whose rows are a, b, c and d: a then holds their first

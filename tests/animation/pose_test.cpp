@@ -192,5 +192,58 @@ TEST(Pose, EveryJointOfABlockOfFourIsTheSameAsOnItsOwn) {
   }
 }
 
+// The job's arithmetic is glm's, bit for bit: glm::mat3_cast, each column times
+// its scale, then the parent's columns times those axes and the translation in
+// that order (tests build with -ffp-contract=off, as the library does). A chain
+// of 11 joints, a branch among them, and offsets that are not the identity:
+// joints in every lane, in a last block of 3, and parents in earlier blocks.
+glm::mat4 reference_times_trs(const glm::mat4& p, const glm::vec3& t, const glm::quat& q, const glm::vec3& s) {
+  const glm::mat3 rotation = glm::mat3_cast(q);
+  glm::mat4 out;
+  for (int c = 0; c < 3; ++c) {
+    const glm::vec3 axis = rotation[c] * s[c];
+    out[c] = p[0] * axis.x + p[1] * axis.y + p[2] * axis.z;
+  }
+  out[3] = p[0] * t.x + p[1] * t.y + p[2] * t.z + p[3];
+  return out;
+}
+
+TEST(Pose, LocalToModelIsGlmsArithmeticBitForBit) {
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.25f, 3.0f);
+  const size_t n = 11;
+  Skeleton s = roots(n, glm::mat4(1.0f), 1);
+  s.parents = {-1, 0, 1, 2, 3, 4, 2, 6, 7, 8, 9};
+  const glm::mat4 offset = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.3f, -1.5f)) *
+                           glm::mat4_cast(glm::normalize(glm::quat(0.8f, -0.2f, 0.4f, 0.1f)));
+  for (size_t j : {0u, 5u, 9u}) s.parent_offsets[j] = offset;
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  for (size_t j = 0; j < n; ++j) {
+    pose.translations[j] = glm::vec3(unit(rng), unit(rng), unit(rng)) * 4.0f;
+    pose.rotations[j] = glm::normalize(glm::quat(unit(rng), unit(rng), unit(rng), unit(rng)));
+    pose.scales[j] = glm::vec3(scale(rng), scale(rng), scale(rng));
+  }
+  std::vector<glm::mat4> model(n);
+  ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
+  std::vector<glm::mat4> expected(n);
+  for (size_t j = 0; j < n; ++j) {
+    const bool identity = s.parent_offsets[j] == glm::mat4(1.0f);
+    const glm::vec3& t = pose.translations[j];
+    const glm::quat& q = pose.rotations[j];
+    const glm::vec3& sc = pose.scales[j];
+    if (s.parents[j] < 0 && identity) {
+      const glm::mat3 r = glm::mat3_cast(q);
+      expected[j] = glm::mat4(glm::vec4(r[0] * sc.x, 0.0f), glm::vec4(r[1] * sc.y, 0.0f),
+                              glm::vec4(r[2] * sc.z, 0.0f), glm::vec4(t, 1.0f));
+    } else {
+      glm::mat4 p = s.parents[j] < 0 ? glm::mat4(1.0f) : expected[static_cast<size_t>(s.parents[j])];
+      p = s.parents[j] < 0 ? s.parent_offsets[j] : identity ? p : p * s.parent_offsets[j];
+      expected[j] = reference_times_trs(p, t, q, sc);
+    }
+    EXPECT_EQ(0, std::memcmp(&model[j], &expected[j], sizeof(glm::mat4))) << "joint " << j;
+  }
+}
+
 }  // namespace
 }  // namespace crowdprof
