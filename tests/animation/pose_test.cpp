@@ -152,24 +152,31 @@ Skeleton roots(size_t n, const glm::mat4& offset, size_t offset_every) {
   return s;
 }
 
+// A pose for `s`: random translations up to `reach` along each axis, random
+// unit rotations, scales from 0.25 to 3 (uneven).
+LocalPose random_pose(const Skeleton& s, std::mt19937& rng, float reach) {
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.25f, 3.0f);
+  LocalPose pose;
+  reset_to_rest(s, &pose);
+  for (size_t j = 0; j < s.joint_count(); ++j) {
+    pose.translations[j] = glm::vec3(unit(rng), unit(rng), unit(rng)) * reach;
+    pose.rotations[j] = glm::normalize(glm::quat(unit(rng), unit(rng), unit(rng), unit(rng)));
+    pose.scales[j] = glm::vec3(scale(rng), scale(rng), scale(rng));
+  }
+  return pose;
+}
+
 // The job turns rotations and scales into axes four joints at a time (one per
 // lane): each joint's matrix is the same, bit for bit, as that joint's on its
 // own, in every lane of a block and in a last block of 1 to 3, and it is the
 // offset times its TRS.
 TEST(Pose, EveryJointOfABlockOfFourIsTheSameAsOnItsOwn) {
   std::mt19937 rng(31);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.25f, 3.0f);
   const glm::mat4 offset = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, -2.0f, 4.0f)) *
                            glm::mat4_cast(glm::normalize(glm::quat(0.9f, 0.1f, -0.3f, 0.2f)));
   for (size_t n = 1; n <= 9; ++n) {
     const Skeleton s = roots(n, offset, 3);
-    LocalPose pose;
-    reset_to_rest(s, &pose);
-    for (size_t j = 0; j < n; ++j) {
-      pose.translations[j] = glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
-      pose.rotations[j] = glm::normalize(glm::quat(unit(rng), unit(rng), unit(rng), unit(rng)));
-      pose.scales[j] = glm::vec3(scale(rng), scale(rng), scale(rng));
-    }
+    const LocalPose pose = random_pose(s, rng, 10.0f);
     std::vector<glm::mat4> model(n);
     ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
     for (size_t j = 0; j < n; ++j) {
@@ -210,20 +217,13 @@ glm::mat4 reference_times_trs(const glm::mat4& p, const glm::vec3& t, const glm:
 
 TEST(Pose, LocalToModelIsGlmsArithmeticBitForBit) {
   std::mt19937 rng(47);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.25f, 3.0f);
   const size_t n = 11;
   Skeleton s = roots(n, glm::mat4(1.0f), 1);
   s.parents = {-1, 0, 1, 2, 3, 4, 2, 6, 7, 8, 9};
   const glm::mat4 offset = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.3f, -1.5f)) *
                            glm::mat4_cast(glm::normalize(glm::quat(0.8f, -0.2f, 0.4f, 0.1f)));
   for (size_t j : {0u, 5u, 9u}) s.parent_offsets[j] = offset;
-  LocalPose pose;
-  reset_to_rest(s, &pose);
-  for (size_t j = 0; j < n; ++j) {
-    pose.translations[j] = glm::vec3(unit(rng), unit(rng), unit(rng)) * 4.0f;
-    pose.rotations[j] = glm::normalize(glm::quat(unit(rng), unit(rng), unit(rng), unit(rng)));
-    pose.scales[j] = glm::vec3(scale(rng), scale(rng), scale(rng));
-  }
+  const LocalPose pose = random_pose(s, rng, 4.0f);
   std::vector<glm::mat4> model(n);
   ASSERT_TRUE((LocalToModelJob{&s, &pose, model}.Run()));
   std::vector<glm::mat4> expected(n);
