@@ -95,32 +95,11 @@ glm::vec3 sample_vec3(const Channel& channel, const Segment& s) {
   return glm::mix(vec3_at(key), vec3_at(key + 3), s.alpha);
 }
 
-glm::quat sample_quat(const Channel& channel, const Segment& s) {
-  const float* v = channel.values.data();
-  if (channel.interpolation == Interpolation::CubicSpline) {
-    const float* key = v + 12 * s.k;
-    if (s.hold) return quat_at(key + 4);
-    const glm::vec4 q = hermite(glm::make_vec4(key + 4), glm::make_vec4(key + 8),
-                                glm::make_vec4(key + 16), glm::make_vec4(key + 12), s.span, s.alpha);
-    const float length2 = glm::dot(q, q);
-    // Tangents can cancel the values out; the nearer key is then the best guess.
-    if (!(length2 > 1e-12f)) return quat_at(s.alpha < 0.5f ? key + 4 : key + 16);
-    return quat_at(glm::value_ptr(q / std::sqrt(length2)));
-  }
-  const float* key = v + 4 * s.k;
-  if (s.hold || channel.interpolation == Interpolation::Step) return quat_at(key);
-  return slerp_shortest(quat_at(key), quat_at(key + 4), s.alpha);
-}
-
-// Floats a channel needs per key.
-size_t floats_per_key(const Channel& channel) {
-  const size_t groups = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
-  return groups * static_cast<size_t>(channel.components());
-}
-
-}  // namespace
-
-glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b_in, float t) {
+// slerp_shortest, inlined into the sampling loop: called, its quaternion came
+// back in two registers, was stored in two halves and reloaded whole, which
+// stalled on store forwarding once a rotation channel.
+inline __attribute__((always_inline)) glm::quat slerp_shortest_inlined(const glm::quat& a, const glm::quat& b_in,
+                                                                        float t) {
   glm::quat b = b_in;
   float cosine = glm::dot(a, b);
   if (cosine < 0.0f) {  // q and -q are the same rotation: take the shorter way
@@ -137,6 +116,33 @@ glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b_in, float t) {
   const float inv_sine = 1.0f / std::sqrt((1.0f - cosine) * (1.0f + cosine));
   return a * (std::sin((1.0f - t) * angle) * inv_sine) + b * (std::sin(t * angle) * inv_sine);
 }
+
+glm::quat sample_quat(const Channel& channel, const Segment& s) {
+  const float* v = channel.values.data();
+  if (channel.interpolation == Interpolation::CubicSpline) {
+    const float* key = v + 12 * s.k;
+    if (s.hold) return quat_at(key + 4);
+    const glm::vec4 q = hermite(glm::make_vec4(key + 4), glm::make_vec4(key + 8),
+                                glm::make_vec4(key + 16), glm::make_vec4(key + 12), s.span, s.alpha);
+    const float length2 = glm::dot(q, q);
+    // Tangents can cancel the values out; the nearer key is then the best guess.
+    if (!(length2 > 1e-12f)) return quat_at(s.alpha < 0.5f ? key + 4 : key + 16);
+    return quat_at(glm::value_ptr(q / std::sqrt(length2)));
+  }
+  const float* key = v + 4 * s.k;
+  if (s.hold || channel.interpolation == Interpolation::Step) return quat_at(key);
+  return slerp_shortest_inlined(quat_at(key), quat_at(key + 4), s.alpha);
+}
+
+// Floats a channel needs per key.
+size_t floats_per_key(const Channel& channel) {
+  const size_t groups = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  return groups * static_cast<size_t>(channel.components());
+}
+
+}  // namespace
+
+glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b, float t) { return slerp_shortest_inlined(a, b, t); }
 
 void reset_cursor(const Action& action, SamplingCursor* cursor) {
   cursor->keys.assign(action.channels.size(), 0u);
