@@ -95,6 +95,11 @@ ScaledAxes scaled_axes(const LocalPose& pose, size_t first, size_t count) {
   return out;
 }
 
+// Column c of joint i's R(r) S(s).
+glm::vec3 axis(const ScaledAxes& axes, int c, int i) {
+  return {axes.axis[3 * c][i], axes.axis[3 * c + 1][i], axes.axis[3 * c + 2][i]};
+}
+
 // parent * TRS(t, r, s) without forming TRS as a 4x4 and without the products by
 // its constant bottom row: three scaled rotation columns (lane i of `axes`)
 // and a translation.
@@ -104,17 +109,17 @@ inline __attribute__((always_inline)) glm::mat4 times_trs(const glm::mat4& paren
                                                           const ScaledAxes& axes, int i) {
   const Columns p = columns_of(parent);
   Columns out;
-  for (int c = 0; c < 3; ++c)
-    out.c[c] = p.c[0] * axes.axis[3 * c][i] + p.c[1] * axes.axis[3 * c + 1][i] + p.c[2] * axes.axis[3 * c + 2][i];
+  for (int c = 0; c < 3; ++c) {
+    const glm::vec3 a = axis(axes, c, i);
+    out.c[c] = p.c[0] * a.x + p.c[1] * a.y + p.c[2] * a.z;
+  }
   out.c[3] = p.c[0] * t.x + p.c[1] * t.y + p.c[2] * t.z + p.c[3];
   return to_mat4(out);
 }
 
 glm::mat4 trs(const glm::vec3& t, const ScaledAxes& axes, int i) {
-  const auto column = [&](int c) {
-    return glm::vec4(axes.axis[3 * c][i], axes.axis[3 * c + 1][i], axes.axis[3 * c + 2][i], 0.0f);
-  };
-  return glm::mat4(column(0), column(1), column(2), glm::vec4(t, 1.0f));
+  return glm::mat4(glm::vec4(axis(axes, 0, i), 0.0f), glm::vec4(axis(axes, 1, i), 0.0f),
+                   glm::vec4(axis(axes, 2, i), 0.0f), glm::vec4(t, 1.0f));
 }
 
 bool skeleton_sized(const Skeleton& skeleton) {
