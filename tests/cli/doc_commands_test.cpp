@@ -84,7 +84,14 @@ TEST(DocCommands, EveryQuotedCommandStillParses) {
     const int raw = std::system(command.c_str());
     std::ifstream err_file(dir / "err");
     std::string err((std::istreambuf_iterator<char>(err_file)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 0) << quoted.file << ": crowdprof " << quoted.line << "\n" << err;
+    // A target this CPU lacks (--simd AVX3 on a machine without AVX-512) is
+    // refused by name: the command parsed, the machine cannot run it.
+    const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    if (err.find("\" is not supported by this CPU (choose from") != std::string::npos) {
+      EXPECT_EQ(2, status) << quoted.file << ": crowdprof " << quoted.line;
+      continue;
+    }
+    EXPECT_EQ(status, 0) << quoted.file << ": crowdprof " << quoted.line << "\n" << err;
   }
 }
 
