@@ -14,8 +14,6 @@
 
 namespace crowdprof::test {
 
-inline std::string quoted(const std::string& path) { return "'" + path + "'"; }
-
 // The message load_gltf gives for `file`, or a test failure if it loads or throws
 // anything but InputError.
 inline std::string input_error(const std::string& file) {
@@ -39,7 +37,7 @@ inline void expect_bad_input(const std::string& file, const std::vector<std::str
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   for (const std::string& word : words) EXPECT_NE(message.find(word), std::string::npos) << "no \"" << word << "\" in: " << message;
 
-  CliResult cli = run_cli("info " + quoted(file));
+  CliResult cli = run_cli("info " + shell_quoted(file));
   EXPECT_EQ(cli.status, 3) << cli.err;
   EXPECT_EQ(cli.out, "");
   EXPECT_EQ(std::count(cli.err.begin(), cli.err.end(), '\n'), 1) << cli.err;

@@ -2,6 +2,8 @@
 
 #include "render/gl_context.h"
 
+#include <nlohmann/json.hpp>
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -17,11 +19,24 @@ std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
-static std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) { return nlohmann::json::parse(std::ifstream(path)); }
+
+std::string write_json(const std::filesystem::path& path, const nlohmann::json& doc) {
+  std::ofstream(path) << doc.dump(1);
+  return path.string();
+}
+
+size_t occurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 CliResult run_cli(const std::string& args) {
@@ -31,8 +46,8 @@ CliResult run_cli(const std::string& args) {
   int raw = std::system(command.c_str());
   CliResult result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  result.out = slurp(dir / "out");
-  result.err = slurp(dir / "err");
+  result.out = read_file(dir / "out");
+  result.err = read_file(dir / "err");
   return result;
 }
 

@@ -221,9 +221,9 @@ TEST(Loader, InfoListsEverySkin) {
   EXPECT_NE(text.out.find("rig"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("tail"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("#skin=1"), std::string::npos) << text.out;
-  CliResult json = run_cli("info --json '" + file + "'");
-  ASSERT_EQ(json.status, 0) << json.err;
-  nlohmann::json doc = nlohmann::json::parse(json.out);
+  CliResult as_json = run_cli("info --json '" + file + "'");
+  ASSERT_EQ(as_json.status, 0) << as_json.err;
+  nlohmann::json doc = nlohmann::json::parse(as_json.out);
   ASSERT_EQ(doc["characters"].size(), 2u);
   EXPECT_EQ(doc["characters"][1]["name"], "tail");
   EXPECT_EQ(doc["characters"][1]["joints"], 2);

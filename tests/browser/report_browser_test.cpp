@@ -51,11 +51,6 @@ std::string find_chromium() {
                       "in a browser; ./setup.sh test installs it (apt-get install chromium)";               \
   } while (0)
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // The page's DOM after its scripts ran, as headless chromium serialises it.
 std::string dump_dom(const fs::path& page) {
   fs::path dir = page.parent_path();
@@ -64,8 +59,8 @@ std::string dump_dom(const fs::path& page) {
                         "--user-data-dir='" + (dir / "chromium-profile").string() + "' --dump-dom 'file://" +
                         fs::absolute(page).string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
   int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command << "\n" << slurp(err);
-  return slurp(out);
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command << "\n" << crowdprof::test::read_file(err);
+  return crowdprof::test::read_file(out);
 }
 
 std::string attribute(const std::string& tag, const std::string& name) {
@@ -284,7 +279,7 @@ TEST(ReportInBrowser, ABrokenPageIsCaught) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_broken")};
   f.run("bench '" + f.scene + "' " + f.small + " --json '" + f.path("b.json") + "' --html '" + f.path("b.html") + "'");
-  std::string page = slurp(f.path("b.html"));
+  std::string page = crowdprof::test::read_file(f.path("b.html"));
   size_t polyline = page.find("<polyline points=\"");
   ASSERT_NE(polyline, std::string::npos);
   size_t last = page.rfind(' ', page.find('"', polyline + 18));

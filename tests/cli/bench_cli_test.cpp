@@ -8,14 +8,13 @@
 #include "gen/humanoid.h"
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
 using crowdprof::test::run_cli;
 
 namespace {
 
-std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
-
-void expect_usage_error(const std::string& args, const std::string& words) {
-  auto r = run_cli("bench '" + scene() + "' " + args);
+void expect_bench_usage_error(const std::string& args, const std::string& words) {
+  auto r = run_cli("bench '" + humanoid_glb() + "' " + args);
   EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
@@ -25,7 +24,7 @@ void expect_usage_error(const std::string& args, const std::string& words) {
 }  // namespace
 
 TEST(BenchCli, RunsTheDefaultSceneAndPrintsTheProfile) {
-  auto r = run_cli("bench '" + scene() + "' -n 6 --frames 3 --warmup 1 --mode culled");
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 6 --frames 3 --warmup 1 --mode culled");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* line : {"Frametime :", "Physics", "Animations :", "Rasterizer :", "GPU Latency:", "mode culled",
                            "copies culled", "digest"})
@@ -34,22 +33,22 @@ TEST(BenchCli, RunsTheDefaultSceneAndPrintsTheProfile) {
 }
 
 TEST(BenchCli, BadNumbersAndNames) {
-  expect_usage_error("-n 0", "at least 1");
-  expect_usage_error("-n -4", "at least 1");
-  expect_usage_error("-n many", "--characters");
-  expect_usage_error("--frames 0", "--frames");
-  expect_usage_error("--warmup -1", "--warmup");
-  expect_usage_error("--fps 0", "--fps");
-  expect_usage_error("--mode fastest", "master, culled, threaded, hwskin");
-  expect_usage_error("--threads 0", "--threads");
-  expect_usage_error("--mode master --threads 4", "one thread");
-  expect_usage_error("--actions sometimes", "shared, random");
-  expect_usage_error("--action tango", "dance");
-  expect_usage_error("--camera 1,2,3", "--camera");
-  expect_usage_error("--culling maybe", "on or off");
-  expect_usage_error("--mode master --parallel on", "shared scratch pose");
-  expect_usage_error("--backend vulkan", "--backend");
-  expect_usage_error("-n 9000000", "memory");
+  expect_bench_usage_error("-n 0", "at least 1");
+  expect_bench_usage_error("-n -4", "at least 1");
+  expect_bench_usage_error("-n many", "--characters");
+  expect_bench_usage_error("--frames 0", "--frames");
+  expect_bench_usage_error("--warmup -1", "--warmup");
+  expect_bench_usage_error("--fps 0", "--fps");
+  expect_bench_usage_error("--mode fastest", "master, culled, threaded, hwskin");
+  expect_bench_usage_error("--threads 0", "--threads");
+  expect_bench_usage_error("--mode master --threads 4", "one thread");
+  expect_bench_usage_error("--actions sometimes", "shared, random");
+  expect_bench_usage_error("--action tango", "dance");
+  expect_bench_usage_error("--camera 1,2,3", "--camera");
+  expect_bench_usage_error("--culling maybe", "on or off");
+  expect_bench_usage_error("--mode master --parallel on", "shared scratch pose");
+  expect_bench_usage_error("--backend vulkan", "--backend");
+  expect_bench_usage_error("-n 9000000", "memory");
 }
 
 TEST(BenchCli, BadFilesExit3) {
@@ -98,10 +97,10 @@ TEST(BenchCli, ACharacterWithoutActionsNeedsStatic) {
 TEST(BenchCli, OutputsThatCannotBeWritten) {
   auto dir = crowdprof::test::scratch_dir("bench_outputs");
   std::string missing = (dir / "no" / "frames.csv").string();
-  expect_usage_error("-n 2 --frames 1 --csv '" + missing + "'",
+  expect_bench_usage_error("-n 2 --frames 1 --csv '" + missing + "'",
                      "cannot write CSV file '" + missing + "': no folder " + (dir / "no").string());
-  expect_usage_error("-n 2 --frames 1 --json '" + dir.string() + "'",
+  expect_bench_usage_error("-n 2 --frames 1 --json '" + dir.string() + "'",
                      "cannot write JSON file '" + dir.string() + "': it is a directory");
   if (std::filesystem::is_character_file("/dev/full"))
-    expect_usage_error("-n 2 --frames 1 -q --trace /dev/full", "cannot write trace file '/dev/full': No space left on device");
+    expect_bench_usage_error("-n 2 --frames 1 -q --trace /dev/full", "cannot write trace file '/dev/full': No space left on device");
 }

@@ -11,26 +11,20 @@
 
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
+using crowdprof::test::read_json;
 using crowdprof::test::run_cli;
+using crowdprof::test::write_json;
 using nlohmann::json;
 
 namespace {
-
-std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
-
-std::string write_json(const std::filesystem::path& path, const json& doc) {
-  std::ofstream(path) << doc.dump(1);
-  return path.string();
-}
-
-json read_json(const std::string& path) { return json::parse(std::ifstream(path)); }
 
 // A baseline of a run far from every default: string lookups in the threaded
 // preset, one thread, the second action, a square frame (so another aspect
 // and so other copies culled).
 std::string unusual_baseline(const std::filesystem::path& dir) {
   std::string base = (dir / "base.json").string();
-  auto r = run_cli("bench '" + scene() + "' -n 12 --frames 8 --warmup 1 --mode threaded --lookups string --threads 1 "
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 12 --frames 8 --warmup 1 --mode threaded --lookups string --threads 1 "
                    "--action walk --resolution 600x600 --fps 30 -q --json '" + base + "'");
   EXPECT_EQ(r.status, 0) << r.err;
   return base;
@@ -156,7 +150,7 @@ TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
 TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   auto dir = crowdprof::test::scratch_dir("check_confirm");
   std::string base = (dir / "base.json").string();
-  auto r = run_cli("check --spread 0 '" + scene() + "' -n 6 --frames 8 --warmup 1 --runs 2 --baseline '" + base +
+  auto r = run_cli("check --spread 0 '" + humanoid_glb() + "' -n 6 --frames 8 --warmup 1 --runs 2 --baseline '" + base +
                    "' --update-baseline -q");
   ASSERT_EQ(r.status, 0) << r.err;
   json fast = read_json(base);

@@ -9,26 +9,17 @@
 
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
 using crowdprof::test::run_cli;
+using crowdprof::test::shell_quoted;
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string quoted(const fs::path& path) {
-  std::string text = "'";
-  return (text += path.string()) += "'";
-}
-
-std::string character() { return quoted(crowdprof::test::source_dir() / "scenes" / "humanoid.glb"); }
-
-}  // namespace
 
 TEST(CliGuidance, OtherFormatsAreRefusedWithHowToConvert) {
   auto dir = crowdprof::test::scratch_dir("guidance_formats");
   std::ofstream(dir / "cube.obj") << "# Blender OBJ\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "hero.fbx") << "Kaydara FBX Binary  ";
   for (const char* file : {"cube.obj", "hero.fbx"}) {
-    auto r = run_cli("bench " + quoted(dir / file));
+    auto r = run_cli("bench " + shell_quoted(dir / file));
     EXPECT_EQ(r.status, 3) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
@@ -40,8 +31,8 @@ TEST(CliGuidance, OtherFormatsAreRefusedWithHowToConvert) {
 TEST(CliGuidance, AResultGivenAsASceneSaysWhichCommandReadsIt) {
   auto dir = crowdprof::test::scratch_dir("guidance_result");
   fs::path result = dir / "run.json";
-  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --json " + quoted(result)).status, 0);
-  auto r = run_cli("bench " + quoted(result));
+  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result)).status, 0);
+  auto r = run_cli("bench " + shell_quoted(result));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("run.json: this is a crowdprof result, not a scene file: use report, or check --result"),
             std::string::npos)
@@ -51,8 +42,8 @@ TEST(CliGuidance, AResultGivenAsASceneSaysWhichCommandReadsIt) {
 TEST(CliGuidance, ReportSaysWhereItWrote) {
   auto dir = crowdprof::test::scratch_dir("guidance_report");
   fs::path result = dir / "run.json", page = dir / "run.html";
-  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 2 --warmup 0 -q --json " + quoted(result)).status, 0);
-  auto r = run_cli("report " + quoted(result) + " -o " + quoted(page));
+  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result)).status, 0);
+  auto r = run_cli("report " + shell_quoted(result) + " -o " + shell_quoted(page));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "wrote " + page.string() + ": 1 result\n");
   EXPECT_TRUE(fs::exists(page));
@@ -61,7 +52,7 @@ TEST(CliGuidance, ReportSaysWhereItWrote) {
 TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
   auto dir = crowdprof::test::scratch_dir("guidance_summary");
   fs::path bench = dir / "bench.csv", compare = dir / "compare.csv";
-  ASSERT_EQ(run_cli("bench " + character() + " -n 2 --frames 3 --warmup 0 -q --summary-csv " + quoted(bench)).status, 0);
+  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 -q --summary-csv " + shell_quoted(bench)).status, 0);
   std::ifstream in(bench);
   std::string header, row, extra;
   std::getline(in, header);
@@ -71,8 +62,8 @@ TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
   EXPECT_EQ(row.rfind("threaded,2,", 0), 0u) << row;
   EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ',')) << row;
   EXPECT_FALSE(std::getline(in, extra)) << "one row for one run";
-  auto r = run_cli("compare " + character() + " --modes master,culled -n 2 --frames 2 --warmup 0 --block 1 -q "
-                   "--summary-csv " + quoted(compare));
+  auto r = run_cli("compare " + shell_quoted(humanoid_glb()) + " --modes master,culled -n 2 --frames 2 --warmup 0 --block 1 -q "
+                   "--summary-csv " + shell_quoted(compare));
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream rows(compare);
   std::vector<std::string> lines;

@@ -12,29 +12,20 @@
 
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
+using crowdprof::test::read_json;
 using crowdprof::test::run_cli;
-
-namespace {
-
-std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
-
-nlohmann::json read_json(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-}  // namespace
 
 TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
-  auto json = crowdprof::test::scratch_dir("gpu_skinning_cli") / "baked.json";
-  auto r = run_cli("bench '" + scene() + "' -n 12 --mode baked --backend auto --resolution 160x90 --frames 2 --warmup 0 "
-                   "--bake-rate 15 --json '" + json.string() + "'");
+  auto result_file = crowdprof::test::scratch_dir("gpu_skinning_cli") / "baked.json";
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 12 --mode baked --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--bake-rate 15 --json '" + result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("skinning baked |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("baked at 15 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("largest vertex deviation from exact sampling"), std::string::npos) << r.out;
-  nlohmann::json j = read_json(json);
+  nlohmann::json j = read_json(result_file);
   const nlohmann::json& g = j.at("gpu_skinning");
   EXPECT_EQ(g.at("skinning"), "baked");
   EXPECT_EQ(g.at("rate_hz"), 15.0);
@@ -53,11 +44,11 @@ TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
 
 TEST(GpuSkinningCli, ComputeReportsItsGpuMemory) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
-  auto json = crowdprof::test::scratch_dir("gpu_skinning_cli") / "compute.json";
-  auto r = run_cli("bench '" + scene() + "' -n 6 --mode compute --backend auto --resolution 160x90 --frames 2 --warmup 0 "
-                   "--json '" + json.string() + "'");
+  auto result_file = crowdprof::test::scratch_dir("gpu_skinning_cli") / "compute.json";
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 6 --mode compute --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--json '" + result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  nlohmann::json j = read_json(json);
+  nlohmann::json j = read_json(result_file);
   EXPECT_EQ(j.at("gpu_skinning").at("skinning"), "compute");
   EXPECT_FALSE(j.at("gpu_skinning").contains("max_deviation"));
   EXPECT_EQ(j.at("counters").at("draw_calls"), j.at("counters").at("copies_visible"));
@@ -65,20 +56,20 @@ TEST(GpuSkinningCli, ComputeReportsItsGpuMemory) {
 
 TEST(GpuSkinningCli, RefusesWhatCannotRun) {
   for (const char* mode : {"compute", "baked"}) {
-    auto r = run_cli("bench '" + scene() + "' -n 2 --mode " + std::string(mode) + " --backend none --frames 1");
+    auto r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode " + std::string(mode) + " --backend none --frames 1");
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find("needs a GL backend"), std::string::npos) << r.err;
   }
   // The switch on its own, over another preset: parsed, then refused for want of GL.
-  auto r = run_cli("bench '" + scene() + "' -n 2 --mode hwskin --skinning baked --palettes buffer --draw instanced "
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode hwskin --skinning baked --palettes buffer --draw instanced "
                    "--backend none --frames 1");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("skinning baked) needs a GL backend"), std::string::npos) << r.err;
-  r = run_cli("bench '" + scene() + "' -n 2 --mode threaded --skinning compute --backend none --frames 1");
+  r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode threaded --skinning compute --backend none --frames 1");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("--skinning compute reads its matrices from shader storage buffers"), std::string::npos) << r.err;
   for (const char* rate : {"0", "-3", "nan", "20000"}) {
-    auto bad = run_cli("bench '" + scene() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
+    auto bad = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
     EXPECT_EQ(bad.status, 2) << rate << ": " << bad.err;
     EXPECT_NE(bad.err.find("--bake-rate"), std::string::npos) << bad.err;
   }
@@ -89,7 +80,7 @@ TEST(GpuSkinningCli, AGlWithoutWhatTheModeNeedsIsOneLineAndExit4) {
   for (auto [mode, hide, words] : {std::tuple{"compute", "compute", "needs compute shaders"},
                                    std::tuple{"baked", "vertex-ssbo", "storage buffers in the vertex shader"}}) {
     setenv("CROWDPROF_GL_HIDE", hide, 1);
-    auto r = run_cli("bench '" + scene() + "' -n 2 --mode " + std::string(mode) +
+    auto r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode " + std::string(mode) +
                      " --backend auto --resolution 160x90 --frames 1 --warmup 0");
     unsetenv("CROWDPROF_GL_HIDE");
     EXPECT_EQ(r.status, 4) << mode << ": " << r.err;

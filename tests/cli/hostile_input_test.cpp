@@ -25,13 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // `text` with its one occurrence of `from` replaced by `to`.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   size_t at = text.find(from);
@@ -47,7 +40,7 @@ CliResult run_shell(const std::string& command, const fs::path& dir) {
   int raw = std::system(line.c_str());
   CliResult result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  result.err = slurp(dir / "stderr");
+  result.err = read_file(dir / "stderr");
   return result;
 }
 
@@ -58,8 +51,8 @@ std::string bench_result(const fs::path& dir) {
   std::string character = (dir / "character.glb").string();
   SkinnedFixture().write_glb(character);
   std::string result = (dir / "result.json").string();
-  CliResult r = run_cli("bench " + crowdprof::test::quoted(character) + " -n 2 --frames 3 --warmup 0 --backend none -q --json " +
-                        crowdprof::test::quoted(result));
+  CliResult r = run_cli("bench " + crowdprof::test::shell_quoted(character) + " -n 2 --frames 3 --warmup 0 --backend none -q --json " +
+                        crowdprof::test::shell_quoted(result));
   EXPECT_EQ(r.status, 0) << r.err;
   return result;
 }
@@ -74,7 +67,7 @@ TEST(HostileInput, ANumberTooLargeForADoubleInACharacterIsABadFile) {
   fixture.json["nodes"][1]["translation"] = {0, 7777777, 0};
   std::string glb = (dir / "deep.glb").string();
   fixture.write_glb(glb);
-  write_file(glb, replaced(slurp(glb), "7777777", "-2e308 "));  // same length: the GLB header stays right
+  write_file(glb, replaced(read_file(glb), "7777777", "-2e308 "));  // same length: the GLB header stays right
   expect_bad_input(glb, {"a number too large for a double"});
 }
 
@@ -82,12 +75,12 @@ TEST(HostileInput, ANumberTooLargeForADoubleInABaselineOrResultIsABadFile) {
   fs::path dir = scratch_dir("overflow_result");
   std::string good = bench_result(dir);
   std::string bad = (dir / "bad.json").string();
-  write_file(bad, replaced(slurp(good), "{", "{\"fps\": 1e400, "));
-  CliResult r = run_cli("check --baseline " + crowdprof::test::quoted(bad) + " --result " + crowdprof::test::quoted(good));
+  write_file(bad, replaced(read_file(good), "{", "{\"fps\": 1e400, "));
+  CliResult r = run_cli("check --baseline " + crowdprof::test::shell_quoted(bad) + " --result " + crowdprof::test::shell_quoted(good));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + bad + ": a number too large for a double: ", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  r = run_cli("check --baseline " + crowdprof::test::quoted(good) + " --result " + crowdprof::test::quoted(bad));
+  r = run_cli("check --baseline " + crowdprof::test::shell_quoted(good) + " --result " + crowdprof::test::shell_quoted(bad));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + bad + ": a number too large for a double: ", 0), 0u) << r.err;
 }
@@ -113,11 +106,11 @@ TEST(HostileInput, AFailedWriteToStdoutIsAnError) {
   fs::path dir = scratch_dir("stdout_full");
   std::string character = (dir / "character.glb").string();
   SkinnedFixture().write_glb(character);
-  CliResult r = run_shell(cli() + " info " + crowdprof::test::quoted(character) + " >/dev/full", dir);
+  CliResult r = run_shell(cli() + " info " + crowdprof::test::shell_quoted(character) + " >/dev/full", dir);
   EXPECT_EQ(r.status, 4) << r.err;
   EXPECT_EQ(r.err, "crowdprof: cannot write to stdout: No space left on device\n");
   // Nothing printed, nothing to lose: still 0.
-  r = run_shell(cli() + " info " + crowdprof::test::quoted(character) + " >/dev/null", dir);
+  r = run_shell(cli() + " info " + crowdprof::test::shell_quoted(character) + " >/dev/null", dir);
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
@@ -144,11 +137,11 @@ TEST(HostileInput, AFileIsJudgedByItsFirstBytesBeforeItIsReadWhole) {
   }
   std::string good = bench_result(dir);
   const std::string limit = "ulimit -v 600000; ";
-  CliResult r = run_shell(limit + cli() + " info " + crowdprof::test::quoted((dir / "big.glb").string()) + " >/dev/null", dir);
+  CliResult r = run_shell(limit + cli() + " info " + crowdprof::test::shell_quoted((dir / "big.glb").string()) + " >/dev/null", dir);
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err, "crowdprof: " + (dir / "big.glb").string() + ": is not a glTF file (neither GLB nor a JSON object)\n");
-  r = run_shell(limit + cli() + " check -q --baseline " + crowdprof::test::quoted((dir / "big.json").string()) + " --result " +
-                    crowdprof::test::quoted(good),
+  r = run_shell(limit + cli() + " check -q --baseline " + crowdprof::test::shell_quoted((dir / "big.json").string()) + " --result " +
+                    crowdprof::test::shell_quoted(good),
                 dir);
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err, "crowdprof: " + (dir / "big.json").string() + ": not a crowdprof result (not a JSON object)\n");

@@ -45,8 +45,6 @@ std::vector<Block> fenced_blocks(const fs::path& markdown) {
   return blocks;
 }
 
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
-
 TEST(PipelineDoc, EveryCommandOfTheWorkedExampleRuns) {
   const fs::path dir = scratch_dir("pipeline_doc");
   fs::create_directories(dir / "characters");
@@ -67,9 +65,9 @@ TEST(PipelineDoc, EveryCommandOfTheWorkedExampleRuns) {
       if (line.empty() || line[0] == '#') continue;
       std::string command = line;
       const bool crowdprof = command.rfind("crowdprof ", 0) == 0;
-      if (crowdprof) command = quoted(CROWDPROF_CLI) + command.substr(9);
-      const int raw = std::system(("cd " + quoted(dir.string()) + " && " + command + " >" + quoted((dir / "out").string()) +
-                                   " 2>" + quoted((dir / "err").string()) + " </dev/null")
+      if (crowdprof) command = shell_quoted(CROWDPROF_CLI) + command.substr(9);
+      const int raw = std::system(("cd " + shell_quoted(dir.string()) + " && " + command + " >" + shell_quoted((dir / "out").string()) +
+                                   " 2>" + shell_quoted((dir / "err").string()) + " </dev/null")
                                       .c_str());
       const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
       std::ifstream err_file(dir / "err");

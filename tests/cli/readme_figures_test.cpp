@@ -37,11 +37,11 @@ TEST(ReadmeFigures, TheWorkOfAFrameIsThisBuilds) {
   vertices.erase(std::remove(vertices.begin(), vertices.end(), ','), vertices.end());
 
   auto dir = scratch_dir("readme_figures");
-  std::string json = (dir / "work.json").string();
+  std::string result_file = (dir / "work.json").string();
   auto r = run_cli("bench '" + (source_dir() / "scenes" / "humanoid.glb").string() +
-                   "' -n 160 --mode threaded --backend none --frames 10 --warmup 0 -q --json '" + json + "'");
+                   "' -n 160 --mode threaded --backend none --frames 10 --warmup 0 -q --json '" + result_file + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  std::ifstream in(json);
+  std::ifstream in(result_file);
   nlohmann::json result = nlohmann::json::parse(in);
   const nlohmann::json& c = result["counters"];
   EXPECT_EQ(std::to_string(c["poses_updated"].get<uint64_t>()), m[1].str());

@@ -12,11 +12,10 @@
 #include "render/gl_errors.h"
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
 using crowdprof::test::run_cli;
 
 namespace {
-
-std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
 
 #define REQUIRE_GL() \
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine"
@@ -46,21 +45,21 @@ TEST(RenderCli, WritesTheFrameAsAPng) {
   REQUIRE_GL();
   auto dir = crowdprof::test::scratch_dir("render_cli_png");
   auto png = dir / "frame.png";
-  auto r = run_cli("render '" + scene() + "' -n 4 --mode hwskin --frame 3 --resolution 160x90 -o '" + png.string() + "'");
+  auto r = run_cli("render '" + humanoid_glb() + "' -n 4 --mode hwskin --frame 3 --resolution 160x90 -o '" + png.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(is_png_of(png, 160, 90));
   EXPECT_NE(r.out.find("frame 3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("skinned on the GPU"), std::string::npos) << r.out;
   // A PNG that cannot be written is never reported as written.
   if (std::filesystem::is_character_file("/dev/full"))
-    expect_usage_error("render '" + scene() + "' -n 2 --resolution 16x9 -o /dev/full",
+    expect_usage_error("render '" + humanoid_glb() + "' -n 2 --resolution 16x9 -o /dev/full",
                        "cannot write PNG file '/dev/full': No space left on device");
-  expect_usage_error("render '" + scene() + "' -n 2 --resolution 16x9 -o '" + dir.string() + "'",
+  expect_usage_error("render '" + humanoid_glb() + "' -n 2 --resolution 16x9 -o '" + dir.string() + "'",
                      "cannot write PNG file '" + dir.string() + "': it is a directory");
 }
 
 TEST(RenderCli, BadSizesAndBackendsExit2) {
-  std::string base = "render '" + scene() + "' -n 2 -o /tmp/crowdprof_never_written.png ";
+  std::string base = "render '" + humanoid_glb() + "' -n 2 -o /tmp/crowdprof_never_written.png ";
   expect_usage_error(base + "--resolution 0x90", "--resolution");
   expect_usage_error(base + "--resolution 160x0", "--resolution");
   expect_usage_error(base + "--resolution 160", "WIDTHxHEIGHT");
@@ -68,15 +67,15 @@ TEST(RenderCli, BadSizesAndBackendsExit2) {
   expect_usage_error(base + "--backend vulkan", "auto, egl, osmesa or none");
   expect_usage_error(base + "--backend none", "draws nothing");
   expect_usage_error(base + "--frame -1", "--frame");
-  expect_usage_error("bench '" + scene() + "' -n 2 --mode hwskin --backend none", "GL backend");
-  expect_usage_error("bench '" + scene() + "' -n 2 --backend none --screenshot /tmp/x.png", "GL backend");
+  expect_usage_error("bench '" + humanoid_glb() + "' -n 2 --mode hwskin --backend none", "GL backend");
+  expect_usage_error("bench '" + humanoid_glb() + "' -n 2 --backend none --screenshot /tmp/x.png", "GL backend");
   EXPECT_FALSE(std::filesystem::exists("/tmp/crowdprof_never_written.png"));
 }
 
 TEST(RenderCli, AResolutionPastTheGlLimitExits2) {
   REQUIRE_GL();
   // 65536 passes the option's own check; no GL renders a buffer that wide.
-  expect_usage_error("render '" + scene() + "' -n 2 --resolution 65536x16 -o /tmp/crowdprof_never_written.png",
+  expect_usage_error("render '" + humanoid_glb() + "' -n 2 --resolution 65536x16 -o /tmp/crowdprof_never_written.png",
                      "pixels each way");
 }
 
@@ -84,14 +83,14 @@ TEST(RenderCli, BenchDrawsReportsAndTakesAScreenshot) {
   REQUIRE_GL();
   auto dir = crowdprof::test::scratch_dir("render_cli_bench");
   auto png = dir / "last.png";
-  auto json = dir / "run.json";
-  auto r = run_cli("bench '" + scene() + "' -n 8 --frames 2 --warmup 0 --mode hwskin --backend auto --resolution 160x90"
-                   " --screenshot '" + png.string() + "' --json '" + json.string() + "'");
+  auto result_file = dir / "run.json";
+  auto r = run_cli("bench '" + humanoid_glb() + "' -n 8 --frames 2 --warmup 0 --mode hwskin --backend auto --resolution 160x90"
+                   " --screenshot '" + png.string() + "' --json '" + result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(is_png_of(png, 160, 90));
   EXPECT_NE(r.out.find("renderer "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("draw calls"), std::string::npos) << r.out;
-  std::ifstream in(json);
+  std::ifstream in(result_file);
   nlohmann::json j = nlohmann::json::parse(in);
   std::string backend = j["environment"]["backend"];
   EXPECT_TRUE(backend == "egl" || backend == "osmesa") << backend;
@@ -104,7 +103,7 @@ TEST(RenderCli, BenchDrawsReportsAndTakesAScreenshot) {
 TEST(RenderCli, EachBackendByName) {
   REQUIRE_GL();
   for (const char* backend : {"egl", "osmesa"}) {
-    auto r = run_cli("bench '" + scene() + "' -n 2 --frames 1 --warmup 0 --backend " + std::string(backend) +
+    auto r = run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend " + std::string(backend) +
                      " --resolution 64x36");
     if (r.status == 4) {  // this backend is missing here; the other one is not
       EXPECT_NE(r.err.find(std::string(backend == std::string("egl") ? "EGL" : "OSMesa")), std::string::npos) << r.err;
@@ -119,8 +118,8 @@ TEST(RenderCli, WithoutEglAutoTakesOsMesaAndEglByNameExits4) {
   REQUIRE_GL();
   // glvnd finds no EGL vendor library: EGL fails, OSMesa does not need it.
   ::setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json", 1);
-  auto by_name = run_cli("bench '" + scene() + "' -n 2 --frames 1 --warmup 0 --backend egl --resolution 64x36");
-  auto automatic = run_cli("bench '" + scene() + "' -n 2 --frames 1 --warmup 0 --backend auto --resolution 64x36");
+  auto by_name = run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend egl --resolution 64x36");
+  auto automatic = run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend auto --resolution 64x36");
   ::unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
   EXPECT_EQ(by_name.status, 4) << by_name.err;
   EXPECT_NE(by_name.err.find("crowdprof: EGL"), std::string::npos) << by_name.err;

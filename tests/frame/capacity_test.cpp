@@ -53,21 +53,6 @@ CapacityRule rule_of(double budget, size_t start, size_t cap, double resolution)
   return rule;
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string scene() { return (test::source_dir() / "scenes" / "humanoid.glb").string(); }
-
-size_t count(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 }  // namespace
 
 TEST(CapacitySearch, FindsTheExactSizeOfALinearCost) {
@@ -288,17 +273,17 @@ TEST(CapacityReport, TableJsonAndChart) {
   EXPECT_FALSE(j["scene"].contains("characters"));
 
   std::string svg = capacity_svg(run, {"master", "culled", "threaded"});
-  EXPECT_EQ(count(svg, "<g class=\"series\""), 2u);
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"series\""), 2u);
   EXPECT_NE(svg.find("data-name=\"master\" data-geometry=\"line\" data-points=\"13\""), std::string::npos);
   EXPECT_NE(svg.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"3\""), std::string::npos);
-  EXPECT_EQ(count(svg, "<g class=\"budget\" data-value=\"20"), 1u) << svg;
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"budget\" data-value=\"20"), 1u) << svg;
 }
 
 TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   auto dir = test::scratch_dir("capacity_cli");
   std::string js = (dir / "c.json").string(), svg = (dir / "c.svg").string(), html = (dir / "c.html").string();
   // A budget nothing reaches: every mode is capped at 16 (4, 8, 16).
-  auto r = test::run_cli("capacity '" + scene() + "' --budget 100000 --modes master,threaded --threads 2 --start 4 "
+  auto r = test::run_cli("capacity '" + test::humanoid_glb() + "' --budget 100000 --modes master,threaded --threads 2 --start 4 "
                          "--max-characters 16 --frames 2 --warmup 0 --block 1 --json '" + js + "' --svg '" + svg +
                          "' --html '" + html + "'");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -306,7 +291,7 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("the cap of 16 characters fits"), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  json j = json::parse(slurp(js));
+  json j = json::parse(test::read_file(js));
   EXPECT_EQ(j["crowdprof"]["kind"], "capacity");
   EXPECT_EQ(j["scene"]["character"], "humanoid");
   ASSERT_EQ(j["modes"].size(), 2u);
@@ -322,9 +307,9 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
     }
   }
   EXPECT_EQ(j["modes"][1]["threads"], 2);
-  std::string chart = slurp(svg);
-  EXPECT_EQ(count(chart, "<g class=\"series\""), 2u);
-  EXPECT_EQ(count(chart, "<g class=\"budget\""), 1u);
+  std::string chart = test::read_file(svg);
+  EXPECT_EQ(test::occurrences(chart, "<g class=\"series\""), 2u);
+  EXPECT_EQ(test::occurrences(chart, "<g class=\"budget\""), 1u);
   // The bench result at each mode's capacity, and every size as compare's sweep.
   ASSERT_EQ(j["runs"].size(), 2u);
   EXPECT_EQ(j["runs"][0]["mode"], "master");
@@ -333,9 +318,9 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
 
   // The page: the runs at capacity, and the sizes tried with the budget; the
   // JSON makes the same page with `report`.
-  std::string page = slurp(html);
+  std::string page = test::read_file(html);
   EXPECT_NE(page.find("data-chart=\"sweep\""), std::string::npos);
-  EXPECT_EQ(count(page, "<g class=\"budget\" data-value=\"100000"), 1u);
+  EXPECT_EQ(test::occurrences(page, "<g class=\"budget\" data-value=\"100000"), 1u);
   EXPECT_NE(page.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"3\""), std::string::npos);
   // It leads with the capacity: budget, metric, and each mode's largest crowd
   // (capped here, so none was found over).
@@ -343,19 +328,19 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   ASSERT_NE(lead, std::string::npos);
   EXPECT_LT(lead, page.find("<section id=\"profile\">"));
   EXPECT_NE(page.find("fits 100000.000 ms</h2>", lead), std::string::npos);
-  EXPECT_EQ(count(page, "<td><b>16</b></td>"), 2u);
-  EXPECT_EQ(count(page, "over 16 (the cap fits)"), 2u);
+  EXPECT_EQ(test::occurrences(page, "<td><b>16</b></td>"), 2u);
+  EXPECT_EQ(test::occurrences(page, "over 16 (the cap fits)"), 2u);
   EXPECT_NE(page.find("capacity within 100000.000 ms of frame</title>"), std::string::npos);
   std::string again = (dir / "again.html").string();
   r = test::run_cli("report '" + js + "' -o '" + again + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(slurp(again).find("data-chart=\"sweep\""), std::string::npos);
+  EXPECT_NE(test::read_file(again).find("data-chart=\"sweep\""), std::string::npos);
 
   // A budget nothing fits: bisection down to one character, then no fit.
-  r = test::run_cli("capacity '" + scene() + "' --budget 0.000001 --modes threaded --start 4 --frames 1 --warmup 0 "
+  r = test::run_cli("capacity '" + test::humanoid_glb() + "' --budget 0.000001 --modes threaded --start 4 --frames 1 --warmup 0 "
                     "--metric Animations --json '" + js + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  j = json::parse(slurp(js));
+  j = json::parse(test::read_file(js));
   EXPECT_EQ(j["metric"], "Animations");
   EXPECT_TRUE(j["modes"][0]["largest_fit"].is_null());
   EXPECT_EQ(j["modes"][0]["first_over"]["characters"], 1);
@@ -364,7 +349,7 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
 
 TEST(CapacityCli, RefusesBadInputWithOneLine) {
   auto dir = test::scratch_dir("capacity_bad");
-  std::string q = "'" + scene() + "'";
+  std::string q = "'" + test::humanoid_glb() + "'";
   for (const std::string& bad :
        {std::string("--budget 0"), std::string("--budget -3"), std::string("--budget nan"), std::string(""),
         std::string("--budget 16.6 --metric fps"), std::string("--budget 16.6 --modes master,fastest"),

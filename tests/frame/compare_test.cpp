@@ -20,7 +20,7 @@ namespace {
 
 using test::small_humanoid;
 
-BenchConfig config_for(const std::string& mode, int threads = 1) {
+BenchConfig compare_config(const std::string& mode, int threads = 1) {
   BenchConfig config;
   config.mode = find_mode(mode)->switches;
   config.mode_name = mode;
@@ -33,7 +33,7 @@ BenchConfig config_for(const std::string& mode, int threads = 1) {
 }  // namespace
 
 TEST(Compare, ModesRunInBlocksAndEachGetsItsFrames) {
-  std::vector<BenchConfig> configs = {config_for("master"), config_for("culled"), config_for("threaded", 2)};
+  std::vector<BenchConfig> configs = {compare_config("master"), compare_config("culled"), compare_config("threaded", 2)};
   Tracer tracer;
   std::vector<std::unique_ptr<CrowdBench>> owned;
   std::vector<CrowdBench*> benches;
@@ -113,12 +113,12 @@ TEST(Compare, MediansAndSpeedups) {
   EXPECT_EQ(text.find("frame,mode", 1), std::string::npos) << "one header";
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1 + 9 + 4);
 
-  nlohmann::json json = comparison_to_json(comparison);
-  EXPECT_EQ(json["crowdprof"]["kind"], "compare");
-  EXPECT_EQ(json["modes"], nlohmann::json({"master", "culled", "threaded"}));
-  EXPECT_DOUBLE_EQ(json["summary"][2]["speedup"].get<double>(), 4.0);
-  EXPECT_EQ(json["sweep"].size(), 4u);
-  EXPECT_EQ(json["runs"][1]["samples"]["frame_ms"].size(), 3u);
+  nlohmann::json doc = comparison_to_json(comparison);
+  EXPECT_EQ(doc["crowdprof"]["kind"], "compare");
+  EXPECT_EQ(doc["modes"], nlohmann::json({"master", "culled", "threaded"}));
+  EXPECT_DOUBLE_EQ(doc["summary"][2]["speedup"].get<double>(), 4.0);
+  EXPECT_EQ(doc["sweep"].size(), 4u);
+  EXPECT_EQ(doc["runs"][1]["samples"]["frame_ms"].size(), 3u);
 }
 
 TEST(CompareCli, PrintsATableAndRefusesBadModes) {

@@ -23,6 +23,7 @@ using namespace crowdprof;
 
 namespace {
 
+using test::humanoid_glb;
 using test::small_humanoid;
 
 // One joint that slides along +X at 1 unit per second for one second, and a
@@ -47,7 +48,7 @@ BenchConfig config_for(const std::string& mode, int threads, size_t copies, Acti
   return config;
 }
 
-FrameRecord run_frames(CrowdBench& bench, int frames) {
+FrameRecord last_of_frames(CrowdBench& bench, int frames) {
   FrameRecord last;
   for (int i = 0; i < frames; ++i) last = bench.step();
   return last;
@@ -283,7 +284,7 @@ TEST(CrowdScale, FewerStatesThanThreadsAreSkinnedInParts) {
       config.mode.vertex_format = format;
       config.tracer = &tracer;
       CrowdBench bench(character, config);
-      FrameRecord last = run_frames(bench, 3);
+      FrameRecord last = last_of_frames(bench, 3);
       EXPECT_EQ(last.counters.poses_updated, 1u);
       EXPECT_EQ(last.counters.vertices_skinned, character.mesh.vertex_count());
       std::map<std::string, size_t> tasks;
@@ -345,7 +346,7 @@ TEST(CrowdScale, DeviationOfAQuantumWorkedByHand) {
   config.fps = 10;
   config.mode.share_quantum_s = 0.4;
   CrowdBench bench(slider(), config);
-  run_frames(bench, 4);
+  last_of_frames(bench, 4);
   AnimationFidelity fidelity = bench.measure_fidelity();
   EXPECT_EQ(fidelity.copies_checked, 1u);
   EXPECT_EQ(fidelity.copies_deviating, 1u);
@@ -443,7 +444,7 @@ TEST(CrowdScale, DigestsDoNotDependOnThreads) {
       config.mode.anim_budget_ms = c.budget;
       config.replay_animations_ms = {0.2, 0.9, 0.4, 1.5, 0.1};
       CrowdBench bench(small_humanoid(), config);
-      run_frames(bench, 12);
+      last_of_frames(bench, 12);
       if (reference.empty()) reference = bench.digest();
       EXPECT_EQ(bench.digest(), reference) << c.name << " on " << threads << " threads";
     }
@@ -457,8 +458,8 @@ TEST(CrowdScale, HeldPosesChangeTheDigest) {
   held.mode.update_lod = true;
   held.mode.lod = {2.0f, 0.0f, 0.0f};
   CrowdBench a(small_humanoid(), exact), b(small_humanoid(), held);
-  run_frames(a, 4);
-  run_frames(b, 4);
+  last_of_frames(a, 4);
+  last_of_frames(b, 4);
   EXPECT_NE(a.digest(), b.digest());
 }
 
@@ -486,9 +487,6 @@ TEST(CrowdScale, RunReportsTheSchedule) {
 
 // --- from the command line ------------------------------------------------------
 
-namespace {
-std::string humanoid_glb() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
-}  // namespace
 
 TEST(CrowdScaleCli, SharedPresetOnTheThesisScene) {
   auto dir = crowdprof::test::scratch_dir("crowd_scale_cli");

@@ -18,17 +18,12 @@
 #include "frame/interrupt.h"
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
+using crowdprof::test::read_file;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct Interrupted {
   int status = -1;  // exit status, or -signal when killed by one
@@ -57,12 +52,10 @@ Interrupted interrupt_cli(const std::vector<std::string>& args, const fs::path& 
   waitpid(child, &raw, 0);
   Interrupted r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -WTERMSIG(raw);
-  r.out = slurp(dir / "out");
-  r.err = slurp(dir / "err");
+  r.out = read_file(dir / "out");
+  r.err = read_file(dir / "err");
   return r;
 }
-
-std::string scene() { return (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string(); }
 
 }  // namespace
 
@@ -70,7 +63,7 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
   auto dir = crowdprof::test::scratch_dir("interrupt_bench");
   std::string result = (dir / "r.json").string(), csv = (dir / "r.csv").string();
   for (int signal_number : {SIGINT, SIGTERM}) {
-    Interrupted r = interrupt_cli({"bench", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--json",
+    Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--json",
                                    result, "--csv", csv},
                                   dir, signal_number, std::chrono::milliseconds(2500));
     ASSERT_EQ(r.status, 130) << r.err;
@@ -85,14 +78,14 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
     EXPECT_GT(frames, 0u);
     EXPECT_LT(frames, 10000000u);
     EXPECT_EQ(j["samples"]["frame_ms"].size(), frames);
-    std::string rows = slurp(csv);
+    std::string rows = read_file(csv);
     EXPECT_EQ(static_cast<size_t>(std::count(rows.begin(), rows.end(), '\n')), frames + 1);  // and the header
   }
 }
 
 TEST(Interrupt, WithoutOutputFilesNothingClaimsToBeWritten) {
   auto dir = crowdprof::test::scratch_dir("interrupt_no_outputs");
-  Interrupted r = interrupt_cli({"bench", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir, SIGINT,
+  Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir, SIGINT,
                                 std::chrono::milliseconds(1500));
   ASSERT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: "), std::string::npos) << r.err;
@@ -103,12 +96,12 @@ TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
   auto dir = crowdprof::test::scratch_dir("interrupt_check");
   std::string base = (dir / "base.json").string();
   std::ofstream(base) << "the earlier baseline";
-  Interrupted r = interrupt_cli({"check", "--spread", "0", scene(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
+  Interrupted r = interrupt_cli({"check", "--spread", "0", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
                                  base, "--update-baseline"},
                                 dir, SIGINT, std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("the baseline is not updated from a partial run"), std::string::npos) << r.err;
-  EXPECT_EQ(slurp(base), "the earlier baseline");
+  EXPECT_EQ(read_file(base), "the earlier baseline");
 }
 
 TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {
@@ -116,7 +109,7 @@ TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {
   // can stop it (the signal goes to check alone, as a terminal's ^C would).
   auto dir = crowdprof::test::scratch_dir("interrupt_check_run");
   std::string base = (dir / "base.json").string();
-  ASSERT_EQ(crowdprof::test::run_cli("check --spread 0 '" + scene() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
+  ASSERT_EQ(crowdprof::test::run_cli("check --spread 0 '" + humanoid_glb() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
                                      "' --update-baseline -q")
                 .status,
             0);
@@ -149,7 +142,7 @@ TEST(Interrupt, TheSecondSignalEndsTheProcessAtOnce) {
 TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
   auto dir = crowdprof::test::scratch_dir("interrupt_capacity");
   std::string result = (dir / "c.json").string();
-  Interrupted r = interrupt_cli({"capacity", scene(), "--budget", "100000", "--modes", "master,threaded", "--start", "2",
+  Interrupted r = interrupt_cli({"capacity", humanoid_glb(), "--budget", "100000", "--modes", "master,threaded", "--start", "2",
                                  "--frames", "10000000", "--warmup", "0", "--json", result},
                                 // Long enough for both modes' first blocks under ASan on a busy
                                 // 2-core machine (2.5 s was not: a mode had measured no frame).

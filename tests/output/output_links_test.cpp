@@ -18,26 +18,11 @@
 #include "output/output_file.h"
 #include "test_support.h"
 
+using crowdprof::test::humanoid_glb;
+using crowdprof::test::read_file;
 using crowdprof::test::run_cli;
+using crowdprof::test::shell_quoted;
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quoted(const fs::path& path) {
-  std::string text = "'";
-  return (text += path.string()) += "'";
-}
-
-std::string character() { return quoted(crowdprof::test::source_dir() / "scenes" / "humanoid.glb"); }
-
-}  // namespace
 
 TEST(OutputLinks, ALinkToAFileIsFollowedAndTheFileKeepsModeAndOwner) {
   auto dir = crowdprof::test::scratch_dir("links_file");
@@ -51,7 +36,7 @@ TEST(OutputLinks, ALinkToAFileIsFollowedAndTheFileKeepsModeAndOwner) {
   fs::create_symlink("target.csv", link);  // relative: to the link's folder
   crowdprof::write_file(link.string(), "CSV", "new");
   EXPECT_TRUE(fs::is_symlink(link)) << "the link was replaced by a file";
-  EXPECT_EQ(bytes_of(target), "new");
+  EXPECT_EQ(read_file(target), "new");
   struct stat after {};
   ASSERT_EQ(::stat(target.c_str(), &after), 0);
   EXPECT_EQ(after.st_mode & 07777, 0640u);
@@ -71,7 +56,7 @@ TEST(OutputLinks, ADanglingLinkCreatesItsTarget) {
   crowdprof::require_writable((dir / "link.json").string(), "JSON");
   crowdprof::write_file((dir / "link.json").string(), "JSON", "{}");
   EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
-  EXPECT_EQ(bytes_of(dir / "sub" / "made.json"), "{}");
+  EXPECT_EQ(read_file(dir / "sub" / "made.json"), "{}");
   // A link into a missing folder is refused before the run, naming both.
   fs::create_symlink("gone/x.json", dir / "nowhere.json");
   try {
@@ -88,7 +73,7 @@ TEST(OutputLinks, APipeIsWrittenInPlace) {
   fs::path fifo = dir / "fifo";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   std::string read;
-  std::thread reader([&] { read = bytes_of(fifo); });
+  std::thread reader([&] { read = read_file(fifo); });
   crowdprof::write_file(fifo.string(), "CSV", "through the pipe");
   reader.join();
   EXPECT_EQ(read, "through the pipe");
@@ -98,7 +83,7 @@ TEST(OutputLinks, APipeIsWrittenInPlace) {
 TEST(OutputLinks, StdoutThroughALinkFollowsWhatWasPrinted) {
   auto dir = crowdprof::test::scratch_dir("links_stdout");
   fs::create_symlink("/proc/self/fd/1", dir / "stdout");  // as /dev/stdout is
-  auto r = run_cli("bench " + character() + " -n 2 --frames 3 --warmup 0 --csv " + quoted(dir / "stdout"));
+  auto r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 --csv " + shell_quoted(dir / "stdout"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(dir / "stdout")) << "the link was replaced by a file";
   // The CSV alone: the profile yields stdout to an output written there.
@@ -107,7 +92,7 @@ TEST(OutputLinks, StdoutThroughALinkFollowsWhatWasPrinted) {
 }
 
 TEST(OutputLinks, DashIsStandardOutput) {
-  auto r = run_cli("bench " + character() + " -n 2 --frames 3 --warmup 0 --csv -");
+  auto r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 --csv -");
   bool made = fs::exists("-");
   if (made) fs::remove("-");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -117,11 +102,11 @@ TEST(OutputLinks, DashIsStandardOutput) {
   // for /dev/stdout: a build that replaced links would replace only it).
   auto dir = crowdprof::test::scratch_dir("links_dash");
   fs::create_symlink("/proc/self/fd/1", dir / "stdout");
-  r = run_cli("bench " + character() + " -n 2 --frames 3 --csv - --json " + quoted(dir / "stdout"));
+  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --csv - --json " + shell_quoted(dir / "stdout"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("both write"), std::string::npos) << r.err;
   // The report reads the screenshot back: stdout cannot be read back.
-  r = run_cli("bench " + character() + " -n 2 --frames 3 --screenshot - --html " + quoted(dir / "r.html"));
+  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --screenshot - --html " + shell_quoted(dir / "r.html"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("give --screenshot a file"), std::string::npos) << r.err;
 }
@@ -130,15 +115,15 @@ TEST(OutputLinks, AnOutputLinkedToAnInputIsRefused) {
   auto dir = crowdprof::test::scratch_dir("links_overlap");
   fs::copy_file(crowdprof::test::source_dir() / "scenes" / "humanoid.glb", dir / "scene.glb");
   fs::create_symlink("scene.glb", dir / "link.csv");
-  std::string before = bytes_of(dir / "scene.glb");
-  auto r = run_cli("bench " + quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + quoted(dir / "link.csv"));
+  std::string before = read_file(dir / "scene.glb");
+  auto r = run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "link.csv"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("is the character file"), std::string::npos) << r.err;
-  EXPECT_EQ(bytes_of(dir / "scene.glb"), before);
+  EXPECT_EQ(read_file(dir / "scene.glb"), before);
   // A dangling link leads to the file it would create: the same as another output.
   fs::create_symlink("t.json", dir / "a.csv");
-  r = run_cli("bench " + quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + quoted(dir / "a.csv") + " --json " +
-              quoted(dir / "t.json"));
+  r = run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "a.csv") + " --json " +
+              shell_quoted(dir / "t.json"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("both write"), std::string::npos) << r.err;
 }
@@ -154,7 +139,7 @@ TEST(OutputLinks, AFileInAFolderThatTakesNoNewFileIsWrittenInPlace) {
   if (enforced) {
     crowdprof::require_writable(file.string(), "CSV");
     crowdprof::write_file(file.string(), "CSV", "new");
-    EXPECT_EQ(bytes_of(file), "new");
+    EXPECT_EQ(read_file(file), "new");
   }
   fs::permissions(dir / "ro", fs::perms::owner_all);
   if (!enforced) GTEST_SKIP() << "permission bits are not enforced for this user (root)";

@@ -16,17 +16,11 @@
 #include "output/output_file.h"
 #include "test_support.h"
 
+using crowdprof::test::read_file;
 using crowdprof::test::run_cli;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // A private copy of the default character, so a test that failed could only
 // ever hurt the copy.
@@ -37,13 +31,13 @@ fs::path character_copy(const fs::path& dir) {
 }
 
 void expect_refused(const std::string& args, const fs::path& input, const std::string& words) {
-  std::string before = bytes_of(input);
+  std::string before = read_file(input);
   auto r = run_cli(args);
   EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
-  EXPECT_EQ(bytes_of(input), before) << args << " changed " << input;
+  EXPECT_EQ(read_file(input), before) << args << " changed " << input;
 }
 
 }  // namespace
@@ -91,7 +85,7 @@ TEST(SafeOutput, TwoOutputsOnOnePathAreRefused) {
   std::ofstream(f) << "keep me";
   expect_refused("bench '" + x.string() + "' -n 2 --frames 2 --csv '" + f + "' --json '" + f + "'", f,
                  "--csv and --json both write " + f);
-  EXPECT_EQ(bytes_of(f), "keep me");
+  EXPECT_EQ(read_file(f), "keep me");
   std::string base = (dir / "base.json").string();
   ASSERT_EQ(run_cli("bench '" + x.string() + "' -n 2 --frames 8 --warmup 0 -q --json '" + base + "'").status, 0);
   expect_refused("check --baseline '" + base + "' --csv '" + f + "' --svg '" + f + "'", f, "both write");
@@ -143,7 +137,7 @@ TEST(SafeOutput, AWriteThatFailsLeavesTheEarlierFileAsItWas) {
   setrlimit(RLIMIT_FSIZE, &old);
   signal(SIGXFSZ, previous);
   EXPECT_TRUE(threw);
-  EXPECT_EQ(bytes_of(path), "the earlier result");
+  EXPECT_EQ(read_file(path), "the earlier result");
   size_t files = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1u) << "a temporary file was left behind";
@@ -155,7 +149,7 @@ TEST(SafeOutput, AWriteThatFailsLeavesTheEarlierFileAsItWas) {
   ASSERT_EQ(stat(path.c_str(), &before), 0);
   crowdprof::write_file(path.string(), "JSON", "new");
   ASSERT_EQ(stat(path.c_str(), &after), 0);
-  EXPECT_EQ(bytes_of(path), "new");
+  EXPECT_EQ(read_file(path), "new");
   EXPECT_NE(before.st_ino, after.st_ino);
   EXPECT_EQ(after.st_mode & 07777, 0640u);
 }

@@ -23,13 +23,6 @@ namespace {
 
 std::string humanoid() { return (test::source_dir() / "scenes" / "humanoid.glb").string(); }
 
-json read_json(const std::filesystem::path& path) { return json::parse(std::ifstream(path)); }
-
-std::string write_json(const std::filesystem::path& path, const json& doc) {
-  std::ofstream(path) << doc.dump();
-  return path.string();
-}
-
 TEST(Calibration, TheProbeDoesTheSameWorkEveryRunOnAnyThreadCount) {
   CalibrationProbe one(1), two(2);
   for (int i = 0; i < 3; ++i) {
@@ -48,7 +41,7 @@ TEST(Calibration, ACalibratedBenchRecordsTheProbeAndDoesTheSameWork) {
   ASSERT_EQ(test::run_cli(common + "--json '" + plain + "'").status, 0);
   auto r = test::run_cli(common + "--calibrate --json '" + calibrated + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  json a = read_json(plain), b = read_json(calibrated);
+  json a = test::read_json(plain), b = test::read_json(calibrated);
   EXPECT_FALSE(a["samples"].contains("probe_ms"));
   EXPECT_FALSE(a.contains("calibration"));
   EXPECT_EQ(a["digest"], b["digest"]);
@@ -76,17 +69,17 @@ TEST(Calibration, TheRatioIsDerivedFromTheFramesNeverTrustedFromTheFile) {
   ASSERT_EQ(test::run_cli("bench '" + humanoid() + "' -n 2 --frames 4 --warmup 0 --calibrate -q --json '" + path + "'")
                 .status,
             0);
-  json doc = read_json(path);
+  json doc = test::read_json(path);
   for (json& v : doc["samples"]["calibrated"]) v = 1000.0;
-  Result tampered = read_result(write_json(dir / "tampered.json", doc));
+  Result tampered = read_result(test::write_json(dir / "tampered.json", doc));
   for (size_t i = 0; i < tampered.frames(); ++i)
     EXPECT_DOUBLE_EQ(tampered.samples.calibrated[i], tampered.samples.frame_ms[i] / tampered.samples.probe_ms[i]);
   doc["samples"]["probe_ms"][1] = 0;
-  EXPECT_THROW(read_result(write_json(dir / "zero.json", doc)), InputError);
+  EXPECT_THROW(read_result(test::write_json(dir / "zero.json", doc)), InputError);
   doc["samples"]["probe_ms"][1] = 1e-320;  // above 0, but a frame over it is not a number
-  EXPECT_THROW(read_result(write_json(dir / "denormal.json", doc)), InputError);
+  EXPECT_THROW(read_result(test::write_json(dir / "denormal.json", doc)), InputError);
   doc["samples"]["probe_ms"].erase(1);
-  EXPECT_THROW(read_result(write_json(dir / "short.json", doc)), InputError);
+  EXPECT_THROW(read_result(test::write_json(dir / "short.json", doc)), InputError);
 }
 
 TEST(Calibration, TheFloorOfTheRatioIsAShareOfItsOwnMedian) {
@@ -151,9 +144,9 @@ TEST(Calibration, APairThatCannotCompareTheCalibratedFrameFallsBackAndSaysWhy) {
   r = test::run_cli("check --result '" + calibrated + "' --baseline '" + plain + "' --metric cpu --tolerance 900%");
   EXPECT_NE(r.err.find("cpu does not compare like for like"), std::string::npos) << r.err;
 
-  json other = read_json(calibrated);
+  json other = test::read_json(calibrated);
   other["calibration"]["probe"] = kCalibrationProbeVersion + 1;
-  std::string other_path = write_json(dir / "other_probe.json", other);
+  std::string other_path = test::write_json(dir / "other_probe.json", other);
   r = test::run_cli("check --result '" + calibrated + "' --baseline '" + other_path + "' --tolerance 900%");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("the two were calibrated by different probes (version " +

@@ -49,11 +49,6 @@ json small_result(const std::string& mode = "culled") {
   return to_json(run_bench(bench, "scenes/humanoid.glb", options));
 }
 
-std::string write_json(const std::filesystem::path& path, const json& doc) {
-  std::ofstream(path) << doc.dump(1);
-  return path.string();
-}
-
 }  // namespace
 
 TEST(Check, ToleranceParsesPercentagesAndFractions) {
@@ -274,11 +269,11 @@ TEST(Check, BrokenBaselinesAreInputErrors) {
                                                                          {"no_digest", no_digest},
                                                                          {"counter_text", counter_text},
                                                                          {"array", json::array({1, 2})}})
-    write_json(dir / (name + ".json"), doc);
+    test::write_json(dir / (name + ".json"), doc);
   for (const char* name : {"truncated", "words", "empty", "future", "short", "negative", "no_digest", "counter_text",
                            "array", "missing"})
     EXPECT_THROW(read_result((dir / (std::string(name) + ".json")).string()), InputError) << name;
-  EXPECT_NO_THROW(read_result(write_json(dir / "good.json", good)));
+  EXPECT_NO_THROW(read_result(test::write_json(dir / "good.json", good)));
 }
 
 TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
@@ -306,7 +301,7 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
 
   json planted = json::parse(std::ifstream(base));
   planted["counters"]["poses_updated"] = planted["counters"]["poses_updated"].get<uint64_t>() + 1;
-  std::string changed = write_json(dir / "planted.json", planted);
+  std::string changed = test::write_json(dir / "planted.json", planted);
   r = test::run_cli("check --result '" + changed + "' --baseline '" + base + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("poses_updated"), std::string::npos) << r.out;
@@ -322,7 +317,7 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   EXPECT_NE(r.err.find("cut.json: truncated JSON"), std::string::npos) << r.err;
   json bigger = json::parse(std::ifstream(base));
   bigger["scene"]["vertices"] = 12345;
-  r = test::run_cli("check --result '" + base + "' --baseline '" + write_json(dir / "other.json", bigger) + "'");
+  r = test::run_cli("check --result '" + base + "' --baseline '" + test::write_json(dir / "other.json", bigger) + "'");
   EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.err.find("vertices"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;

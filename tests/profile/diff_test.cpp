@@ -18,15 +18,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string scene() { return (test::source_dir() / "scenes" / "humanoid.glb").string(); }
-
-std::string write_json(const std::filesystem::path& path, const json& doc) {
-  std::ofstream(path) << doc.dump(1);
-  return path.string();
-}
-
-json read_json(const std::string& path) { return json::parse(std::ifstream(path)); }
-
 // A result whose every timed sample is `factor` times A's.
 json scaled(json doc, double factor) {
   for (auto& [key, values] : doc["samples"].items())
@@ -39,7 +30,7 @@ json scaled(json doc, double factor) {
 TEST(Diff, SideBySideWithTheGateRule) {
   auto dir = test::scratch_dir("diff_cli");
   std::string a = (dir / "a.json").string();
-  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 6 --frames 20 --warmup 1 --mode culled -q --json '" + a + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 20 --warmup 1 --mode culled -q --json '" + a + "'").status, 0);
   // Against itself: every metric the same, counters and digest the same.
   auto r = run_cli("diff '" + a + "' '" + a + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
@@ -47,12 +38,12 @@ TEST(Diff, SideBySideWithTheGateRule) {
                             ", same\n", "ok: B is not slower"})
     EXPECT_NE(r.out.find(words), std::string::npos) << words << " in\n" << r.out;
   // Twice as slow everywhere: SLOWER, exit 1; the JSON says the same.
-  std::string b = write_json(dir / "b.json", scaled(read_json(a), 2.0));
+  std::string b = test::write_json(dir / "b.json", scaled(test::read_json(a), 2.0));
   std::string out = (dir / "diff.json").string();
   r = run_cli("diff '" + a + "' '" + b + "' --json '" + out + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("SLOWER"), std::string::npos) << r.out;
-  json j = read_json(out);
+  json j = test::read_json(out);
   EXPECT_EQ(j["crowdprof"]["kind"], "diff");
   EXPECT_TRUE(j["regressed"].get<bool>());
   ASSERT_EQ(j["pairs"].size(), 1u);
@@ -69,10 +60,10 @@ TEST(Diff, SideBySideWithTheGateRule) {
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(r.out.empty());
   // Other work: a counter and the digest.
-  json other = read_json(a);
+  json other = test::read_json(a);
   other["counters"]["poses_updated"] = 12345;
   other["digest"] = "0000000000000000";
-  r = run_cli("diff '" + a + "' '" + write_json(dir / "other.json", other) + "'");
+  r = run_cli("diff '" + a + "' '" + test::write_json(dir / "other.json", other) + "'");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("counter poses_updated: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("0000000000000000: CHANGED"), std::string::npos) << r.out;
@@ -95,10 +86,10 @@ TEST(Diff, SideBySideWithTheGateRule) {
 TEST(Diff, CompareResultsArePairedByMode) {
   auto dir = test::scratch_dir("diff_compare");
   std::string c = (dir / "c.json").string(), t = (dir / "t.json").string();
-  ASSERT_EQ(run_cli("compare '" + scene() + "' -n 6 --frames 10 --warmup 1 --modes master,threaded -q --json '" + c + "'")
+  ASSERT_EQ(run_cli("compare '" + test::humanoid_glb() + "' -n 6 --frames 10 --warmup 1 --modes master,threaded -q --json '" + c + "'")
                 .status,
             0);
-  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 6 --frames 10 --warmup 1 --mode threaded -q --json '" + t + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 10 --warmup 1 --mode threaded -q --json '" + t + "'").status, 0);
   auto r = run_cli("diff '" + c + "' '" + c + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\nmaster, 6 characters"), std::string::npos) << r.out;
@@ -109,7 +100,7 @@ TEST(Diff, CompareResultsArePairedByMode) {
   // Two single results of the character: compared whatever their modes and
   // sizes, with what differs said, and other work is other work.
   std::string m = (dir / "m.json").string();
-  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'").status, 0);
   r = run_cli("diff '" + t + "' '" + m + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("\nthreaded (A) against master (B), 6 characters"), std::string::npos) << r.out;
@@ -134,18 +125,18 @@ TEST(Diff, CompareResultsArePairedByMode) {
 TEST(Diff, BadFilesAndOutputs) {
   auto dir = test::scratch_dir("diff_bad");
   std::string a = (dir / "a.json").string();
-  ASSERT_EQ(run_cli("bench '" + scene() + "' -n 4 --frames 8 --warmup 0 --mode culled -q --json '" + a + "'").status, 0);
-  std::ofstream(dir / "cut.json") << read_json(a).dump().substr(0, 100);
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 8 --warmup 0 --mode culled -q --json '" + a + "'").status, 0);
+  std::ofstream(dir / "cut.json") << test::read_json(a).dump().substr(0, 100);
   auto r = run_cli("diff '" + a + "' '" + (dir / "cut.json").string() + "'");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("cut.json: truncated JSON"), std::string::npos) << r.err;
   r = run_cli("diff '" + a + "' '" + (dir / "missing.json").string() + "'");
   EXPECT_EQ(r.status, 3) << r.err;
-  std::string before = read_json(a).dump();
+  std::string before = test::read_json(a).dump();
   r = run_cli("diff '" + a + "' '" + a + "' --json '" + a + "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("is the file A"), std::string::npos) << r.err;
-  EXPECT_EQ(read_json(a).dump(), before);
+  EXPECT_EQ(test::read_json(a).dump(), before);
   r = run_cli("diff '" + a + "' '" + a + "' --tolerance ten");
   EXPECT_EQ(r.status, 2) << r.err;
 }
@@ -154,9 +145,9 @@ TEST(Diff, BadFilesAndOutputs) {
 // file is the same character, an edited one another whatever its name.
 TEST(Diff, TheSameCharacterIsTheSameFileContent) {
   const auto dir = test::scratch_dir("diff_content");
-  auto r = run_cli("bench '" + scene() + "' -n 4 --frames 3 --warmup 0 -q --json '" + (dir / "a.json").string() + "'");
+  auto r = run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 3 --warmup 0 -q --json '" + (dir / "a.json").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  json a = read_json((dir / "a.json").string());
+  json a = test::read_json((dir / "a.json").string());
   ASSERT_TRUE(a["crowd"][0].contains("asset_hash")) << a["crowd"];
   auto diff_of = [&](const json& b_doc) {
     std::vector<Result> ra{result_from_json(a, "a.json")}, rb{result_from_json(b_doc, "b.json")};

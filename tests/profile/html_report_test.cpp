@@ -20,12 +20,6 @@ using nlohmann::json;
 
 namespace {
 
-size_t count(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 // A run as a bench would describe it, made up from frame times.
 RunReport fake_bench(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
   RunReport run = test::fake_run(mode, characters, frame_ms, 0.25);
@@ -40,11 +34,6 @@ json fake_result(const std::string& mode, size_t characters, const std::vector<d
   run.run.warmup = 2;
   run.environment.cpu = "Test CPU <9000>";
   return to_json(run);
-}
-
-std::string write_json(const std::filesystem::path& path, const json& doc) {
-  std::ofstream(path) << doc.dump(1);
-  return path.string();
 }
 
 // The fill colour of the series (or legend entry) named `name` in a chart.
@@ -73,7 +62,7 @@ TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
     add_result_document(six, fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json");
   html = html_report(six);
   EXPECT_NE(html.find("class=\"by-run\""), std::string::npos) << "six runs: a row each";
-  EXPECT_EQ(count(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
+  EXPECT_EQ(test::occurrences(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
 }
 
 TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
@@ -93,8 +82,8 @@ TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
   add_result_document(input, to_json(run), "b.json");
   std::string html = html_report(input);
   ASSERT_NE(html.find("id=\"gpu-passes\""), std::string::npos);
-  EXPECT_EQ(count(html, ">prepass</td>"), 2u);
-  EXPECT_EQ(count(html, ">shadows</td>"), 0u) << "2 passes draw no shadows";
+  EXPECT_EQ(test::occurrences(html, ">prepass</td>"), 2u);
+  EXPECT_EQ(test::occurrences(html, ">shadows</td>"), 0u) << "2 passes draw no shadows";
   EXPECT_NE(html.find("<td>1,234,567</td>"), std::string::npos);
   EXPECT_NE(html.find("unavailable: softpipe lacks ARB_pipeline_statistics_query"), std::string::npos);
   EXPECT_NE(html.find("90% of the frame's GPU time"), std::string::npos) << "0.5 + 0.4 + 0.9 of 2 ms";
@@ -125,9 +114,9 @@ TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   EXPECT_NE(html.find("<g class=\"budget\" data-value=\"16.6667\""), std::string::npos);
   EXPECT_NE(html.find("<g class=\"budget\" data-value=\"33.3333\""), std::string::npos);
   for (const char* mark : {"percentile median", "percentile p95", "percentile p99"})
-    EXPECT_EQ(count(html, "<g class=\"" + std::string(mark) + "\""), 1u) << mark;
+    EXPECT_EQ(test::occurrences(html, "<g class=\"" + std::string(mark) + "\""), 1u) << mark;
   EXPECT_NE(html.find("data-chart=\"categories\" data-series=\"2\""), std::string::npos);
-  EXPECT_EQ(count(html, "data-geometry=\"area\" data-points=\"10\""), 2u);
+  EXPECT_EQ(test::occurrences(html, "data-geometry=\"area\" data-points=\"10\""), 2u);
   EXPECT_NE(html.find("frame (0 = the first measured, after 2 warm-up)"), std::string::npos);
   EXPECT_NE(html.find("walker x 40, backend none"), std::string::npos) << "character and backend in titles";
 }
@@ -136,8 +125,8 @@ TEST(HtmlReport, FastFramesNameTheBudgetsInsteadOfSquashingTheChart) {
   HtmlReportInput input;
   add_result_document(input, fake_result("threaded", 40, {1, 1.2, 1.1}), "a.json");
   std::string html = html_report(input);
-  EXPECT_EQ(count(html, "<g class=\"budget\""), 0u);
-  EXPECT_EQ(count(html, "class=\"budget above\""), 2u);
+  EXPECT_EQ(test::occurrences(html, "<g class=\"budget\""), 0u);
+  EXPECT_EQ(test::occurrences(html, "class=\"budget above\""), 2u);
 }
 
 TEST(HtmlReport, SeveralRunsSideBySideWithASweepAndOneColourPerMode) {
@@ -150,7 +139,7 @@ TEST(HtmlReport, SeveralRunsSideBySideWithASweepAndOneColourPerMode) {
   std::string html = html_report(input);
   EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"4\""), std::string::npos);
   EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
-  EXPECT_EQ(count(html, "data-geometry=\"line\" data-points=\"2\""), 2u) << "two sizes per mode";
+  EXPECT_EQ(test::occurrences(html, "data-geometry=\"line\" data-points=\"2\""), 2u) << "two sizes per mode";
   EXPECT_NE(html.find("characters (log scale)"), std::string::npos);
   // Labels tell the runs apart; the sweep's lines carry the plain mode.
   EXPECT_NE(html.find("data-name=\"master n=80\""), std::string::npos);
@@ -193,7 +182,7 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
                              options, "base.json"};
   std::string html = html_report(input);
   EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"3\""), std::string::npos);
-  EXPECT_EQ(count(html, "data-verdict=\"REGRESSION\""), 3u);
+  EXPECT_EQ(test::occurrences(html, "data-verdict=\"REGRESSION\""), 3u);
   EXPECT_NE(html.find("class=\"tolerance\""), std::string::npos);
   EXPECT_NE(html.find("Check against base.json: <span class=\"regression\">REGRESSION"), std::string::npos);
   EXPECT_EQ(html.find("<td>0.0000</td>"), std::string::npos) << "a tiny p-value is not 0";
@@ -204,14 +193,14 @@ TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {
   auto dir = test::scratch_dir("html_report_files");
   json bench = fake_result("culled", 10, {2, 2, 3});
   HtmlReportInput input;
-  add_result_file(input, write_json(dir / "bench.json", bench));
+  add_result_file(input, test::write_json(dir / "bench.json", bench));
   EXPECT_EQ(input.runs.size(), 1u);
 
   Comparison comparison;
   comparison.runs = {fake_bench("master", 10, {4, 4}), fake_bench("culled", 10, {3, 3})};
   comparison.sweep = {fake_bench("master", 5, {2}), fake_bench("culled", 5, {1.5}), comparison.runs[0],
                       comparison.runs[1]};
-  add_result_file(input, write_json(dir / "compare.json", comparison_to_json(comparison)));
+  add_result_file(input, test::write_json(dir / "compare.json", comparison_to_json(comparison)));
   EXPECT_EQ(input.runs.size(), 3u);
   EXPECT_EQ(input.sweep.size(), 4u);
 
@@ -235,7 +224,7 @@ TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {
                          Bad{"bad_sweep", bad_sweep, "sweep"}}) {
     HtmlReportInput fresh;
     try {
-      add_result_file(fresh, write_json(dir / (std::string(bad.name) + ".json"), bad.doc));
+      add_result_file(fresh, test::write_json(dir / (std::string(bad.name) + ".json"), bad.doc));
       ADD_FAILURE() << bad.name << " was read";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(bad.says), std::string::npos) << bad.name << ": " << e.what();
@@ -250,8 +239,8 @@ TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {
 
 TEST(ReportCli, WritesOneFileFromResultsAndNoneFromBadInput) {
   auto dir = test::scratch_dir("report_cli");
-  std::string a = write_json(dir / "a.json", fake_result("master", 10, {2, 3, 2}));
-  std::string b = write_json(dir / "b.json", fake_result("threaded", 10, {1, 1, 1}));
+  std::string a = test::write_json(dir / "a.json", fake_result("master", 10, {2, 3, 2}));
+  std::string b = test::write_json(dir / "b.json", fake_result("threaded", 10, {1, 1, 1}));
   std::string out = (dir / "report.html").string();
   auto r = test::run_cli("report '" + a + "' '" + b + "' -o '" + out + "'");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -265,7 +254,7 @@ TEST(ReportCli, WritesOneFileFromResultsAndNoneFromBadInput) {
   std::ofstream(dir / "cut.json") << doc.dump().substr(0, doc.dump().size() / 2);
   json older = doc;
   older["crowdprof"]["format"] = 0;
-  write_json(dir / "older.json", older);
+  test::write_json(dir / "older.json", older);
   std::ofstream(dir / "foreign.json") << R"({"name": "some other tool", "frames": [1, 2]})";
   for (const char* bad : {"cut.json", "older.json", "foreign.json", "missing.json"}) {
     std::string target = (dir / (std::string(bad) + ".html")).string();
@@ -283,15 +272,6 @@ TEST(ReportCli, WritesOneFileFromResultsAndNoneFromBadInput) {
   EXPECT_NE(r.err.find("not a PNG"), std::string::npos) << r.err;
 }
 
-namespace {
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
-
 TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   auto dir = test::scratch_dir("report_html_commands");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
@@ -299,7 +279,7 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   std::string bench = (dir / "bench.html").string(), json_path = (dir / "bench.json").string();
   auto r = test::run_cli("bench '" + scene + "' " + small + " --mode culled --json '" + json_path + "' --html '" + bench + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  std::string html = slurp(bench);
+  std::string html = test::read_file(bench);
   EXPECT_NE(html.find("data-name=\"culled\" data-geometry=\"line\" data-points=\"6\""), std::string::npos);
   EXPECT_NE(html.find("humanoid x 4, backend none"), std::string::npos);
   // The page made by bench --html is the one report makes of its JSON.
@@ -307,12 +287,12 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   ASSERT_EQ(test::run_cli("report '" + json_path + "' -o '" + again + "'").status, 0);
   // The same charts (the scene path is stored relative to the JSON, so the profile line differs).
   auto from_profile = [](const std::string& page) { return page.substr(page.find("<section id=\"frame-time\">")); };
-  EXPECT_EQ(from_profile(slurp(again)), from_profile(html));
+  EXPECT_EQ(from_profile(test::read_file(again)), from_profile(html));
 
   std::string compare = (dir / "compare.html").string();
   r = test::run_cli("compare '" + scene + "' " + small + " --modes master,threaded --sweep n=2,4 --html '" + compare + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  html = slurp(compare);
+  html = test::read_file(compare);
   EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"2\""), std::string::npos);
   EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
 
@@ -320,9 +300,9 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   ASSERT_EQ(test::run_cli("check --spread 0 '" + scene + "' " + small + " --baseline '" + base + "' --update-baseline --runs 2").status, 0);
   r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric frame,Animations --html '" + check + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  html = slurp(check);
+  html = test::read_file(check);
   EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"2\""), std::string::npos);
-  EXPECT_EQ(count(html, "data-verdict=\"ok\""), 2u);
+  EXPECT_EQ(test::occurrences(html, "data-verdict=\"ok\""), 2u);
   EXPECT_NE(html.find("data-name=\"baseline\""), std::string::npos);
   EXPECT_NE(html.find("data-name=\"current\""), std::string::npos);
 

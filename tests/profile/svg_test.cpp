@@ -91,14 +91,8 @@ std::string xml_problem(const std::string& xml) {
   return {};
 }
 
-size_t count(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 // Frames charged 30% to Animations and 70% to Rasterizer, so the stacked bars have two layers.
-RunReport fake_run(const std::string& mode, size_t characters, std::vector<double> frame_ms) {
+RunReport svg_run(const std::string& mode, size_t characters, std::vector<double> frame_ms) {
   return test::fake_run(mode, characters, frame_ms, 0.3);
 }
 
@@ -113,22 +107,22 @@ TEST(Svg, TheCheckerCatchesBrokenXml) {
 
 TEST(Svg, AComparisonHasOneSeriesPerModeInEveryChart) {
   Comparison comparison;
-  comparison.runs = {fake_run("master", 40, {9, 10, 11, 10}), fake_run("culled", 40, {7, 8, 7, 8}),
-                     fake_run("threaded", 40, {3, 2, 3, 3})};
+  comparison.runs = {svg_run("master", 40, {9, 10, 11, 10}), svg_run("culled", 40, {7, 8, 7, 8}),
+                     svg_run("threaded", 40, {3, 2, 3, 3})};
   std::string svg = comparison_svg(comparison);
   EXPECT_EQ(xml_problem(svg), "") << svg.substr(0, 400);
-  EXPECT_EQ(count(svg, "<g class=\"series\""), 3u);
-  EXPECT_EQ(count(svg, "<g class=\"bar\""), 3u);
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"series\""), 3u);
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"bar\""), 3u);
   for (const char* mode : {"master", "culled", "threaded"})
     EXPECT_NE(svg.find("<g class=\"series\" data-name=\"" + std::string(mode) + "\""), std::string::npos) << mode;
-  EXPECT_EQ(count(svg, "<polyline"), 3u);
+  EXPECT_EQ(test::occurrences(svg, "<polyline"), 3u);
 
-  comparison.sweep = {fake_run("master", 10, {2}), fake_run("culled", 10, {1.8}), fake_run("threaded", 10, {1}),
-                      fake_run("master", 40, {10}), fake_run("culled", 40, {7.5}), fake_run("threaded", 40, {3})};
+  comparison.sweep = {svg_run("master", 10, {2}), svg_run("culled", 10, {1.8}), svg_run("threaded", 10, {1}),
+                      svg_run("master", 40, {10}), svg_run("culled", 40, {7.5}), svg_run("threaded", 40, {3})};
   svg = comparison_svg(comparison);
   EXPECT_EQ(xml_problem(svg), "");
-  EXPECT_EQ(count(svg, "<g class=\"series\""), 6u) << "three per line chart";
-  EXPECT_EQ(count(svg, "<g class=\"chart"), 3u);
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"series\""), 6u) << "three per line chart";
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"chart"), 3u);
 }
 
 TEST(Svg, NamesAreEscapedAndOddValuesSkipped) {
@@ -141,6 +135,6 @@ TEST(Svg, NamesAreEscapedAndOddValuesSkipped) {
   std::string svg = doc.str();
   EXPECT_EQ(xml_problem(svg), "") << svg;
   EXPECT_NE(svg.find("mode&lt;&amp;&gt;&apos;&quot;"), std::string::npos);
-  EXPECT_EQ(count(svg, "<circle"), 2u) << "NaN and infinity are not drawn";
-  EXPECT_EQ(count(svg, "<g class=\"series\""), 2u);
+  EXPECT_EQ(test::occurrences(svg, "<circle"), 2u) << "NaN and infinity are not drawn";
+  EXPECT_EQ(test::occurrences(svg, "<g class=\"series\""), 2u);
 }

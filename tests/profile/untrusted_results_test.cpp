@@ -32,13 +32,6 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
-
-void write_json(const fs::path& path, const json& doc) { std::ofstream(path) << doc.dump(1); }
-
 // Runs the CLI, failing the test unless it exits 0.
 void cli(const std::string& args) {
   CliResult r = run_cli(args);

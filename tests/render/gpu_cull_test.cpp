@@ -19,7 +19,7 @@ using namespace crowdprof::test;
 
 namespace {
 
-struct Case {
+struct CullCase {
   std::string name;
   std::vector<const Character*> characters;
   ActionChoice actions;
@@ -30,13 +30,13 @@ struct Case {
 
 TEST(GpuCull, FindsTheCopiesTheCpuFindsAndDrawsTheSameImage) {
   OPEN_GL_OR_SKIP(context);
-  const std::vector<Case> cases = {
+  const std::vector<CullCase> cases = {
       {"humanoid, shared action", {&default_humanoid()}, ActionChoice::Shared, 1},
       {"two characters, random actions", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random, 1},
       {"two characters, prepass and a shadow cascade", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random,
        3},
   };
-  for (const Case& c : cases) {
+  for (const CullCase& c : cases) {
     Shot shot;
     shot.mode = "baked";
     shot.copies = 60;  // the default camera leaves the crowd's far corners out

@@ -22,11 +22,6 @@ using namespace crowdprof::test;
 
 namespace {
 
-const Character& humanoid() {
-  static const Character character = load_character((source_dir() / "scenes" / "humanoid.glb").string());
-  return character;
-}
-
 const Character& humanoid300() {
   static const Character character = generate_humanoid({300, 3000, 1});
   return character;
@@ -86,7 +81,7 @@ TEST(GpuModes, SwitchesThatCannotWorkTogetherAreRefused) {
 
 TEST(GpuModes, DrawTheImageCpuSkinningDraws) {
   OPEN_GL_OR_SKIP(context);
-  std::vector<std::pair<std::string, const Character*>> characters = {{"humanoid", &humanoid()},
+  std::vector<std::pair<std::string, const Character*>> characters = {{"humanoid", &default_humanoid()},
                                                                       {"humanoid-300", &humanoid300()}};
   std::vector<std::unique_ptr<Character>> samples;
   if (have_samples()) {
@@ -116,7 +111,7 @@ TEST(GpuModes, DrawTheImageCpuSkinningDraws) {
 
 TEST(GpuModes, ACrowdWithRandomActionsAndTwoCharactersDrawsTheSameImage) {
   OPEN_GL_OR_SKIP(context);
-  const Character* both[] = {&humanoid(), &humanoid300()};
+  const Character* both[] = {&default_humanoid(), &humanoid300()};
   Shot shot;
   shot.copies = 12;
   shot.frame = 9;
@@ -137,10 +132,10 @@ TEST(GpuModes, BufferPalettesDrawAsTheUniformArrayDoes) {
   OPEN_GL_OR_SKIP(context);
   Shot shot;
   shot.mode = "hwskin";
-  Frame uniforms = render(*context, humanoid(), shot);
+  Frame uniforms = render(*context, default_humanoid(), shot);
   for (const char* mode : kNewModes) {
     shot.mode = mode;
-    Frame buffer = render(*context, humanoid(), shot);
+    Frame buffer = render(*context, default_humanoid(), shot);
     // The same matrices in the same order: the same digest, and the image within a shade.
     EXPECT_EQ(buffer.digest, uniforms.digest) << mode;
     EXPECT_LE(pixels_differing(uniforms.rgba, buffer.rgba, 1), uniforms.rgba.size() / 4 / 2000) << mode;
@@ -168,7 +163,7 @@ TEST(GpuModes, A300BoneCharacterRunsInTheBufferModesAndHwskinFallsBack) {
 
 TEST(GpuModes, CountersAreExact) {
   OPEN_GL_OR_SKIP(context);
-  const Character& c = humanoid();
+  const Character& c = default_humanoid();
   const uint64_t palette = c.skeleton.joint_count() * 48;  // 3 rows of 4 floats per joint
   EXPECT_EQ(palette, 3312u);
   for (size_t copies : {size_t{8}, size_t{40}}) {
@@ -205,11 +200,11 @@ TEST(GpuModes, AGlWithoutVertexStorageBuffersIsRefusedNamingIt) {
   Shot shot;
   shot.hide_features = "vertex-ssbo";
   shot.mode = "hwskin";  // needs no storage buffer: still draws
-  EXPECT_TRUE(render(*context, humanoid(), shot).gpu_skinned);
+  EXPECT_TRUE(render(*context, default_humanoid(), shot).gpu_skinned);
   for (const char* mode : kNewModes) {
     shot.mode = mode;
     try {
-      render(*context, humanoid(), shot);
+      render(*context, default_humanoid(), shot);
       FAIL() << mode << " ran without shader storage buffers";
     } catch (const GlUnavailable& e) {
       EXPECT_NE(std::string(e.what()).find("no shader storage buffers in the vertex stage"), std::string::npos)

@@ -25,8 +25,6 @@ using namespace crowdprof::test;
 
 namespace {
 
-const Character& humanoid() { return default_humanoid(); }
-
 const Character& bony() {  // crowdprof gen --bones 300 --vertices 2000: over hwskin's 128
   static const Character character = [] {
     HumanoidOptions options;
@@ -44,7 +42,7 @@ struct Subject {
 };
 
 std::vector<Subject> subjects(std::vector<Character>& loaded) {
-  std::vector<Subject> list = {{"humanoid", &humanoid()}, {"300 bones", &bony()}, {"random actions", &humanoid(), true}};
+  std::vector<Subject> list = {{"humanoid", &default_humanoid()}, {"300 bones", &bony()}, {"random actions", &default_humanoid(), true}};
   if (test::have_samples()) {
     loaded.push_back(load_character(test::sample("Fox/glTF-Binary/Fox.glb")));
     loaded.push_back(load_character(test::sample("CesiumMan/glTF-Binary/CesiumMan.glb")));
@@ -131,7 +129,7 @@ TEST(GpuSkinning, ComputeAndBakedDrawWhatCpuSkinningDraws) {
 
 TEST(GpuSkinning, ComputeAndBakedCountWhatTheySend) {
   OPEN_GL_OR_SKIP(context);
-  const Character& c = humanoid();
+  const Character& c = default_humanoid();
   Shot shot;
   shot.copies = 160;  // the thesis scene
   shot.frame = 1;
@@ -154,7 +152,7 @@ TEST(GpuSkinning, ComputeAndBakedCountWhatTheySend) {
 
 TEST(GpuSkinning, BakedAndComputeMemoryOnTheGpuIsWhatTheyHold) {
   OPEN_GL_OR_SKIP(context);
-  const Character& c = humanoid();
+  const Character& c = default_humanoid();
   RendererConfig rc;
   rc.width = kWidth;
   rc.height = kHeight;
@@ -208,14 +206,14 @@ TEST(GpuSkinning, AContextWithoutComputeOrVertexStorageBuffersRefusesNamingIt) {
     shot.copies = 2;
     shot.hide_features = hide;
     try {
-      render(*context, humanoid(), shot);
+      render(*context, default_humanoid(), shot);
       FAIL() << mode << " ran on a context without what it needs";
     } catch (const GlUnavailable& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
     }
     shot.hide_features = mode == std::string("compute") ? "vertex-ssbo" : "compute";  // what it does not need
-    EXPECT_GT(covered(render(*context, humanoid(), shot).rgba), 0u) << mode;
+    EXPECT_GT(covered(render(*context, default_humanoid(), shot).rgba), 0u) << mode;
   }
   GlFeatures none;
   EXPECT_NE(missing_gl_feature(SkinningSite::Compute, none), "");
@@ -230,7 +228,7 @@ TEST(GpuSkinning, AContextWithoutComputeOrVertexStorageBuffersRefusesNamingIt) {
 
 TEST(GpuSkinning, BakedDrawsOnceACharacterWhateverTheCrowd) {
   OPEN_GL_OR_SKIP(context);
-  const Character* both[] = {&humanoid(), &bony()};
+  const Character* both[] = {&default_humanoid(), &bony()};
   Shot shot;
   shot.mode = "baked";
   shot.camera = "all";

@@ -14,26 +14,11 @@
 #include "render/gl_errors.h"
 #include "render/gl_program.h"
 #include "render/shader_sources.h"
+#include "render_support.h"
 
 using namespace crowdprof;
 
 namespace {
-
-// A current context of `backend`, or null with the reason in *why.
-std::unique_ptr<GlContext> try_context(GlBackend backend, std::string* why) {
-  try {
-    return create_context(backend);
-  } catch (const GlUnavailable& e) {
-    *why = e.what();
-    return nullptr;
-  }
-}
-
-#define OPEN_GL_OR_SKIP(context)                                                  \
-  std::string why_##context;                                                      \
-  auto context = try_context(GlBackend::Egl, &why_##context);                     \
-  if (!context) context = try_context(GlBackend::OsMesa, &why_##context);         \
-  if (!context) GTEST_SKIP() << "no GL backend on this machine: " << why_##context
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -81,7 +66,7 @@ TEST(RenderGl, EachBackendGivesA43CoreContext) {
   int opened = 0;
   for (GlBackend backend : {GlBackend::Egl, GlBackend::OsMesa}) {
     std::string why;
-    auto context = try_context(backend, &why);
+    auto context = test::try_context(backend, &why);
     if (!context) {
       std::cout << "[ info ] " << to_string(backend) << " unavailable: " << why << "\n";
       continue;

@@ -25,11 +25,6 @@ namespace {
 
 using namespace crowdprof::test;
 
-const Character& humanoid() {
-  static const Character character = load_character((test::source_dir() / "scenes" / "humanoid.glb").string());
-  return character;
-}
-
 // How far (in pixels) point p lies inside triangle abc, along the nearest edge's
 // normal: negative outside. Zero for a degenerate triangle.
 float inside_by(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 p) {
@@ -88,9 +83,9 @@ void expect_pose_coverage(const Character& character, const Frame& expected, con
 TEST(RenderImage, SoftwareAndHardwareSkinningDrawTheSameFrame) {
   OPEN_GL_OR_SKIP(context);
   Shot shot;
-  Frame software = render(*context, humanoid(), shot);
+  Frame software = render(*context, default_humanoid(), shot);
   shot.mode = "hwskin";
-  Frame hardware = render(*context, humanoid(), shot);
+  Frame hardware = render(*context, default_humanoid(), shot);
   ASSERT_FALSE(software.gpu_skinned);
   ASSERT_TRUE(hardware.gpu_skinned);
   size_t pixels = software.rgba.size() / 4;
@@ -114,9 +109,9 @@ TEST(RenderImage, SoftwareAndHardwareSkinningDrawTheSameFrame) {
 TEST(RenderImage, PackedVerticesDrawTheFloatFrame) {
   OPEN_GL_OR_SKIP(context);
   Shot shot;
-  Frame floats = render(*context, humanoid(), shot);
+  Frame floats = render(*context, default_humanoid(), shot);
   shot.vertex_format = VertexFormat::Packed;
-  Frame packed = render(*context, humanoid(), shot);
+  Frame packed = render(*context, default_humanoid(), shot);
   size_t pixels = floats.rgba.size() / 4;
   ASSERT_GT(covered(floats.rgba), pixels / 50);
   std::cout << "[ info ] of " << covered(floats.rgba) << " pixels drawn, " << pixels_differing(floats.rgba, packed.rgba, 0)
@@ -124,13 +119,13 @@ TEST(RenderImage, PackedVerticesDrawTheFloatFrame) {
   EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 4), pixels * 5 / 10000);
   EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 0), covered(floats.rgba) / 10);
   EXPECT_EQ(floats.counters.draw_calls, packed.counters.draw_calls);
-  const uint64_t copies = floats.counters.draw_calls, vertices = humanoid().mesh.vertex_count();
+  const uint64_t copies = floats.counters.draw_calls, vertices = default_humanoid().mesh.vertex_count();
   EXPECT_EQ(copies * (vertices * 24 + 64), floats.counters.bytes_uploaded);
   EXPECT_EQ(copies * (vertices * 10 + 64), packed.counters.bytes_uploaded);
   // A pose the float path draws differently would move many pixels: the
   // packed frame is of the same pose, not the rest pose.
   shot.frame = 0;
-  Frame earlier = render(*context, humanoid(), shot);
+  Frame earlier = render(*context, default_humanoid(), shot);
   EXPECT_GT(pixels_differing(earlier.rgba, packed.rgba, 4), pixels * 5 / 10000);
 }
 
@@ -171,8 +166,8 @@ TEST(RenderImage, EglAndOsMesaDrawTheSameImage) {
     shot.camera = "default";
     shot.copies = 8;
     // Alternating contexts also checks that glad follows the current one.
-    Frame a = render(*egl, humanoid(), shot);
-    Frame b = render(*osmesa, humanoid(), shot);
+    Frame a = render(*egl, default_humanoid(), shot);
+    Frame b = render(*osmesa, default_humanoid(), shot);
     ASSERT_GT(covered(a.rgba), a.rgba.size() / 4 / 100) << mode;
     if (egl->renderer() == osmesa->renderer())
       EXPECT_EQ(pixels_differing(a.rgba, b.rgba, 0), 0u) << mode << " on " << egl->renderer();
@@ -183,7 +178,7 @@ TEST(RenderImage, EglAndOsMesaDrawTheSameImage) {
 
 TEST(RenderImage, CountersSayWhatWasSent) {
   OPEN_GL_OR_SKIP(context);
-  const Character& c = humanoid();
+  const Character& c = default_humanoid();
   uint64_t vertex_bytes = c.mesh.vertex_count() * 24 + 64, bone_bytes = c.skeleton.joint_count() * 48 + 64;
   Shot shot;
   shot.camera = "default";
@@ -206,15 +201,15 @@ TEST(RenderImage, CountersSayWhatWasSent) {
 TEST(RenderImage, ACharacterOverTheBoneLimitFallsBackToTheCpu) {
   OPEN_GL_OR_SKIP(context);
   Shot shot;
-  Frame reference = render(*context, humanoid(), shot);
+  Frame reference = render(*context, default_humanoid(), shot);
   shot.mode = "hwskin";
   shot.joint_cap = 8;  // the humanoid has 69 joints
-  Frame fallback = render(*context, humanoid(), shot);
+  Frame fallback = render(*context, default_humanoid(), shot);
   EXPECT_FALSE(fallback.gpu_skinned);
   EXPECT_GT(fallback.counters.copies_fallback, 0u);
   EXPECT_EQ(fallback.counters.copies_fallback, fallback.counters.poses_updated);
-  EXPECT_EQ(fallback.counters.vertices_skinned, fallback.counters.poses_updated * humanoid().mesh.vertex_count());
-  EXPECT_EQ(fallback.counters.bytes_uploaded, fallback.counters.draw_calls * (humanoid().mesh.vertex_count() * 24 + 64));
+  EXPECT_EQ(fallback.counters.vertices_skinned, fallback.counters.poses_updated * default_humanoid().mesh.vertex_count());
+  EXPECT_EQ(fallback.counters.bytes_uploaded, fallback.counters.draw_calls * (default_humanoid().mesh.vertex_count() * 24 + 64));
   // Skinned by the same code as threaded: the same image, bit for bit.
   EXPECT_EQ(pixels_differing(reference.rgba, fallback.rgba, 0), 0u);
 }
@@ -224,12 +219,12 @@ TEST(RenderImage, AGlErrorDuringAFrameStopsItNamingTheStage) {
   RendererConfig rc;
   rc.width = kWidth;
   rc.height = kHeight;
-  GlCrowdRenderer renderer(*context, humanoid(), 2, rc);
+  GlCrowdRenderer renderer(*context, default_humanoid(), 2, rc);
   BenchConfig config;
   config.mode = find_mode("hwskin")->switches;
   config.crowd.copies = 2;
   config.renderer = &renderer;
-  CrowdBench bench(humanoid(), config);
+  CrowdBench bench(default_humanoid(), config);
   bench.step();
   glBindBuffer(GL_ARRAY_BUFFER, 987654);  // an error, as a driver bug would leave one
   try {
@@ -245,7 +240,7 @@ TEST(RenderImage, HardwareSkinningNeedsARenderer) {
   config.mode = find_mode("hwskin")->switches;
   config.crowd.copies = 2;
   try {
-    CrowdBench bench(humanoid(), config);
+    CrowdBench bench(default_humanoid(), config);
     FAIL() << "hwskin ran without a renderer";
   } catch (const SettingsUsageError& e) {
     EXPECT_NE(e.marked().find("needs a GL backend: {backend} auto"), std::string::npos) << e.marked();

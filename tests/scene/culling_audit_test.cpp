@@ -27,12 +27,12 @@ Character slide(bool flat) {
                                    {0, 0, 0, 10, 0, 0});
 }
 
-struct Case {
+struct AuditCase {
   Character character;
   Crowd crowd;
   // x in [8, 12], y in [-2, 2], z in [-10, 10]: only the action's end is in view.
   Frustum frustum = frustum_of(glm::ortho(8.0f, 12.0f, -2.0f, 2.0f, -10.0f, 10.0f));
-  explicit Case(bool flat = false) : character(slide(flat)) {
+  explicit AuditCase(bool flat = false) : character(slide(flat)) {
     crowd.world = {glm::mat4(1.0f)};
     crowd.kind = {0};
     crowd.action = {0};
@@ -45,7 +45,7 @@ struct Case {
 }  // namespace
 
 TEST(CullingAudit, CountsFalseAndMissedCullsPerBox) {
-  Case c;
+  AuditCase c;
   const Character* characters[] = {&c.character};
   CullingAuditor auditor(characters, c.crowd, c.frustum);
   const float start[] = {0.0f}, end[] = {1.0f};
@@ -76,7 +76,7 @@ TEST(CullingAudit, CountsFalseAndMissedCullsPerBox) {
 
 TEST(CullingAudit, FlatMeshHasNoSlackToReport) {
   // The triangle lies in z = 0: its tight box has no volume, so no ratio is taken.
-  Case c(true);
+  AuditCase c(true);
   const Character* characters[] = {&c.character};
   CullingAuditor auditor(characters, c.crowd, c.frustum);
   const float end[] = {1.0f};
@@ -88,7 +88,7 @@ TEST(CullingAudit, FlatMeshHasNoSlackToReport) {
 }
 
 TEST(CullingAudit, SameOnAnyThreadsAndStride) {
-  Case c;
+  AuditCase c;
   // Forty copies in a row along X, so some start in view and some end there.
   c.crowd = Crowd{};
   for (int i = 0; i < 40; ++i) {

@@ -12,6 +12,8 @@
 #include "scene/scene_file.h"
 #include "test_support.h"
 
+using crowdprof::test::read_file;
+using crowdprof::test::read_json;
 using crowdprof::test::run_cli;
 using nlohmann::json;
 
@@ -21,18 +23,6 @@ std::string scenes(const std::string& name) { return (crowdprof::test::source_di
 // mixed.json runs from the build tree, where the build makes its generated characters.
 std::string built_scenes(const std::string& name) {
   return (std::filesystem::path(CROWDPROF_BUILT_SCENES_DIR) / name).string();
-}
-
-json read_json(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 }  // namespace
@@ -52,7 +42,7 @@ TEST(SceneFile, TheThesisSceneIsTheDefaultBench) {
   EXPECT_EQ(scene["scene"]["resolution"], "1600x900");
   // The result names the scene file and a hash of its bytes.
   EXPECT_EQ(scene["scene"]["scene_file"], scenes("thesis.json"));
-  EXPECT_EQ(scene["scene"]["scene_hash"], crowdprof::fnv1a64_hex(slurp(scenes("thesis.json"))));
+  EXPECT_EQ(scene["scene"]["scene_hash"], crowdprof::fnv1a64_hex(read_file(scenes("thesis.json"))));
   EXPECT_FALSE(glb["scene"].contains("scene_file"));
   ASSERT_EQ(scene["crowd"].size(), 1u);
   EXPECT_EQ(scene["crowd"][0]["file"], "humanoid.glb");
@@ -218,7 +208,7 @@ TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
   json doc = json::parse(j.out);
   ASSERT_EQ(doc["characters"].size(), 3u);
   EXPECT_EQ(doc["characters"][2]["count"], 40);
-  EXPECT_EQ(doc["scene_hash"], crowdprof::fnv1a64_hex(slurp(built_scenes("mixed.json"))));
+  EXPECT_EQ(doc["scene_hash"], crowdprof::fnv1a64_hex(read_file(built_scenes("mixed.json"))));
   auto dir = crowdprof::test::scratch_dir("scene_info_bad");
   auto bad = dir / "bad.json";
   std::ofstream(bad) << "{\"characters\": [{\"file\": \"missing.glb\", \"count\": 1}]}";

@@ -151,24 +151,24 @@ TEST_F(OutputStoresTest, RangesCutAnywhereGiveTheSameBitsStreamed) {
 
 TEST(OutputStoresCli, OptionAndEnvironmentChooseThePolicy) {
   const std::string scene = (test::source_dir() / "scenes/humanoid.glb").string();
-  const std::string json = (test::scratch_dir("stores_cli") / "run.json").string();
-  const std::string run = " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'";
+  const std::string result_file = (test::scratch_dir("stores_cli") / "run.json").string();
+  const std::string run = " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'";
   auto r = test::run_cli("--stores streaming" + run);
   ASSERT_EQ(0, r.status) << r.err;
-  const nlohmann::json streamed = nlohmann::json::parse(std::ifstream(json));
+  const nlohmann::json streamed = nlohmann::json::parse(std::ifstream(result_file));
   EXPECT_EQ("streaming", streamed["stores"]);
   r = test::run_cli("--stores regular" + run);
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ(streamed["digest"], nlohmann::json::parse(std::ifstream(json))["digest"]);
-  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(json))["stores"]);
+  EXPECT_EQ(streamed["digest"], nlohmann::json::parse(std::ifstream(result_file))["digest"]);
+  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(result_file))["stores"]);
   ASSERT_EQ(0, setenv(kStoresEnvironmentVariable, "STREAMING", 1));
   r = test::run_cli(run);
   unsetenv(kStoresEnvironmentVariable);
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ("streaming", nlohmann::json::parse(std::ifstream(json))["stores"]);
+  EXPECT_EQ("streaming", nlohmann::json::parse(std::ifstream(result_file))["stores"]);
   r = test::run_cli(run);  // auto: 4 copies stay far under the threshold
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(json))["stores"]);
+  EXPECT_EQ("regular", nlohmann::json::parse(std::ifstream(result_file))["stores"]);
 
   ASSERT_EQ(0, setenv(kStoresEnvironmentVariable, "sometimes", 1));
   r = test::run_cli(run);

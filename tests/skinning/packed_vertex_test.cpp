@@ -232,16 +232,16 @@ TEST(PackedVertex, ACrowdsPackedVerticesAreItsFloatVerticesWithinTheStatedError)
 
 TEST(PackedVertex, TheSwitchIsRecordedOnlyWhenPackedAndBadValuesAreRefused) {
   const std::string scene = (test::source_dir() / "scenes/humanoid.glb").string();
-  const std::string json = (test::scratch_dir("packed_cli") / "run.json").string();
-  auto r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format packed --json '" + json + "'");
+  const std::string result_file = (test::scratch_dir("packed_cli") / "run.json").string();
+  auto r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format packed --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  nlohmann::json doc = nlohmann::json::parse(std::ifstream(json));
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(result_file));
   EXPECT_EQ("packed", doc["switches"]["vertex_format"]);
   EXPECT_EQ("threaded+custom", doc["mode"]);
   const std::string packed_digest = doc["digest"];
-  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format float --json '" + json + "'");
+  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format float --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  doc = nlohmann::json::parse(std::ifstream(json));
+  doc = nlohmann::json::parse(std::ifstream(result_file));
   EXPECT_FALSE(doc["switches"].contains("vertex_format"));
   EXPECT_EQ("threaded", doc["mode"]);
   EXPECT_NE(packed_digest, doc["digest"]);

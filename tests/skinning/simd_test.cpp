@@ -167,25 +167,25 @@ TEST_F(SimdTargetTest, FusedAndSeparateArithmeticAgreeWithinATolerance) {
 
 TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {
   const std::string scene = (test::source_dir() / "scenes/humanoid.glb").string();
-  const std::string json = (test::scratch_dir("simd_cli") / "run.json").string();
+  const std::string result_file = (test::scratch_dir("simd_cli") / "run.json").string();
   const std::string lowest = available_simd_targets().back();
-  auto r = test::run_cli("--simd " + lowest + " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
+  auto r = test::run_cli("--simd " + lowest + " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ(lowest, nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);
+  EXPECT_EQ(lowest, nlohmann::json::parse(std::ifstream(result_file))["environment"]["simd"]);
 
   r = test::run_cli("--simd " + lowest + " --version");
   ASSERT_EQ(0, r.status) << r.err;
   EXPECT_NE(std::string::npos, r.out.find(", SIMD " + lowest + ")")) << r.out;
 
   ASSERT_EQ(0, setenv(kSimdEnvironmentVariable, "SSSE3", 1));
-  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
+  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ("SSSE3", nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);
+  EXPECT_EQ("SSSE3", nlohmann::json::parse(std::ifstream(result_file))["environment"]["simd"]);
   r = test::run_cli("--version");
   EXPECT_NE(std::string::npos, r.out.find(", SIMD SSSE3)")) << r.out;
-  r = test::run_cli("--simd SSE4 bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
+  r = test::run_cli("--simd SSE4 bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ("SSE4", nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);  // the option wins
+  EXPECT_EQ("SSE4", nlohmann::json::parse(std::ifstream(result_file))["environment"]["simd"]);  // the option wins
 
   ASSERT_EQ(0, setenv(kSimdEnvironmentVariable, "PENTIUM", 1));
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1");
@@ -195,7 +195,7 @@ TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {
       << r.err;
   EXPECT_EQ(1, std::count(r.err.begin(), r.err.end(), '\n')) << r.err;
 
-  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + json + "'");
+  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
-  EXPECT_EQ(active_simd_target(), nlohmann::json::parse(std::ifstream(json))["environment"]["simd"]);
+  EXPECT_EQ(active_simd_target(), nlohmann::json::parse(std::ifstream(result_file))["environment"]["simd"]);
 }
