@@ -36,7 +36,7 @@
 #include "animation/run_job.h"
 #include "animation/sampling.h"
 #include "asset/gltf_loader.h"
-#include "asset/mesh_lod.h"
+#include "asset/standing.h"
 #include "asset/vertex_order.h"
 #include "skinning/output_buffer.h"
 #include "skinning/output_stores.h"
@@ -420,7 +420,7 @@ int main(int argc, char** argv) {
       max_normal_delta =
           std::max(max_normal_delta, static_cast<double>(glm::distance(ozz_normal, normals[parts[p].vertex[i]])));
     }
-  const double height = crowdprof::bind_pose_height(c.mesh);
+  const double height = crowdprof::standing_of(c).height;
   std::printf(
       "{\"median_ms\": %.4f, \"frames\": %zu, \"copies\": %zu, \"vertices_skinned\": %zu, \"poses_updated\": %zu, "
       "\"max_delta\": %.3g, \"max_delta_of_height\": %.3g, \"renormalised\": %s, \"max_normal_delta\": %.3g, "

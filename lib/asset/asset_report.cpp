@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "asset/mesh_lod.h"
+#include "asset/standing.h"
 
 namespace crowdprof {
 
@@ -53,7 +54,7 @@ namespace {
 // the file's own or meshoptimizer's.
 nlohmann::json describe_mesh_lods(const Character& character) {
   nlohmann::json levels = nlohmann::json::array();
-  const float height = bind_pose_height(character.mesh);
+  const float height = standing_of(character).height;
   for (const MeshLod& lod : mesh_lods_of(character))
     levels.push_back({{"triangles", lod.mesh.triangle_count()},
                       {"vertices", lod.mesh.vertex_count()},
@@ -80,6 +81,7 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
                                  {"vertices", c.mesh.vertex_count()},
                                  {"triangles", c.mesh.triangle_count()},
                                  {"primitives", c.mesh.primitives.size()},
+                                 {"height", standing_of(c).height},
                                  {"influences_histogram", {{"1", histogram[0]}, {"2", histogram[1]},
                                                            {"3", histogram[2]}, {"4", histogram[3]}}},
                                  {"fixups", describe_fixups(c.fixups)},
@@ -119,6 +121,9 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "  vertices:    " << c.mesh.vertex_count() << "\n";
     out << "  triangles:   " << c.mesh.triangle_count() << "\n";
     out << "  primitives:  " << c.mesh.primitives.size() << "\n";
+    char height[64];
+    std::snprintf(height, sizeof height, "%.3f", standing_of(c).height);
+    out << "  height:      " << height << " m as it stands (rest pose in world space, +Y up)\n";
     out << "  mesh LOD:    ";
     const nlohmann::json lods = describe_mesh_lods(c);
     if (lods.empty()) out << "none (the simplifier found nothing to remove within its error limits)";

@@ -107,7 +107,7 @@ struct Character {
   // (mesh LOD then simplifies `mesh`, asset/mesh_lod.h).
   std::vector<SkinnedMesh> file_lods;
   // Per file level: its surface distance from `mesh` (asset/mesh_lod.h's
-  // surface_distance), measured at load.
+  // surface_distance), measured at load, in the mesh's own units.
   std::vector<float> file_lod_errors;
   std::vector<Action> actions;
   Fixups fixups;

@@ -4,6 +4,7 @@
 
 #include <meshoptimizer.h>
 
+#include "asset/standing.h"
 #include "asset/vertex_order.h"
 
 namespace crowdprof {
@@ -45,15 +46,6 @@ MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
 }
 
 }  // namespace
-
-float bind_pose_height(const SkinnedMesh& mesh) {
-  float low = 0, high = 0;
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    low = v ? std::min(low, mesh.positions[v].y) : mesh.positions[v].y;
-    high = v ? std::max(high, mesh.positions[v].y) : mesh.positions[v].y;
-  }
-  return high - low;
-}
 
 std::vector<MeshLod> build_mesh_lods(const SkinnedMesh& mesh, std::span<const MeshLodTarget> targets) {
   std::vector<MeshLod> levels;
@@ -133,12 +125,15 @@ float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b) {
 }
 
 std::vector<MeshLod> mesh_lods_of(const Character& character) {
+  const float world_per_mesh_unit = standing_of(character).world_per_mesh_unit;
   if (character.file_lods.empty()) {
     // meshoptimizer breaks ties by vertex index: simplified from one order,
     // the levels are the same for a bench's ordered character and `info`'s.
     SkinnedMesh ordered = character.mesh;
     order_vertices_by_joints(ordered);
-    return build_mesh_lods(ordered);
+    std::vector<MeshLod> lods = build_mesh_lods(ordered);
+    for (MeshLod& lod : lods) lod.error *= world_per_mesh_unit;
+    return lods;
   }
   std::vector<MeshLod> lods;
   const double full = static_cast<double>(std::max<size_t>(1, character.mesh.triangle_count()));
@@ -146,8 +141,8 @@ std::vector<MeshLod> mesh_lods_of(const Character& character) {
     MeshLod lod;
     lod.mesh = character.file_lods[l];
     lod.target_share = static_cast<float>(static_cast<double>(lod.mesh.triangle_count()) / full);
-    lod.error = l < character.file_lod_errors.size() ? character.file_lod_errors[l]
-                                                     : surface_distance(character.mesh, lod.mesh);
+    lod.error = world_per_mesh_unit * (l < character.file_lod_errors.size() ? character.file_lod_errors[l]
+                                                                            : surface_distance(character.mesh, lod.mesh));
     lods.push_back(std::move(lod));
   }
   return lods;

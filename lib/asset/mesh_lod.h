@@ -17,8 +17,10 @@ struct MeshLod {
   SkinnedMesh mesh;                    // its own vertices and triangles (indices into them), one primitive
   std::vector<uint32_t> source_vertex;  // per vertex of `mesh`: the full mesh's vertex it is
   float target_share = 1;              // of the full mesh's triangles asked for
-  // meshoptimizer's estimate of how far the simplified surface strays from the
-  // full one, in the mesh's own units (the bind pose; glTF's metres).
+  // How far the simplified surface strays from the full one: from
+  // build_mesh_lods, meshoptimizer's estimate in the mesh's own (bind-pose)
+  // units; from mesh_lods_of, in world units (asset/standing.h), as every
+  // figure shows it.
   float error = 0;
 };
 
@@ -31,9 +33,6 @@ struct MeshLodTarget {
 inline constexpr MeshLodTarget kMeshLodTargets[] = {{0.5f, 0.01f}, {0.25f, 0.02f}, {0.1f, 0.05f}};
 // Levels a copy can draw: the full mesh and at most three coarser ones.
 inline constexpr size_t kMeshLevels = 4;
-
-// The bind pose's extent in Y: the height errors are given as a share of.
-float bind_pose_height(const SkinnedMesh& mesh);
 
 // Simplifies `mesh` (bind pose) to each target in turn, each level from the
 // full mesh. A level that would not have fewer triangles than the one before
@@ -55,7 +54,8 @@ float surface_distance(const SkinnedMesh& a, const SkinnedMesh& b);
 // measured at load, as each one's error and its share of the triangles as
 // its target), else build_mesh_lods of its mesh ordered by joints
 // (asset/vertex_order.h; source_vertex then numbers that order's vertices), so
-// a character gives the same levels ordered or not. Allocates.
+// a character gives the same levels ordered or not. Errors in world units: the
+// mesh's times Standing::world_per_mesh_unit. Allocates.
 std::vector<MeshLod> mesh_lods_of(const Character& character);
 // "MSFT_lod" when mesh_lods_of takes the file's levels, else "meshoptimizer".
 const char* mesh_lods_source(const Character& character);

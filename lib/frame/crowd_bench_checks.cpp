@@ -16,6 +16,7 @@
 #include "animation/exact_palette.h"
 #include "animation/pose.h"
 #include "asset/mesh_lod.h"
+#include "asset/standing.h"
 #include "frame/bench_threads.h"
 #include "scene/screen_size.h"
 #include "skinning/skinning.h"
@@ -25,7 +26,7 @@ namespace crowdprof {
 AnimationFidelity CrowdBench::measure_fidelity() const {
   AnimationFidelity fidelity;
   std::vector<float> heights;
-  for (const Character* character : characters_) heights.push_back(bind_pose_height(character->mesh));
+  for (const Character* character : characters_) heights.push_back(standing_of(*character).height);
   ExactPalette reference;
   std::vector<glm::vec3> drawn, drawn_normals, exact, exact_normals;
   for (size_t i = 0; i < crowd_.size(); ++i) {
@@ -92,7 +93,7 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
   error.copy_stride = std::max<size_t>(1, (on_screen.size() + max_copies - 1) / std::max<size_t>(1, max_copies));
   std::vector<CopyError> copies((on_screen.size() + error.copy_stride - 1) / error.copy_stride);
   std::vector<float> heights;
-  for (const Character* character : characters_) heights.push_back(bind_pose_height(character->mesh));
+  for (const Character* character : characters_) heights.push_back(standing_of(*character).height);
   tbb::enumerable_thread_specific<ErrorScratch> scratches;
   auto measure = [&](const tbb::blocked_range<size_t>& range) {
     ErrorScratch& s = scratches.local();
@@ -176,7 +177,7 @@ std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int scr
   if (mesh_level_.empty()) return levels;
   // Each level's error, the worst character's, whether or not a copy is at it.
   for (size_t k = 0; k < characters_.size(); ++k) {
-    const float height = bind_pose_height(characters_[k]->mesh);
+    const float height = standing_of(*characters_[k]).height;
     for (size_t level = 1; level < prepared_[k].levels() && level < kMeshLevels; ++level) {
       const double error = prepared_[k].mesh_lods[level - 1].error;
       levels[level].error = std::max(levels[level].error, error);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "animation/pose.h"
+#include "asset/standing.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {
@@ -43,12 +44,7 @@ bool BakeDeviationJob::Run() const {
 BakeDeviation measure_bake_deviation(const Character& character, std::span<const std::span<const int32_t>> targets,
                                      const BakedCharacter& baked, const SkinningPlan& plan) {
   BakeDeviation result;
-  const std::vector<glm::vec3>& rest = character.mesh.positions;
-  if (!rest.empty()) {
-    auto [low, high] = std::minmax_element(rest.begin(), rest.end(),
-                                           [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; });
-    result.height = high->y - low->y;
-  }
+  result.height = standing_of(character).height;
   const Skeleton& skeleton = character.skeleton;
   size_t joints = skeleton.joint_count(), vertices = plan.vertex_count;
   LocalPose pose;

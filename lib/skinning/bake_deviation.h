@@ -44,8 +44,7 @@ struct BakeDeviationJob {
 };
 
 // The whole character: its largest deviation over every action, and its
-// height (the rest mesh's extent along y, glTF's up) to express it as a
-// fraction. Allocates its scratch (a load-time step).
+// height as it stands (asset/standing.h) to express it as a fraction. Allocates its scratch (a load-time step).
 struct BakeDeviation {
   float model_units = 0.0f;
   float height = 0.0f;

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "asset/standing.h"
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
 #include "asset/mesh_lod.h"
@@ -80,7 +81,7 @@ TEST(MsftLod, MeshLodDrawsTheFilesLevelsWithTheirSurfaceDistance) {
   for (size_t l = 0; l < lods.size(); ++l) {
     EXPECT_EQ(lods[l].mesh.vertex_count(), c.file_lods[l].vertex_count());
     EXPECT_GT(lods[l].error, 0.0f) << "a coarser tessellation strays from the full surface";
-    EXPECT_LT(lods[l].error, 0.05f * bind_pose_height(c.mesh));
+    EXPECT_LT(lods[l].error, 0.05f * standing_of(c).height);
   }
   // In a bench: the copies at level 2 skin the file's level 2, not a simplification.
   BenchConfig config;

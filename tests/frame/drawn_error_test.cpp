@@ -4,6 +4,7 @@
 // counted; and compare puts each saving beside what it saves.
 #include <gtest/gtest.h>
 
+#include "asset/standing.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
 #include "profile/cost_error.h"
@@ -50,7 +51,7 @@ TEST(DrawnError, UpdateLodStraysAndTheFiguresHangTogether) {
   EXPECT_LE(e.rms, e.max);
   EXPECT_LE(e.rms_px, e.max_px);
   EXPECT_EQ(e.mesh_max, 0.0);
-  const double height = bind_pose_height(test::default_humanoid().mesh);
+  const double height = standing_of(test::default_humanoid()).height;
   EXPECT_NEAR(e.max_fraction, e.max / height, 1e-12);
   // The same figures on one thread: the copies are summed in their order.
   BenchConfig one = config;

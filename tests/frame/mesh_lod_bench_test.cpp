@@ -3,6 +3,7 @@
 // count and in master as in threaded), and the counters per level adding up.
 #include <gtest/gtest.h>
 
+#include "asset/standing.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
 #include "render_support.h"
@@ -126,7 +127,7 @@ TEST(MeshLodBench, TheRunRecordsEachLevelsCopiesAndError) {
   EXPECT_EQ(m.error[0], 0.0);
   for (size_t l = 1; l < 4; ++l) {
     EXPECT_GT(m.error[l], m.error[l - 1]) << l;
-    EXPECT_NEAR(m.error_fraction[l], m.error[l] / bind_pose_height(test::default_humanoid().mesh), 1e-9) << l;
+    EXPECT_NEAR(m.error_fraction[l], m.error[l] / standing_of(test::default_humanoid()).height, 1e-9) << l;
     EXPECT_EQ(m.error_px[l] > 0, m.copies[l] > 0) << l;
   }
   // 1,000 humanoids from the default camera are a few dozen pixels tall: under a pixel of error.

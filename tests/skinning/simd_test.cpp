@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "asset/standing.h"
 #include "frame/crowd_bench.h"
 #include "gen/humanoid.h"
 #include "asset/mesh_lod.h"
@@ -151,7 +152,7 @@ TEST_F(SimdTargetTest, FusedAndSeparateArithmeticAgreeWithinATolerance) {
   const auto [fused_p, fused_n] = skinned(targets.front());
   const auto [separate_p, separate_n] = skinned(targets.back());
   ASSERT_EQ(fused_p.size(), separate_p.size());
-  const double height = bind_pose_height(uneven_humanoid().mesh);
+  const double height = standing_of(uneven_humanoid()).height;
   ASSERT_GT(height, 0.0);
   double worst = 0, worst_normal = 0;
   size_t differing = 0;
