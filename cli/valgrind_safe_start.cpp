@@ -1,0 +1,15 @@
+// Lets valgrind run this binary on hosts whose CPU lacks RDTSCP (KVM guests
+// that hide it, as this project's 2-core AMD VMs do). Debian 12's libhwy
+// (1.0.3) measures its timer's resolution in a static initialiser, with
+// RDTSCP, before main: valgrind 3.19 then stops with SIGILL (exit 132), so
+// `check --metric instructions` and `./setup.sh valgrind` could not start.
+// This binary defines that one function and exports it (cli/CMakeLists.txt),
+// so the dynamic linker binds libhwy's call here, as it would to a preloaded
+// library. Only Highway's nanobenchmark reads the value, and crowdprof never
+// runs it: its skinning dispatch does not time anything. The same binary then
+// runs timed and counted.
+#include <cstdint>
+
+namespace hwy::platform {
+uint64_t TimerResolution() { return 1; }
+}  // namespace hwy::platform
