@@ -1,6 +1,7 @@
 // `crowdprof diff A.json B.json`: two results (bench, check or compare JSON)
-// side by side, for two builds of the same scene: exit 1 when B is slower than
-// A under check's rule, or does other work. The logic is in lib/profile/diff.h.
+// side by side, for two builds of the same scene: exit 1 when B does other work,
+// or its calibrated frame is slower than A's under check's rule (the only
+// metric tested: lib/profile/diff.h says why). The logic is in lib/profile/diff.h.
 #include <iostream>
 #include <memory>
 
@@ -58,15 +59,18 @@ int diff(const DiffCliOptions& o) {
 void add_diff_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<DiffCliOptions>();
   auto* cmd = app.add_subcommand("diff", "Two results (bench, check or compare JSON) side by side: per metric the "
-                                         "medians, change, p-value and verdict; exit 1 when B is slower or does other "
-                                         "work (see docs/compare-and-check.md)");
+                                         "medians and change, untested (results run apart differ by the machine's "
+                                         "drift: use compare or check --against), but the calibrated frame where both "
+                                         "have it; exit 1 when B does other work or its calibrated frame is slower "
+                                         "(see docs/compare-and-check.md)");
   cmd->footer("Examples:\n  crowdprof diff before.json after.json");
   cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")->required();
   cmd->add_option("b", options->b, "Result B, judged against A")->required();
-  cmd->add_option("--tolerance", options->tolerance, "Slowdown of a median allowed before a significant shift fails")
+  cmd->add_option("--tolerance", options->tolerance,
+                  "Slowdown of the calibrated frame's median allowed before a significant shift fails")
       ->capture_default_str();
   cmd->add_option("--floor", options->floor,
-                  "Smallest slowdown of a median that can fail: a time (0.05ms, 50us) or a share of A's median frame")
+                  "Smallest slowdown of the calibrated frame's median that can fail: a time (0.05ms, 50us) or a share of A's median")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test, before Holm's correction")
       ->capture_default_str();

@@ -12,6 +12,7 @@
 #include "profile/result_codec.h"
 #include "profile/environment.h"
 #include "profile/number_text.h"
+#include "profile/stats.h"
 
 namespace crowdprof {
 
@@ -32,12 +33,19 @@ std::string shown(const T& value) {
 }
 
 const char* verdict(const MetricCheck& m, const CheckOptions& options) {
+  if (!m.tested) return "not tested";
   if (m.regressed) return "SLOWER";
   if (m.change < -options.tolerance && m.p_adjusted < options.alpha && m.test.z < 0) return "faster";
   return "same";
 }
 
 }  // namespace
+
+bool Diff::tested() const {
+  return std::any_of(pairs.begin(), pairs.end(), [](const DiffPair& p) {
+    return std::any_of(p.check.metrics.begin(), p.check.metrics.end(), [](const MetricCheck& m) { return m.tested; });
+  });
+}
 
 bool Diff::regressed() const {
   return std::any_of(pairs.begin(), pairs.end(), [](const DiffPair& p) { return p.check.regressed(); });
@@ -100,15 +108,31 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
     DiffPair pair;
     pair.mode = ra.run.mode == rb.run.mode ? ra.run.mode : ra.run.mode + " (A) against " + rb.run.mode + " (B)";
     pair.characters = ra.run.characters;
-    CheckOptions mine = options;
-    mine.metrics.clear();
-    if (metric_samples(ra, "cpu_ms") && metric_samples(rb, "cpu_ms")) mine.metrics.push_back("cpu_ms");
-    mine.metrics.push_back("frame_ms");
+    // A and B ran apart, not interleaved: the machine's speed moved between
+    // them by more than any frame-to-frame test can tell from a change. Only
+    // the calibrated frame (each frame over a probe timed beside it) is tested.
+    CheckOptions tested = options;
+    tested.metrics.clear();
+    if (metric_samples(ra, "calibrated") && metric_samples(rb, "calibrated")) tested.metrics.push_back("calibrated");
+    pair.check = check_results(ra, rb, tested);
+    std::vector<std::string> shown_only;
+    if (metric_samples(ra, "cpu_ms") && metric_samples(rb, "cpu_ms")) shown_only.push_back("cpu_ms");
+    shown_only.push_back("frame_ms");
     for (size_t c = 0; c < kCategoryCount; ++c) {
       const std::string key = series_name(static_cast<Category>(c));
-      if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) mine.metrics.push_back(key);
+      if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) shown_only.push_back(key);
     }
-    pair.check = check_results(ra, rb, mine);
+    for (const std::string& key : shown_only) {
+      MetricCheck m;
+      m.metric = metric_display_name(key);
+      m.tested = false;
+      m.baseline = summarize(*metric_samples(ra, key));
+      m.current = summarize(*metric_samples(rb, key));
+      const double grew = m.current.median - m.baseline.median;
+      m.change = m.baseline.median > 0 ? grew / m.baseline.median : (grew > 0 ? INFINITY : 0.0);
+      m.test.p = m.p_adjusted = NAN;
+      pair.check.metrics.push_back(std::move(m));
+    }
     const RunDescription& sa = ra.run;
     const RunDescription& sb = rb.run;
     auto note = [&](const std::string& what, const std::string& va, const std::string& vb) {
@@ -140,19 +164,33 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
   out << "A: " << diff.a << "\nB: " << diff.b << "\n";
   for (const DiffPair& pair : diff.pairs) {
     const CheckResult& r = pair.check;
-    double floor = r.metrics.empty() ? 0.0 : r.metrics.front().floor_ms;
-    out << "\n" << pair.mode << ", " << pair.characters << " characters (tolerance " << fixed(options.tolerance * 100, 1)
-        << "%, floor " << fixed(floor, 3) << " ms, p Holm-corrected over " << r.metrics.size() << " metrics)\n";
+    const auto tested = std::count_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
+    out << "\n" << pair.mode << ", " << pair.characters << " characters";
+    if (tested > 0) {
+      const MetricCheck& first = *std::find_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
+      out << " (tolerance " << fixed(options.tolerance * 100, 1) << "%, floor " << metric_value_text(first, first.floor_ms)
+          << " " << first.value_unit << ", p Holm-corrected over " << tested << " metric" << (tested > 1 ? "s" : "") << ")";
+    }
+    out << "\n";
     char line[200];
-    std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", "metric", "A median ms", "B median ms",
+    std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", "metric", "A median", "B median",
                   "change", "p", "p Holm", "verdict");
     out << line;
     for (const MetricCheck& m : r.metrics) {
-      std::snprintf(line, sizeof line, "%-12s %12.3f %12.3f %9s %9s %9s  %s\n", m.metric.c_str(), m.baseline.median,
-                    m.current.median, percent(m.change).c_str(), p_value(m.test.p).c_str(),
-                    p_value(m.p_adjusted).c_str(), verdict(m, options));
+      std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", m.metric.c_str(),
+                    (metric_value_text(m, m.baseline.median) + (m.value_unit == "ms" ? " ms" : "")).c_str(),
+                    (metric_value_text(m, m.current.median) + (m.value_unit == "ms" ? " ms" : "")).c_str(),
+                    percent(m.change).c_str(), m.tested ? p_value(m.test.p).c_str() : "-",
+                    m.tested ? p_value(m.p_adjusted).c_str() : "-", verdict(m, options));
       out << line;
     }
+    if (std::any_of(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return !m.tested; }))
+      out << "not tested: A and B ran apart, not interleaved: their frames sample two moments of the machine, and the\n"
+             "  change holds the machine's drift as well as yours. To test a change, run both in one process\n"
+             "  (crowdprof compare) or build against build (crowdprof check --against BASE_BINARY).\n"
+          << (tested > 0 ? "tested: the calibrated frame, each frame over a probe timed beside it, which the machine's\n"
+                           "  drift moves less\n"
+                         : "");
     if (r.counters.empty() && r.counters_missing.empty()) out << "counters: same\n";
     for (const CounterDifference& d : r.counters)
       out << "counter " << d.name << ": " << d.baseline << " -> " << d.current << " per frame: CHANGED\n";
@@ -162,7 +200,9 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
     else out << " -> " << r.current_digest << ": " << r.digest_note() << "\n";
     for (const std::string& note : pair.notes) out << "note: " << note << "\n";
   }
-  out << (diff.regressed() ? "REGRESSION: B is slower or does other work than A\n" : "ok: B is not slower than A and does the same work\n");
+  out << (diff.regressed() ? "REGRESSION: B is slower or does other work than A\n"
+                           : diff.tested() ? "ok: B is not slower than A and does the same work\n"
+                                           : "ok: B does the same work as A (its timings are not tested)\n");
   return out.str();
 }
 
@@ -183,9 +223,11 @@ nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options) {
       p["metrics"].push_back({{"metric", m.metric},
                               {"a_median_ms", m.baseline.median},
                               {"b_median_ms", m.current.median},
+                              {"unit", m.value_unit},
                               {"change", std::isfinite(m.change) ? json(m.change) : json(nullptr)},
-                              {"p", m.test.p},
-                              {"p_holm", m.p_adjusted},
+                              {"p", m.tested ? json(m.test.p) : json(nullptr)},
+                              {"p_holm", m.tested ? json(m.p_adjusted) : json(nullptr)},
+                              {"tested", m.tested},
                               {"floor_ms", m.floor_ms},
                               {"verdict", verdict(m, options)}});
     p["counters"] = json::array();

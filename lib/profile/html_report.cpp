@@ -544,7 +544,8 @@ std::string check_section(const CheckSection& check, std::string& charts) {
     out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + metric_value_text(metric, metric.baseline.median) +
            unit + "</td><td>" + metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + p_text(metric.p_adjusted) + "</td><td>" + metric_value_text(metric, metric.floor_ms) + unit +
+           "</td><td>" + (metric.tested ? p_text(metric.p_adjusted) : "-") + "</td><td>" +
+           metric_value_text(metric, metric.floor_ms) + unit +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "

@@ -70,7 +70,7 @@ namespace {
 
 void decide(MetricCheck& m, const CheckOptions& options) {
   m.significant = m.p_adjusted < options.alpha && m.test.z > 0;
-  m.regressed = m.beyond_tolerance && m.beyond_floor && (m.significant || m.too_few_samples);
+  m.regressed = m.tested && m.beyond_tolerance && m.beyond_floor && (m.significant || m.too_few_samples);
 }
 
 }  // namespace

@@ -27,6 +27,10 @@ struct MetricCheck {
   double p_adjusted = 1;                     // test.p, Holm-corrected for the metrics tested together
   bool beyond_tolerance = false, beyond_floor = false, significant = false;
   bool too_few_samples = false;  // under kMannWhitneyMinSamples: decided on the tolerance and floor alone
+  // False: shown for its change alone, never tested nor judged (diff of two
+  // results measured apart: frames of one process are not samples of another
+  // moment, so a p-value would call the machine's drift significant).
+  bool tested = true;
   std::string unit = "frames";   // what was compared: each frame, or the median of each run ("runs")
   // What the values are in: "ms", or "probes" for calibrated (each frame over
   // the calibration probe's time at the same moment).

@@ -187,16 +187,19 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
   chart.id = "verdict";
   for (const MetricCheck& m : result.metrics) {
     // The words format_check uses for the same outcomes.
-    std::string verdict = m.regressed                                                     ? "REGRESSION"
+    std::string verdict = !m.tested                                                       ? "not tested"
+                          : m.regressed                                                   ? "REGRESSION"
                           : m.beyond_tolerance && !m.beyond_floor                        ? "slower, under the floor"
                           : m.beyond_tolerance                                            ? "slower, not significant"
                           : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";
-    std::string colour = m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
+    std::string colour = !m.tested ? "#767676" : m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
     const std::string unit = " " + m.value_unit;
     std::string detail = m.metric + ": median " + metric_value_text(m, m.baseline.median) + " -> " +
-                         metric_value_text(m, m.current.median) + unit + ", p = " + report_number(m.p_adjusted, 4) +
-                         " (Holm), floor " + metric_value_text(m, m.floor_ms) + unit;
+                         metric_value_text(m, m.current.median) + unit +
+                         (m.tested ? ", p = " + report_number(m.p_adjusted, 4) + " (Holm), floor " +
+                                         metric_value_text(m, m.floor_ms) + unit
+                                   : " (measured apart: not tested)");
     // A slowdown must pass both the tolerance and the floor: the band is the larger.
     double allowed = std::max(options.tolerance, m.baseline.median > 0 ? m.floor_ms / m.baseline.median : 0.0);
     chart.rows.push_back({m.metric, m.change, verdict, colour, detail, allowed});

@@ -110,7 +110,8 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
     row.change = metric.change;
     row.p = metric.p_adjusted;
     bool faster = metric.significant && metric.change < -options.tolerance;
-    row.verdict = metric.regressed ? "slower" : faster ? "faster" : "no change";
+    row.verdict = !metric.tested ? "not tested" : metric.regressed ? "slower" : faster ? "faster" : "no change";
+    row.has_p = metric.tested;
     row.failed = metric.regressed;
     row.unit = metric.value_unit;
     if (row.failed)

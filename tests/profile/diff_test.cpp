@@ -30,31 +30,58 @@ json scaled(json doc, double factor) {
 TEST(Diff, SideBySideWithTheGateRule) {
   auto dir = test::scratch_dir("diff_cli");
   std::string a = (dir / "a.json").string();
-  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 20 --warmup 1 --mode culled -q --json '" + a + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 20 --warmup 1 --mode culled --calibrate -q --json '" +
+                    a + "'")
+                .status,
+            0);
   // Against itself: every metric the same, counters and digest the same.
   auto r = run_cli("diff '" + a + "' '" + a + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
-  for (const char* words : {"metric", "A median ms", "B median ms", "p Holm", "\ncpu ", "\nframe ", "counters: same",
-                            ", same\n", "ok: B is not slower"})
+  for (const char* words : {"metric", "A median", "B median", "p Holm", "\ncalibrated ", "\ncpu ", "\nframe ",
+                            "counters: same", ", same\n", "ok: B is not slower"})
     EXPECT_NE(r.out.find(words), std::string::npos) << words << " in\n" << r.out;
-  // Twice as slow everywhere: SLOWER, exit 1; the JSON says the same.
-  std::string b = test::write_json(dir / "b.json", scaled(test::read_json(a), 2.0));
+  // Twice as slow everywhere but the probe: the calibrated frame is SLOWER,
+  // exit 1; the timings measured apart are shown, not tested.
+  json slower = scaled(test::read_json(a), 2.0);
+  slower["samples"]["probe_ms"] = test::read_json(a)["samples"]["probe_ms"];
+  std::string b = test::write_json(dir / "b.json", slower);
   std::string out = (dir / "diff.json").string();
   r = run_cli("diff '" + a + "' '" + b + "' --json '" + out + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("\ncalibrated "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("SLOWER"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("+100.0%         -         -  not tested"), std::string::npos) << r.out;
   json j = test::read_json(out);
   EXPECT_EQ(j["crowdprof"]["kind"], "diff");
   EXPECT_TRUE(j["regressed"].get<bool>());
   ASSERT_EQ(j["pairs"].size(), 1u);
   EXPECT_EQ(j["pairs"][0]["mode"], "culled");
-  EXPECT_EQ(j["pairs"][0]["metrics"][0]["metric"], "cpu");
-  EXPECT_NEAR(j["pairs"][0]["metrics"][0]["change"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(j["pairs"][0]["metrics"][0]["metric"], "calibrated");
   EXPECT_EQ(j["pairs"][0]["metrics"][0]["verdict"], "SLOWER");
+  EXPECT_EQ(j["pairs"][0]["metrics"][1]["metric"], "cpu");
+  EXPECT_NEAR(j["pairs"][0]["metrics"][1]["change"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(j["pairs"][0]["metrics"][1]["verdict"], "not tested");
+  EXPECT_TRUE(j["pairs"][0]["metrics"][1]["p"].is_null());
   // B twice as fast: faster, exit 0.
   r = run_cli("diff '" + b + "' '" + a + "'");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("faster"), std::string::npos) << r.out;
+  // Without the calibrated frame nothing is tested: no p-value, no verdict,
+  // and the way to a tested change said; other work still fails.
+  json plain_a = test::read_json(a), plain_b = slower;
+  for (json* doc : {&plain_a, &plain_b}) {
+    (*doc)["samples"].erase("calibrated");
+    (*doc)["samples"].erase("probe_ms");
+    doc->erase("calibration");
+  }
+  const std::string pa = test::write_json(dir / "plain_a.json", plain_a), pb = test::write_json(dir / "plain_b.json", plain_b);
+  r = run_cli("diff '" + pa + "' '" + pb + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.find("SLOWER"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("tolerance"), std::string::npos) << r.out;
+  for (const char* words : {"not tested: A and B ran apart, not interleaved", "crowdprof compare",
+                            "crowdprof check --against BASE_BINARY", "ok: B does the same work as A (its timings are not tested)"})
+    EXPECT_NE(r.out.find(words), std::string::npos) << words << " in\n" << r.out;
   // A floor above any change passes the slowdown.
   r = run_cli("diff '" + a + "' '" + b + "' --floor 10s -q");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
