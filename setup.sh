@@ -68,10 +68,12 @@ case "$action" in
 esac
 
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-# run builds only the binary it runs; the tests, fuzzers, micro-benchmarks,
-# generated scenes and man pages come with the other actions.
+# run builds the tool and what installs with it (scenes, man pages), so that
+# README's Install lines work right after it; the tests, fuzzers and
+# micro-benchmarks come with the other actions.
 targets=()
-[[ $action == run || $action == docs ]] && targets=(--target crowdprof_cli)
+[[ $action == run ]] && targets=(--target crowdprof_tool)
+[[ $action == docs ]] && targets=(--target crowdprof_cli)
 [[ $action == gpu-bundle ]] && targets=(--target crowdprof_cli crowdprof_scenes)
 cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}"
 

@@ -8,6 +8,7 @@
 
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
+#include "cli/installed_data.h"
 #include "output/output_file.h"
 #include "render/gl_context.h"
 #include "render/gl_features.h"
@@ -73,7 +74,7 @@ crowdprof::SpecLayer command_line_layer(const BenchCliOptions& o) {
                          : name == "characters" ? "--characters"
                                                 : crowdprof::option_spelling(name);
     const CLI::Option* given = o.command ? o.command->get_option_no_throw(option) : nullptr;
-    if (given && given->count() > 0) layer.values[name] = text;
+    if (given && given->count() > 0) layer.values[name] = name == "file" ? with_installed_data(text) : text;
   }
   if (o.allow_static) layer.values["static"] = "on";
   return layer;

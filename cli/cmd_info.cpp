@@ -3,14 +3,15 @@
 #include "asset/asset_report.h"
 #include "asset/errors.h"
 #include "cli/commands.h"
+#include "cli/installed_data.h"
+#include "frame/bench_setup.h"
 #include "scene/scene_file.h"
 
 namespace {
 
-// One character file as info describes it: the whole asset, or one skin.
-nlohmann::json describe(const std::string& file, bool json, std::ostream& out) {
-  crowdprof::CharacterSpec spec = crowdprof::parse_character_spec(file);
-  crowdprof::GltfAsset asset = crowdprof::load_gltf(spec.file);
+// One asset as info describes it: the whole of it, or the skin `spec` picks.
+nlohmann::json describe(const crowdprof::GltfAsset& asset, const crowdprof::CharacterSpec& spec, bool json,
+                        std::ostream& out) {
   int only = spec.skin < 0 ? -1 : static_cast<int>(crowdprof::checked_skin(asset, spec));
   if (json) return crowdprof::describe_asset(asset, only);
   out << crowdprof::format_asset(asset, only);
@@ -32,8 +33,10 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_flag("--json", json, "Print the same as JSON, for scripts");
   cmd->callback([&run] {
     run = [] {
+      file = with_installed_data(file);
       if (!crowdprof::is_scene_file(file)) {
-        nlohmann::json doc = describe(file, json, std::cout);
+        const crowdprof::CharacterSpec spec = crowdprof::parse_character_spec(file);
+        nlohmann::json doc = describe(crowdprof::load_gltf(spec.file), spec, json, std::cout);
         if (json) std::cout << doc.dump(2) << "\n";
         return int(crowdprof::kExitOk);
       }
@@ -44,7 +47,10 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
         const crowdprof::SceneCharacter& c = scene.characters[i];
         if (!json) std::cout << (i ? "\n" : "") << file << ": characters[" << i << "]: " << c.file << ", " << c.count
                              << (c.count == 1 ? " copy\n" : " copies\n");
-        nlohmann::json info = describe(c.path, json, std::cout);
+        nlohmann::json info =
+            describe(crowdprof::load_scene_asset(c), c.generate ? crowdprof::CharacterSpec{c.file, -1}
+                                                                : crowdprof::parse_character_spec(c.path),
+                     json, std::cout);
         if (json) doc["characters"].push_back({{"file", c.file}, {"count", c.count}, {"info", info}});
       }
       if (json) std::cout << doc.dump(2) << "\n";

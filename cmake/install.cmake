@@ -5,6 +5,19 @@
 # (find_package(crowdprof), target crowdprof::crowdprof) form the development
 # component. Tested by tests/install/.
 install(TARGETS crowdprof_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+# The guides --help names (docs/modes.md, ...), as share/doc/crowdprof/docs/,
+# the same relative paths as in a source checkout, with README.md beside them.
+install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs COMPONENT runtime
+  FILES_MATCHING PATTERN "*.md" PATTERN "*.svg" PATTERN "*.png")
+
+# What cmake --install and cpack take for the tool, built by `./setup.sh run`
+# (the rest of the build, tests and benchmarks, is not installed): the binary,
+# its library (the development component), the scenes and the man pages.
+add_custom_target(crowdprof_tool DEPENDS crowdprof_cli crowdprof_scenes)
+if(TARGET crowdprof_man_pages)
+  add_dependencies(crowdprof_tool crowdprof_man_pages)
+endif()
 
 set(CROWDPROF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/crowdprof)
 set_target_properties(crowdprof_lib PROPERTIES EXPORT_NAME crowdprof)

@@ -9,6 +9,7 @@
 #include "asset/errors.h"
 #include "asset/gltf_loader.h"
 #include "asset/vertex_order.h"
+#include "gen/gltf_writer.h"
 #include "scene/camera.h"
 
 namespace crowdprof {
@@ -25,18 +26,30 @@ std::string content_hash(const std::string& spec) {
 
 // A character as the file says, then with its vertices in the order skinning
 // is quickest in (asset/vertex_order.h): the same triangles, fewer joints a batch.
-std::unique_ptr<Character> load_ordered(const std::string& spec) {
-  auto character = std::make_unique<Character>(load_character(spec));
-  order_vertices_for_skinning(*character);
-  return character;
+std::unique_ptr<Character> ordered(Character character) {
+  auto owned = std::make_unique<Character>(std::move(character));
+  order_vertices_for_skinning(*owned);
+  return owned;
 }
 }  // namespace
+
+GltfAsset load_scene_asset(const SceneCharacter& c, std::string* hash) {
+  if (!c.generate) {
+    if (hash) *hash = content_hash(c.path);
+    return load_gltf(parse_character_spec(c.path).file);
+  }
+  GltfWriteOptions options;
+  options.draco = c.generate->draco;
+  const std::vector<uint8_t> bytes = encode_gltf(generate_humanoid(c.generate->humanoid), options);
+  if (hash) *hash = fnv1a64_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  return load_gltf_from_memory(std::vector<unsigned char>(bytes.begin(), bytes.end()), c.file);
+}
 
 BenchScene load_bench_scene(const RunSpec& spec) {
   BenchScene loaded;
   if (!is_scene_file(spec.file)) {
     if (spec.actions == "scene") throw SettingError("actions", "scene", spec.file + " is a character, not a scene file");
-    loaded.owned.push_back(load_ordered(spec.file));
+    loaded.owned.push_back(ordered(load_character(spec.file)));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(spec.file);
     loaded.content_hashes.push_back(content_hash(spec.file));
@@ -44,10 +57,13 @@ BenchScene load_bench_scene(const RunSpec& spec) {
   }
   SceneFile scene = load_scene_file(spec.file);
   for (const SceneCharacter& c : scene.characters) {
-    loaded.owned.push_back(load_ordered(c.path));
+    std::string hash;
+    GltfAsset asset = load_scene_asset(c, &hash);
+    const CharacterSpec which = c.generate ? CharacterSpec{c.file, -1} : parse_character_spec(c.path);
+    loaded.owned.push_back(ordered(std::move(asset.characters[checked_skin(asset, which)])));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(c.file);
-    loaded.content_hashes.push_back(content_hash(c.path));
+    loaded.content_hashes.push_back(hash);
   }
   loaded.scene = std::move(scene);
   return loaded;

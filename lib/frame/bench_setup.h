@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "asset/character.h"
+#include "asset/gltf_loader.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_spec.h"
 #include "scene/scene_file.h"
@@ -27,6 +28,12 @@ struct BenchScene {
   std::vector<std::string> content_hashes;
   const Character& first() const { return *characters.front(); }
 };
+
+// The asset a scene character names: its file, or the humanoid its "generate"
+// entry describes, written as glTF in memory (with Draco when it says so) and
+// loaded from those bytes as any file is. `content_hash`, when given, gets
+// FNV-1a 64 (hex) of the bytes. InputError for a bad file.
+GltfAsset load_scene_asset(const SceneCharacter& character, std::string* content_hash = nullptr);
 
 // Loads spec.file: a character, or a scene file and its characters. InputError
 // for a bad file (scene files: naming the key); SettingError for actions

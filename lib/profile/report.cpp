@@ -226,15 +226,20 @@ std::string format_profile(const RunReport& report) {
     out << "\n";
   }
   if (run.crowd.size() > 1) {
-    std::snprintf(line, sizeof line, "%-28s %6s %6s %8s %9s %6s %6s %16s %9s\n", "file", "copies", "joints",
+    // As wide as the longest name, up to 48 (a generated character's gen command); longer ones keep their end.
+    int width = 28;
+    for (const CharacterRun& c : run.crowd) width = std::max(width, static_cast<int>(std::min<size_t>(c.file.size(), 48)));
+    const auto w = static_cast<size_t>(width);
+    std::snprintf(line, sizeof line, "%-*s %6s %6s %8s %9s %6s %6s %16s %9s\n", width, "file", "copies", "joints",
                   "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
     out << line;
     for (const CharacterRun& c : run.crowd) {
       const Counters& n = c.counters;
-      std::string label = c.file.size() > 28 ? "..." + c.file.substr(c.file.size() - 25) : c.file;
-      std::snprintf(line, sizeof line, "%-28s %6zu %6zu %8zu %9llu %6llu %6llu %16llu %9llu\n", label.c_str(), c.copies, c.joints, c.vertices,
-                    static_cast<unsigned long long>(n.copies_visible), static_cast<unsigned long long>(n.copies_culled),
-                    static_cast<unsigned long long>(n.poses_updated), static_cast<unsigned long long>(n.vertices_skinned),
+      std::string label = c.file.size() > w ? "..." + c.file.substr(c.file.size() - (w - 3)) : c.file;
+      std::snprintf(line, sizeof line, "%-*s %6zu %6zu %8zu %9llu %6llu %6llu %16llu %9llu\n", width, label.c_str(),
+                    c.copies, c.joints, c.vertices, static_cast<unsigned long long>(n.copies_visible),
+                    static_cast<unsigned long long>(n.copies_culled), static_cast<unsigned long long>(n.poses_updated),
+                    static_cast<unsigned long long>(n.vertices_skinned),
                     static_cast<unsigned long long>(n.copies_fallback));
       out << line;
     }

@@ -81,6 +81,40 @@ struct Reader {
   }
 };
 
+// "generate": {"bones", "vertices", "seed", "lods", "draco"}, each optional,
+// with gen's defaults and ranges.
+GeneratedCharacter generated_character(const Reader& r, const json& value, const std::string& key) {
+  r.only_keys(value, key, {"bones", "vertices", "seed", "lods", "draco"});
+  GeneratedCharacter g;
+  HumanoidOptions& h = g.humanoid;
+  if (value.contains("bones"))
+    h.bones = static_cast<int>(r.whole(value["bones"], key + ".bones", kHumanoidMinBones, kHumanoidMaxBones));
+  if (value.contains("vertices"))
+    h.vertices =
+        static_cast<int>(r.whole(value["vertices"], key + ".vertices", kHumanoidMinVertices, kHumanoidMaxVertices));
+  if (value.contains("seed")) h.seed = static_cast<uint32_t>(r.whole(value["seed"], key + ".seed", 0, 0xffffffffLL));
+  if (value.contains("lods")) h.lod_levels = static_cast<int>(r.whole(value["lods"], key + ".lods", 0, 3));
+  if (value.contains("draco")) {
+    if (!value["draco"].is_boolean()) r.fail(key + ".draco", "expected true or false, got " + Reader::type_of(value["draco"]));
+    g.draco = value["draco"].get<bool>();
+  }
+  return g;
+}
+
+// The `crowdprof gen` options that make the same character, those that differ
+// from gen's defaults: how results and messages name it.
+std::string gen_command(const GeneratedCharacter& g) {
+  const HumanoidOptions& h = g.humanoid;
+  const HumanoidOptions defaults;
+  std::string out = "gen";
+  if (h.bones != defaults.bones) out += " --bones " + std::to_string(h.bones);
+  if (h.vertices != defaults.vertices) out += " --vertices " + std::to_string(h.vertices);
+  if (h.seed != defaults.seed) out += " --seed " + std::to_string(h.seed);
+  if (h.lod_levels != defaults.lod_levels) out += " --lods " + std::to_string(h.lod_levels);
+  if (g.draco) out += " --draco";
+  return out;
+}
+
 std::string folder_of(const std::string& path) {
   std::filesystem::path parent = std::filesystem::path(path).parent_path();
   return parent.empty() ? std::string() : parent.string() + "/";
@@ -135,18 +169,24 @@ SceneFile load_scene_file(const std::string& path) {
   for (size_t i = 0; i < characters.size(); ++i) {
     std::string key = "characters[" + std::to_string(i) + "]";
     const json& entry = characters[i];
-    r.only_keys(entry, key, {"file", "count", "actions", "action"});
+    r.only_keys(entry, key, {"file", "generate", "count", "actions", "action"});
     SceneCharacter c;
-    if (!entry.contains("file")) r.fail(key + ".file", "missing");
-    c.file = r.text(entry["file"], key + ".file");
-    std::string name = c.file.substr(0, c.file.find('#'));
-    if (name.empty()) r.fail(key + ".file", "empty");
-    c.path = std::filesystem::path(name).is_absolute() ? c.file : folder + c.file;
-    std::string on_disk = c.path.substr(0, c.path.find('#'));
-    // With an error code: a path too long for the system is a missing file, not an exception.
-    std::error_code unreadable;
-    if (!std::filesystem::is_regular_file(on_disk, unreadable))
-      r.fail(key + ".file", "no such file '" + c.file + "' (looked for " + on_disk + ")");
+    if (entry.contains("file") && entry.contains("generate")) r.fail(key + ".generate", "with file: give one of the two");
+    if (!entry.contains("file") && !entry.contains("generate")) r.fail(key + ".file", "missing (or generate)");
+    if (entry.contains("generate")) {
+      c.generate = generated_character(r, entry["generate"], key + ".generate");
+      c.file = gen_command(*c.generate);
+    } else {
+      c.file = r.text(entry["file"], key + ".file");
+      std::string name = c.file.substr(0, c.file.find('#'));
+      if (name.empty()) r.fail(key + ".file", "empty");
+      c.path = std::filesystem::path(name).is_absolute() ? c.file : folder + c.file;
+      std::string on_disk = c.path.substr(0, c.path.find('#'));
+      // With an error code: a path too long for the system is a missing file, not an exception.
+      std::error_code unreadable;
+      if (!std::filesystem::is_regular_file(on_disk, unreadable))
+        r.fail(key + ".file", "no such file '" + c.file + "' (looked for " + on_disk + ")");
+    }
     if (!entry.contains("count")) r.fail(key + ".count", "missing: how many copies of this character");
     c.count = static_cast<size_t>(r.whole(entry["count"], key + ".count", 0, 10'000'000));
     if (entry.contains("actions")) {

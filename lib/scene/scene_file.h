@@ -5,20 +5,34 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "asset/character.h"
+#include "gen/humanoid.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
 
 namespace crowdprof {
 
-// One entry of "characters": a file and how many copies play what.
+// A scene character made by crowdprof's generator rather than read from a
+// file ("generate": the options of `crowdprof gen`): a scene that runs from any
+// folder with no file beside it.
+struct GeneratedCharacter {
+  HumanoidOptions humanoid;
+  bool draco = false;  // written with KHR_draco_mesh_compression, then decoded as a file's would be
+};
+
+// One entry of "characters": a file (or a generated humanoid) and how many
+// copies play what.
 struct SceneCharacter {
-  std::string file;  // as the scene writes it, FILE or FILE#skin=N
-  std::string path;  // the same, relative to the scene file's folder
+  // As the scene writes it, FILE or FILE#skin=N; for a generated character
+  // the gen command that makes the same ("gen --bones 300 --seed 3").
+  std::string file;
+  std::string path;  // the file relative to the scene file's folder; empty when generated
+  std::optional<GeneratedCharacter> generate;
   size_t count = 0;
   ActionChoice actions = ActionChoice::Shared;
   std::string action;  // with Shared: the action's name; empty: the first

@@ -15,16 +15,15 @@ fail() { echo "gpu-bundle: $*" >&2; exit 1; }
 
 binary=$build_dir/crowdprof
 [[ -x $binary ]] || fail "$binary is not built"
-[[ -f $build_dir/scenes/generated/humanoid-300.glb ]] || fail "$build_dir/scenes has no generated scenes (build the scenes target)"
+[[ -f $build_dir/scenes/thesis.json ]] || fail "$build_dir/scenes has no scenes (build the scenes target)"
 if [[ -e $bundle ]]; then
   [[ -f $bundle/run.sh && -f $bundle/bin/crowdprof ]] || fail "$bundle exists and is not a bundle: choose a new folder"
   rm -rf "$bundle"
 fi
-mkdir -p "$bundle/bin" "$bundle/lib" "$bundle/scenes/generated"
+mkdir -p "$bundle/bin" "$bundle/lib" "$bundle/scenes"
 cp "$binary" "$bundle/bin/"
 cp "$source_dir/tests/gpu_bundle/run.sh" "$bundle/"
-cp "$build_dir/scenes/humanoid.glb" "$build_dir/scenes/thesis.json" "$bundle/scenes/"
-cp "$build_dir/scenes/generated/humanoid-300.glb" "$bundle/scenes/generated/"
+cp "$build_dir/scenes/humanoid.glb" "$build_dir/scenes/thesis.json" "$build_dir/scenes/mixed.json" "$bundle/scenes/"
 
 # Every library the binary needs but glibc's and the compiler's own, and the
 # ones glvnd's libEGL pulls in (libGLdispatch). Mesa is not bundled: on the

@@ -38,7 +38,7 @@ contents() {
   local listing depends
   listing=$(dpkg-deb -c "$deb")
   for file in ./usr/bin/crowdprof ./usr/share/crowdprof/scenes/thesis.json \
-      ./usr/share/crowdprof/scenes/generated/humanoid-300.glb ./usr/share/man/man1/crowdprof-bench.1; do
+      ./usr/share/crowdprof/scenes/mixed.json ./usr/share/doc/crowdprof/docs/modes.md ./usr/share/man/man1/crowdprof-bench.1; do
     grep -q " $file\$" <<<"$listing" || fail "$deb lacks $file"
   done
   grep -q 'libcrowdprof.a$' <<<"$listing" && fail "the library belongs in crowdprof-dev, not $deb"

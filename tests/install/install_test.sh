@@ -13,8 +13,8 @@ cmake --install "$build_dir" --prefix "$prefix" >/dev/null
 
 fail() { echo "install_test: $*" >&2; exit 1; }
 for file in bin/crowdprof share/crowdprof/scenes/thesis.json share/crowdprof/scenes/mixed.json \
-    share/crowdprof/scenes/humanoid.glb share/crowdprof/scenes/generated/humanoid-300.glb \
-    share/crowdprof/scenes/generated/humanoid-draco.glb share/man/man1/crowdprof.1 share/man/man1/crowdprof-bench.1 \
+    share/crowdprof/scenes/humanoid.glb share/doc/crowdprof/README.md share/doc/crowdprof/docs/modes.md \
+    share/man/man1/crowdprof.1 share/man/man1/crowdprof-bench.1 \
     include/crowdprof/asset/gltf_loader.h include/crowdprof/glad/gl.h lib/libcrowdprof.a \
     lib/cmake/crowdprof/crowdprofConfig.cmake; do
   [[ -f $prefix/$file ]] || fail "cmake --install did not install $file"
@@ -29,7 +29,7 @@ grep -q '^crowdprof bench ' <<<"$(grep -A2 '^\.SH EXAMPLES' "$page")" || fail "c
 out=$(cd / && "$prefix/bin/crowdprof" bench "$prefix/share/crowdprof/scenes/mixed.json" --frames 2 --warmup 0) ||
   fail "the installed crowdprof could not bench the installed mixed.json"
 grep -q '^Frametime' <<<"$out" || fail "no profile table: $out"
-grep -q 'generated/humanoid-300.glb' <<<"$out" || fail "mixed.json's generated character is missing: $out"
+grep -q 'gen --bones 300 --vertices 12000 --seed 3 ' <<<"$out" || fail "mixed.json's generated character is missing: $out"
 
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null

@@ -20,7 +20,7 @@ using nlohmann::json;
 namespace {
 
 std::string scenes(const std::string& name) { return (crowdprof::test::source_dir() / "scenes" / name).string(); }
-// mixed.json runs from the build tree, where the build makes its generated characters.
+// The build's copy of the scenes, the folder cmake --install ships.
 std::string built_scenes(const std::string& name) {
   return (std::filesystem::path(CROWDPROF_BUILT_SCENES_DIR) / name).string();
 }
@@ -54,7 +54,7 @@ TEST(SceneFile, TheThesisSceneIsTheDefaultBench) {
 TEST(SceneFile, AMixedSceneShowsEachCharacter) {
   auto dir = crowdprof::test::scratch_dir("scene_mixed");
   auto out = dir / "mixed.json";
-  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' --frames 2 --warmup 1 --json '" + out.string() + "'");
+  auto r = run_cli("bench '" + scenes("mixed.json") + "' --frames 2 --warmup 1 --json '" + out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
   ASSERT_EQ(j["crowd"].size(), 3u);
@@ -78,7 +78,7 @@ TEST(SceneFile, AMixedSceneShowsEachCharacter) {
   EXPECT_EQ(skinned, j["counters"]["vertices_skinned"].get<uint64_t>());
   EXPECT_EQ(j["scene"]["action_choice"], "scene");
   // The table shows a row per character.
-  EXPECT_NE(r.out.find("generated/humanoid-300.glb"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("gen --bones 300 --vertices 12000 --seed 3 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("160 characters of 3 kinds"), std::string::npos) << r.out;
   // The same scene gives the same bits again.
   auto again = dir / "again.json";
@@ -149,6 +149,13 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2.5}]}", "characters[0].count"},
       {"{\"characters\": [" + ok_character + ", {\"file\": \"nowhere.glb\", \"count\": 1}]}", "characters[1].file"},
       {"{\"characters\": [{\"count\": 1}]}", "characters[0].file"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"generate\": {}, \"count\": 1}]}", "characters[0].generate"},
+      {"{\"characters\": [{\"generate\": {\"bones\": 5}, \"count\": 1}]}", "characters[0].generate.bones"},
+      {"{\"characters\": [{\"generate\": {\"vertices\": 1e9}, \"count\": 1}]}", "characters[0].generate.vertices"},
+      {"{\"characters\": [{\"generate\": {\"draco\": \"yes\"}, \"count\": 1}]}", "characters[0].generate.draco"},
+      {"{\"characters\": [{\"generate\": {\"lods\": 4}, \"count\": 1}]}", "characters[0].generate.lods"},
+      {"{\"characters\": [{\"generate\": {\"size\": 2}, \"count\": 1}]}", "characters[0].generate.size"},
+      {"{\"characters\": [{\"generate\": [], \"count\": 1}]}", "characters[0].generate"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 0}]}", "characters"},
       {"{\"characters\": []}", "characters"},
       {"{}", "characters"},
@@ -201,7 +208,7 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
 TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
   auto r = run_cli("info '" + built_scenes("mixed.json") + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("characters[1]: generated/humanoid-300.glb, 40 copies"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("characters[1]: gen --bones 300 --vertices 12000 --seed 3, 40 copies"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("joints:      300"), std::string::npos) << r.out;
   auto j = run_cli("info '" + built_scenes("mixed.json") + "' --json");
   ASSERT_EQ(j.status, 0) << j.err;
@@ -215,4 +222,35 @@ TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
   auto refused = run_cli("info '" + bad.string() + "'");
   EXPECT_EQ(refused.status, 3);
   EXPECT_NE(refused.err.find("characters[0].file"), std::string::npos) << refused.err;
+}
+
+// A "generate" entry is the humanoid `crowdprof gen` writes with the same
+// options, loaded from its bytes as that file would be: the same crowd, digest
+// and asset hash; results name it by the gen command; the scene runs from any
+// folder, with no file beside it.
+TEST(SceneFile, AGeneratedCharacterIsTheFileGenWouldWrite) {
+  auto dir = crowdprof::test::scratch_dir("scene_generate");
+  const std::string glb = (dir / "h.glb").string();
+  ASSERT_EQ(run_cli("gen -o '" + glb + "' --bones 30 --vertices 800 --seed 4 --draco").status, 0);
+  auto from_file = dir / "file.json", generated = dir / "generated.json";
+  std::ofstream(from_file) << "{\"characters\": [{\"file\": \"h.glb\", \"count\": 6, \"actions\": \"random\"}]}";
+  std::ofstream(generated) << "{\"characters\": [{\"generate\": {\"bones\": 30, \"vertices\": 800, \"seed\": 4, "
+                              "\"draco\": true}, \"count\": 6, \"actions\": \"random\"}]}";
+  auto a = dir / "a.json", b = dir / "b.json";
+  auto r = run_cli("bench '" + from_file.string() + "' --frames 2 --warmup 0 -q --json '" + a.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cli("bench '" + generated.string() + "' --frames 2 --warmup 0 -q --json '" + b.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json ja = read_json(a), jb = read_json(b);
+  EXPECT_EQ(ja["digest"], jb["digest"]);
+  EXPECT_EQ(ja["counters"], jb["counters"]);
+  EXPECT_EQ(ja["crowd"][0]["asset_hash"], jb["crowd"][0]["asset_hash"]);
+  EXPECT_EQ(jb["crowd"][0]["file"], "gen --bones 30 --vertices 800 --seed 4 --draco");
+  // info describes it as it describes the file.
+  auto info = run_cli("info '" + generated.string() + "'");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("characters[0]: gen --bones 30 --vertices 800 --seed 4 --draco, 6 copies"), std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("joints:      30 "), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("(Draco decoded)"), std::string::npos) << info.out;
 }
