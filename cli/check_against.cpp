@@ -124,6 +124,7 @@ json ab_document(const AbResult& result, const AbOptions& options, const Build& 
                        {"key", metric.metric},
                        {"base_ms", metric.base_ms},
                        {"current_ms", metric.current_ms},
+                       {"current_median_ms", metric.current_median_ms},
                        {"change", metric.change.median},
                        {"change_low", metric.change.low},
                        {"change_high", metric.change.high},

@@ -173,7 +173,9 @@ FrameRecord CrowdBench::step() {
   update_logic();
   enter(Category::Physics);  // no physics in a crowd benchmark
   enter(Category::Animations);
+  const uint64_t switches_before = planner_->schedule().rate_switches;
   update_poses(counters);
+  record.rate_switches = planner_->schedule().rate_switches - switches_before;
   enter(Category::Scenegraph);
   update_scenegraph(counters);
   enter(Category::Rasterizer);

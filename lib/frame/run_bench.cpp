@@ -154,7 +154,11 @@ void record_mesh_lod(const CrowdBench& bench, RunReport& report) {
 void record_drawn_error(const CrowdBench& bench, RunReport& report) {
   const DrawnError e = bench.measure_drawn_error(resolution_size(bench.config().resolution).second);
   if (e.copies_checked == 0) return;
-  const double seconds = static_cast<double>(bench.frames_run()) / bench.config().fps;
+  // Over the measured frames, as every figure of the run: the warm-up's first,
+  // slow frames demote copies the frames after it promote again.
+  uint64_t switches = 0;
+  for (const FrameRecord& frame : report.frames) switches += frame.rate_switches;
+  const double seconds = static_cast<double>(report.frames.size()) / bench.config().fps;
   report.drawn_error = DrawnErrorRecord{e.copies_checked,
                                         e.copies_deviating,
                                         e.vertices,
@@ -166,7 +170,7 @@ void record_drawn_error(const CrowdBench& bench, RunReport& report) {
                                         e.max_px,
                                         e.rms_px,
                                         e.mesh_max,
-                                        seconds > 0 ? static_cast<double>(bench.schedule().rate_switches) / seconds : 0.0};
+                                        seconds > 0 ? static_cast<double>(switches) / seconds : 0.0};
 }
 
 void record_culling_audit(const CrowdBench& bench, RunReport& report) {

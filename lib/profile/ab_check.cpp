@@ -97,10 +97,11 @@ AbResult judge_ab(const std::vector<AbGroup>& groups, const AbOptions& options) 
       metric.ratios.push_back(ratio);
       log_ratios.push_back(std::isfinite(ratio) && ratio > 0 ? std::log(ratio) : (ratio > 0 ? 50.0 : -50.0));
     }
-    metric.base_ms = quantile(base_all, 0.5);
-    metric.current_ms = quantile(current_all, 0.5);
     MedianInterval log_change = bootstrap_median(log_ratios, options.confidence);
     metric.change = {std::exp(log_change.median) - 1, std::exp(log_change.low) - 1, std::exp(log_change.high) - 1};
+    metric.base_ms = quantile(base_all, 0.5);
+    metric.current_ms = metric.base_ms * (1 + metric.change.median);
+    metric.current_median_ms = quantile(current_all, 0.5);
     metric.test = wilcoxon_signed_rank(log_ratios);
     result.metrics.push_back(std::move(metric));
   }

@@ -56,10 +56,17 @@ struct AbOptions {
 };
 
 struct AbMetric {
-  std::string metric;               // samples key
-  double base_ms = 0, current_ms = 0;  // medians over every process of each build
-  std::vector<double> ratios;          // per group, current over base
-  MedianInterval change;               // of the ratios, minus 1: +0.1 is 10% slower
+  std::string metric;  // samples key
+  // The base's median over all its processes, and the current build's time
+  // at the same moments: the base's times the paired change. So base, current
+  // and change are one computation (current / base - 1 is the change), never a
+  // change beside two medians that moved the other way.
+  double base_ms = 0, current_ms = 0;
+  // The current build's own median over its processes: the machine's drift
+  // between processes in it, which the pairing removes (JSON only).
+  double current_median_ms = 0;
+  std::vector<double> ratios;  // per group, current over base
+  MedianInterval change;       // of the ratios, minus 1: +0.1 is 10% slower
   SignedRank test;                     // of the log ratios against zero
   double p_adjusted = 1;
   double floor_ms = 0;

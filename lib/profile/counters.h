@@ -112,6 +112,9 @@ struct FrameRecord {
   // Instructions the frame's thread retired (profile/instruction_counter.h,
   // perf_event); 0 when not counted or counted by callgrind.
   uint64_t instructions = 0;
+  // Copies whose update period the budget changed in this frame. Not a
+  // counter: it follows the frame's measured time, so two runs differ.
+  uint64_t rate_switches = 0;
 };
 
 }  // namespace crowdprof

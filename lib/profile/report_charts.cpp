@@ -121,7 +121,8 @@ std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& poi
   }
   chart.series.push_back(std::move(line));
   for (const CostErrorPoint& p : points)
-    chart.series.push_back({p.mode, {p.frame_ms}, {p.error.max_px}, colours.colour(p.mode)});
+    chart.series.push_back({p.past_threshold ? p.mode + " (past " + report_number(kFrontMaxErrorPx, 0) + " px)" : p.mode,
+                            {p.frame_ms}, {p.error.max_px}, colours.colour(p.mode)});
   return chart;
 }
 

@@ -9,6 +9,7 @@ namespace crowdprof {
 namespace {
 double sorted_quantile(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) return 0.0;
+  if (q == 0.5) return sorted[(sorted.size() - 1) / 2];
   double position = q * static_cast<double>(sorted.size() - 1);
   size_t below = static_cast<size_t>(std::floor(position));
   size_t above = std::min(below + 1, sorted.size() - 1);

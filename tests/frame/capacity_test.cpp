@@ -13,6 +13,8 @@
 #include "fake_run.h"
 #include "frame/capacity.h"
 #include "frame/capacity_report.h"
+#include "profile/report.h"
+#include "profile/stats.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -362,5 +364,25 @@ TEST(CapacityCli, RefusesBadInputWithOneLine) {
     EXPECT_EQ(r.status, 2) << bad << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << "\n" << r.err;
     EXPECT_TRUE(r.out.empty()) << bad;
+  }
+}
+
+// A capacity point's median is the run's median frame: the capacity table, the
+// runs table and the profile table (that frame's categories) give one value
+// (issue 50: one run's median read 6.985 ms in one table and 6.94 in another,
+// the mean of the two middle frames against the lower of them).
+TEST(CapacityReport, APointsMedianIsTheProfileTablesMedianFrame) {
+  for (const std::vector<double>& frames : {std::vector<double>{1.0, 2.0, 3.0, 10.0}, std::vector<double>{5.0, 4.0, 9.0}}) {
+    const RunReport report = test::fake_run("threaded", 40, frames, 0.5);
+    const CapacityPoint p = capacity_point(report, CapacityMetric{}, 40, 1);
+    const double median_frame_ms = report.frames[median_frame(report.frames)].times.total_ms();
+    EXPECT_DOUBLE_EQ(p.median_ms, median_frame_ms);
+    EXPECT_DOUBLE_EQ(p.frame_median_ms, median_frame_ms);
+    std::vector<double> totals;
+    for (const FrameRecord& f : report.frames) totals.push_back(f.times.total_ms());
+    EXPECT_DOUBLE_EQ(quantile(totals, 0.5), median_frame_ms) << "the runs table's median";
+    char frametime[64];
+    std::snprintf(frametime, sizeof frametime, "Frametime : %8.2fms", median_frame_ms);
+    EXPECT_NE(format_profile(report).find(frametime), std::string::npos) << format_profile(report);
   }
 }

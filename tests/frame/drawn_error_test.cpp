@@ -6,9 +6,13 @@
 
 #include "asset/standing.h"
 #include "frame/crowd_bench.h"
+#include "frame/compare.h"
 #include "frame/run_bench.h"
 #include "profile/cost_error.h"
+#include "profile/number_text.h"
+#include "profile/report.h"
 #include "render_support.h"
+#include "test_support.h"
 
 using namespace crowdprof;
 
@@ -112,12 +116,14 @@ TEST(CostError, SavingsAreWeighedAgainstTheirOwnModeAndTheFrontIsFound) {
   };
   std::vector<CostErrorInput> inputs = {{"culled", 6.0, 5.0, error(0)},
                                         {"threaded", 5.0, 4.0, error(0)},
-                                        {"threaded+update_lod=on", 1.0, 0.8, error(0.15)},
+                                        {"threaded+update_lod=on", 1.0, 0.8, error(0.04)},
                                         {"threaded+mesh_lod=on", 2.0, 1.8, error(0.006)},
                                         {"threaded+share=on", 2.5, 2.0, error(0.01)},
-                                        {"hwskin", 3.0, 1.0, std::nullopt}};
+                                        {"hwskin", 3.0, 1.0, std::nullopt},
+                                        {"threaded+anim_budget=0.1", 0.5, 0.3, error(0.15)},
+                                        {"threaded+vertex_format=packed", 5.5, 4.4, error(0)}};
   std::vector<CostErrorPoint> points = cost_error_points(inputs);
-  ASSERT_EQ(points.size(), 5u) << "hwskin carries no error: no point";
+  ASSERT_EQ(points.size(), 7u) << "hwskin carries no error: no point";
   EXPECT_EQ(points[0].base, "culled");
   EXPECT_EQ(points[1].base, "culled") << "no mode named before a '+': the first";
   EXPECT_EQ(points[2].base, "threaded");
@@ -128,8 +134,50 @@ TEST(CostError, SavingsAreWeighedAgainstTheirOwnModeAndTheFrontIsFound) {
   EXPECT_TRUE(points[2].front);
   EXPECT_TRUE(points[3].front);
   EXPECT_FALSE(points[4].front) << "mesh LOD is faster and more exact";
+  // The fastest of all, 3 px off: past the threshold, marked so, never starred,
+  // and it takes no point within the threshold off the front.
+  EXPECT_TRUE(points[5].past_threshold);
+  EXPECT_FALSE(points[5].front);
+  EXPECT_FALSE(points[2].past_threshold);
+  EXPECT_DOUBLE_EQ(points[6].saved_ms, -0.5);
   EXPECT_TRUE(cost_error_points({inputs[0]}).empty()) << "one point weighs nothing";
   const std::string table = format_cost_error(points);
   EXPECT_NE(table.find("threaded+update_lod=on"), std::string::npos);
   EXPECT_NE(table.find("150.00"), std::string::npos) << table;
+  EXPECT_NE(table.find("past 1 px"), std::string::npos) << table;
+  EXPECT_EQ(test::occurrences(table, "past 1 px\n"), 1u) << table;
+  EXPECT_NE(table.find("-0.500 (slower)"), std::string::npos) << table;
+  EXPECT_NE(table.find("among those within 1 px"), std::string::npos) << table;
+}
+
+// Rate switches a second: one computation over the measured frames, the same
+// figure in bench's run and in compare's, the warm-up's switches in neither
+// (issue 50: bench said 240 a second where every copy was updated every frame).
+TEST(DrawnError, RateSwitchesAreTheMeasuredFramesInBenchAndCompareAlike) {
+  BenchConfig budget = error_config(1, 160);
+  budget.mode = find_mode("budget")->switches;
+  budget.mode_name = "budget";
+  // Far over the 2 ms budget in the warm-up's first frames, under it after.
+  budget.replay_animations_ms.assign(400, 0.2);
+  std::fill(budget.replay_animations_ms.begin(), budget.replay_animations_ms.begin() + 4, 9.0);
+  RunOptions options;
+  options.warmup = 10;
+  options.frames = 60;
+  CrowdBench alone(test::default_humanoid(), budget);
+  const RunReport report = run_bench(alone, "humanoid.glb", options);
+  uint64_t measured = 0;
+  for (const FrameRecord& frame : report.frames) measured += frame.rate_switches;
+  EXPECT_GT(alone.schedule().rate_switches, measured) << "the warm-up's slow frames switched periods";
+  ASSERT_TRUE(report.drawn_error);
+  EXPECT_DOUBLE_EQ(report.drawn_error->switches_per_second,
+                   static_cast<double>(measured) * budget.fps / static_cast<double>(options.frames));
+  BenchConfig threaded = error_config(1, 160);
+  CrowdBench a(test::default_humanoid(), threaded), b(test::default_humanoid(), budget);
+  CrowdBench* benches[] = {&a, &b};
+  const std::vector<RunReport> compared = run_interleaved(benches, "humanoid.glb", options, 10);
+  ASSERT_TRUE(compared[1].drawn_error);
+  EXPECT_DOUBLE_EQ(compared[1].drawn_error->switches_per_second, report.drawn_error->switches_per_second);
+  // Both texts print that one figure.
+  const std::string figure = fixed(report.drawn_error->switches_per_second, 1) + " rate switches/s";
+  EXPECT_NE(format_drawn_error(*report.drawn_error).find(figure), std::string::npos) << format_drawn_error(*report.drawn_error);
 }

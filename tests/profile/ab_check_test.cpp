@@ -216,3 +216,40 @@ TEST(VerdictReport, JUnitMarkdownAndText) {
 }
 
 }  // namespace
+
+// Base, current and change are one computation: current is the base's median
+// times the paired change, so the three agree in the text, Markdown and JUnit
+// even when the builds' own medians moved the other way (issue 50: "frame
+// 0.1336 0.1338 -0.4%"). Here the current build's processes ran at a slower
+// moment of the machine (its median is higher) while every pair says it is 2%
+// faster.
+TEST(AbGate, BaseCurrentAndChangeAgreeWhereTheMediansDrifted) {
+  std::vector<AbGroup> g;
+  for (int k = 0; k < 10; ++k) {
+    AbGroup group;
+    const double base_level = 1.0 + 0.01 * k, current_level = 1.2 + 0.01 * k;  // current's processes: later, slower
+    group.base[0] = process(base_level);
+    group.base[1] = process(current_level);
+    group.current[0] = process(base_level * 0.98);
+    group.current[1] = process(current_level * 0.98 * 1.3);  // its moment was slower still
+    g.push_back(group);
+  }
+  // Each group's ratio: sqrt(0.98 * 0.98 * 1.3) = 1.117 ... the paired change,
+  // while the medians of each build moved by another amount.
+  const AbResult result = judge_ab(g, AbOptions{});
+  const AbMetric& m = result.metrics[0];
+  EXPECT_NEAR(m.current_ms / m.base_ms - 1, m.change.median, 1e-12);
+  EXPECT_GT(std::fabs(m.current_median_ms / m.base_ms - 1 - m.change.median), 0.02) << "the medians drifted apart";
+  const GateTable table = ab_verdict_table(result, AbOptions{});
+  ASSERT_EQ(table.metrics.size(), 1u);
+  const GateRow& row = table.metrics[0];
+  EXPECT_NEAR(row.current_ms / row.base_ms - 1, row.change, 1e-12);
+  // The reporters print the same three numbers.
+  char base[32], current[32];  // as the reporters print milliseconds
+  std::snprintf(base, sizeof base, row.base_ms < 1 ? "%.4f" : "%.3f", row.base_ms);
+  std::snprintf(current, sizeof current, row.current_ms < 1 ? "%.4f" : "%.3f", row.current_ms);
+  for (const std::string& text : {verdict_text(table), verdict_markdown(table), verdict_junit(table, "frame")}) {
+    EXPECT_NE(text.find(base), std::string::npos) << text;
+    EXPECT_NE(text.find(current), std::string::npos) << text;
+  }
+}

@@ -316,21 +316,24 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
 TEST(HtmlReport, SavingsAreDrawnAsCostAgainstErrorWithTheirFront) {
   HtmlReportInput input;
   json exact = fake_result("threaded", 40, {3, 3, 3}), lod = fake_result("threaded+update_lod=on", 40, {1, 1, 1}),
-       slow = fake_result("master", 40, {9, 9, 9});
+       slow = fake_result("master", 40, {9, 9, 9}), bent = fake_result("budget", 40, {0.5, 0.5, 0.5});
   auto error = [](double px) {
     return json{{"copies_checked", 40}, {"copies_deviating", px > 0 ? 30 : 0}, {"vertices", 400}, {"copy_stride", 1},
                 {"max", px / 100}, {"rms", px / 300}, {"max_fraction", px / 200}, {"rms_fraction", px / 600},
                 {"max_px", px},   {"rms_px", px / 3}, {"mesh_max", 0},     {"switches_per_second", 0}};
   };
   exact["drawn_error"] = error(0);
-  lod["drawn_error"] = error(2.5);
+  lod["drawn_error"] = error(0.5);
+  bent["drawn_error"] = error(2.5);  // the fastest, past the 1 px threshold: never on the front
   add_result_document(input, exact, "t.json");
   add_result_document(input, lod, "l.json");
+  add_result_document(input, bent, "b.json");
   add_result_document(input, slow, "m.json");  // no drawn error: no point
   const std::string html = html_report(input);
   // The front, then one dot per run with an error.
-  EXPECT_NE(html.find("data-chart=\"cost-error\" data-series=\"3\""), std::string::npos) << html.substr(0, 400);
+  EXPECT_NE(html.find("data-chart=\"cost-error\" data-series=\"4\""), std::string::npos) << html.substr(0, 400);
   EXPECT_NE(html.find("data-name=\"Pareto front\" data-geometry=\"line\" data-points=\"2\""), std::string::npos);
+  EXPECT_NE(html.find("data-name=\"budget (past 1 px)\""), std::string::npos);
   HtmlReportInput one;
   add_result_document(one, exact, "t.json");
   add_result_document(one, slow, "m.json");
