@@ -22,10 +22,16 @@
 #   ALTERNATE seconds, then rests as long, over and over, and the unchanged checks
 #   are spread over at least SPAN seconds (600),
 #   INSTRUCTIONS (1: each unchanged check is followed by one of --metric
-#   instructions against its own stored baseline; needs valgrind or perf_event).
+#   instructions against its own stored baseline; needs valgrind or perf_event),
+#   BENCH_ARGS (options of the recorded run, e.g. "--culling off --threads 2"),
+#   NEIGHBOUR (memset: once the baseline is recorded, a process loops memset
+#   over 512 MiB on the last core for as long as the checks run, a
+#   memory-hungry neighbour; issue 50 item 5 runs RUNS=20 DETECT=10
+#   FRAMES=60 BENCH_ARGS="--culling off --threads 2" with N_SLOWER 192).
 # Needs jq. Prints one line per phase and a summary; per-run results are in
 # $OUT/runs.csv (phase, run, exit, runs per check, the medians of the baseline's and the
-# check's runs, the check's fastest and slowest run).
+# check's runs, the check's fastest and slowest run), and each check's result as
+# $OUT/PHASE-RUN.json.
 set -euo pipefail
 
 crowdprof=${1:?usage: measure_gate.sh CROWDPROF [N] [N_SLOWER]}
@@ -39,6 +45,7 @@ runs=${RUNS:-50}
 detect=${DETECT:-20}
 out=${OUT:-$(mktemp -d /tmp/measure_gate.XXXXXX)}
 read -r -a extra <<<"${CHECK_ARGS:-}"
+read -r -a bench_args <<<"${BENCH_ARGS:-}"
 
 command -v jq >/dev/null || { echo "measure_gate: needs jq (apt-get install jq)" >&2; exit 2; }
 [[ -x $crowdprof ]] || { echo "measure_gate: $crowdprof is not an executable" >&2; exit 2; }
@@ -50,7 +57,7 @@ start=$(date +%s)
 echo "measure_gate: $("$crowdprof" --version)"
 # Work per frame of a crowd of $1: vertices skinned (animated copies x vertices).
 work_of() {
-  "$crowdprof" bench "$scene" -n "$1" --mode "$mode" --frames 1 --warmup 0 -q --json "$out/work.json"
+  "$crowdprof" bench "$scene" -n "$1" --mode "$mode" "${bench_args[@]}" --frames 1 --warmup 0 -q --json "$out/work.json"
   jq '.counters.vertices_skinned + .counters.poses_updated' "$out/work.json"
 }
 work=$(work_of "$n")
@@ -62,7 +69,7 @@ work_slower=$(work_of "$n_slower")
 echo "measure_gate: scene $scene, mode $mode, $frames frames after $warmup warm-up; baseline -n $n, slower -n $n_slower" \
   "($(jq -n "($work_slower / $work - 1) * 1000 | round / 10")% more work per frame)"
 echo "measure_gate: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; files in $out"
-"$crowdprof" check "$scene" -n "$n" --mode "$mode" --frames "$frames" --warmup "$warmup" \
+"$crowdprof" check "$scene" -n "$n" --mode "$mode" "${bench_args[@]}" --frames "$frames" --warmup "$warmup" \
   --baseline "$base" --update-baseline -q
 instructions=${INSTRUCTIONS:-0}
 if ((instructions)); then
@@ -86,6 +93,14 @@ if [[ -n ${ALTERNATE:-} ]]; then
   load_pid=$!
   trap 'kill $load_pid 2>/dev/null; pkill -P $load_pid 2>/dev/null || true' EXIT
   echo "measure_gate: a compile on one core for ${ALTERNATE} s, then ${ALTERNATE} s quiet, for as long as the checks run"
+fi
+if [[ ${NEIGHBOUR:-} == memset ]]; then
+  printf '#include <stdlib.h>\n#include <string.h>\nint main(void) { size_t n = (size_t)512 << 20; char* p = malloc(n);\n  for (unsigned i = 0;; ++i) memset(p, (int)i, n); }\n' |
+    cc -O2 -x c -o "$out/memset_loop" -
+  taskset -c "$(($(nproc) - 1))" "$out/memset_loop" &
+  load_pid=$!
+  trap 'kill $load_pid 2>/dev/null || true' EXIT
+  echo "measure_gate: a process loops memset over 512 MiB on core $(($(nproc) - 1)) for as long as the checks run"
 fi
 span=${SPAN:-600}
 echo "phase,run,exit,runs,baseline_cpu_ms,current_cpu_ms,current_cpu_min_ms,current_cpu_max_ms,baseline_frame_ms,current_frame_ms,baseline_calibrated,current_calibrated,started" >"$out/runs.csv"
@@ -114,6 +129,7 @@ one_check() {
   IFS=, read -r _ b_cpu _ _ b_frame b_cal <<<"$(medians "$base")"
   IFS=, read -r count c_cpu c_min c_max c_frame c_cal <<<"$(medians "$out/current.json")"
   echo "$phase,$run,$status,$count,$b_cpu,$c_cpu,$c_min,$c_max,$b_frame,$c_frame,$b_cal,$c_cal,$((SECONDS - phase_start))" >>"$out/runs.csv"
+  cp "$out/current.json" "$out/$phase-$run.json"  # to judge again offline: check --result FILE --baseline BASE
   echo "$status"
 }
 
