@@ -47,10 +47,7 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
         const crowdprof::SceneCharacter& c = scene.characters[i];
         if (!json) std::cout << (i ? "\n" : "") << file << ": characters[" << i << "]: " << c.file << ", " << c.count
                              << (c.count == 1 ? " copy\n" : " copies\n");
-        nlohmann::json info =
-            describe(crowdprof::load_scene_asset(c), c.generate ? crowdprof::CharacterSpec{c.file, -1}
-                                                                : crowdprof::parse_character_spec(c.path),
-                     json, std::cout);
+        nlohmann::json info = describe(crowdprof::load_scene_asset(c), crowdprof::scene_character_spec(c), json, std::cout);
         if (json) doc["characters"].push_back({{"file", c.file}, {"count", c.count}, {"info", info}});
       }
       if (json) std::cout << doc.dump(2) << "\n";

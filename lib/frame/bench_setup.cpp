@@ -33,10 +33,14 @@ std::unique_ptr<Character> ordered(Character character) {
 }
 }  // namespace
 
+CharacterSpec scene_character_spec(const SceneCharacter& c) {
+  return c.generate ? CharacterSpec{c.file, -1} : parse_character_spec(c.path);
+}
+
 GltfAsset load_scene_asset(const SceneCharacter& c, std::string* hash) {
   if (!c.generate) {
     if (hash) *hash = content_hash(c.path);
-    return load_gltf(parse_character_spec(c.path).file);
+    return load_gltf(scene_character_spec(c).file);
   }
   GltfWriteOptions options;
   options.draco = c.generate->draco;
@@ -59,8 +63,7 @@ BenchScene load_bench_scene(const RunSpec& spec) {
   for (const SceneCharacter& c : scene.characters) {
     std::string hash;
     GltfAsset asset = load_scene_asset(c, &hash);
-    const CharacterSpec which = c.generate ? CharacterSpec{c.file, -1} : parse_character_spec(c.path);
-    loaded.owned.push_back(ordered(std::move(asset.characters[checked_skin(asset, which)])));
+    loaded.owned.push_back(ordered(std::move(asset.characters[checked_skin(asset, scene_character_spec(c))])));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(c.file);
     loaded.content_hashes.push_back(hash);

@@ -34,6 +34,9 @@ struct BenchScene {
 // loaded from those bytes as any file is. `content_hash`, when given, gets
 // FNV-1a 64 (hex) of the bytes. InputError for a bad file.
 GltfAsset load_scene_asset(const SceneCharacter& character, std::string* content_hash = nullptr);
+// Which skin of that asset the character is: FILE#skin=N's, or a generated
+// humanoid's only one.
+CharacterSpec scene_character_spec(const SceneCharacter& character);
 
 // Loads spec.file: a character, or a scene file and its characters. InputError
 // for a bad file (scene files: naming the key); SettingError for actions

@@ -12,7 +12,6 @@
 #include "profile/result_codec.h"
 #include "profile/environment.h"
 #include "profile/number_text.h"
-#include "profile/stats.h"
 
 namespace crowdprof {
 
@@ -123,14 +122,9 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
       if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) shown_only.push_back(key);
     }
     for (const std::string& key : shown_only) {
-      MetricCheck m;
-      m.metric = metric_display_name(key);
-      m.tested = false;
-      m.baseline = summarize(*metric_samples(ra, key));
-      m.current = summarize(*metric_samples(rb, key));
-      const double grew = m.current.median - m.baseline.median;
-      m.change = m.baseline.median > 0 ? grew / m.baseline.median : (grew > 0 ? INFINITY : 0.0);
-      m.test.p = m.p_adjusted = NAN;
+      MetricCheck m = check_metric(metric_display_name(key), *metric_samples(ra, key), *metric_samples(rb, key), options);
+      m.tested = false;  // its medians and change only: no verdict
+      m.regressed = m.significant = false;
       pair.check.metrics.push_back(std::move(m));
     }
     const RunDescription& sa = ra.run;
