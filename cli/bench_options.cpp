@@ -6,13 +6,13 @@
 #include <tuple>
 #include <thread>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "cli/installed_data.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "render/gl_context.h"
 #include "render/gl_features.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "scene/camera.h"
 
 using crowdprof::UsageError;

@@ -14,14 +14,14 @@
 #include "frame/bench_setup.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_spec.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "render/bench_rendering.h"
 #include "scene/scene_file.h"
 
 #include <memory>
 
 // The options `bench` shares with compare, check, capacity and render: every
-// setting and switch of a run (frame/run_spec.h, frame/switch_table.h) as the
+// setting and switch of a run (frame/run_spec.h, base/switch_table.h) as the
 // command line gave it, then the run they resolve to.
 struct BenchCliOptions {
   // Text of every setting and switch option, by name; only those the command

@@ -12,13 +12,13 @@
 #include <iostream>
 #include <sstream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/html_output.h"
 #include "cli/spawn.h"
 #include "cli/output.h"
 #include "frame/interrupt.h"
-#include "frame/switch_table.h"
-#include "output/output_file.h"
+#include "base/switch_table.h"
+#include "base/output_file.h"
 #include "profile/environment.h"
 #include "profile/regression.h"
 #include "profile/result_codec.h"

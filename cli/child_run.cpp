@@ -15,7 +15,7 @@
 #include <new>
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "frame/interrupt.h"
 
 namespace crowdprof {

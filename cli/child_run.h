@@ -33,7 +33,7 @@ struct ChildFailed : std::runtime_error {
 nlohmann::json run_in_child_process(const std::function<nlohmann::json()>& work);
 
 // Prints one line on stderr for the exception being handled ("crowdprof: ...")
-// and returns its exit status (asset/errors.h: 2 usage, 3 bad input, 4 failed
+// and returns its exit status (base/errors.h: 2 usage, 3 bad input, 4 failed
 // run). Call only inside a catch block.
 int report_current_exception();
 

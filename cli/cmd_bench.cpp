@@ -4,7 +4,7 @@
 #include <memory>
 #include <thread>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"

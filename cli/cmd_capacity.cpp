@@ -6,7 +6,7 @@
 #include <iostream>
 #include <memory>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/compare_modes.h"
@@ -17,7 +17,7 @@
 #include "frame/compare.h"
 #include "frame/interrupt.h"
 #include "frame/run_bench.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "profile/regression.h"
 #include "profile/result_codec.h"
 #include "profile/summary_csv.h"

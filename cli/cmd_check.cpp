@@ -14,9 +14,9 @@
 #include <memory>
 #include <optional>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/check_against.h"
 #include "cli/child_run.h"
@@ -26,7 +26,7 @@
 #include "cli/output.h"
 #include "frame/interrupt.h"
 #include "frame/run_bench.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "profile/check_plan.h"
 #include "profile/instruction_counter.h"
 #include "profile/pooled_runs.h"
@@ -34,7 +34,7 @@
 #include "profile/result_codec.h"
 #include "profile/run_match.h"
 #include "profile/report_charts.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/svg_chart.h"
 #include "profile/verdict_report.h"
 

@@ -7,12 +7,12 @@
 #include <memory>
 #include <sstream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "cli/compare_modes.h"
 #include "cli/html_output.h"
 #include "cli/output.h"

@@ -5,11 +5,11 @@
 #include <iostream>
 #include <memory>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/commands.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "profile/diff.h"
 #include "profile/result_codec.h"
 

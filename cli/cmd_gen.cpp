@@ -2,11 +2,11 @@
 #include <iostream>
 #include <memory>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "gen/gltf_writer.h"
 #include "gen/humanoid.h"
 #include "cli/commands.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #include <iostream>
 
 #include "asset/asset_report.h"
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/commands.h"
 #include "cli/installed_data.h"
 #include "frame/bench_setup.h"

@@ -3,10 +3,10 @@
 #include <iostream>
 #include <memory>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "cli/output.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "frame/run_bench.h"

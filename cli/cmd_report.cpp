@@ -4,11 +4,11 @@
 // no report behind.
 #include <iostream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/commands.h"
 #include "cli/html_output.h"
 #include "cli/output.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 
 namespace {
 

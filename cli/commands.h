@@ -1,5 +1,5 @@
 // Each subcommand registers its options on the app and, when chosen, sets `run`
-// to the work it does, which returns the process's exit status (asset/errors.h).
+// to the work it does, which returns the process's exit status (base/errors.h).
 #pragma once
 
 #include <functional>

@@ -3,9 +3,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "asset/errors.h"
-#include "frame/modes.h"
-#include "output/output_file.h"
+#include "base/errors.h"
+#include "base/modes.h"
+#include "base/output_file.h"
 
 std::vector<std::string> preset_mode_order() {
   std::vector<std::string> names;

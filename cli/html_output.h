@@ -7,7 +7,7 @@
 #include "profile/html_report.h"
 
 // Writes the report to `path` (UsageError naming it when it cannot). The
-// presets of frame/modes.h keep their colours in every report.
+// presets of base/modes.h keep their colours in every report.
 void write_html_report(const std::string& path, crowdprof::HtmlReportInput input);
 
 // The presets' names in order, for ModeColours.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "cli/child_run.h"
 #include "cli/commands.h"
 #include "cli/usage_errors.h"

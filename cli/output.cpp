@@ -7,7 +7,7 @@
 #include <memory>
 #include <sstream>
 
-#include "output/output_file.h"
+#include "base/output_file.h"
 #include "profile/result_codec.h"
 
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {

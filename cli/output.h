@@ -22,7 +22,7 @@ std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::str
 bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
 
 // Writes `path` with `body`; UsageError naming the file when it cannot (see
-// output/output_file.h, whose require_writable checks paths before a run).
+// base/output_file.h, whose require_writable checks paths before a run).
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
 
 // A result as bench --json writes it, its scene file stored relative to `path`

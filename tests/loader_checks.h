@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "test_support.h"
 

@@ -5,7 +5,7 @@
 
 #include <tiny_gltf.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

@@ -7,7 +7,7 @@
 
 #include <tiny_gltf.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_container.h"
 #include "asset/gltf_convert.h"

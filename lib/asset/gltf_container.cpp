@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 namespace fs = std::filesystem;
@@ -107,13 +107,6 @@ void split_glb(GltfContainer& c, const std::vector<unsigned char>& bytes) {
 }
 
 }  // namespace
-
-std::string printable(std::string_view text, size_t limit) {
-  std::string out;
-  for (char ch : text.substr(0, limit)) out += std::iscntrl(static_cast<unsigned char>(ch)) ? '?' : ch;
-  if (text.size() > limit) out += "...";
-  return out;
-}
 
 GltfContainer read_gltf_container(const std::string& path) { return gltf_container_from_bytes(read_bytes(path), path); }
 

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/input_file.h"
+#include "base/input_file.h"
 
 namespace crowdprof {
 
@@ -18,9 +18,6 @@ namespace crowdprof {
 // The same bound holds for all of a file's buffers together.
 inline constexpr uint64_t kMaxAssetBytes = 1ull << 30;
 
-// Text from the file, made safe for a one-line message: control characters become
-// '?', and anything past `limit` characters becomes "...".
-std::string printable(std::string_view text, size_t limit = 60);
 
 struct GltfContainer {
   std::string path;      // as the user gave it (used in messages)

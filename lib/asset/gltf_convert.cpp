@@ -14,7 +14,7 @@
 #include <glm/gtx/matrix_decompose.hpp>
 #include <tiny_gltf.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_container.h"
 #include "asset/mesh_lod.h"

@@ -8,33 +8,14 @@
 #include <draco/compression/decode.h>
 #include <tiny_gltf.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_accessor.h"
 #include "asset/gltf_container.h"
 #include "asset/gltf_convert.h"
-#include "asset/json_assert.h"
+#include "base/json_assert.h"
 
 namespace crowdprof {
 namespace fs = std::filesystem;
-
-CharacterSpec parse_character_spec(const std::string& spec) {
-  CharacterSpec out;
-  size_t hash = spec.rfind('#');
-  if (hash == std::string::npos) {
-    out.file = spec;
-    return out;
-  }
-  out.file = spec.substr(0, hash);
-  std::string selector = spec.substr(hash + 1);
-  const std::string key = "skin=";
-  int skin = -1;
-  const char* first = selector.data() + key.size();
-  const char* last = selector.data() + selector.size();
-  if (selector.rfind(key, 0) != 0 || first == last || std::from_chars(first, last, skin).ptr != last || skin < 0)
-    throw UsageError("'" + spec + "': expected FILE or FILE#skin=N with N a skin index (see crowdprof info)");
-  out.skin = skin;
-  return out;
-}
 
 namespace {
 

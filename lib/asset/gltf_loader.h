@@ -7,16 +7,9 @@
 #include <vector>
 
 #include "asset/character.h"
+#include "base/input_file.h"
 
 namespace crowdprof {
-
-// "scene.glb" or "scene.glb#skin=2": which file, and which of its skins.
-struct CharacterSpec {
-  std::string file;
-  int skin = -1;  // -1: the file's only skin
-};
-// Throws UsageError for a malformed "#..." suffix.
-CharacterSpec parse_character_spec(const std::string& spec);
 
 // Everything crowdprof reads from one file.
 struct GltfAsset {

@@ -5,7 +5,7 @@
 // the element, and tiny_gltf only ever gets a file whose references hold.
 #include <set>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_container.h"
 
 namespace crowdprof {

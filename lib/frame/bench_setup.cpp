@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <thread>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "asset/vertex_order.h"
 #include "gen/gltf_writer.h"

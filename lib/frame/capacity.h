@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 #include "profile/report.h"
 

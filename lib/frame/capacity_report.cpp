@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "profile/chart_colours.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/text_table.h"
 #include "profile/svg_chart.h"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

@@ -15,7 +15,7 @@
 #include "animation/sampling.h"
 #include "animation/skin_matrix.h"
 #include "asset/character.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "frame/prepared_character.h"
 #include "scene/crowd.h"
 #include "skinning/output_buffer.h"

@@ -6,7 +6,7 @@
 #include <ctime>
 #include <stdexcept>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "profile/trace.h"
 #include "scene/screen_size.h"
 #include "scene/shadow_cascades.h"

@@ -17,7 +17,7 @@
 #include "frame/copy_store.h"
 #include "frame/frame_renderer.h"
 #include "frame/frame_view.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "frame/pose_update.h"
 #include "frame/prepared_character.h"
 #include "frame/update_plan.h"

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "frame/frame_view.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "profile/counters.h"
 #include "profile/result.h"
 

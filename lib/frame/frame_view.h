@@ -13,7 +13,7 @@
 #include "animation/bake.h"
 #include "animation/skin_matrix.h"
 #include "asset/mesh_lod.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "scene/bounds.h"
 #include "skinning/packed_vertex.h"
 

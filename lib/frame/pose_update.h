@@ -18,7 +18,7 @@
 #include "asset/character.h"
 #include "frame/bench_threads.h"
 #include "frame/copy_store.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "frame/prepared_character.h"
 #include "frame/update_plan.h"
 #include "scene/crowd.h"

@@ -14,7 +14,7 @@
 #include "asset/character.h"
 #include "asset/mesh_lod.h"
 #include "frame/frame_view.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "scene/bounds.h"
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"

@@ -10,9 +10,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "frame/calibration_probe.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "profile/instruction_counter.h"
 
 namespace crowdprof {

@@ -6,9 +6,9 @@
 #include <optional>
 #include <thread>
 
-#include "frame/switch_table.h"
-#include "profile/number_text.h"
-#include "render/gl_context.h"
+#include "base/switch_table.h"
+#include "base/number_text.h"
+#include "base/backend_choice.h"
 #include "scene/camera.h"
 #include "scene/scene_file.h"
 

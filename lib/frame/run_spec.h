@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
-#include "frame/modes.h"
+#include "base/errors.h"
+#include "base/modes.h"
 #include "profile/result.h"
 
 namespace crowdprof {
@@ -34,7 +34,7 @@ struct RunSpec {
   double fps = 60.0;
   double bake_rate = 30.0;  // mode baked: samples per second (animation/bake.h)
   std::string mode = "threaded";
-  // Switch overrides by name (frame/switch_table.h), as typed.
+  // Switch overrides by name (base/switch_table.h), as typed.
   std::map<std::string, std::string> switches;
   int threads = 0;  // 0: every core, in parallel modes
   std::string camera = "default";

@@ -16,7 +16,7 @@
 #include "animation/pose_sharing.h"
 #include "animation/update_rates.h"
 #include "asset/character.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "profile/counters.h"
 #include "scene/crowd.h"
 

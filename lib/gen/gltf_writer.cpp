@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "gen/gltf_draco_encode.h"
-#include "output/output_file.h"
+#include "base/output_file.h"
 
 namespace crowdprof {
 namespace {

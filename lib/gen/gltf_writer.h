@@ -33,7 +33,7 @@ struct GltfWriteOptions {
 std::vector<uint8_t> encode_gltf(const Character& character, const GltfWriteOptions& options = {});
 
 // encode_gltf written to `path`. Throws UsageError naming the path when it
-// cannot be written (output/output_file.h).
+// cannot be written (base/output_file.h).
 void write_gltf(const Character& character, const std::string& path, const GltfWriteOptions& options = {});
 
 }  // namespace crowdprof

@@ -8,7 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_accessor.h"
 #include "gen/humanoid_rig.h"
 

@@ -17,7 +17,7 @@ const char* category_colour(Category category);
 
 // Colours of the modes (or other series: "baseline", a file name) of one
 // document. A name in `fixed` takes the colour of its place there: callers pass
-// the presets in their order (frame/modes.h preset_mode_names()), so a preset has
+// the presets in their order (base/modes.h preset_mode_names()), so a preset has
 // the same colour in every chart and every report. Any other name takes the
 // next spare colour, in the order asked, and keeps it.
 class ModeColours {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "profile/category_clock.h"
 
 namespace crowdprof {

@@ -12,7 +12,7 @@
 #include "profile/report_charts.h"
 #include "profile/stats.h"
 #include "profile/svg_chart.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/text_table.h"
 
 namespace crowdprof {

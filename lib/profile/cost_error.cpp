@@ -1,6 +1,6 @@
 #include "profile/cost_error.h"
 
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/text_table.h"
 
 namespace crowdprof {

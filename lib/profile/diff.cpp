@@ -6,12 +6,12 @@
 #include <set>
 #include <sstream>
 
-#include "asset/errors.h"
-#include "frame/switch_table.h"
+#include "base/errors.h"
+#include "base/switch_table.h"
 #include "profile/category_clock.h"
 #include "profile/result_codec.h"
 #include "profile/environment.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 
 namespace crowdprof {
 

@@ -8,11 +8,11 @@
 #include <set>
 #include <tuple>
 
-#include "asset/errors.h"
-#include "frame/switch_table.h"
+#include "base/errors.h"
+#include "base/switch_table.h"
 #include "profile/report.h"
 #include "profile/result_codec.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/stats.h"
 
 namespace crowdprof {

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "profile/number_text.h"
+#include "base/number_text.h"
 
 namespace crowdprof {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "profile/stats.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/result_codec.h"
 #include "profile/text_table.h"
 

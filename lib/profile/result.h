@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "profile/category_clock.h"
 #include "profile/counters.h"
 #include "profile/environment.h"

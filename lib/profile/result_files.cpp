@@ -4,8 +4,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "asset/errors.h"
-#include "asset/input_file.h"
+#include "base/errors.h"
+#include "base/input_file.h"
 #include "profile/result_codec.h"
 
 namespace crowdprof {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_container.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "profile/result_keys.h"
 #include "profile/stats.h"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "profile/result_keys.h"
 #include "profile/stats.h"
 

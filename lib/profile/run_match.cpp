@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
-#include "frame/switch_table.h"
+#include "base/errors.h"
+#include "base/switch_table.h"
 
 namespace crowdprof {
 

@@ -1,6 +1,6 @@
 #include "profile/summary_csv.h"
 
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/stats.h"
 
 namespace crowdprof {

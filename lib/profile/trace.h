@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

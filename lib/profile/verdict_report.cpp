@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "profile/number_text.h"  // percent
+#include "base/number_text.h"  // percent
 #include "profile/svg_chart.h"  // xml_escape
 #include "profile/text_table.h"
 

@@ -15,7 +15,7 @@
 
 #include "asset/character.h"
 #include "frame/frame_renderer.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "render/draw_passes.h"
 #include "render/framebuffer.h"
 #include "render/gl.h"

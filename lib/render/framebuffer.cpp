@@ -4,7 +4,7 @@
 #include <cstring>
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "render/gl_errors.h"
 
 namespace crowdprof {

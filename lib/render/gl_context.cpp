@@ -14,14 +14,6 @@ constexpr int kMinMajor = 4, kMinMinor = 3;
 
 std::string_view to_string(GlBackend backend) { return backend == GlBackend::Egl ? "egl" : "osmesa"; }
 
-std::optional<BackendChoice> parse_backend(std::string_view name) {
-  if (name == "auto") return BackendChoice::Auto;
-  if (name == "egl") return BackendChoice::Egl;
-  if (name == "osmesa") return BackendChoice::OsMesa;
-  if (name == "none") return BackendChoice::None;
-  return std::nullopt;
-}
-
 GlContext::~GlContext() {
   if (g_loaded == this) g_loaded = nullptr;
 }

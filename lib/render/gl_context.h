@@ -11,18 +11,15 @@
 #include <string>
 #include <string_view>
 
-#include "asset/errors.h"
+#include "base/backend_choice.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 
 enum class GlBackend : uint8_t { Egl, OsMesa };
 
-// What --backend names: a backend, `auto` (EGL, then OSMesa, then none) or none.
-enum class BackendChoice : uint8_t { Auto, Egl, OsMesa, None };
 
 std::string_view to_string(GlBackend backend);  // "egl", "osmesa"
-// Null for anything but auto, egl, osmesa, none.
-std::optional<BackendChoice> parse_backend(std::string_view name);
 
 class GlContext {
  public:

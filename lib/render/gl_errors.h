@@ -1,11 +1,11 @@
 // What can go wrong with GL, as exceptions the CLI turns into one line on
-// stderr and exit 4 (asset/errors.h): the run itself failed.
+// stderr and exit 4 (base/errors.h): the run itself failed.
 #pragma once
 
 #include <stdexcept>
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

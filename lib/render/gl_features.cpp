@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "render/gl.h"
 
 namespace crowdprof {

@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "output/output_file.h"
+#include "base/output_file.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"

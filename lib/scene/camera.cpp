@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
-#include "asset/input_file.h"
+#include "base/errors.h"
+#include "base/input_file.h"
 
 namespace crowdprof {
 

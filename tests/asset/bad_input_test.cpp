@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
-#include "asset/input_file.h"
+#include "base/errors.h"
+#include "base/input_file.h"
 #include "gltf_fixture.h"
 #include "loader_checks.h"
 

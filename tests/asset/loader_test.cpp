@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "draco_fixture.h"
 #include "gltf_fixture.h"

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset/standing.h"
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "asset/mesh_lod.h"
 #include "frame/crowd_bench.h"

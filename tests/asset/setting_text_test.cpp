@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 namespace {

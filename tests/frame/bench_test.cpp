@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "test_support.h"

@@ -9,7 +9,7 @@
 #include "frame/compare.h"
 #include "frame/run_bench.h"
 #include "profile/cost_error.h"
-#include "profile/number_text.h"
+#include "base/number_text.h"
 #include "profile/report.h"
 #include "render_support.h"
 #include "test_support.h"

@@ -4,11 +4,11 @@
 // line's) or by the file it came from (a scene's or a baseline's).
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "frame/bench_setup.h"
 #include "frame/run_spec.h"
 #include "profile/result.h"
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 #include "scene/scene_file.h"
 #include "test_support.h"
 

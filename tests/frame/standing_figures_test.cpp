@@ -19,7 +19,7 @@
 #include "asset/vertex_order.h"
 #include "characters.h"
 #include "frame/crowd_bench.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "gen/gltf_writer.h"
 #include "test_support.h"
 

@@ -15,7 +15,7 @@
 #include "animation/pose.h"
 #include "animation/sampling.h"
 #include "asset/asset_report.h"
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "fuzz_file.h"
 #include "skinning/skinning.h"

@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <exception>
 
-#include "asset/errors.h"
-#include "asset/json_assert.h"
+#include "base/errors.h"
+#include "base/json_assert.h"
 #include "fuzz_file.h"
 #include "profile/regression.h"
 #include "profile/result_codec.h"

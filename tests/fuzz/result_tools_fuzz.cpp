@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <exception>
 
-#include "asset/errors.h"
-#include "asset/json_assert.h"
+#include "base/errors.h"
+#include "base/json_assert.h"
 #include "fuzz_file.h"
 #include "profile/diff.h"
 #include "profile/html_report.h"

@@ -12,9 +12,9 @@
 #include <filesystem>
 
 #include "../gltf_fixture.h"
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "asset/json_assert.h"
+#include "base/json_assert.h"
 #include "fuzz_file.h"
 #include "scene/scene_file.h"
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "gen/humanoid.h"
 #include "test_support.h"

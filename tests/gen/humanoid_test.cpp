@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 using namespace crowdprof;
 

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "frame/calibration_probe.h"
 #include "profile/check_options.h"
 #include "profile/regression.h"

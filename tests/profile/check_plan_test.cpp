@@ -2,7 +2,7 @@
 // and every value checked by setting name.
 #include <gtest/gtest.h>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "profile/check_plan.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "profile/regression.h"

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "profile/diff.h"
 #include "profile/result_codec.h"
 #include "test_support.h"

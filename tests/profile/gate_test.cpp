@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "profile/pooled_runs.h"
 #include "profile/regression.h"
 #include "test_support.h"

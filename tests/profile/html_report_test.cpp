@@ -7,7 +7,7 @@
 #include <fstream>
 #include <regex>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "fake_run.h"
 #include "profile/chart_colours.h"
 #include "profile/compare_report.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "fake_run.h"
 #include "profile/report.h"
 #include "profile/result_codec.h"

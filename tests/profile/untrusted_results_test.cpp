@@ -4,7 +4,7 @@
 // capacity, diff; tiny runs of the CLI) are damaged one field at a time, each
 // key removed and each value replaced by one of every other JSON type, and given
 // in process to what `report`, `diff`, `check --result` and `check --baseline`
-// read them with. Reaching nlohmann's JSON_ASSERT (asset/json_assert.h) is a
+// read them with. Reaching nlohmann's JSON_ASSERT (base/json_assert.h) is a
 // finding too: it means a read was not guarded, and only the net caught it. A
 // sample goes through the CLI; hostile names must come out of the HTML report
 // escaped; oversized claims must be refused before anything is allocated.
@@ -15,9 +15,9 @@
 #include <functional>
 #include <map>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "asset/json_assert.h"
+#include "base/json_assert.h"
 #include "gltf_fixture.h"
 #include "profile/diff.h"
 #include "profile/html_report.h"

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "frame/modes.h"
-#include "frame/switch_table.h"
+#include "base/modes.h"
+#include "base/switch_table.h"
 #include "render/gl_errors.h"
 #include "render/gpu_frame_buffers.h"
 #include "render_support.h"

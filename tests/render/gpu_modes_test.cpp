@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "frame/modes.h"
+#include "base/modes.h"
 #include "gen/humanoid.h"
 #include "render/gl_features.h"
 #include "render_support.h"

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "asset/errors.h"
-#include "frame/modes.h"
+#include "base/errors.h"
+#include "base/modes.h"
 #include "render/gl_features.h"
 #include "render_support.h"
 #include "test_support.h"

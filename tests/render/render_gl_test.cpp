@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "render/crowd_renderer.h"
 #include "render/framebuffer.h"
 #include "render/gl.h"

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "frame/crowd_bench.h"
 #include "render/crowd_renderer.h"

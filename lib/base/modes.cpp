@@ -1,4 +1,4 @@
-#include "frame/modes.h"
+#include "base/modes.h"
 
 #include <array>
 

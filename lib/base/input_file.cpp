@@ -1,9 +1,10 @@
-#include "asset/input_file.h"
+#include "base/input_file.h"
 
+#include <cctype>
+#include <charconv>
 #include <fstream>
 
-#include "asset/errors.h"
-#include "asset/gltf_container.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 
@@ -62,6 +63,32 @@ std::string read_file_head(const std::string& path) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
   return head;
+}
+
+std::string printable(std::string_view text, size_t limit) {
+  std::string out;
+  for (char ch : text.substr(0, limit)) out += std::iscntrl(static_cast<unsigned char>(ch)) ? '?' : ch;
+  if (text.size() > limit) out += "...";
+  return out;
+}
+
+CharacterSpec parse_character_spec(const std::string& spec) {
+  CharacterSpec out;
+  size_t hash = spec.rfind('#');
+  if (hash == std::string::npos) {
+    out.file = spec;
+    return out;
+  }
+  out.file = spec.substr(0, hash);
+  std::string selector = spec.substr(hash + 1);
+  const std::string key = "skin=";
+  int skin = -1;
+  const char* first = selector.data() + key.size();
+  const char* last = selector.data() + selector.size();
+  if (selector.rfind(key, 0) != 0 || first == last || std::from_chars(first, last, skin).ptr != last || skin < 0)
+    throw UsageError("'" + spec + "': expected FILE or FILE#skin=N with N a skin index (see crowdprof info)");
+  out.skin = skin;
+  return out;
 }
 
 }  // namespace crowdprof

@@ -14,8 +14,8 @@
 #include <sstream>
 #include <thread>
 
-#include "asset/errors.h"
-#include "output/output_file.h"
+#include "base/errors.h"
+#include "base/output_file.h"
 #include "test_support.h"
 
 using crowdprof::test::humanoid_glb;

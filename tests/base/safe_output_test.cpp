@@ -12,8 +12,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "asset/errors.h"
-#include "output/output_file.h"
+#include "base/errors.h"
+#include "base/output_file.h"
 #include "test_support.h"
 
 using crowdprof::test::read_file;

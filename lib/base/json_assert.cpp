@@ -1,4 +1,4 @@
-#include "asset/json_assert.h"
+#include "base/json_assert.h"
 
 namespace crowdprof {
 

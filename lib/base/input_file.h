@@ -1,5 +1,5 @@
 // What every reader of a file from outside (characters, baselines, results)
-// shares, so that each refuses the same things in the same words: JSON that
+// shares, and how a character file is named on the command line, so that each refuses the same things in the same words: JSON that
 // cannot be used, and a look at a file's first bytes before it is read whole.
 #pragma once
 
@@ -31,5 +31,17 @@ nlohmann::json parse_json_input(const std::string& path, std::string_view text);
 // The first min(kFormatProbeBytes, size) bytes of the file, or "" when it cannot
 // be opened (the caller's full read reports that).
 std::string read_file_head(const std::string& path);
+
+// Text from a file, made safe for a one-line message: control characters become
+// '?', and anything past `limit` characters becomes "...".
+std::string printable(std::string_view text, size_t limit = 60);
+
+// "scene.glb" or "scene.glb#skin=2": which file, and which of its skins.
+struct CharacterSpec {
+  std::string file;
+  int skin = -1;  // -1: the file's only skin
+};
+// Throws UsageError for a malformed "#..." suffix.
+CharacterSpec parse_character_spec(const std::string& spec);
 
 }  // namespace crowdprof

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "frame/modes.h"
+#include "base/modes.h"
 
 namespace crowdprof {
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "profile/number_text.h"
+#include "base/number_text.h"
 
 namespace crowdprof {
 namespace {

@@ -1,4 +1,4 @@
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

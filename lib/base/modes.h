@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "asset/errors.h"
+#include "base/errors.h"
 
 namespace crowdprof {
 

@@ -1,4 +1,4 @@
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "profile/number_text.h"
+#include "base/number_text.h"
 
 namespace crowdprof {
 

@@ -1,4 +1,4 @@
-#include "output/output_file.h"
+#include "base/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "asset/errors.h"
-#include "asset/gltf_loader.h"
+#include "base/errors.h"
+#include "base/input_file.h"
 
 namespace crowdprof {
 

@@ -4,7 +4,7 @@
 // as the same ModeSwitches (older results, without later switches, included).
 #include <gtest/gtest.h>
 
-#include "frame/switch_table.h"
+#include "base/switch_table.h"
 
 namespace {
 
