@@ -19,11 +19,11 @@
 #include "frame/interrupt.h"
 #include "base/switch_table.h"
 #include "base/output_file.h"
-#include "profile/environment.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
-#include "profile/run_match.h"
-#include "profile/verdict_report.h"
+#include "measuring/environment.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
+#include "result/run_match.h"
+#include "reports/verdict_report.h"
 
 namespace check_against_impl {
 

@@ -1,5 +1,5 @@
 // `check --against BASE`: an A/B of two builds at the same moment
-// (profile/ab_check.h). Both builds are run as processes of their own, the
+// (gate/ab_check.h). Both builds are run as processes of their own, the
 // current one as well (this binary), with the same bench options, in ABBA
 // groups; the verdict compares their paired ratios.
 #pragma once
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/bench_options.h"
-#include "profile/ab_check.h"
+#include "gate/ab_check.h"
 
 struct AgainstRequest {
   std::string base_binary;

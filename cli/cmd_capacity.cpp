@@ -13,14 +13,14 @@
 #include "cli/html_output.h"
 #include "cli/output.h"
 #include "frame/capacity.h"
-#include "frame/capacity_report.h"
+#include "reports/capacity_report.h"
 #include "frame/compare.h"
 #include "frame/interrupt.h"
 #include "frame/run_bench.h"
 #include "base/output_file.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
-#include "profile/summary_csv.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
+#include "reports/summary_csv.h"
 
 using namespace crowdprof;
 
@@ -140,7 +140,7 @@ int capacity(CapacityCliOptions& o) {
     write_text(o.bench.json, "JSON", [&](std::ostream& out) {
       out << with_paths_relative_to(capacity_to_json(result), o.bench.json).dump(2) << "\n";
     });
-  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << capacity_svg(result, preset_mode_order()); });
+  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << capacity_svg(result); });
   if (!o.bench.html.empty()) {
     nlohmann::json document = capacity_to_json(result);
     if (document["runs"].empty()) {

@@ -2,7 +2,7 @@
 // compares it with a baseline: exit 1 when a metric regressed beyond the
 // tolerance and significantly, or when the work done (counters, digest)
 // changed; exit 0 with a one-line summary otherwise. The logic is in
-// lib/profile/regression.h.
+// lib/gate/regression.h.
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,16 +27,16 @@
 #include "frame/interrupt.h"
 #include "frame/run_bench.h"
 #include "base/switch_table.h"
-#include "profile/check_plan.h"
-#include "profile/instruction_counter.h"
-#include "profile/pooled_runs.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
-#include "profile/run_match.h"
-#include "profile/report_charts.h"
+#include "gate/check_plan.h"
+#include "measuring/instruction_counter.h"
+#include "result/pooled_runs.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
+#include "result/run_match.h"
+#include "reports/report_charts.h"
 #include "base/number_text.h"
-#include "profile/svg_chart.h"
-#include "profile/verdict_report.h"
+#include "reports/svg_chart.h"
+#include "reports/verdict_report.h"
 
 namespace {
 
@@ -147,7 +147,7 @@ void write_svg(const std::string& path, const Result& baseline, const Result& cu
                       scene_caption(current),
                   "frame (0 = the first measured, after " + std::to_string(current.run.warmup) + " warm-up)",
                   ratio ? "frame over the calibration probe" : "time (ms)", {}, false};
-  ModeColours colours(preset_mode_order());  // baseline and current as the HTML report colours them
+  ModeColours colours;  // baseline and current as the HTML report colours them
   for (const auto& [name, result] : {std::pair<const char*, const Result*>{"baseline", &baseline}, {"current", &current}}) {
     LineSeries series{name, {}, result_samples(*result, metric), colours.colour(name)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
@@ -158,7 +158,7 @@ void write_svg(const std::string& path, const Result& baseline, const Result& cu
   write_text(path, "SVG", [&](std::ostream& out) { out << svg.str(); });
 }
 
-// Step 1: what to compare and how often (profile/check_plan.h).
+// Step 1: what to compare and how often (gate/check_plan.h).
 CheckPlan plan_of(const CheckCliOptions& o) {
   CheckRequest request;
   request.metrics = o.metrics;

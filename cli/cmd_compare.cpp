@@ -18,12 +18,12 @@
 #include "cli/output.h"
 #include "frame/compare.h"
 #include "frame/interrupt.h"
-#include "profile/compare_report.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
-#include "profile/gbench_json.h"
-#include "profile/summary_csv.h"
-#include "profile/trace.h"
+#include "reports/compare_report.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
+#include "reports/gbench_json.h"
+#include "reports/summary_csv.h"
+#include "measuring/trace.h"
 
 using namespace crowdprof;
 
@@ -236,7 +236,7 @@ int compare(CompareCliOptions& o) {
     write_text(o.bench.json, "JSON", [&](std::ostream& out) {
       out << with_paths_relative_to(comparison_to_json(comparison), o.bench.json).dump(2) << "\n";
     });
-  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison, preset_mode_order()); });
+  if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << comparison_svg(comparison); });
   if (tracer) write_text(o.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   if (tracer && tracer->dropped())
     std::cerr << "crowdprof: note: " << o.trace << " holds the first " << tracer->max_spans() << " spans; "

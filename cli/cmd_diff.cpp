@@ -1,7 +1,7 @@
 // `crowdprof diff A.json B.json`: two results (bench, check or compare JSON)
 // side by side, for two builds of the same scene: exit 1 when B does other work,
 // or its calibrated frame is slower than A's under check's rule (the only
-// metric tested: lib/profile/diff.h says why). The logic is in lib/profile/diff.h.
+// metric tested: lib/gate/diff.h says why). The logic is in lib/gate/diff.h.
 #include <iostream>
 #include <memory>
 
@@ -10,8 +10,8 @@
 #include "cli/html_output.h"
 #include "cli/output.h"
 #include "base/output_file.h"
-#include "profile/diff.h"
-#include "profile/result_codec.h"
+#include "gate/diff.h"
+#include "result/result_codec.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "cli/bench_options.h"
 #include "frame/crowd_bench.h"
-#include "profile/report.h"
+#include "reports/profile_table.h"
 #include "render/bench_rendering.h"
 
 // A mode as --modes names it: a preset, then any switches set away from it,

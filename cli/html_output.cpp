@@ -7,14 +7,7 @@
 #include "base/modes.h"
 #include "base/output_file.h"
 
-std::vector<std::string> preset_mode_order() {
-  std::vector<std::string> names;
-  for (const crowdprof::ModePreset& preset : crowdprof::mode_presets()) names.emplace_back(preset.name);
-  return names;
-}
-
 void write_html_report(const std::string& path, crowdprof::HtmlReportInput input) {
-  input.mode_order = preset_mode_order();
   crowdprof::write_file(path, "HTML", crowdprof::html_report(input));
 }
 

@@ -1,17 +1,15 @@
 // --html on the commands and `crowdprof report`: the page of
-// profile/html_report.h, with the presets' colours, written to a file.
+// reports/html_report.h, with the presets' colours, written to a file.
 #pragma once
 
 #include <string>
 
-#include "profile/html_report.h"
+#include "reports/html_report.h"
 
 // Writes the report to `path` (UsageError naming it when it cannot). The
 // presets of base/modes.h keep their colours in every report.
 void write_html_report(const std::string& path, crowdprof::HtmlReportInput input);
 
-// The presets' names in order, for ModeColours.
-std::vector<std::string> preset_mode_order();
 
 // The bytes of a PNG to show in a report; InputError naming `path` when it is
 // missing or not a PNG.

@@ -14,7 +14,7 @@
 #include "cli/child_run.h"
 #include "cli/commands.h"
 #include "cli/usage_errors.h"
-#include "profile/environment.h"
+#include "measuring/environment.h"
 #include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
 

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "base/output_file.h"
-#include "profile/result_codec.h"
+#include "result/result_codec.h"
 
 std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
   if (quiet || !isatty(STDERR_FILENO)) return {};

@@ -8,7 +8,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "profile/result.h"
+#include "result/result.h"
 
 // Progress on stderr once a run has taken a second, only when a person watches
 // (stderr is a terminal) and not --quiet; an empty function otherwise. One line,
@@ -26,5 +26,5 @@ bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
 void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
 
 // A result as bench --json writes it, its scene file stored relative to `path`
-// (profile/result_codec.h), through write_text.
+// (result/result_codec.h), through write_text.
 void write_result_file(const std::string& path, const std::string& what, const crowdprof::Result& result);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "profile/stats.h"
+#include "measuring/stats.h"
 
 namespace crowdprof {
 

@@ -21,7 +21,7 @@
 
 #include "base/errors.h"
 
-#include "profile/report.h"
+#include "result/run_report.h"
 
 namespace crowdprof {
 

@@ -11,7 +11,7 @@
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
-#include "profile/report.h"
+#include "result/run_report.h"
 
 namespace crowdprof {
 

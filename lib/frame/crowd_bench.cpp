@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "base/errors.h"
-#include "profile/trace.h"
+#include "measuring/trace.h"
 #include "scene/screen_size.h"
 #include "scene/shadow_cascades.h"
 

@@ -10,8 +10,8 @@
 
 #include "frame/frame_view.h"
 #include "base/modes.h"
-#include "profile/counters.h"
-#include "profile/result.h"
+#include "measuring/counters.h"
+#include "result/result.h"
 
 namespace crowdprof {
 

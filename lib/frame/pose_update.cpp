@@ -10,8 +10,8 @@
 
 #include "animation/pose.h"
 #include "animation/run_job.h"
-#include "profile/category_clock.h"
-#include "profile/trace.h"
+#include "measuring/category_clock.h"
+#include "measuring/trace.h"
 #include "skinning/skinning.h"
 
 namespace crowdprof {

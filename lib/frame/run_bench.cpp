@@ -2,7 +2,7 @@
 
 #include "frame/bench_setup.h"
 
-#include "profile/instruction_counter.h"
+#include "measuring/instruction_counter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include "base/errors.h"
 #include "frame/calibration_probe.h"
 #include "base/switch_table.h"
-#include "profile/instruction_counter.h"
+#include "measuring/instruction_counter.h"
 
 namespace crowdprof {
 

@@ -7,7 +7,7 @@
 
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
-#include "profile/report.h"
+#include "result/run_report.h"
 
 namespace crowdprof {
 
@@ -20,7 +20,7 @@ struct RunOptions {
   // report holds the frames measured so far and says it is partial.
   const std::atomic<bool>* stop = nullptr;
   // Count each measured frame's instructions on this thread
-  // (profile/instruction_counter.h); the caller makes the run one thread's.
+  // (measuring/instruction_counter.h); the caller makes the run one thread's.
   bool count_instructions = false;
   // Time the calibration probe after every frame, warm-up included, on the
   // bench's threads (frame/calibration_probe.h; check --metric calibrated).

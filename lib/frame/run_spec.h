@@ -17,7 +17,7 @@
 
 #include "base/errors.h"
 #include "base/modes.h"
-#include "profile/result.h"
+#include "result/result.h"
 
 namespace crowdprof {
 

@@ -17,7 +17,7 @@
 #include "animation/update_rates.h"
 #include "asset/character.h"
 #include "base/modes.h"
-#include "profile/counters.h"
+#include "measuring/counters.h"
 #include "scene/crowd.h"
 
 namespace crowdprof {

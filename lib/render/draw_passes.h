@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "frame/frame_view.h"
-#include "profile/gpu_passes.h"
+#include "measuring/gpu_passes.h"
 #include "render/gl.h"
 
 namespace crowdprof {

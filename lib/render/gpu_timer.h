@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "frame/frame_renderer.h"
-#include "profile/gpu_passes.h"
+#include "measuring/gpu_passes.h"
 #include "render/gl.h"
 
 namespace crowdprof {

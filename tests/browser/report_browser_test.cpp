@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "profile/category_clock.h"
+#include "measuring/category_clock.h"
 #include "test_support.h"
 
 using nlohmann::json;

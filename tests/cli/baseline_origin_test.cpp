@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "profile/regression.h"
-#include "profile/result_codec.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
 #include "test_support.h"
 
 using crowdprof::test::run_cli;

@@ -16,7 +16,7 @@
 #include "draco_fixture.h"
 #include "gltf_fixture.h"
 #include "loader_checks.h"
-#include "profile/trace.h"
+#include "measuring/trace.h"
 #include "skinning/skinning.h"
 #include "test_support.h"
 

@@ -9,6 +9,7 @@
 #include "base/errors.h"
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
+#include "reports/profile_table.h"
 #include "test_support.h"
 #include "characters.h"
 

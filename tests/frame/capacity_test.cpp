@@ -12,9 +12,9 @@
 
 #include "fake_run.h"
 #include "frame/capacity.h"
-#include "frame/capacity_report.h"
-#include "profile/report.h"
-#include "profile/stats.h"
+#include "reports/capacity_report.h"
+#include "reports/profile_table.h"
+#include "measuring/stats.h"
 #include "test_support.h"
 
 using namespace crowdprof;
@@ -274,7 +274,7 @@ TEST(CapacityReport, TableJsonAndChart) {
   EXPECT_EQ(j["modes"][1]["threads"], 2);
   EXPECT_FALSE(j["scene"].contains("characters"));
 
-  std::string svg = capacity_svg(run, {"master", "culled", "threaded"});
+  std::string svg = capacity_svg(run);
   EXPECT_EQ(test::occurrences(svg, "<g class=\"series\""), 2u);
   EXPECT_NE(svg.find("data-name=\"master\" data-geometry=\"line\" data-points=\"13\""), std::string::npos);
   EXPECT_NE(svg.find("data-name=\"threaded\" data-geometry=\"line\" data-points=\"3\""), std::string::npos);

@@ -8,8 +8,9 @@
 #include "gen/humanoid.h"
 #include "frame/compare.h"
 #include "fake_run.h"
-#include "profile/compare_report.h"
-#include "profile/trace.h"
+#include "reports/compare_report.h"
+#include "measuring/trace.h"
+#include "reports/profile_table.h"
 #include "test_support.h"
 #include "characters.h"
 

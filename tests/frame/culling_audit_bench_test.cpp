@@ -5,7 +5,7 @@
 
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
-#include "profile/report.h"
+#include "reports/profile_table.h"
 #include "render_support.h"
 
 using namespace crowdprof;

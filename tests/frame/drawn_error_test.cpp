@@ -8,9 +8,9 @@
 #include "frame/crowd_bench.h"
 #include "frame/compare.h"
 #include "frame/run_bench.h"
-#include "profile/cost_error.h"
+#include "reports/cost_error.h"
 #include "base/number_text.h"
-#include "profile/report.h"
+#include "reports/profile_table.h"
 #include "render_support.h"
 #include "test_support.h"
 

@@ -7,7 +7,7 @@
 #include "base/errors.h"
 #include "frame/bench_setup.h"
 #include "frame/run_spec.h"
-#include "profile/result.h"
+#include "result/result.h"
 #include "base/switch_table.h"
 #include "scene/scene_file.h"
 #include "test_support.h"

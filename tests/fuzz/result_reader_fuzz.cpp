@@ -11,9 +11,9 @@
 #include "base/errors.h"
 #include "base/json_assert.h"
 #include "fuzz_file.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
-#include "profile/run_match.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
+#include "result/run_match.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace crowdprof;

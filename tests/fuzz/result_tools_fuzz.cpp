@@ -14,10 +14,10 @@
 #include "base/errors.h"
 #include "base/json_assert.h"
 #include "fuzz_file.h"
-#include "profile/diff.h"
-#include "profile/html_report.h"
-#include "profile/regression.h"
-#include "profile/result_codec.h"
+#include "gate/diff.h"
+#include "reports/html_report.h"
+#include "gate/regression.h"
+#include "result/result_codec.h"
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "frame/crowd_bench.h"
 #include "gen/humanoid.h"
 #include "asset/mesh_lod.h"
-#include "profile/environment.h"
+#include "measuring/environment.h"
 #include "skinning/simd_target.h"
 #include "skinning/skinning_kernels.h"
 #include "test_support.h"

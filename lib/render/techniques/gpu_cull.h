@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "profile/counters.h"
+#include "measuring/counters.h"
 #include "render/gl.h"
 #include "render/gl_program.h"
 

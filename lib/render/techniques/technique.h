@@ -18,7 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "animation/skin_matrix.h"
-#include "profile/counters.h"
+#include "measuring/counters.h"
 #include "render/gl.h"
 #include "render/draw_passes.h"
 #include "render/gl_program.h"

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "asset/gltf_loader.h"
-#include "profile/environment.h"
+#include "measuring/environment.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

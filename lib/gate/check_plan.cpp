@@ -1,0 +1,87 @@
+#include "gate/check_plan.h"
+
+#include <algorithm>
+
+#include "base/errors.h"
+
+namespace crowdprof {
+
+CheckPlan plan_check(const CheckRequest& r) {
+  CheckPlan plan;
+  plan.update_baseline = r.update_baseline;
+  plan.gate.tolerance = parse_tolerance(r.tolerance);
+  plan.gate.floor = parse_floor(r.floor);
+  if (!(r.alpha > 0 && r.alpha < 1)) throw SettingError("alpha", std::to_string(r.alpha), "expected between 0 and 1");
+  plan.gate.alpha = r.alpha;
+  bool instructions = false;
+  for (const std::string& metric : r.metrics) instructions = instructions || metric == kInstructionsMetric;
+  long long runs = r.runs.value_or(instructions ? 1 : r.update_baseline ? kBaselineRuns : kCheckRuns);
+  if (runs < 1 || runs > static_cast<long long>(kMaxRuns))
+    throw SettingError("runs", std::to_string(runs), "expected 1 to " + std::to_string(kMaxRuns));
+  plan.runs = static_cast<size_t>(runs);
+  plan.spread_s = r.spread_s.value_or(0.0);
+  if (!(plan.spread_s >= 0 && plan.spread_s <= 3600))
+    throw SettingError("spread", std::to_string(plan.spread_s), "expected 0 to 3600 seconds");
+  plan.gate.compare_work = !r.timings_only;
+  if (instructions) {
+    if (r.metrics.size() > 1)
+      throw SettingError("metric", kInstructionsMetric,
+                         "instructions is a metric of its own: its runs are counted, not timed");
+    if (!r.tolerance_given) plan.gate.tolerance = kInstructionTolerance;
+    plan.gate.metrics = {kInstructionsMetric};
+    return plan;
+  }
+  if (r.timings_only && r.update_baseline) throw SettingsUsageError("{timings_only} compares; it cannot record a baseline");
+  plan.gate.metrics.clear();
+  auto add = [&](const std::string& key) {
+    if (std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), key) == plan.gate.metrics.end())
+      plan.gate.metrics.push_back(key);
+  };
+  for (const std::string& metric : r.metrics) {
+    if (metric == "all") {
+      for (const std::string& key : all_metrics()) add(key);
+      continue;
+    }
+    add(resolve_metric(metric));
+  }
+  if (plan.gate.metrics.empty()) throw SettingError("metric", "", "name at least one metric");
+  return plan;
+}
+
+GateMetrics gate_metrics(const Result& baseline, const Result& current, std::vector<std::string> metrics, bool named,
+                         const std::string& baseline_path, const std::string& current_name) {
+  GateMetrics out;
+  const bool base_probe = !baseline.samples.probe_ms.empty(), current_probe = !current.samples.probe_ms.empty();
+  const bool same_probe = baseline.calibration_probe == current.calibration_probe;
+  auto uses = [&](const char* key) { return std::find(metrics.begin(), metrics.end(), key) != metrics.end(); };
+  if (named && uses("calibrated") && base_probe && current_probe && !same_probe)
+    throw InputError(baseline_path, "was calibrated by probe version " + std::to_string(baseline.calibration_probe) +
+                                        ", " + current_name + " by version " +
+                                        std::to_string(current.calibration_probe) +
+                                        ": the calibrated frame does not compare; record the baseline again, or check "
+                                        "another --metric");
+  if (!named && metrics == std::vector<std::string>{"calibrated"}) {
+    std::string why;
+    if (!base_probe || !current_probe)
+      why = (!base_probe ? baseline_path : current_name) +
+            " has no calibrated frame time (recorded by an older crowdprof or by bench without --calibrate)";
+    else if (!same_probe)
+      why = "the two were calibrated by different probes (version " + std::to_string(baseline.calibration_probe) +
+            " and " + std::to_string(current.calibration_probe) + ")";
+    if (!why.empty()) {
+      const bool alike = base_probe == current_probe;
+      const bool cpu = alike && metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
+      metrics = {cpu ? "cpu_ms" : "frame_ms"};
+      out.notes.push_back(why + ": checking " + metric_display_name(metrics.front()) + " instead" +
+                          (alike ? "" : " (only one of the two ran the probe, which raises CPU time)"));
+    }
+  } else if (base_probe != current_probe && uses("cpu_ms")) {
+    out.notes.push_back(
+        "only one of the two ran the calibration probe, whose workers raise CPU time: cpu does not compare like for "
+        "like");
+  }
+  out.metrics = std::move(metrics);
+  return out;
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,137 @@
+#include "reports/capacity_report.h"
+
+#include <algorithm>
+
+#include "reports/chart_colours.h"
+#include "base/number_text.h"
+#include "reports/text_table.h"
+#include "reports/svg_chart.h"
+
+namespace crowdprof {
+
+namespace {
+
+// "frame", or the category's CSV column: the table's column names.
+std::string metric_column(const CapacityMetric& metric) {
+  return metric.category ? std::string(category_column(*metric.category)) : "frame";
+}
+
+nlohmann::json point_json(const CapacityPoint& p, const CapacityRule& rule) {
+  return {{"characters", p.n},
+          {"median_ms", p.median_ms},
+          {"p95_ms", p.p95_ms},
+          {"p99_ms", p.p99_ms},
+          {"min_ms", p.min_ms},
+          {"max_ms", p.max_ms},
+          {"frame_median_ms", p.frame_median_ms},
+          {"frames", p.frames},
+          {"fits", p.median_ms <= rule.budget_ms},
+          {"round", p.round},
+          {"partial", p.partial},
+          {"digest", p.digest}};
+}
+
+}  // namespace
+
+std::string format_capacity(const CapacityRun& run) {
+  std::string column = metric_column(run.metric);
+  std::vector<std::vector<std::string>> rows = {
+      {"mode", "threads", "fits_n", "fits_" + column + "_ms", "over_n", "over_" + column + "_ms", "points"}};
+  std::string notes;
+  for (const ModeCapacity& mode : run.modes) {
+    const CapacityResult& r = mode.result;
+    rows.push_back({mode.mode, std::to_string(mode.threads), r.fit ? std::to_string(r.fit->n) : "0",
+                    r.fit ? fixed(r.fit->median_ms, 3) : "-", r.fail ? std::to_string(r.fail->n) : "-",
+                    r.fail ? fixed(r.fail->median_ms, 3) : "-", std::to_string(mode.tried.size())});
+    if (r.capped)
+      notes += mode.mode + ": the cap of " + std::to_string(mode.rule.cap) + " characters fits; the capacity may be higher\n";
+    if (!r.fit && r.fail)
+      notes += mode.mode + ": not even " + std::to_string(r.fail->n) + " character" + (r.fail->n == 1 ? "" : "s") +
+               " fit" + (r.fail->n == 1 ? "s" : "") + "\n";
+    if (r.non_monotonic)
+      notes += mode.mode + ": a larger crowd measured more than 10% faster than a smaller one (noise, or a cost that "
+               "does not grow with the crowd): the boundary found is one of several\n";
+  }
+  std::string out = align_columns(rows, {0});
+  double budget = run.modes.empty() ? 0 : run.modes.front().rule.budget_ms;
+  double resolution = run.modes.empty() ? 0 : run.modes.front().rule.resolution;
+  size_t start = run.modes.empty() ? 0 : run.modes.front().rule.start;
+  out += "fits_n: the largest crowd whose median " + run.metric.name() + " time was at most " + fixed(budget, 3) +
+         " ms; over_n: the smallest crowd above it that was over\n";
+  out += "search: from " + std::to_string(start) + " characters, doubling while it fits, then bisection until over_n - fits_n <= max(1, " +
+         fixed(resolution * 100, 1) + "% of fits_n); " + std::to_string(run.frames) + " frames per point after " +
+         std::to_string(run.warmup) + " warm-up, modes interleaved in blocks of " + std::to_string(run.block) + " frames\n";
+  return out + notes;
+}
+
+nlohmann::json capacity_to_json(const CapacityRun& run) {
+  nlohmann::json j;
+  if (run.first) {
+    nlohmann::json first = to_json(*run.first);
+    j["crowdprof"] = first["crowdprof"];
+    j["environment"] = first["environment"];
+    j["scene"] = first["scene"];
+    j["scene"].erase("characters");  // each point has its own
+  }
+  j["crowdprof"]["kind"] = "capacity";
+  const CapacityRule rule = run.modes.empty() ? CapacityRule{} : run.modes.front().rule;
+  j["budget_ms"] = rule.budget_ms;
+  j["metric"] = run.metric.name();
+  j["search"] = {{"start", rule.start}, {"resolution", rule.resolution},
+                 {"rule", "doubling from start while the median fits, then bisection until first_over - largest_fit "
+                          "<= max(1, floor(resolution * largest_fit))"}};
+  j["block_frames"] = run.block;
+  j["frames_per_point"] = run.frames;
+  j["warmup_frames"] = run.warmup;
+  j["partial"] = run.partial;
+  j["modes"] = nlohmann::json::array();
+  for (const ModeCapacity& mode : run.modes) {
+    nlohmann::json m = {{"mode", mode.mode}, {"threads", mode.threads}, {"cap", mode.rule.cap},
+                        {"capped", mode.result.capped}, {"non_monotonic", mode.result.non_monotonic}};
+    m["largest_fit"] = mode.result.fit ? point_json(*mode.result.fit, mode.rule) : nlohmann::json();
+    m["first_over"] = mode.result.fail ? point_json(*mode.result.fail, mode.rule) : nlohmann::json();
+    m["points"] = nlohmann::json::array();
+    for (const CapacityPoint& p : mode.tried) {
+      m["points"].push_back(point_json(p, mode.rule));
+      if (!p.partial) j["sweep"].push_back({{"mode", mode.mode}, {"characters", p.n}, {"frame_median_ms", p.frame_median_ms}});
+    }
+    j["modes"].push_back(m);
+    // The bench result at the mode's capacity (at the first size over when none fit).
+    const std::optional<RunReport>& run_at = mode.fit_run ? mode.fit_run : mode.fail_run;
+    if (run_at) j["runs"].push_back(to_json(*run_at));
+  }
+  if (!j.contains("sweep")) j["sweep"] = nlohmann::json::array();
+  if (!j.contains("runs")) j["runs"] = nlohmann::json::array();
+  return j;
+}
+
+std::string capacity_svg(const CapacityRun& run) {
+  ModeColours colours;
+  std::string scene;
+  if (run.first) scene = ": " + run.first->run.character + ", backend " + run.first->run.backend;
+  LineChart chart{"Median " + run.metric.name() + " time against crowd size" + scene, "characters (log scale)",
+                  "median " + run.metric.name() + " time (ms)", {}, true, true};
+  chart.id = "capacity";
+  for (const ModeCapacity& mode : run.modes) {
+    std::vector<CapacityPoint> points;
+    for (const CapacityPoint& p : mode.tried)
+      if (!p.partial) points.push_back(p);
+    std::sort(points.begin(), points.end(), [](const CapacityPoint& a, const CapacityPoint& b) { return a.n < b.n; });
+    LineSeries series{mode.mode, {}, {}, colours.colour(mode.mode)};
+    for (const CapacityPoint& p : points) {
+      series.x.push_back(static_cast<double>(p.n));
+      series.y.push_back(p.median_ms);
+    }
+    chart.series.push_back(std::move(series));
+  }
+  if (!run.modes.empty()) {
+    double budget = run.modes.front().rule.budget_ms;
+    chart.guides.push_back({budget, fixed(budget, 1) + " ms budget (" + fixed(1000.0 / budget, 0) + " fps)", "#B00020",
+                            "8,4", "budget", true, false});
+  }
+  SvgDocument svg;
+  svg.add(chart);
+  return svg.str();
+}
+
+}  // namespace crowdprof

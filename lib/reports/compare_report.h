@@ -1,0 +1,65 @@
+// How `crowdprof compare` reports modes run side by side: a table (per mode
+// the median frame, each category that took time, the speedup over the first
+// mode), the same as CSV and JSON, and SVG charts (docs/formats.md).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reports/profile_table.h"
+#include "reports/sweep_axis.h"
+
+namespace crowdprof {
+
+struct Comparison {
+  std::vector<RunReport> runs;   // one per mode at the chosen crowd size, in the order asked
+  std::vector<RunReport> sweep;  // every (point, mode) of --sweep, by point then mode; empty without
+  SweepAxis sweep_axis = SweepAxis::Characters;  // what the sweep's points vary
+  size_t block = 10;             // frames per block of the interleaving
+};
+
+// Median over frames of every mode, its categories and the speedup.
+struct ModeMedians {
+  std::string mode;
+  size_t characters = 0;
+  uint32_t passes = 1;
+  int threads = 1;
+  double frame_ms = 0;
+  double category_ms[kCategoryCount]{};
+  double speedup = 0;  // the first mode's frame_ms over this one's (same size and passes)
+  size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
+};
+
+// Per run, with speedups against the first run of the same size.
+std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs);
+
+// Whether `run` of the sweep is at the main runs' point (their size, or their
+// passes): the same run, written once.
+bool is_main_point(const Comparison& comparison, const RunReport& run);
+
+// Categories to show: those whose median is at least 0.005 ms (0.00 when
+// printed) in some run.
+std::vector<Category> shown_categories(const std::vector<ModeMedians>& medians);
+
+// The table for stdout: a header with units, one row per mode, then (with a
+// sweep) one row per size and mode.
+std::string format_comparison(const Comparison& comparison);
+
+// bench's CSV (one row per frame) for every run, the main runs first: one header.
+void write_comparison_csv(const Comparison& comparison, std::ostream& out);
+
+// {"crowdprof": {..., "kind": "compare"}, "environment", "block_frames",
+//  "modes", "summary": [per mode], "sweep": [per size and mode], "runs": [bench
+//  JSON per mode]}.
+nlohmann::json comparison_to_json(const Comparison& comparison);
+
+// Frame time per frame, one line per mode (the thesis's figure 11); a stacked
+// bar of the categories per mode; with a sweep, median frame time against
+// characters (log scale), one line per mode. The presets keep
+// their colours (chart_colours.h).
+std::string comparison_svg(const Comparison& comparison);
+
+}  // namespace crowdprof

@@ -1,0 +1,692 @@
+#include "reports/html_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "base/errors.h"
+#include "base/switch_table.h"
+#include "reports/profile_table.h"
+#include "result/result_codec.h"
+#include "base/number_text.h"
+#include "measuring/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+std::string h(const std::string& text) { return xml_escape(text); }
+
+std::string base64(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t n = static_cast<uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= static_cast<uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+// A comparison's sweep rows, each field checked before use.
+void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path) {
+  if (!doc.contains("sweep")) return;
+  const json& sweep = doc["sweep"];
+  if (!sweep.is_array()) throw InputError(path, "\"sweep\" should be an array");
+  if (doc.contains("sweep_axis")) {
+    if (doc["sweep_axis"] == "passes") input.sweep_axis = SweepAxis::Passes;
+    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
+  }
+  std::string axis(to_string(input.sweep_axis));
+  for (const json& row : sweep) {
+    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains(axis) &&
+              row[axis].is_number_unsigned() && row.contains("frame_median_ms") &&
+              row["frame_median_ms"].is_number() && std::isfinite(row["frame_median_ms"].get<double>()) &&
+              row["frame_median_ms"].get<double>() >= 0;
+    if (!ok) throw InputError(path, "a \"sweep\" row without mode, " + axis + " and frame_median_ms");
+    input.sweep.push_back({row["mode"].get<std::string>(), row[axis].get<size_t>(), row["frame_median_ms"].get<double>()});
+  }
+}
+
+// A capacity result's search and outcome per mode, each field checked before use.
+CapacitySection read_capacity(const json& doc, const std::string& path) {
+  auto bad = [&](const std::string& what) { return InputError(path, "a capacity result whose " + what); };
+  auto number = [&](const json& v, const char* what) {
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+      throw bad(std::string(what) + " is not a non-negative number");
+    return v.get<double>();
+  };
+  auto count = [&](const json& v, const char* what) {
+    if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<int64_t>() >= 0))
+      throw bad(std::string(what) + " is not a whole number");
+    return v.get<size_t>();
+  };
+  CapacitySection c;
+  c.budget_ms = number(doc.value("budget_ms", json()), "\"budget_ms\"");
+  const json metric = doc.value("metric", json());
+  if (!metric.is_string()) throw bad("\"metric\" is not a string");
+  c.metric = metric.get<std::string>();
+  const json search = doc.value("search", json::object());
+  if (!search.is_object()) throw bad("\"search\" is not an object");
+  c.start = count(search.value("start", json(0)), "\"search.start\"");
+  c.precision = number(search.value("resolution", json(0.0)), "\"search.resolution\"");
+  c.frames_per_point = count(doc.value("frames_per_point", json(0)), "\"frames_per_point\"");
+  c.warmup = count(doc.value("warmup_frames", json(0)), "\"warmup_frames\"");
+  const json modes = doc.value("modes", json());
+  if (!modes.is_array()) throw bad("\"modes\" is not an array");
+  for (const json& m : modes) {
+    if (!m.is_object() || !m.value("mode", json()).is_string()) throw bad("mode has no name");
+    CapacitySection::Row row;
+    row.mode = m["mode"].get<std::string>();
+    row.threads = count(m.value("threads", json(0)), "\"threads\"");
+    row.cap = count(m.value("cap", json(0)), "\"cap\"");
+    for (auto [key, n, ms] : {std::tuple{"largest_fit", &row.fits, &row.fits_ms}, {"first_over", &row.over, &row.over_ms}}) {
+      const json point = m.value(key, json());
+      if (point.is_null()) continue;
+      if (!point.is_object()) throw bad(std::string("\"") + key + "\" is not a point");
+      *n = count(point.value("characters", json()), "point's \"characters\"");
+      *ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
+    }
+    c.rows.push_back(std::move(row));
+  }
+  return c;
+}
+
+// The lead of a capacity page: per mode, the largest crowd within the budget.
+std::string capacity_section(const CapacitySection& c) {
+  std::string out = "<section id=\"capacity\"><h2>Capacity: the largest crowd whose median " + h(c.metric) +
+                    " time fits " + report_number(c.budget_ms, 3) + " ms</h2>\n<table><tr><th class=\"name\">mode</th>"
+                    "<th>threads</th><th>capacity (characters)</th><th>its median ms</th><th>first over</th>"
+                    "<th>its median ms</th></tr>\n";
+  for (const CapacitySection::Row& row : c.rows) {
+    out += "<tr><td class=\"name\">" + h(row.mode) + "</td><td>" + std::to_string(row.threads) + "</td><td><b>" +
+           (row.fits ? std::to_string(*row.fits) : std::string("none")) + "</b></td><td>" +
+           (row.fits ? report_number(row.fits_ms, 3) : std::string("-")) + "</td><td>" +
+           (row.over ? std::to_string(*row.over) : "over " + std::to_string(row.cap) + " (the cap fits)") + "</td><td>" +
+           (row.over ? report_number(row.over_ms, 3) : std::string("-")) + "</td></tr>\n";
+  }
+  out += "</table>\n<p>Search: from " + std::to_string(c.start) +
+         " characters, doubling while the median fits, then halving the gap until the first crowd over is within " +
+         report_number(c.precision * 100, 1) + "% of the capacity (or 1 character); " +
+         std::to_string(c.frames_per_point) + " frames per size after " + std::to_string(c.warmup) +
+         " warm-up. The runs below are each mode's at its capacity.</p></section>\n";
+  return out;
+}
+
+// Labels of runs the caller did not name: the mode; with the crowd size when
+// a mode comes at several sizes; with the file when even that is not enough to
+// tell two results apart.
+void label_runs(std::vector<ReportRun>& all) {
+  std::vector<ReportRun*> runs;
+  for (ReportRun& run : all)
+    if (run.label.empty()) runs.push_back(&run);
+  auto key = [](const ReportRun& r, int level) {
+    std::string mode = r.result.run.mode;
+    if (level == 0) return mode;
+    std::string sized = mode + " n=" + std::to_string(r.result.run.characters);
+    return level == 1 ? sized : sized + " (" + file_name(r.source) + ")";
+  };
+  for (int level = 0; level < 3; ++level) {
+    std::map<std::string, int> seen;
+    for (const ReportRun* r : runs) ++seen[key(*r, level)];
+    if (std::all_of(seen.begin(), seen.end(), [](const auto& s) { return s.second == 1; }) || level == 2) {
+      std::map<std::string, int> count;
+      for (ReportRun* r : runs) {
+        r->label = key(*r, level);
+        if (seen[r->label] > 1) r->label += " #" + std::to_string(++count[r->label]);
+      }
+      return;
+    }
+  }
+}
+
+const char* kStyle = R"(
+body{font-family:sans-serif;margin:24px auto;max-width:1000px;color:#222;padding:0 12px}
+h1{font-size:1.5em;margin-bottom:4px}h2{font-size:1.2em;margin-top:28px;border-bottom:1px solid #ccc}
+table{border-collapse:collapse;margin:8px 0}td,th{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}
+th{background:#f4f4f4}td.name,th.name{text-align:left}.sources{color:#555;font-size:.9em}
+svg{max-width:100%;height:auto;display:block;margin:8px 0}.bar{display:inline-block;height:10px;background:#4E79A7}
+.regression{color:#B00020;font-weight:bold}.ok{color:#1B7F3B;font-weight:bold}pre{background:#f7f7f7;padding:8px}
+img.screenshot{max-width:100%;border:1px solid #ccc}.swatch{display:inline-block;width:10px;height:10px;margin-right:4px}
+table.headline td,table.headline th{font-size:1.25em;padding:4px 14px}table.headline td.key{font-weight:bold}
+)";
+
+// Records script errors where a reader (and the browser test) finds them.
+const char* kErrorHook = R"(<script>
+window.addEventListener('error', function (e) {
+  var html = document.documentElement;
+  html.setAttribute('data-js-errors', (html.getAttribute('data-js-errors') || '') + e.message + '; ');
+});
+</script>
+)";
+
+// Counts what the browser drew of every chart and compares it with what the
+// chart says it holds: series, points per series (parsed by the browser from
+// the SVG), segments per bar; every point inside its picture; and every image
+// decoded. It runs once the page has loaded, images included.
+const char* kSelfCheck = R"(<script>
+window.addEventListener('load', function () {
+  var problems = [];
+  var charts = document.querySelectorAll('g.chart');
+  charts.forEach(function (chart) {
+    var id = chart.getAttribute('data-chart') || '?';
+    var box = chart.ownerSVGElement.viewBox.baseVal;
+    var inside = function (p) { return isFinite(p.x) && isFinite(p.y) && p.x >= 0 && p.y >= 0 && p.x <= box.width && p.y <= box.height; };
+    var series = chart.querySelectorAll('g.series'), bars = chart.querySelectorAll('g.bar');
+    var drawn = series.length + bars.length;
+    chart.setAttribute('data-drawn-series', drawn);
+    if (String(drawn) !== chart.getAttribute('data-series')) problems.push(id + ': ' + drawn + ' series drawn, ' + chart.getAttribute('data-series') + ' said');
+    series.forEach(function (s) {
+      var geometry = s.getAttribute('data-geometry'), n = 0, points = [];
+      if (geometry === 'line' || geometry === 'area') {
+        var shape = s.querySelector(geometry === 'line' ? 'polyline' : 'polygon');
+        for (var i = 0; shape && i < shape.points.numberOfItems; ++i) points.push(shape.points.getItem(i));
+        n = geometry === 'line' ? points.length : points.length / 2;
+      } else {
+        s.querySelectorAll('circle').forEach(function (c) { points.push({x: c.cx.baseVal.value, y: c.cy.baseVal.value}); });
+        n = points.length;
+      }
+      s.setAttribute('data-drawn-points', n);
+      var name = id + '/' + s.getAttribute('data-name');
+      if (String(n) !== s.getAttribute('data-points')) problems.push(name + ': ' + n + ' points drawn, ' + s.getAttribute('data-points') + ' said');
+      if (!points.every(inside)) problems.push(name + ': a point outside the chart');
+    });
+    bars.forEach(function (b) {
+      var n = b.querySelectorAll('rect').length;
+      b.setAttribute('data-drawn-segments', n);
+      if (String(n) !== b.getAttribute('data-segments')) problems.push(id + '/' + b.getAttribute('data-name') + ': ' + n + ' segments drawn');
+    });
+  });
+  var images = document.querySelectorAll('img');
+  images.forEach(function (img) { if (!img.complete || img.naturalWidth === 0) problems.push('an image that does not decode'); });
+  // No two labels of a chart on top of each other.
+  charts.forEach(function (chart) {
+    var boxes = [];
+    chart.querySelectorAll('text').forEach(function (t) {
+      var b = t.getBoundingClientRect();
+      if (b.width > 0 && b.height > 0) boxes.push({b: b, text: t.textContent});
+    });
+    for (var i = 0; i < boxes.length; ++i)
+      for (var j = i + 1; j < boxes.length; ++j) {
+        var a = boxes[i].b, c = boxes[j].b;
+        var w = Math.min(a.right, c.right) - Math.max(a.left, c.left), h = Math.min(a.bottom, c.bottom) - Math.max(a.top, c.top);
+        if (w > 2 && h > 2) problems.push((chart.getAttribute('data-chart') || '?') + ': labels overlap: "' + boxes[i].text + '" and "' + boxes[j].text + '"');
+      }
+  });
+  // Nothing wider than the page's column: a table or chart past it is cut off
+  // or scrolls sideways (a compare of every mode at 1280 px).
+  var column = document.body.getBoundingClientRect();
+  var right = column.right - parseFloat(getComputedStyle(document.body).paddingRight) + 1;
+  document.querySelectorAll('table, svg, img, pre, p, h1, h2').forEach(function (e) {
+    var box = e.getBoundingClientRect();
+    if (box.right > right) problems.push(e.tagName.toLowerCase() + (e.id ? '#' + e.id : e.className && e.className.baseVal === undefined && e.className ? '.' + e.className : '') + ' overflows the page by ' + Math.round(box.right - right) + ' px');
+  });
+  var expected = document.body.getAttribute('data-charts');
+  if (String(charts.length) !== expected) problems.push(charts.length + ' charts drawn, ' + expected + ' made');
+  document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') :
+    'ok ' + charts.length + ' charts' + (images.length ? ', ' + images.length + ' images' : ''));
+});
+</script>
+)";
+
+// Rows of what a run was measured on: the machine and build the result recorded,
+// which GL drew, the threads, the mode and crowdprof's version.
+std::vector<std::pair<std::string, std::string>> environment_rows(const Result& result) {
+  const Environment& e = result.environment;
+  const RunDescription& run = result.run;
+  return {{"crowdprof", e.version + " (" + e.commit + ")"},
+          {"backend", run.backend},
+          {"build_type", e.build_type},
+          {"compiler", e.compiler},
+          {"cores", std::to_string(e.cores)},
+          {"cpu", e.cpu},
+          {"renderer", run.renderer},
+          {"simd", e.simd},
+          {"threads", std::to_string(run.threads)},
+          {"mode", run.mode + " " + switches_to_json(run.switches).dump()}};
+}
+
+std::string environment_section(const std::vector<ReportRun>& runs) {
+  // One column when every run was measured alike, else one per run.
+  std::vector<std::vector<std::pair<std::string, std::string>>> tables;
+  for (const ReportRun& run : runs) tables.push_back(environment_rows(run.result));
+  bool alike = std::all_of(tables.begin(), tables.end(), [&](const auto& t) {
+    auto skip_mode = [](const auto& rows) {
+      std::vector<std::pair<std::string, std::string>> out;
+      for (const auto& row : rows)
+        if (row.first != "mode" && row.first != "threads") out.push_back(row);
+      return out;
+    };
+    return skip_mode(t) == skip_mode(tables.front());
+  });
+  std::string out = "<section id=\"environment\"><h2>Environment</h2>\n<table><tr><th class=\"name\">field</th>";
+  size_t columns = alike ? 1 : runs.size();
+  for (size_t c = 0; c < columns; ++c) out += "<th class=\"name\">" + h(alike ? "value" : runs[c].label) + "</th>";
+  out += "</tr>\n";
+  std::vector<std::string> keys;
+  for (const auto& table : tables)
+    for (const auto& row : table)
+      if (std::find(keys.begin(), keys.end(), row.first) == keys.end()) keys.push_back(row.first);
+  for (const std::string& key : keys) {
+    out += "<tr><td class=\"name\">" + h(key) + "</td>";
+    if (alike && (key == "mode" || key == "threads")) {
+      std::set<std::string> values;
+      for (const auto& table : tables)
+        for (const auto& row : table)
+          if (row.first == key) values.insert(row.second);
+      std::string joined;
+      for (const std::string& v : values) joined += (joined.empty() ? "" : "; ") + v;
+      out += "<td class=\"name\">" + h(joined) + "</td>";
+    } else {
+      for (size_t c = 0; c < columns; ++c) {
+        std::string value;
+        for (const auto& row : tables[c])
+          if (row.first == key) value = row.second;
+        out += "<td class=\"name\">" + h(value) + "</td>";
+      }
+    }
+    out += "</tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
+// Every counter the runs recorded, a row each in the counters' own order, a
+// column per run (blank where a run did not record it).
+std::string counters_table(const std::vector<ReportRun>& runs) {
+  std::set<size_t> rows;  // fields
+  for (const ReportRun& run : runs)
+    for (size_t i = 0; i < kCounterFields.size(); ++i)
+      if (run.result.counters.present[i]) rows.insert(i);
+  std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (last frame)</th>";
+  for (const ReportRun& run : runs) out += "<th>" + h(run.label) + "</th>";
+  out += "</tr>\n";
+  for (size_t i : rows) {
+    out += "<tr><td class=\"name\">" + h(std::string(kCounterFields[i].name)) + "</td>";
+    for (const ReportRun& run : runs)
+      out += "<td>" + (run.result.counters.present[i] ? with_thousands(run.result.counters.values.*kCounterFields[i].member)
+                                                      : std::string()) + "</td>";
+    out += "</tr>\n";
+  }
+  return out + "</table>\n";
+}
+
+// The headline a reader looks for first: per run the median frame, p95, p99
+// and fps, to 3 significant digits, in µs below 1 ms.
+std::string headline_section(const std::vector<ReportRun>& runs) {
+  std::string out = "<section id=\"headline\"><table class=\"headline\"><tr><th class=\"name\">run</th>"
+                    "<th>median frame</th><th>p95</th><th>p99</th><th>fps (median)</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    const std::vector<double>& ms = run.result.samples.frame_ms;
+    const double median = median_frame_ms(ms);
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"key\">" + duration_text(median) + "</td><td>" +
+           duration_text(quantile(ms, 0.95)) + "</td><td>" + duration_text(quantile(ms, 0.99)) + "</td><td>" +
+           (median > 0 ? significant(1000.0 / median, 3) : "-") + "</td></tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
+// Each run's median frame (the frame whose total is the median), by category.
+std::vector<FrameTimes> median_frames(const std::vector<ReportRun>& runs) {
+  std::vector<FrameTimes> medians;
+  for (const ReportRun& run : runs) {
+    std::vector<FrameRecord> frames(run.result.frames());
+    for (size_t c = 0; c < kCategoryCount; ++c) {
+      const std::vector<double>& ms = run.result.samples.category_ms[c];
+      for (size_t i = 0; i < frames.size(); ++i) frames[i].times.ms[c] = ms[i];
+    }
+    medians.push_back(frames[median_frame(frames)].times);
+  }
+  return medians;
+}
+
+// The GPU's own time (GL timer queries), beside the categories and not one of
+// them: n/a with the reason where it was not measured, never 0. {value, how},
+// as HTML (the reason, read from the result, escaped).
+std::pair<std::string, std::string> gpu_time_cells(const ReportRun& run) {
+  const RunDescription& described = run.result.run;
+  const std::vector<double>& gpu = run.result.samples.gpu_ms;
+  bool timed = std::any_of(gpu.begin(), gpu.end(), [](double ms) { return std::isfinite(ms); });
+  double median = metric_median(run.result, "gpu_ms");
+  if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
+    return {"-", "below the timer's resolution"};
+  if (timed) return {report_number(median, 2), "timer queries"};
+  return {"n/a", h(described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing)};
+}
+
+std::string swatch(Category category) {
+  return "<span class=\"swatch\" style=\"background:" + std::string(category_colour(category)) + "\"></span>";
+}
+
+// The BGE's overlay, a column pair (ms, share) per run: for a few runs.
+std::string profile_by_category(const std::vector<ReportRun>& runs, const std::vector<FrameTimes>& medians) {
+  std::string out = "<table><tr><th class=\"name\">category</th>";
+  for (const ReportRun& run : runs) out += "<th>" + h(run.label) + " ms</th><th>%</th>";
+  out += "</tr>\n<tr><td class=\"name\"><b>Frametime</b></td>";
+  for (const FrameTimes& t : medians)
+    out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
+  out += "</tr>\n";
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    auto category = static_cast<Category>(c);
+    out += "<tr><td class=\"name\">" + swatch(category) + h(std::string(category_name(category))) + "</td>";
+    for (const FrameTimes& t : medians) {
+      double share = t.total_ms() > 0 ? t.ms[c] / t.total_ms() : 0.0;
+      out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) + "% <span class=\"bar\" style=\"width:" +
+             report_number(share * 60, 1) + "px;background:" + category_colour(category) + "\"></span></td>";
+    }
+    out += "</tr>\n";
+  }
+  out += "<tr class=\"gpu-time\"><td class=\"name\">GPU time (median)</td>";
+  for (const ReportRun& run : runs) {
+    auto [value, how] = gpu_time_cells(run);
+    out += "<td>" + value + "</td><td class=\"name\">" + how + "</td>";
+  }
+  return out + "</tr>\n</table>\n";
+}
+
+// The same, a row per run and a column per category that took time: for more
+// runs than fit side by side at 1280 px (a compare of every mode).
+std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector<FrameTimes>& medians) {
+  std::vector<size_t> shown;
+  for (size_t c = 0; c < kCategoryCount; ++c)
+    if (std::any_of(medians.begin(), medians.end(), [c](const FrameTimes& t) { return t.ms[c] >= 0.005; }))
+      shown.push_back(c);
+  std::string out = "<table class=\"by-run\"><tr><th class=\"name\">run</th><th>Frametime ms</th><th>fps</th>";
+  for (size_t c : shown)
+    out += "<th>" + swatch(static_cast<Category>(c)) + h(std::string(category_name(static_cast<Category>(c)))) + "</th>";
+  out += "<th>GPU time</th></tr>\n";
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const FrameTimes& t = medians[r];
+    out += "<tr><td class=\"name\">" + h(runs[r].label) + "</td><td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" +
+           (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
+    for (size_t c : shown) out += "<td>" + report_number(t.ms[c], 2) + "</td>";
+    auto [value, how] = gpu_time_cells(runs[r]);
+    out += "<td title=\"" + how + "\">" + value + "</td></tr>\n";
+  }
+  return out + "</table>\n<p>ms of each run's median frame; categories under 0.005 ms in every run are left out.</p>\n";
+}
+
+// What each run was: its crowd, frames and digest.
+std::string runs_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table class=\"runs\"><tr><th class=\"name\">run</th><th>characters</th><th>joints</th>"
+                    "<th>vertices</th><th>frames</th><th>warm-up</th><th class=\"name\">actions</th>"
+                    "<th class=\"name\">scene</th><th class=\"name\">digest</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    const RunDescription& scene = run.result.run;
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(scene.characters) + "</td><td>" +
+           std::to_string(scene.joints) + "</td><td>" + std::to_string(scene.vertices) + "</td><td>" +
+           std::to_string(run.result.frames()) + "</td><td>" + std::to_string(scene.warmup) + "</td><td class=\"name\">" +
+           h(scene.action_choice) + "</td><td class=\"name\" title=\"" + h(scene.file) + "\">" + h(file_name(scene.file)) +
+           "</td><td class=\"name\">" +
+           h(run.result.digest) + "</td></tr>\n";
+  }
+  return out + "</table>\n";
+}
+
+// Runs whose profile columns fit side by side at 1280 px.
+constexpr size_t kRunsSideBySide = 4;
+
+std::string profile_section(const std::vector<ReportRun>& runs) {
+  const std::vector<FrameTimes> medians = median_frames(runs);
+  return "<section id=\"profile\"><h2>Profile (the BGE's table, median frame)</h2>\n" +
+         (runs.size() > kRunsSideBySide ? profile_by_run(runs, medians) : profile_by_category(runs, medians)) +
+         runs_table(runs) + counters_table(runs) + "</section>\n";
+}
+
+// Each run's GPU time by pass (medians, and their sum against the frame's GPU
+// time) with the pipeline statistics where the GL had them: only when some
+// run split its GPU time.
+std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
+  if (std::none_of(runs.begin(), runs.end(), [](const ReportRun& r) { return !r.result.samples.gpu_pass_ms[0].empty(); }))
+    return {};
+  std::string out = "<section id=\"gpu-passes\"><h2>GPU time by pass (median a frame)</h2>\n<table><tr>"
+                    "<th class=\"name\">run</th><th class=\"name\">pass</th><th>GPU ms</th>";
+  for (std::string_view stat : kPipelineStatNames) {
+    std::string name(stat);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    out += "<th>" + h(name) + "</th>";
+  }
+  out += "</tr>\n";
+  for (const ReportRun& run : runs) {
+    const Result& r = run.result;
+    if (r.samples.gpu_pass_ms[0].empty()) continue;
+    const GpuPassMedians medians = gpu_pass_medians(r.samples.gpu_pass_ms, r.run.switches.passes);
+    const double sum = medians.sum;
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
+      out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\">" + std::string(kGpuPassNames[p]) +
+             "</td><td>" + (medians.median[p] ? report_number(*medians.median[p], 3) : std::string("n/a")) + "</td>";
+      if (r.pipeline_statistics) {
+        for (size_t s = 0; s < kPipelineStatCount; ++s)
+          out += "<td>" + with_thousands(static_cast<uint64_t>((*r.pipeline_statistics)[p][s])) + "</td>";
+      } else {
+        out += "<td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">unavailable: " +
+               h(r.run.pipeline_statistics_missing.empty() ? "not recorded" : r.run.pipeline_statistics_missing) +
+               "</td>";
+      }
+      out += "</tr>\n";
+    }
+    double gpu = metric_median(r, "gpu_ms");
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\"><i>passes together</i></td><td>" +
+           report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">" +
+           (gpu > 0 ? report_number(100.0 * sum / gpu, 0) + "% of the frame's GPU time (" + report_number(gpu, 3) + " ms)"
+                    : std::string("the frame's GPU time is not known")) +
+           "</td></tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
+std::string percentile_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
+                    "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    const std::vector<double>& ms = run.result.samples.frame_ms;
+    auto over = [&](double budget) { return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; }); };
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(ms.size()) + "</td><td>" +
+           report_number(median_frame_ms(ms), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
+           report_number(quantile(ms, 0.99), 3) + "</td><td>" + report_number(*std::max_element(ms.begin(), ms.end()), 3) + "</td><td>" +
+           std::to_string(over(kBudgetsMs[0])) + "</td><td>" + std::to_string(over(kBudgetsMs[1])) + "</td></tr>\n";
+  }
+  return out + "</table>\n";
+}
+
+std::string modes_table(const std::vector<ReportRun>& runs) {
+  std::string out = "<table><tr><th class=\"name\">run</th><th>characters</th><th>threads</th><th>median frame ms</th>"
+                    "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
+  std::map<size_t, double> first;  // per crowd size: the first run's median
+  for (const ReportRun& run : runs) {
+    size_t n = run.result.run.characters;
+    double median = quantile(run.result.samples.frame_ms, 0.5);
+    double reference = first.emplace(n, median).first->second;
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(n) + "</td><td>" +
+           std::to_string(run.result.run.threads) + "</td><td>" + report_number(median, 3) + "</td><td>" +
+           (median > 0 ? report_number(reference / median, 2) + "x" : "-") + "</td><td class=\"name\">" +
+           h(run.result.digest) + "</td></tr>\n";
+  }
+  return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";
+}
+
+// A p-value as the text reports print it: below 1e-4 in scientific notation,
+// never "0.0000", which reads as impossible.
+std::string p_text(double p) {
+  char text[32];
+  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
+  return text;
+}
+
+std::string check_section(const CheckSection& check, std::string& charts) {
+  const CheckResult& r = check.result;
+  std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
+  std::string out = "<section id=\"check\"><h2>" + std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) + ": " + verdict + "</h2>\n";
+  SvgDocument svg;
+  svg.add(verdict_chart(r, check.options));
+  charts += "v";
+  out += svg.inline_svg();
+  out += "<table><tr><th class=\"name\">metric</th><th>baseline median</th><th>current median</th><th>change</th>"
+         "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
+  VerdictChart rows = verdict_chart(r, check.options);
+  for (size_t m = 0; m < r.metrics.size(); ++m) {
+    const MetricCheck& metric = r.metrics[m];
+    // Milliseconds, or "probes" for the calibrated frame (a ratio).
+    const std::string unit = " " + metric.value_unit;
+    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + metric_value_text(metric, metric.baseline.median) +
+           unit + "</td><td>" + metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
+           (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
+           "</td><td>" + (metric.tested ? p_text(metric.p_adjusted) : "-") + "</td><td>" +
+           metric_value_text(metric, metric.floor_ms) + unit +
+           "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
+  }
+  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
+         "significance level " + report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
+  const bool digests_equal = r.baseline_digest == r.current_digest;
+  if (r.counters.empty() && r.counters_missing.empty() && digests_equal) out += "Counters and digest match the baseline.";
+  else if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs())
+    out += "Counters match the baseline; digest " + h(r.digest_note()) + ".";
+  for (const CounterDifference& d : r.counters)
+    out += "<span class=\"regression\">Counter " + h(d.name) + " changed: " + std::to_string(d.baseline) + " &#8594; " +
+           std::to_string(d.current) + " per frame.</span><br>";
+  for (const std::string& name : r.counters_missing)
+    out += "<span class=\"regression\">Counter " + h(name) + " is in the baseline, missing here.</span><br>";
+  if (r.digest_differs())
+    out += "<span class=\"regression\">Digest changed: " + h(r.baseline_digest) + " &#8594; " + h(r.current_digest) +
+           "</span>";
+  else if (r.digest_not_comparable() && !(r.counters.empty() && r.counters_missing.empty()))
+    out += "Digest " + h(r.digest_note()) + ".";
+  return out + "</p></section>\n";
+}
+
+}  // namespace
+
+void require_png(const std::string& bytes, const std::string& path) {
+  static const std::string kSignature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 33 || bytes.compare(0, 8, kSignature) != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    throw InputError(path, "not a PNG image");
+}
+
+void add_result_document(HtmlReportInput& input, const json& doc, const std::string& source) {
+  std::string kind = document_kind(doc);
+  if (kind != "bench" && kind != "compare" && kind != "capacity")
+    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check, compare and capacity --json");
+  // A capacity search holds a comparison's runs (one per mode, at its
+  // capacity) and sweep (every size it tried).
+  for (Result& run : bench_results_in(doc, source)) input.runs.push_back({"", std::move(run), source});
+  if (kind == "bench") return;
+  add_sweep(input, doc, source);
+  if (kind == "capacity") input.capacity = read_capacity(doc, source);
+  if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
+      doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
+    input.sweep_budget_ms = doc["budget_ms"].get<double>();
+}
+
+void add_result(HtmlReportInput& input, Result result, const std::string& source) {
+  input.runs.push_back({"", std::move(result), source});
+}
+
+void add_result_file(HtmlReportInput& input, const std::string& path) {
+  add_result_document(input, read_json_file(path), path);
+  input.sources.push_back(path);
+}
+
+std::string html_report(const HtmlReportInput& given) {
+  HtmlReportInput input = given;
+  if (input.runs.empty()) throw UsageError("a report needs at least one result");
+  label_runs(input.runs);
+  ModeColours colours;
+  for (const ReportRun& run : input.runs) colours.colour(run.label);  // in order, before any chart asks
+  const Result& first = input.runs.front().result;
+  std::string caption = scene_caption(first);
+  // Named by the files it was made from, so that several reports open side
+  // by side (tabs, a CI's artifacts) tell themselves apart.
+  std::string from;
+  for (size_t s = 0; s < std::min<size_t>(input.sources.size(), 2); ++s)
+    from += (s ? ", " : " of ") + file_name(input.sources[s]);
+  if (input.sources.size() > 2) from += " and " + std::to_string(input.sources.size() - 2) + " more";
+  std::string title = "crowdprof report" + from + ": " + caption +
+                      (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
+                                            input.capacity->metric
+                       : input.check  ? ", " + input.check->command
+                       : !input.command.empty() ? ", " + input.command
+                       : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs"
+                                               : ", " + input.runs.front().label);
+  std::string charts;  // one letter per chart, for the count the page checks
+  std::string body;
+  body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";
+  if (!input.sources.empty()) {
+    body += "From ";
+    for (size_t s = 0; s < input.sources.size(); ++s) body += (s ? ", " : "") + h(input.sources[s]);
+    body += ". ";
+  }
+  body += "Made by crowdprof " + h(first.environment.version) +
+          "; one file, no network needed.</p>\n";
+  if (input.capacity) body += capacity_section(*input.capacity);
+  if (input.check) body += check_section(*input.check, charts);
+  body += headline_section(input.runs);
+  body += profile_section(input.runs);
+  body += gpu_passes_section(input.runs);
+
+  SvgDocument frame_svg;
+  frame_svg.add(frame_time_chart(input.runs, colours));
+  charts += "f";
+  body += "<section id=\"frame-time\"><h2>Frame time per frame</h2>\n" + frame_svg.inline_svg() + percentile_table(input.runs) +
+          "</section>\n";
+
+  body += "<section id=\"categories\"><h2>Categories per frame</h2>\n";
+  for (const ReportRun& run : input.runs) {
+    SvgDocument svg;
+    svg.add(categories_chart(run));
+    charts += "c";
+    body += svg.inline_svg();
+  }
+  body += "</section>\n";
+
+  if (input.runs.size() > 1) {
+    SvgDocument svg;
+    svg.add(modes_chart(input.runs));
+    charts += "m";
+    if (std::optional<LineChart> costs = cost_error_chart(input.runs, colours)) {
+      svg.add(*costs);
+      charts += "e";
+    }
+    body += "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
+  }
+
+  std::vector<SweepPoint> sweep = input.sweep;
+  std::set<size_t> sizes;
+  for (const ReportRun& run : input.runs) sizes.insert(run.result.run.characters);
+  if (sweep.empty() && sizes.size() > 1)
+    for (const ReportRun& run : input.runs)
+      sweep.push_back({run.result.run.mode, run.result.run.characters, quantile(run.result.samples.frame_ms, 0.5)});
+  if (!sweep.empty()) {
+    SvgDocument svg;
+    std::string character = first.run.character;
+    svg.add(sweep_chart(sweep, input.sweep_axis, character, colours, input.sweep_budget_ms));
+    charts += "s";
+    body += std::string("<section id=\"sweep\"><h2>") +
+            (input.sweep_axis == SweepAxis::Passes ? "Passes sweep" : "Crowd size sweep") + "</h2>\n" +
+            svg.inline_svg() + "</section>\n";
+  }
+
+  body += environment_section(input.runs);
+  if (!input.screenshot_png.empty())
+    body += "<section id=\"screenshot\"><h2>Screenshot (the last frame)</h2>\n<img class=\"screenshot\" alt=\"the last "
+            "frame drawn\" src=\"data:image/png;base64," + base64(input.screenshot_png) + "\"></section>\n";
+
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
+         "content=\"width=device-width, initial-scale=1\">\n<title>" + h(title) + "</title>\n" + kErrorHook +
+         "<style>" + kStyle + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
+         kSelfCheck + "</body>\n</html>\n";
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,79 @@
+// The HTML report: one self-contained page (inline SVG charts, inline CSS and
+// a small inline script, no network, no external font) that a person opens
+// from a CI artifact store or an e-mail. It holds the BGE table, frame time per
+// frame with the 16.7 and 33.3 ms budgets and p50/p95/p99, the categories
+// stacked per frame, the modes side by side and the sweep for several results,
+// check's verdict per metric, the environment and the screenshot (docs/report.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "gate/regression.h"
+#include "reports/report_charts.h"
+
+namespace crowdprof {
+
+struct CheckSection {
+  CheckResult result;
+  CheckOptions options;
+  std::string baseline;  // the baseline's path, as given
+  std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
+};
+
+// What a capacity search found (capacity --json), the page's lead.
+struct CapacitySection {
+  double budget_ms = 0;
+  std::string metric;  // "frame" or a category
+  size_t start = 0;
+  double precision = 0;  // the search stops when over - fits <= max(1, precision x fits)
+  size_t frames_per_point = 0, warmup = 0;
+  struct Row {
+    std::string mode;
+    size_t threads = 0;
+    std::optional<size_t> fits;  // the largest crowd within the budget (none: not even the smallest)
+    double fits_ms = 0;
+    std::optional<size_t> over;  // the smallest crowd found over it (none: the cap fits)
+    double over_ms = 0;
+    size_t cap = 0;
+  };
+  std::vector<Row> rows;
+};
+
+struct HtmlReportInput {
+  std::vector<std::string> sources;  // files the report was made from, named under the title
+  std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
+  std::vector<SweepPoint> sweep;     // compare --sweep; empty: from the runs when they span crowd sizes
+  SweepAxis sweep_axis = SweepAxis::Characters;
+  std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
+  std::optional<CheckSection> check;
+  std::optional<CapacitySection> capacity;
+  std::string command;  // what made the page ("diff"), named in its title when no check or capacity is
+  std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
+};
+
+// Adds a result read from `path`: a bench result (bench or check --json) or a
+// comparison (compare --json, its runs and sweep). InputError naming the file
+// when it is not crowdprof's, truncated, of another format or incomplete.
+void add_result_file(HtmlReportInput& input, const std::string& path);
+
+// The same for a document made in this process or read by the caller
+// (`source` names it in errors).
+void add_result_document(HtmlReportInput& input, const nlohmann::json& doc, const std::string& source);
+
+// A bench result already read (or made in this process).
+void add_result(HtmlReportInput& input, Result result, const std::string& source);
+
+// InputError naming `path` unless `bytes` are a PNG (its signature and IHDR).
+void require_png(const std::string& bytes, const std::string& path);
+
+// The page. Each chart is an inline <svg> (svg_chart.h's data attributes); the
+// script at the end counts what the browser drew of each chart and writes
+// "ok N charts" or what differs into <body data-report-check>, and any script
+// error into <html data-js-errors>.
+std::string html_report(const HtmlReportInput& input);
+
+}  // namespace crowdprof

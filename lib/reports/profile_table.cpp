@@ -1,0 +1,304 @@
+#include "reports/profile_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "measuring/stats.h"
+#include "base/number_text.h"
+#include "result/result_codec.h"
+#include "reports/text_table.h"
+
+namespace crowdprof {
+
+namespace {
+
+std::vector<double> frame_ms(const std::vector<FrameRecord>& frames) {
+  std::vector<double> out;
+  for (const FrameRecord& f : frames) out.push_back(f.times.total_ms());
+  return out;
+}
+
+// The frames' GPU times that were measured (NaN: not).
+std::vector<double> gpu_ms(const std::vector<FrameRecord>& frames) {
+  std::vector<double> out;
+  for (const FrameRecord& f : frames)
+    if (std::isfinite(f.gpu_ms)) out.push_back(f.gpu_ms);
+  return out;
+}
+
+// A median GPU time the timer cannot tell from nothing (render/gpu_timer.h).
+bool below_timer_resolution(double median_ms, const RunDescription& run) {
+  return run.gpu_timer_resolution_ms > 0 && median_ms < run.gpu_timer_resolution_ms;
+}
+
+// "0.00125": a small number with its 3 significant digits.
+std::string significant(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+// "8.93ms", or below 0.01 ms "4.2us": a small time never reads 0.00.
+std::string short_time(double ms) {
+  char text[32];
+  if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
+  else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
+  return text;
+}
+
+// The frame's GPU time by pass (median of the frames split), the passes'
+// sum against the median GPU time, and each pass's pipeline statistics.
+std::string format_gpu_passes(const RunReport& report, const std::vector<double>& gpu) {
+  const RunDescription& run = report.run;
+  std::array<std::vector<double>, kGpuPassCount> ms;
+  std::array<std::array<std::vector<double>, kPipelineStatCount>, kGpuPassCount> stats;
+  for (const FrameRecord& f : report.frames) {
+    if (!f.gpu_passes.timed()) continue;
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      ms[p].push_back(f.gpu_passes.ms[p]);
+      for (size_t s = 0; f.gpu_passes.has_stats() && s < kPipelineStatCount; ++s)
+        stats[p][s].push_back(f.gpu_passes.stats[p][s]);
+    }
+  }
+  if (ms[0].empty()) return {};
+  const uint32_t passes = run.switches.passes;
+  std::string out = "GPU passes : ";
+  const GpuPassMedians medians = gpu_pass_medians(ms, passes);
+  const double sum = medians.sum;
+  for (size_t p = 0; p < kGpuPassCount; ++p) {
+    if (!pass_drawn(static_cast<GpuPass>(p), passes)) continue;
+    out += std::string(p == 0 ? "" : " | ") + std::string(kGpuPassNames[p]) + " " +
+           (medians.median[p] ? short_time(*medians.median[p]) : std::string("n/a"));
+  }
+  double gpu_median = gpu.empty() ? 0 : summarize(gpu).median;
+  if (gpu_median > 0 && !below_timer_resolution(gpu_median, run))
+    out += "   medians; together " + fixed(100.0 * sum / gpu_median, 0) + "% of the GPU time";
+  else
+    out += "   medians; the GPU time is below the timer's resolution: not a measurement";
+  out += "\n";
+  if (stats[0][0].empty()) {
+    out += "Pipeline statistics: unavailable (" +
+           (run.pipeline_statistics_missing.empty() ? std::string("not read back") : run.pipeline_statistics_missing) +
+           ")\n";
+    return out;
+  }
+  std::vector<std::vector<std::string>> rows = {{"per frame (median)"}};
+  for (size_t p = 0; p < kGpuPassCount; ++p)
+    if (pass_drawn(static_cast<GpuPass>(p), passes)) rows[0].emplace_back(kGpuPassNames[p]);
+  for (size_t s = 0; s < kPipelineStatCount; ++s) {
+    std::string name(kPipelineStatNames[s]);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    rows.push_back({name});
+    for (size_t p = 0; p < kGpuPassCount; ++p)
+      if (pass_drawn(static_cast<GpuPass>(p), passes))
+        rows.back().push_back(with_thousands(static_cast<uint64_t>(quantile(stats[p][s], 0.5))));
+  }
+  return out + "Pipeline statistics (ARB_pipeline_statistics_query):\n" + align_columns(rows, {0});
+}
+
+}  // namespace
+
+std::string format_drawn_error(const DrawnErrorRecord& e) {
+  std::ostringstream out;
+  out << "drawn error against exact full-detail poses: max " << fixed(e.max * 1000.0, 2) << " mm ("
+      << fixed(e.max_fraction * 100.0, 3) << "% of height, " << fixed(e.max_px, 2) << " px), RMS "
+      << fixed(e.rms * 1000.0, 2) << " mm (" << fixed(e.rms_px, 2) << " px) over " << e.copies_checked
+      << " copies on screen" << (e.copy_stride > 1 ? " (one in " + std::to_string(e.copy_stride) + ")" : "") << ", "
+      << e.copies_deviating << " drawn inexactly";
+  if (e.mesh_max > 0) out << ", mesh levels up to " << fixed(e.mesh_max * 1000.0, 2) << " mm of it";
+  out << "; " << fixed(e.switches_per_second, 1) << " rate switches/s\n";
+  return out.str();
+}
+
+std::string format_culling_audit(const CullingAuditRecord& c) {
+  std::ostringstream out;
+  out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies
+      << " copies" << (c.copy_stride > 1 ? " (one in " + std::to_string(c.copy_stride) + ")" : std::string()) << " in "
+      << fixed(c.ms, 0) << " ms; " << c.in_view
+      << " in view, " << c.outside << " outside" << (c.undecided ? ", " + std::to_string(c.undecided) + " undecided" : "")
+      << "):";
+  for (size_t b = 0; b < c.boxes.size(); ++b) {
+    const CullBoxRecord& box = c.boxes[b];
+    std::string name = box.box;
+    std::replace(name.begin(), name.end(), '_', '-');
+    out << (b ? " |" : "") << " " << name << (box.box == "every_action" ? " (this run's)" : "") << " "
+        << box.false_culls << " false culls, " << box.missed_culls << " missed, slack " << fixed(box.slack_mean, 2) << "x";
+  }
+  out << "\n";
+  return out.str();
+}
+
+std::string format_profile(const RunReport& report) {
+  std::ostringstream out;
+  const RunDescription& run = report.run;
+  if (report.frames.empty())
+    return report.partial ? "no frames measured: interrupted during the warm-up\n" : "no frames measured\n";
+  const FrameRecord& frame = report.frames[median_frame(report.frames)];
+  double total = frame.times.total_ms();
+  char line[160];
+  std::snprintf(line, sizeof line, "Frametime : %8.2fms (%.1ffps)   median of %zu frames\n", total,
+                total > 0 ? 1000.0 / total : 0.0, report.frames.size());
+  out << line;
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    double ms = frame.times.ms[c];
+    double share = total > 0 ? ms / total : 0.0;
+    std::string name(category_name(static_cast<Category>(c)));
+    std::string bar(static_cast<size_t>(share * 40.0 + 0.5), '|');
+    std::snprintf(line, sizeof line, "%-11s: %8.2fms | %3.0f%%%s%s\n", name.c_str(), ms, share * 100.0,
+                  bar.empty() ? "" : " ", bar.c_str());  // no trailing blank for diff-friendly output
+    out << line;
+  }
+  // The GPU's own time, from timer queries: beside the categories, not one of
+  // them (GPU Latency stays the CPU's wait in finish). Never a made-up zero.
+  std::vector<double> gpu = gpu_ms(report.frames);
+  if (!gpu.empty() && below_timer_resolution(summarize(gpu).median, run))
+    std::snprintf(line, sizeof line, "%-11s: %8s     below the timer's resolution (%s ms): not a measurement\n",
+                  "GPU time", "-", significant(run.gpu_timer_resolution_ms).c_str());
+  else if (!gpu.empty())
+    std::snprintf(line, sizeof line, "%-11s: %10s   median of %zu frames, GL timer queries (beside the frame)\n",
+                  "GPU time", short_time(summarize(gpu).median).c_str(), gpu.size());
+  else
+    std::snprintf(line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
+                  (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
+                                                   : run.gpu_timing_missing).c_str());
+  out << line;
+  out << format_gpu_passes(report, gpu);
+  // The slow frames, which a median hides: a game stutters on its p99.
+  std::vector<double> totals = frame_ms(report.frames);
+  Summary s = summarize(totals);
+  // (The median is Frametime's, above: one median per run.)
+  std::snprintf(line, sizeof line, "Slow frames: p95 %.2f | p99 %.2f | max %.2f ms\n", s.p95, s.p99,
+                s.max);
+  out << line;
+  const Counters& k = frame.counters;
+  if (run.crowd.size() > 1)
+    out << run.characters << " characters of " << run.crowd.size() << " kinds (up to " << run.joints << " joints, "
+        << run.vertices << " vertices) | mode ";
+  else
+    out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode ";
+  out
+      << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
+      << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
+      << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
+      << " lookups per frame\n";
+  if (run.backend != "none" || k.copies_fallback > 0) {
+    out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
+        << " bytes uploaded per frame";
+    if (k.gpu_palette_bytes > 0) out << " | " << k.gpu_palette_bytes << " bytes of palettes on the GPU";
+    if (k.copies_fallback > 0)
+      out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";
+    out << "\n";
+  }
+  if (run.gpu_memory) {
+    const GpuMemoryRecord& m = *run.gpu_memory;
+    auto mib = [](uint64_t bytes) { return with_thousands(bytes >> 20) + " MiB"; };
+    out << "GPU memory ";
+    if (m.total_bytes) out << mib(*m.total_bytes) << (m.free_bytes ? ", " : "");
+    if (m.free_bytes) out << mib(*m.free_bytes) << " free";
+    if (!m.total_bytes && !m.free_bytes) out << "unknown (the GL has neither NVX_gpu_memory_info nor ATI_meminfo)";
+    else out << " (" << m.source << ")";
+    out << " | largest storage block " << mib(m.max_storage_block_bytes) << "\n";
+  }
+  if (run.gpu_skinning) {
+    const GpuSkinningRecord& g = *run.gpu_skinning;
+    out << "skinning " << g.skinning << " | " << g.gpu_bytes << " bytes on the GPU";
+    if (g.bake) {
+      std::snprintf(line, sizeof line,
+                    " | baked at %g Hz (%llu samples) in %.1f ms | largest vertex deviation from exact sampling %.3g "
+                    "model units, %.3f%% of the character's height",
+                    g.bake->rate_hz, static_cast<unsigned long long>(g.bake->samples), g.bake->bake_ms,
+                    g.bake->max_deviation, 100.0 * g.bake->max_deviation_fraction);
+      out << line;
+    }
+    out << "\n";
+  }
+  if (run.crowd.size() > 1) {
+    // As wide as the longest name, up to 48 (a generated character's gen command); longer ones keep their end.
+    int width = 28;
+    for (const CharacterRun& c : run.crowd) width = std::max(width, static_cast<int>(std::min<size_t>(c.file.size(), 48)));
+    const auto w = static_cast<size_t>(width);
+    std::snprintf(line, sizeof line, "%-*s %6s %6s %8s %9s %6s %6s %16s %9s\n", width, "file", "copies", "joints",
+                  "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
+    out << line;
+    for (const CharacterRun& c : run.crowd) {
+      const Counters& n = c.counters;
+      std::string label = c.file.size() > w ? "..." + c.file.substr(c.file.size() - (w - 3)) : c.file;
+      std::snprintf(line, sizeof line, "%-*s %6zu %6zu %8zu %9llu %6llu %6llu %16llu %9llu\n", width, label.c_str(),
+                    c.copies, c.joints, c.vertices, static_cast<unsigned long long>(n.copies_visible),
+                    static_cast<unsigned long long>(n.copies_culled), static_cast<unsigned long long>(n.poses_updated),
+                    static_cast<unsigned long long>(n.vertices_skinned),
+                    static_cast<unsigned long long>(n.copies_fallback));
+      out << line;
+    }
+  }
+  out << "actions " << run.action_choice;
+  if (run.action_choice == "scene") {
+    out << " file (";
+    for (size_t c = 0; c < run.crowd.size(); ++c) out << (c ? ", " : "") << run.crowd[c].action_choice;
+    out << ", seed " << run.seed << ")";
+  }
+  if (run.action_choice == "random") out << " (seed " << run.seed << ")";
+  else if (!run.action.empty()) out << " (" << run.action << ")";
+  out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
+      << " fps simulated | digest " << report.digest << "\n";
+  if (report.animation) {
+    const AnimationRecord& a = *report.animation;
+    out << "animation: " << k.poses_updated << " poses evaluated for " << k.copies_updated << " copies updated, "
+        << k.copies_held << " held | rates (copies every 1/2/4/8/16/32/64 frames):";
+    for (uint64_t count : a.copies_by_rate) out << " " << count;
+    out << " | longest gap " << a.longest_gap_frames << " frames | deviation " << fixed(a.max_deviation, 4) << " ("
+        << fixed(a.deviation_fraction_of_height * 100.0, 2) << "% of height) over " << a.copies_checked
+        << " copies on screen\n";
+  }
+  if (report.mesh_lod) {
+    const MeshLodRecord& m = *report.mesh_lod;
+    out << "mesh LOD: copies on screen by level (0: full mesh)";
+    for (size_t l = 0; l < m.copies.size(); ++l) out << (l ? " / " : " ") << m.copies[l];
+    out << " | error by level";
+    for (size_t l = 1; l < m.copies.size(); ++l)
+      out << (l > 1 ? " / " : " ") << fixed(m.error[l] * 1000.0, 2) << " mm (" << fixed(m.error_fraction[l] * 100.0, 2)
+          << "% of height" << (m.copies[l] ? ", " + fixed(m.error_px[l], 2) + " px" : std::string()) << ")";
+    out << "\n";
+  }
+  if (report.drawn_error) out << format_drawn_error(*report.drawn_error);
+  if (report.culling_audit) out << format_culling_audit(*report.culling_audit);
+  if (report.partial)
+    out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
+        << " frames; the figures above are of those\n";
+  return out.str();
+}
+
+std::string csv_header() {
+  std::string header = "frame,mode,characters,threads,frame_ms";
+  for (size_t c = 0; c < kCategoryCount; ++c) {
+    header += ',';
+    header += category_column(static_cast<Category>(c));
+    header += "_ms";
+  }
+  for (const CounterField& field : kCounterFields) {
+    header += ',';
+    header += field.name;
+  }
+  // Appended after the counters, as columns never move: GL timer queries, n/a
+  // when not measured; then the CPU time of every thread in the frame (check's
+  // default metric).
+  header += ",gpu_ms,cpu_ms";
+  return header;
+}
+
+void write_csv(const RunReport& report, std::ostream& out) {
+  out << csv_header() << "\n";
+  for (size_t i = 0; i < report.frames.size(); ++i) {
+    const FrameRecord& f = report.frames[i];
+    out << i << "," << report.run.mode << "," << report.run.characters << "," << report.run.threads << ","
+        << fixed(f.times.total_ms(), 4);
+    for (double ms : f.times.ms) out << "," << fixed(ms, 4);
+    for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
+    out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a")) << "," << fixed(f.cpu_ms, 4);
+    out << "\n";
+  }
+}
+
+}  // namespace crowdprof

@@ -1,0 +1,45 @@
+#include "reports/summary_csv.h"
+
+#include "base/number_text.h"
+#include "measuring/stats.h"
+
+namespace crowdprof {
+
+namespace {
+
+// A field as CSV writes it: quoted when it holds a comma or a quote (a mode
+// named with switches: master+lod-thresholds=0.3,0.2,0.1).
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+std::string summary_csv_header() {
+  return "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,cpu_median_ms,"
+         "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes";
+}
+
+void write_summary_csv(const std::vector<const RunReport*>& runs, std::ostream& out) {
+  out << summary_csv_header() << "\n";
+  for (const RunReport* report : runs) {
+    std::vector<double> frame, cpu;
+    for (const FrameRecord& f : report->frames) {
+      frame.push_back(f.times.total_ms());
+      cpu.push_back(f.cpu_ms);
+    }
+    // A rate per median; empty where the median is 0 (no frames), never inf.
+    auto rate = [](double median_ms) { return median_ms > 0 ? fixed(1000.0 / median_ms, 2) : std::string(); };
+    Summary f = summarize(frame), c = summarize(cpu);
+    out << csv_field(report->run.mode) << "," << report->run.characters << "," << report->run.threads << ","
+        << report->frames.size() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
+        << rate(f.median) << "," << fixed(c.median, 4) << "," << fixed(c.p95, 4) << "," << fixed(c.p99, 4) << ","
+        << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes
+        << "\n";
+  }
+}
+
+}  // namespace crowdprof
