@@ -74,7 +74,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   run.stop = &interrupt_requested();
   run.count_instructions = outputs.count_instructions;
   run.calibrate = outputs.calibrate;
-  RunReport report = run_bench(crowd, spec.file, run);
+  Result report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
   if (prints_on_stdout(options.quiet,
@@ -86,7 +86,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
     write_text(summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv({&report}, out); });
   if (!gbench_json.empty())
     write_text(gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document({&report}).dump(2) << "\n"; });
-  if (!options.json.empty()) write_result_file(options.json, "JSON", make_result(report));
+  if (!options.json.empty()) write_result_file(options.json, "JSON", report);
   if (tracer) write_text(options.trace, "trace", [&](std::ostream& out) { tracer->write(out); });
   if (tracer && tracer->dropped())
     std::cerr << "crowdprof: note: " << options.trace << " holds the first " << tracer->max_spans() << " spans; "
@@ -94,7 +94,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   if (report.partial) {
     bool wrote = !options.csv.empty() || !options.json.empty() || !options.trace.empty() || !summary_csv.empty() ||
                  !gbench_json.empty();
-    std::cerr << "crowdprof: interrupted: " << report.frames.size() << " of " << report.frames_planned
+    std::cerr << "crowdprof: interrupted: " << report.frames() << " of " << report.frames_planned
               << " frames measured" << (wrote ? ", and written as a partial result" : "") << "\n";
     return kExitInterrupted;
   }
@@ -104,7 +104,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   }
   if (!options.html.empty()) {
     HtmlReportInput input;
-    add_result(input, make_result(report), "this run");
+    add_result(input, report, "this run");
     if (!options.screenshot.empty()) input.screenshot_png = read_png(options.screenshot);
     write_html_report(options.html, std::move(input));
   }

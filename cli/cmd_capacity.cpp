@@ -131,7 +131,7 @@ int capacity(CapacityCliOptions& o) {
   if (!o.summary_csv.empty())
     write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
       // Each mode at its capacity: the largest crowd that fit.
-      std::vector<const RunReport*> rows;
+      std::vector<const Result*> rows;
       for (const ModeCapacity& mode : result.modes)
         if (mode.fit_run) rows.push_back(&*mode.fit_run);
       write_summary_csv(rows, out);

@@ -113,7 +113,7 @@ void require_recorded_action(const CheckCliOptions& o, const Character& characte
                                    "' is not one of " + o.bench.spec.file + "'s (" + names + ")");
 }
 
-RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label) {
+Result run_bench_report(CheckCliOptions& o, const std::string& progress_label) {
   BenchScene scene;
   try {
     scene = load_bench_scene(o.bench.spec);
@@ -134,7 +134,7 @@ RunReport run_bench_report(CheckCliOptions& o, const std::string& progress_label
   install_interrupt_handlers();
   run.stop = &interrupt_requested();
   run.calibrate = o.calibrate;
-  RunReport report = run_bench(bench, o.bench.spec.file, run);
+  Result report = run_bench(bench, o.bench.spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
   return report;
@@ -334,9 +334,9 @@ std::optional<Result> measure(CheckCliOptions& o, const CheckPlan& plan, const s
         plan.runs > 1 ? "check, run " + std::to_string(i) + " of " + std::to_string(plan.runs) : "check";
     auto run_started = i == 1 ? start : std::chrono::steady_clock::now();
     json doc = run_in_child_process([&] {
-      RunReport report = run_bench_report(o, label);
+      Result report = run_bench_report(o, label);
       if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
-      Result result = make_result(report);
+      Result result = report;
       result.pid = static_cast<int64_t>(::getpid());
       return result_to_json(result);
     });

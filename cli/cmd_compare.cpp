@@ -121,7 +121,7 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
   return run;
 }
 
-std::vector<RunReport> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
+std::vector<Result> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
                                  const std::string& what) {
   std::vector<CrowdBench*> benches;
   for (auto& bench : modes.benches) benches.push_back(bench.get());
@@ -130,8 +130,8 @@ std::vector<RunReport> run_modes(ModeRun& modes, const BenchCliOptions& o, size_
   run.warmup = o.spec.warmup;
   run.progress = terminal_progress(o.quiet, what);
   run.stop = &interrupt_requested();
-  std::vector<RunReport> reports = run_interleaved(benches, o.spec.file, run, block);
-  for (RunReport& report : reports) {
+  std::vector<Result> reports = run_interleaved(benches, o.spec.file, run, block);
+  for (Result& report : reports) {
     report.run.backend = rendering.backend_name();
     report.run.renderer = rendering.renderer_name();
   }
@@ -215,7 +215,7 @@ int compare(CompareCliOptions& o) {
       if (by_passes) config.mode.passes = static_cast<uint32_t>(n);
     ModeRun point = make_benches(scene, at_point, by_passes ? copies : n, named, false);
     std::string label = by_passes ? "sweep passes=" + std::to_string(n) : "sweep n=" + std::to_string(n);
-    std::vector<RunReport> reports = run_modes(point, o.bench, comparison.block, rendering, label + ", " + modes_text + ",");
+    std::vector<Result> reports = run_modes(point, o.bench, comparison.block, rendering, label + ", " + modes_text + ",");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
@@ -225,9 +225,9 @@ int compare(CompareCliOptions& o) {
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
   // The main run's modes, then the sweep's other points.
-  std::vector<const RunReport*> rows;
-  for (const RunReport& report : comparison.runs) rows.push_back(&report);
-  for (const RunReport& report : comparison.sweep)
+  std::vector<const Result*> rows;
+  for (const Result& report : comparison.runs) rows.push_back(&report);
+  for (const Result& report : comparison.sweep)
     if (!is_main_point(comparison, report)) rows.push_back(&report);
   if (!o.summary_csv.empty()) write_text(o.summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv(rows, out); });
   if (!o.gbench_json.empty())
@@ -249,7 +249,7 @@ int compare(CompareCliOptions& o) {
   if (partial) {
     bool wrote = !o.bench.csv.empty() || !o.bench.json.empty() || !o.svg.empty() || !o.trace.empty() ||
                  !o.bench.html.empty() || !o.summary_csv.empty() || !o.gbench_json.empty();
-    std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frames.size() << " of "
+    std::cerr << "crowdprof: interrupted: " << comparison.runs.front().frame_records.size() << " of "
               << comparison.runs.front().frames_planned << " frames per mode measured"
               << (wrote ? ", and written as a partial result" : "")
               << (sweep.points.empty() ? "" : "; the sweep was not run") << "\n";

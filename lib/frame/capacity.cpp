@@ -93,9 +93,9 @@ std::optional<CapacityMetric> parse_capacity_metric(const std::string& text) {
   return std::nullopt;
 }
 
-CapacityPoint capacity_point(const RunReport& report, const CapacityMetric& metric, size_t n, size_t round) {
+CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric, size_t n, size_t round) {
   std::vector<double> values, frames;
-  for (const FrameRecord& f : report.frames) {
+  for (const FrameRecord& f : report.frame_records) {
     frames.push_back(f.times.total_ms());
     values.push_back(metric.category ? f.times[*metric.category] : f.times.total_ms());
   }
@@ -108,7 +108,7 @@ CapacityPoint capacity_point(const RunReport& report, const CapacityMetric& metr
   p.min_ms = s.min;
   p.max_ms = s.max;
   p.frame_median_ms = summarize(frames).median;
-  p.frames = report.frames.size();
+  p.frames = report.frame_records.size();
   p.round = round;
   p.partial = report.partial;
   p.digest = report.digest;
@@ -126,7 +126,7 @@ CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& 
         ns.push_back(n);
       }
     if (active.empty()) break;
-    std::vector<RunReport> reports = measure(active, ns);
+    std::vector<Result> reports = measure(active, ns);
     bool partial = false;
     for (size_t k = 0; k < active.size() && k < reports.size(); ++k) {
       ModeCapacity& mode = modes[active[k]];

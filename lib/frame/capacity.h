@@ -21,7 +21,7 @@
 
 #include "base/errors.h"
 
-#include "result/run_report.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
@@ -74,12 +74,12 @@ struct ModeCapacity {
   CapacityResult result;
   // What was measured at result.fit and at result.fail (the reports, for the
   // HTML page and the JSON's "runs").
-  std::optional<RunReport> fit_run, fail_run;
+  std::optional<Result> fit_run, fail_run;
 };
 
 // Measures a round: every mode still searching, `ns[m]` copies for mode
 // `modes[m]` (indices into the run's modes), side by side; one report per mode, in order.
-using CapacityMeasure = std::function<std::vector<RunReport>(std::span<const size_t> modes, std::span<const size_t> ns)>;
+using CapacityMeasure = std::function<std::vector<Result>(std::span<const size_t> modes, std::span<const size_t> ns)>;
 
 // The metric of a report's frames: the frame time, or one category's.
 struct CapacityMetric {
@@ -91,14 +91,14 @@ struct CapacityMetric {
 std::optional<CapacityMetric> parse_capacity_metric(const std::string& text);
 
 // The point a report measured at N.
-CapacityPoint capacity_point(const RunReport& report, const CapacityMetric& metric, size_t n, size_t round);
+CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric, size_t n, size_t round);
 
 struct CapacityRun {
   std::vector<ModeCapacity> modes;
   CapacityMetric metric;
   size_t block = 10, frames = 0, warmup = 0;  // of every point (set by the caller, for the report)
   bool partial = false;  // a round was cut short (^C): the results are what was found before it
-  std::optional<RunReport> first;  // the first report measured, for the run's description
+  std::optional<Result> first;  // the first report measured, for the run's description
 };
 
 // Runs every mode's search, one round of measurements at a time, until each

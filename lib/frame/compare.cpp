@@ -21,16 +21,16 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
                    " of memory; this machine has " + mib(available) + " available (compare fewer modes or copies)");
 }
 
-std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
+std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
                                        const RunOptions& options, size_t block) {
   block = std::max<size_t>(block, 1);
-  std::vector<RunReport> reports(benches.size());
+  std::vector<Result> reports(benches.size());
   Environment environment = current_environment();
   for (size_t b = 0; b < benches.size(); ++b) {
     reports[b].run = describe_run(*benches[b], file);
     reports[b].run.warmup = options.warmup;
     reports[b].environment = environment;
-    reports[b].frames.reserve(options.frames);
+    reports[b].frame_records.reserve(options.frames);
     reports[b].frames_planned = options.frames;
   }
   size_t per_bench = options.warmup + options.frames;
@@ -39,7 +39,7 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
     size_t end = std::min(per_bench, start + block);
     if (options.stop && options.stop->load()) {
       // Stopped between rounds: every mode has the same frames so far.
-      for (RunReport& report : reports) report.partial = true;
+      for (Result& report : reports) report.partial = true;
       break;
     }
     for (size_t b = 0; b < benches.size(); ++b) {
@@ -47,27 +47,20 @@ std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, con
       benches[b]->restart_clock();
       for (size_t i = start; i < end; ++i) {
         FrameRecord record = benches[b]->step();
-        if (i >= options.warmup) reports[b].frames.push_back(record);
-        place_gpu_times(*benches[b], options.warmup, reports[b].frames);
+        if (i >= options.warmup) reports[b].frame_records.push_back(record);
+        place_gpu_times(*benches[b], options.warmup, reports[b].frame_records);
         if (options.progress) options.progress(++done, total);
       }
       // The block's last frames: their timer queries are done before the next
       // mode draws (with one renderer for all modes, its queries are shared).
       benches[b]->collect_gpu_times();
-      place_gpu_times(*benches[b], options.warmup, reports[b].frames);
+      place_gpu_times(*benches[b], options.warmup, reports[b].frame_records);
     }
   }
   for (size_t b = 0; b < benches.size(); ++b) {
-    reports[b].digest = benches[b]->digest();
-    reports[b].digest_cpu_vertices = !benches[b]->gpu_skinned();
-    reports[b].stores = benches[b]->streams_output() ? "streaming" : "regular";
-    record_character_counters(*benches[b], reports[b].run);
-    record_animation(*benches[b], reports[b]);
-    record_mesh_lod(*benches[b], reports[b]);
-    record_drawn_error(*benches[b], reports[b]);
     // Every mode culls the same crowd from the same camera: one audit serves all.
-    if (b == 0) record_culling_audit(*benches[b], reports[b]);
-    else reports[b].culling_audit = reports[0].culling_audit;
+    finish_run(*benches[b], reports[b], b == 0);
+    if (b > 0) reports[b].culling_audit = reports[0].culling_audit;
   }
   return reports;
 }

@@ -11,7 +11,7 @@
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
-#include "result/run_report.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
@@ -24,7 +24,7 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
 // of one before the next (warm-up included, so each mode's caches are equally
 // cold after the others ran). progress, if set, counts frames of all benches.
 // One report per bench, in order, as run_bench would give.
-std::vector<RunReport> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
+std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
                                        const RunOptions& options, size_t block);
 
 }  // namespace crowdprof

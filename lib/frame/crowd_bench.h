@@ -23,6 +23,7 @@
 #include "frame/update_plan.h"
 #include "measuring/category_clock.h"
 #include "measuring/counters.h"
+#include "result/result.h"
 #include "scene/camera.h"
 #include "scene/crowd.h"
 #include "scene/culling_audit.h"
@@ -60,46 +61,6 @@ struct BenchConfig {
   // reads frame f's Animations time as replay_animations_ms[(f - 1) % size]
   // instead of the clock's, so its choices (and the digest) are reproducible.
   std::vector<double> replay_animations_ms;
-};
-
-// How faithfully a run's copies followed their exact times (issue 13): the
-// largest distance between a vertex as drawn and where the copy's exact time
-// would put it, over every copy on screen in the last frame.
-struct AnimationFidelity {
-  double max_deviation = 0;        // model units (the character's own space)
-  double deviation_fraction = 0;   // of that copy's character's height
-  size_t copies_checked = 0;       // copies on screen that were compared
-  size_t copies_deviating = 0;     // of those, copies whose time drawn was not their exact time
-};
-
-// Mesh LOD (issue 29): the copies on screen at one level and what the level
-// costs in fidelity. The error is meshoptimizer's estimate of the level's
-// distance from the full surface (bind pose; 0 at level 0), the worst
-// character's (a level no character has: 0): in model units, as a share of
-// that character's height, and in screen pixels at the largest copy drawn at
-// the level (0 when none is).
-struct MeshLevelFidelity {
-  uint64_t copies = 0;
-  double error = 0, error_fraction = 0, error_px = 0;
-};
-
-// What a run's savings cost in fidelity (issue 29 item 2): the last frame's
-// copies on screen as drawn (the pose they show: shared, held by update-rate
-// LOD or the budget, a baked blend; at their mesh level) against their exact,
-// full-detail pose. Per drawn vertex: its distance from the same vertex posed
-// exactly, plus its level's error (the level's distance from the full surface:
-// meshoptimizer's estimate, or for a file's own levels the surface distance
-// measured at load; 0 at level 0). Float positions: packed vertices'
-// quantisation is not in it.
-struct DrawnError {
-  uint64_t copies_checked = 0;    // copies on screen compared
-  uint64_t copies_deviating = 0;  // of those, drawn other than exactly
-  uint64_t vertices = 0;          // drawn vertices compared
-  size_t copy_stride = 1;         // every copy_stride-th copy on screen was compared
-  double max = 0, rms = 0;                    // model units
-  double max_fraction = 0, rms_fraction = 0;  // of each copy's character's height
-  double max_px = 0, rms_px = 0;              // pixels of the frame's height, at each copy's size
-  double mesh_max = 0;  // the largest level error among them (model units)
 };
 
 // Empty when a bench of this config can run, else why not: switches that
@@ -161,20 +122,24 @@ class CrowdBench {
   size_t storage_of(size_t copy) const { return planner_->storage_of(copy); }
   // Share of the screen's height the copy's box spans (screen_size.h).
   float screen_fraction(size_t copy) const { return planner_->screen_fraction(copy); }
-  // Exact times against what the last frame drew; skins every copy on screen
-  // twice, so it is for the end of a run (allocates, takes time).
-  AnimationFidelity measure_fidelity() const;
-  // The last frame against exact, full-detail poses (DrawnError), on a
+  // How updates were scheduled (sharing, update-rate LOD, the budget) and how
+  // faithfully the last frame's copies on screen followed their exact times:
+  // the largest distance between a vertex as drawn and where the copy's exact
+  // time would put it. Skins every copy on screen twice, so it is for the end
+  // of a run (allocates, takes time).
+  AnimationRecord measure_animation() const;
+  // The last frame against exact, full-detail poses (DrawnErrorRecord, its
+  // switches_per_second left to who knows the measured frames), on a
   // screen `screen_height_px` tall; at most `max_copies` copies (fewer for
   // meshes over 5,000 vertices: 2e8 vertices skinned at most; every Nth past
   // that), in parallel on the bench's threads. For the end of a run.
-  DrawnError measure_drawn_error(int screen_height_px, size_t max_copies = 40000) const;
+  DrawnErrorRecord measure_drawn_error(int screen_height_px, size_t max_copies = 40000) const;
   const UpdateSchedule& schedule() const { return planner_->schedule(); }
   // Mesh LOD: the level copy `copy` draws (0, the full mesh, without it).
   size_t mesh_level(size_t copy) const { return level_of(copy); }
-  // Mesh LOD: per level, the copies on screen and the error they are drawn
-  // with, on a screen `screen_height_px` tall; all zero without mesh LOD.
-  std::array<MeshLevelFidelity, kMeshLevels> mesh_lod_fidelity(int screen_height_px) const;
+  // Mesh LOD: per level (kMeshLevels), the copies on screen and the error they
+  // are drawn with, on a screen `screen_height_px` tall; all zero without mesh LOD.
+  MeshLodRecord mesh_lod_fidelity(int screen_height_px) const;
   // The culling audit (scene/culling_audit.h): at most `max_copy_frames` copy
   // poses (fewer for meshes over 5,000 vertices: 2e8 vertices skinned at
   // most), up to 16 poses a copy spread over the longest action (every
@@ -204,7 +169,7 @@ class CrowdBench {
   // This frame's time of a copy on its action's clock (from the Logic stage).
   float action_time(size_t copy) const { return store_->times[copy]; }
   // What baking cost and how far it strays (mode baked; zeros otherwise).
-  const BakeSummary& bake_summary() const { return bake_summary_; }
+  const BakeRecord& bake_summary() const { return bake_summary_; }
   // What the renderer said it holds on the GPU for this bench's mode when it
   // prepared for it (FrameRenderer::animation_gpu_bytes); 0 without one.
   uint64_t animation_gpu_bytes() const { return animation_gpu_bytes_; }
@@ -259,7 +224,7 @@ class CrowdBench {
   Frustum frustum_;
   std::vector<glm::mat4> shadow_cameras_;  // passes > 2: one per cascade
   std::vector<PreparedCharacter> prepared_;  // per character; immutable once made
-  BakeSummary bake_summary_;
+  BakeRecord bake_summary_;
   std::unique_ptr<CopyStore> store_;
   std::unique_ptr<UpdatePlanner> planner_;
   std::unique_ptr<PoseUpdater> poser_;

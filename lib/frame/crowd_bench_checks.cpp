@@ -5,6 +5,7 @@
 #include "animation/run_job.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -23,8 +24,12 @@
 
 namespace crowdprof {
 
-AnimationFidelity CrowdBench::measure_fidelity() const {
-  AnimationFidelity fidelity;
+AnimationRecord CrowdBench::measure_animation() const {
+  AnimationRecord fidelity;
+  const UpdateSchedule& plan = schedule();
+  fidelity.copies_by_rate.assign(plan.copies_by_rate.begin(), plan.copies_by_rate.end());
+  fidelity.longest_gap_frames = plan.longest_gap;
+  fidelity.budget_demotions = plan.demotions;
   std::vector<float> heights;
   for (const Character* character : characters_) heights.push_back(standing_of(*character).height);
   ExactPalette reference;
@@ -50,7 +55,7 @@ AnimationFidelity CrowdBench::measure_fidelity() const {
       worst = std::max(worst, static_cast<double>(glm::distance(drawn[v], exact[v])));
     fidelity.max_deviation = std::max(fidelity.max_deviation, worst);
     double height = heights[crowd_.kind[i]];
-    if (height > 0) fidelity.deviation_fraction = std::max(fidelity.deviation_fraction, worst / height);
+    if (height > 0) fidelity.deviation_fraction_of_height = std::max(fidelity.deviation_fraction_of_height, worst / height);
   }
   return fidelity;
 }
@@ -65,7 +70,7 @@ size_t checked_copies(std::span<const Character* const> characters, size_t limit
   return std::max<size_t>(1, std::min(limit, vertex_budget / largest));
 }
 
-// One copy's share of DrawnError.
+// One copy's share of the drawn error.
 struct CopyError {
   bool checked = false, deviating = false;
   uint64_t vertices = 0;
@@ -80,8 +85,8 @@ struct ErrorScratch {
 
 }  // namespace
 
-DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copies) const {
-  DrawnError error;
+DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copies) const {
+  DrawnErrorRecord error;
   if (frame_ == 0) return error;
   // The last frame's exact clock (frustum gpu keeps no times on the CPU).
   const double seconds = static_cast<double>(frame_ - 1) / config_.fps;
@@ -172,9 +177,11 @@ DrawnError CrowdBench::measure_drawn_error(int screen_height_px, size_t max_copi
   return error;
 }
 
-std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int screen_height_px) const {
-  std::array<MeshLevelFidelity, kMeshLevels> levels{};
-  if (mesh_level_.empty()) return levels;
+MeshLodRecord CrowdBench::mesh_lod_fidelity(int screen_height_px) const {
+  MeshLodRecord record;
+  record.levels.resize(kMeshLevels);
+  std::vector<MeshLevelRecord>& levels = record.levels;
+  if (mesh_level_.empty()) return record;
   // Each level's error, the worst character's, whether or not a copy is at it.
   for (size_t k = 0; k < characters_.size(); ++k) {
     const float height = standing_of(*characters_[k]).height;
@@ -188,7 +195,7 @@ std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int scr
   for (size_t i = 0; i < crowd_.size(); ++i) {
     if (!store_->visible[i]) continue;
     const size_t k = crowd_.kind[i], level = mesh_level_[i];
-    MeshLevelFidelity& f = levels[level];
+    MeshLevelRecord& f = levels[level];
     ++f.copies;
     if (level == 0) continue;
     const double error = prepared_[k].mesh_lods[level - 1].error;
@@ -199,10 +206,11 @@ std::array<MeshLevelFidelity, kMeshLevels> CrowdBench::mesh_lod_fidelity(int scr
     if (box_height > 0)
       f.error_px = std::max(f.error_px, error * screen_height_fraction(view_projection, box) * screen_height_px / box_height);
   }
-  return levels;
+  return record;
 }
 
 CullingAudit CrowdBench::audit_culling(size_t max_copy_frames) const {
+  const auto start = std::chrono::steady_clock::now();
   const size_t n = crowd_.size();
   if (n == 0) return {};
   // 40,000 poses of the humanoid are 2e8 vertices: no more for a bigger mesh.
@@ -223,7 +231,9 @@ CullingAudit CrowdBench::audit_culling(size_t max_copy_frames) const {
     for (size_t i = 0; i < n; ++i) times[i] = copy_time(i, seconds);
     auditor.add_frame(times, threads->arena.get());
   }
-  return auditor.audit();
+  CullingAudit audit = auditor.audit();
+  audit.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return audit;
 }
 
 namespace {

@@ -54,9 +54,9 @@ std::vector<SkinMatrix> rest_palette(const Character& character) {
   return palette;
 }
 
-BakeSummary bake_characters(std::span<const Character* const> characters, float rate_hz,
-                            std::span<PreparedCharacter> prepared) {
-  BakeSummary summary;
+BakeRecord bake_characters(std::span<const Character* const> characters, float rate_hz,
+                           std::span<PreparedCharacter> prepared) {
+  BakeRecord summary;
   summary.rate_hz = rate_hz;
   for (size_t k = 0; k < characters.size(); ++k) {
     const Character& character = *characters[k];
@@ -76,8 +76,8 @@ BakeSummary bake_characters(std::span<const Character* const> characters, float 
     }
     summary.samples += p.baked.samples();
     BakeDeviation d = measure_bake_deviation(character, targets, p.baked, p.skinning_plan);
-    summary.max_deviation = std::max(summary.max_deviation, d.model_units);
-    summary.max_deviation_fraction = std::max(summary.max_deviation_fraction, d.fraction_of_height());
+    summary.max_deviation = std::max(summary.max_deviation, static_cast<double>(d.model_units));
+    summary.max_deviation_fraction = std::max(summary.max_deviation_fraction, static_cast<double>(d.fraction_of_height()));
   }
   return summary;
 }

@@ -18,6 +18,7 @@
 #include "scene/bounds.h"
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
@@ -51,19 +52,12 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
                                                   std::span<const Aabb> boxes, const ModeSwitches& mode,
                                                   size_t max_gpu_joints);
 
-// What baking cost and how far it strays (mode baked; zeros otherwise).
-struct BakeSummary {
-  float rate_hz = 0.0f;
-  double bake_ms = 0.0;                 // BakeJob over every action of every character
-  float max_deviation = 0.0f;           // model units, the worst character
-  float max_deviation_fraction = 0.0f;  // of that character's height, the worst character
-  uint64_t samples = 0;                 // baked palettes, all characters
-};
-
 // Mode baked, at load: bakes every character's actions at `rate_hz` into
 // prepared[k].baked (a character without actions: its rest palette twice, one
 // interval, so the shader's table has one shape) and measures the deviation.
-BakeSummary bake_characters(std::span<const Character* const> characters, float rate_hz,
+// Returns what baking cost and how far it strays (result/result.h BakeRecord:
+// the worst character's deviation; bake_ms over every action of every character).
+BakeRecord bake_characters(std::span<const Character* const> characters, float rate_hz,
                             std::span<PreparedCharacter> prepared);
 
 // A character's skinning matrices in its rest pose. Allocates.

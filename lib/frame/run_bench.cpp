@@ -108,10 +108,7 @@ RunDescription describe_run(const CrowdBench& bench, const std::string& file) {
   run.scene_hash = config.scene_hash;
   if (s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) {
     GpuSkinningRecord g{std::string(to_string(s.skinning)), bench.animation_gpu_bytes(), std::nullopt};
-    if (s.skinning == SkinningSite::Baked) {
-      const BakeSummary& b = bench.bake_summary();
-      g.bake = BakeRecord{b.rate_hz, b.samples, b.bake_ms, b.max_deviation, b.max_deviation_fraction};
-    }
+    if (s.skinning == SkinningSite::Baked) g.bake = bench.bake_summary();
     run.gpu_skinning = g;
   }
   return run;
@@ -123,69 +120,31 @@ void record_character_counters(const CrowdBench& bench, RunDescription& run) {
   run.gpu_timer_resolution_ms = bench.gpu_timer_resolution_ms();  // measured on the first frame drawn
 }
 
-void record_animation(const CrowdBench& bench, RunReport& report) {
+void record_animation(const CrowdBench& bench, Result& report) {
   const ModeSwitches& s = bench.config().mode;
-  if (!s.share_poses && !s.update_lod && s.anim_budget_ms <= 0) return;
-  AnimationFidelity fidelity = bench.measure_fidelity();
-  const UpdateSchedule& schedule = bench.schedule();
-  AnimationRecord a;
-  a.copies_by_rate.assign(schedule.copies_by_rate.begin(), schedule.copies_by_rate.end());
-  a.longest_gap_frames = schedule.longest_gap;
-  a.budget_demotions = schedule.demotions;
-  a.max_deviation = fidelity.max_deviation;
-  a.deviation_fraction_of_height = fidelity.deviation_fraction;
-  a.copies_checked = fidelity.copies_checked;
-  a.copies_deviating = fidelity.copies_deviating;
-  report.animation = a;
+  if (s.share_poses || s.update_lod || s.anim_budget_ms > 0) report.animation = bench.measure_animation();
 }
 
-void record_mesh_lod(const CrowdBench& bench, RunReport& report) {
-  if (!bench.config().mode.mesh_lod) return;
-  MeshLodRecord m;
-  for (const MeshLevelFidelity& f : bench.mesh_lod_fidelity(resolution_size(bench.config().resolution).second)) {
-    m.copies.push_back(f.copies);
-    m.error.push_back(f.error);
-    m.error_fraction.push_back(f.error_fraction);
-    m.error_px.push_back(f.error_px);
-  }
-  report.mesh_lod = std::move(m);
+void record_mesh_lod(const CrowdBench& bench, Result& report) {
+  if (bench.config().mode.mesh_lod)
+    report.mesh_lod = bench.mesh_lod_fidelity(resolution_size(bench.config().resolution).second);
 }
 
-void record_drawn_error(const CrowdBench& bench, RunReport& report) {
-  const DrawnError e = bench.measure_drawn_error(resolution_size(bench.config().resolution).second);
+void record_drawn_error(const CrowdBench& bench, Result& report) {
+  DrawnErrorRecord e = bench.measure_drawn_error(resolution_size(bench.config().resolution).second);
   if (e.copies_checked == 0) return;
   // Over the measured frames, as every figure of the run: the warm-up's first,
   // slow frames demote copies the frames after it promote again.
   uint64_t switches = 0;
-  for (const FrameRecord& frame : report.frames) switches += frame.rate_switches;
-  const double seconds = static_cast<double>(report.frames.size()) / bench.config().fps;
-  report.drawn_error = DrawnErrorRecord{e.copies_checked,
-                                        e.copies_deviating,
-                                        e.vertices,
-                                        e.copy_stride,
-                                        e.max,
-                                        e.rms,
-                                        e.max_fraction,
-                                        e.rms_fraction,
-                                        e.max_px,
-                                        e.rms_px,
-                                        e.mesh_max,
-                                        seconds > 0 ? static_cast<double>(switches) / seconds : 0.0};
+  for (const FrameRecord& frame : report.frame_records) switches += frame.rate_switches;
+  const double seconds = static_cast<double>(report.frame_records.size()) / bench.config().fps;
+  e.switches_per_second = seconds > 0 ? static_cast<double>(switches) / seconds : 0.0;
+  report.drawn_error = e;
 }
 
-void record_culling_audit(const CrowdBench& bench, RunReport& report) {
-  const auto start = std::chrono::steady_clock::now();
-  const CullingAudit audit = bench.audit_culling();
-  if (audit.copies == 0) return;
-  CullingAuditRecord c{audit.frames, audit.copies, audit.copy_stride, audit.in_view, audit.outside, audit.undecided, {},
-                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
-  for (size_t b = 0; b < kCullBoxes; ++b) {
-    const CullBoxAudit& a = audit.boxes[b];
-    c.boxes.push_back(CullBoxRecord{std::string(cull_box_name(static_cast<CullBox>(b))), a.drawn, a.false_culls,
-                                    a.missed_culls, a.worst_frame_false_culls, a.worst_frame_missed_culls, a.slack_mean,
-                                    a.slack_max});
-  }
-  report.culling_audit = std::move(c);
+void record_culling_audit(const CrowdBench& bench, Result& report) {
+  CullingAudit audit = bench.audit_culling();
+  if (audit.copies > 0) report.culling_audit = audit;
 }
 
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames) {
@@ -200,19 +159,25 @@ void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRe
     }
 }
 
-RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {
-  RunReport report;
+Result run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options) {
+  Result report;
   report.run = describe_run(bench, file);
   report.run.warmup = options.warmup;
   report.environment = current_environment();
   size_t total = options.warmup + options.frames;
-  report.frames.reserve(options.frames);
+  std::vector<FrameRecord>& frames = report.frame_records;
+  frames.reserve(options.frames);
   report.frames_planned = options.frames;
   InstructionCounter instructions;
   if (options.count_instructions) {
     instructions = InstructionCounter::open();
-    report.instruction_source = instruction_source_name(instructions.source());
-    if (instructions.source() == InstructionSource::None) report.instruction_problem = instructions.why_none();
+    // What a stored instruction baseline must match to be compared.
+    InstructionRecord& i = report.instructions.emplace();
+    i.source = instruction_source_name(instructions.source());
+    if (instructions.source() == InstructionSource::None) i.problem = instructions.why_none();
+    i.threads = report.run.threads;
+    i.simd = report.environment.simd;
+    i.compiler = report.environment.compiler;
   }
   std::unique_ptr<CalibrationProbe> probe;
   if (options.calibrate)
@@ -232,26 +197,31 @@ RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions
       record.probe_ms = probe->run();
       bench.restart_clock();  // the probe's time is not the next frame's Outside
     }
-    if (measured) report.frames.push_back(record);
-    place_gpu_times(bench, options.warmup, report.frames);
+    if (measured) frames.push_back(record);
+    place_gpu_times(bench, options.warmup, frames);
     if (options.progress) options.progress(i + 1, total);
   }
   if (instructions.failed()) {
-    report.instruction_source = "none";
-    report.instruction_problem = "a read of the hardware counter failed";
+    report.instructions->source = "none";
+    report.instructions->problem = "a read of the hardware counter failed";
   }
   bench.collect_gpu_times();
-  place_gpu_times(bench, options.warmup, report.frames);
-  report.digest = bench.digest();
-  report.digest_cpu_vertices = !bench.gpu_skinned();
+  place_gpu_times(bench, options.warmup, frames);
   if (probe) report.calibration_probe = kCalibrationProbeVersion;
-  report.stores = bench.streams_output() ? "streaming" : "regular";
-  record_character_counters(bench, report.run);
-  record_animation(bench, report);
-  record_mesh_lod(bench, report);
-  record_drawn_error(bench, report);
-  record_culling_audit(bench, report);
+  finish_run(bench, report, true);
   return report;
+}
+
+void finish_run(const CrowdBench& bench, Result& result, bool audit_culling) {
+  result.digest = bench.digest();
+  result.digest_cpu_vertices = !bench.gpu_skinned();
+  result.stores = bench.streams_output() ? "streaming" : "regular";
+  record_character_counters(bench, result.run);
+  record_animation(bench, result);
+  record_mesh_lod(bench, result);
+  record_drawn_error(bench, result);
+  if (audit_culling) record_culling_audit(bench, result);
+  record_samples(result);
 }
 
 }  // namespace crowdprof

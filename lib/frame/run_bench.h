@@ -1,4 +1,4 @@
-// A whole benchmark run: warm-up, measured frames, and the report.
+// A whole benchmark run: warm-up, measured frames, and its result.
 #pragma once
 
 #include <atomic>
@@ -7,7 +7,7 @@
 
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
-#include "result/run_report.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
@@ -47,17 +47,25 @@ void check_fits_in_memory(std::span<const Character* const> characters, const Be
 
 // With sharing, update-rate LOD or a budget: report.animation from the
 // bench's schedule and its fidelity measured on the last frame (docs/formats.md).
-void record_animation(const CrowdBench& bench, RunReport& report);
+void record_animation(const CrowdBench& bench, Result& report);
 // With mesh LOD: the copies per level and the error each is drawn with.
-void record_mesh_lod(const CrowdBench& bench, RunReport& report);
+void record_mesh_lod(const CrowdBench& bench, Result& report);
 // The culling audit of the bench's crowd and camera (any mode: it poses the
 // copies exactly itself); nothing for an empty crowd.
-void record_culling_audit(const CrowdBench& bench, RunReport& report);
+void record_culling_audit(const CrowdBench& bench, Result& report);
 // The last frame's drawn error against exact, full-detail poses (any mode: an
 // exact one reports 0, the point a saving is weighed against).
-void record_drawn_error(const CrowdBench& bench, RunReport& report);
+void record_drawn_error(const CrowdBench& bench, Result& report);
 
-RunReport run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
+// Runs options.warmup, then options.frames measured frames, and returns the
+// finished result (finish_run).
+Result run_bench(CrowdBench& bench, const std::string& file, const RunOptions& options);
+
+// Once a bench's frames are in result.frame_records: what the bench learnt
+// over the run (digest, per-character counters, the fidelity checks, the
+// culling audit unless `audit_culling` is false) and the stored samples
+// (record_samples).
+void finish_run(const CrowdBench& bench, Result& result, bool audit_culling);
 
 // Puts the GPU times the bench read in its last step (or collect) into the
 // records of their frames: frame f is frames[f - warmup], when measured.

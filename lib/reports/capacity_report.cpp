@@ -6,6 +6,7 @@
 #include "base/number_text.h"
 #include "reports/text_table.h"
 #include "reports/svg_chart.h"
+#include "result/result_codec.h"
 
 namespace crowdprof {
 
@@ -67,7 +68,7 @@ std::string format_capacity(const CapacityRun& run) {
 nlohmann::json capacity_to_json(const CapacityRun& run) {
   nlohmann::json j;
   if (run.first) {
-    nlohmann::json first = to_json(*run.first);
+    nlohmann::json first = result_to_json(*run.first);
     j["crowdprof"] = first["crowdprof"];
     j["environment"] = first["environment"];
     j["scene"] = first["scene"];
@@ -97,8 +98,8 @@ nlohmann::json capacity_to_json(const CapacityRun& run) {
     }
     j["modes"].push_back(m);
     // The bench result at the mode's capacity (at the first size over when none fit).
-    const std::optional<RunReport>& run_at = mode.fit_run ? mode.fit_run : mode.fail_run;
-    if (run_at) j["runs"].push_back(to_json(*run_at));
+    const std::optional<Result>& run_at = mode.fit_run ? mode.fit_run : mode.fail_run;
+    if (run_at) j["runs"].push_back(result_to_json(*run_at));
   }
   if (!j.contains("sweep")) j["sweep"] = nlohmann::json::array();
   if (!j.contains("runs")) j["runs"] = nlohmann::json::array();

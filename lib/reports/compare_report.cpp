@@ -14,18 +14,19 @@
 #include "reports/svg_chart.h"
 #include "base/number_text.h"
 #include "reports/text_table.h"
+#include "result/result_codec.h"
 
 namespace crowdprof {
 
 namespace {
 
-std::vector<double> frame_ms(const RunReport& run) {
+std::vector<double> frame_ms(const Result& run) {
   std::vector<double> out;
-  for (const FrameRecord& f : run.frames) out.push_back(f.times.total_ms());
+  for (const FrameRecord& f : run.frame_records) out.push_back(f.times.total_ms());
   return out;
 }
 
-nlohmann::json medians_json(const ModeMedians& m, const RunReport& run, bool with_passes = false) {
+nlohmann::json medians_json(const ModeMedians& m, const Result& run, bool with_passes = false) {
   nlohmann::json categories;
   for (size_t c = 0; c < kCategoryCount; ++c)
     categories[series_name(static_cast<Category>(c))] = m.category_ms[c];
@@ -33,24 +34,24 @@ nlohmann::json medians_json(const ModeMedians& m, const RunReport& run, bool wit
                       {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
                       {"speedup", m.speedup}, {"digest", run.digest}};
   if (with_passes || m.passes != 1) j["passes"] = m.passes;
-  const FrameRecord& median = run.frames.empty() ? FrameRecord{} : run.frames[median_frame(run.frames)];
+  const FrameRecord& median = run.frame_records.empty() ? FrameRecord{} : run.frame_records[median_frame(run.frame_records)];
   for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = median.counters.*field.member;
   return j;
 }
 
 }  // namespace
 
-bool is_main_point(const Comparison& comparison, const RunReport& run) {
+bool is_main_point(const Comparison& comparison, const Result& run) {
   if (comparison.runs.empty()) return false;
   const RunDescription& main = comparison.runs.front().run;
   return comparison.sweep_axis == SweepAxis::Passes ? run.run.switches.passes == main.switches.passes
                                                     : run.run.characters == main.characters;
 }
 
-std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs) {
+std::vector<ModeMedians> mode_medians(const std::vector<Result>& runs) {
   std::vector<ModeMedians> out;
   std::map<std::pair<size_t, uint32_t>, double> first_at_size;  // (characters, passes) -> first mode's median
-  for (const RunReport& run : runs) {
+  for (const Result& run : runs) {
     ModeMedians m;
     m.mode = run.run.mode;
     m.characters = run.run.characters;
@@ -60,7 +61,7 @@ std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs) {
     m.frame_ms = summarize(totals).median;
     for (size_t c = 0; c < kCategoryCount; ++c) {
       std::vector<double> values;
-      for (const FrameRecord& f : run.frames) values.push_back(f.times.ms[c]);
+      for (const FrameRecord& f : run.frame_records) values.push_back(f.times.ms[c]);
       m.category_ms[c] = summarize(values).median;
     }
     auto [first, inserted] = first_at_size.emplace(std::pair(m.characters, m.passes), m.frame_ms);
@@ -101,7 +102,7 @@ std::string format_comparison(const Comparison& comparison) {
   std::vector<std::vector<double>> gpu(comparison.runs.size());
   bool any_gpu = false;
   for (size_t r = 0; r < comparison.runs.size(); ++r) {
-    for (const FrameRecord& f : comparison.runs[r].frames)
+    for (const FrameRecord& f : comparison.runs[r].frame_records)
       if (std::isfinite(f.gpu_ms)) gpu[r].push_back(f.gpu_ms);
     any_gpu = any_gpu || !gpu[r].empty();
   }
@@ -110,7 +111,7 @@ std::string format_comparison(const Comparison& comparison) {
   rows.push_back(header);
   for (size_t r = 0; r < medians.size(); ++r) {
     const ModeMedians& m = medians[r];
-    const RunReport& run = comparison.runs[r];
+    const Result& run = comparison.runs[r];
     std::vector<std::string> row = {m.mode, std::to_string(m.characters), std::to_string(m.threads),
                                     fixed(m.frame_ms, 3)};
     for (Category c : shown) row.push_back(fixed(m.category_ms[static_cast<size_t>(c)], 3));
@@ -121,7 +122,7 @@ std::string format_comparison(const Comparison& comparison) {
       if (!gpu[r].empty() && resolution > 0 && median < resolution) (cell = "<") += fixed(resolution, 4);
       row.push_back(cell);
     }
-    uint64_t culled = run.frames.empty() ? 0 : run.frames[median_frame(run.frames)].counters.copies_culled;
+    uint64_t culled = run.frame_records.empty() ? 0 : run.frame_records[median_frame(run.frame_records)].counters.copies_culled;
     row.push_back(fixed(m.speedup, 2));
     row.push_back(std::to_string(culled));
     row.push_back(run.digest);
@@ -129,7 +130,7 @@ std::string format_comparison(const Comparison& comparison) {
   }
   std::string out = align_columns(rows, {0, rows.front().size() - 1});
   if (!comparison.runs.empty())
-    out += "median of " + std::to_string(comparison.runs.front().frames.size()) + " frames per mode, run in blocks of " +
+    out += "median of " + std::to_string(comparison.runs.front().frame_records.size()) + " frames per mode, run in blocks of " +
            std::to_string(comparison.block) + " frames; speedup_x = " + comparison.runs.front().run.mode +
            "'s frame_ms / the mode's\n";
   out += format_cost_error(comparison_costs(comparison, medians));
@@ -147,16 +148,16 @@ std::string format_comparison(const Comparison& comparison) {
 
 void write_comparison_csv(const Comparison& comparison, std::ostream& out) {
   bool first = true;
-  auto write = [&](const RunReport& run) {
+  auto write = [&](const Result& run) {
     std::ostringstream rows;
     write_csv(run, rows);
     std::string text = rows.str();
     out << (first ? text : text.substr(text.find('\n') + 1));
     first = false;
   };
-  for (const RunReport& run : comparison.runs) write(run);
+  for (const Result& run : comparison.runs) write(run);
   // The sweep's runs at the main point are the main runs: written once.
-  for (const RunReport& run : comparison.sweep)
+  for (const Result& run : comparison.sweep)
     if (!is_main_point(comparison, run)) write(run);
 }
 
@@ -165,7 +166,7 @@ nlohmann::json comparison_to_json(const Comparison& comparison) {
   nlohmann::json runs = nlohmann::json::array(), summary = nlohmann::json::array(), sweep = nlohmann::json::array();
   std::vector<ModeMedians> medians = mode_medians(comparison.runs);
   for (size_t r = 0; r < comparison.runs.size(); ++r) {
-    runs.push_back(to_json(comparison.runs[r]));
+    runs.push_back(result_to_json(comparison.runs[r]));
     summary.push_back(medians_json(medians[r], comparison.runs[r]));
     j["modes"].push_back(medians[r].mode);
   }
@@ -199,7 +200,7 @@ std::string comparison_svg(const Comparison& comparison) {
   }
   LineChart frames{"Frame time per frame" + scene, "frame (0 = the first measured, after " + warmup + " warm-up)",
                    "frame time (ms)", {}, false};
-  for (const RunReport& run : comparison.runs) {
+  for (const Result& run : comparison.runs) {
     LineSeries series{run.run.mode, {}, frame_ms(run), colours.colour(run.run.mode)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
     frames.series.push_back(std::move(series));

@@ -15,8 +15,8 @@
 namespace crowdprof {
 
 struct Comparison {
-  std::vector<RunReport> runs;   // one per mode at the chosen crowd size, in the order asked
-  std::vector<RunReport> sweep;  // every (point, mode) of --sweep, by point then mode; empty without
+  std::vector<Result> runs;   // one per mode at the chosen crowd size, in the order asked
+  std::vector<Result> sweep;  // every (point, mode) of --sweep, by point then mode; empty without
   SweepAxis sweep_axis = SweepAxis::Characters;  // what the sweep's points vary
   size_t block = 10;             // frames per block of the interleaving
 };
@@ -34,11 +34,11 @@ struct ModeMedians {
 };
 
 // Per run, with speedups against the first run of the same size.
-std::vector<ModeMedians> mode_medians(const std::vector<RunReport>& runs);
+std::vector<ModeMedians> mode_medians(const std::vector<Result>& runs);
 
 // Whether `run` of the sweep is at the main runs' point (their size, or their
 // passes): the same run, written once.
-bool is_main_point(const Comparison& comparison, const RunReport& run);
+bool is_main_point(const Comparison& comparison, const Result& run);
 
 // Categories to show: those whose median is at least 0.005 ms (0.00 when
 // printed) in some run.

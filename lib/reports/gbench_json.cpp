@@ -43,17 +43,17 @@ struct Series {
 };
 
 // The frame, then each category with time in some frame.
-std::vector<Series> series_of(const RunReport& report) {
+std::vector<Series> series_of(const Result& report) {
   std::vector<Series> series(1);
   series[0].metric = "frame";
-  for (const FrameRecord& frame : report.frames) {
+  for (const FrameRecord& frame : report.frame_records) {
     series[0].real.push_back(frame.times.total_ms());
     series[0].cpu.push_back(frame.cpu_ms);
   }
   for (size_t c = 0; c < kCategoryCount; ++c) {
     Series category{std::string(category_name(static_cast<Category>(c))), {}, {}};
     bool any = false;
-    for (const FrameRecord& frame : report.frames) {
+    for (const FrameRecord& frame : report.frame_records) {
       category.real.push_back(frame.times.ms[c]);
       any = any || frame.times.ms[c] > 0;
     }
@@ -64,7 +64,7 @@ std::vector<Series> series_of(const RunReport& report) {
   return series;
 }
 
-nlohmann::json entry(const std::string& name, size_t family, size_t repetitions, const RunReport& report) {
+nlohmann::json entry(const std::string& name, size_t family, size_t repetitions, const Result& report) {
   return {{"name", name},
           {"family_index", family},
           {"per_family_instance_index", 0},
@@ -77,10 +77,10 @@ nlohmann::json entry(const std::string& name, size_t family, size_t repetitions,
 
 }  // namespace
 
-nlohmann::json gbench_document(const std::vector<const RunReport*>& runs) {
+nlohmann::json gbench_document(const std::vector<const Result*>& runs) {
   nlohmann::json benchmarks = nlohmann::json::array();
   size_t family = 0;
-  for (const RunReport* report : runs) {
+  for (const Result* report : runs) {
     for (const Series& series : series_of(*report)) {
       uint32_t passes = report->run.switches.passes;
       std::string name = report->run.mode + "/" + report->run.character + "/n:" +

@@ -16,6 +16,6 @@
 namespace crowdprof {
 
 // The document for `runs`, in the order given (a comparison's modes, then its sweep).
-nlohmann::json gbench_document(const std::vector<const RunReport*>& runs);
+nlohmann::json gbench_document(const std::vector<const Result*>& runs);
 
 }  // namespace crowdprof

@@ -50,11 +50,11 @@ std::string short_time(double ms) {
 
 // The frame's GPU time by pass (median of the frames split), the passes'
 // sum against the median GPU time, and each pass's pipeline statistics.
-std::string format_gpu_passes(const RunReport& report, const std::vector<double>& gpu) {
+std::string format_gpu_passes(const Result& report, const std::vector<double>& gpu) {
   const RunDescription& run = report.run;
   std::array<std::vector<double>, kGpuPassCount> ms;
   std::array<std::array<std::vector<double>, kPipelineStatCount>, kGpuPassCount> stats;
-  for (const FrameRecord& f : report.frames) {
+  for (const FrameRecord& f : report.frame_records) {
     if (!f.gpu_passes.timed()) continue;
     for (size_t p = 0; p < kGpuPassCount; ++p) {
       ms[p].push_back(f.gpu_passes.ms[p]);
@@ -112,7 +112,7 @@ std::string format_drawn_error(const DrawnErrorRecord& e) {
   return out.str();
 }
 
-std::string format_culling_audit(const CullingAuditRecord& c) {
+std::string format_culling_audit(const CullingAudit& c) {
   std::ostringstream out;
   out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies
       << " copies" << (c.copy_stride > 1 ? " (one in " + std::to_string(c.copy_stride) + ")" : std::string()) << " in "
@@ -120,26 +120,26 @@ std::string format_culling_audit(const CullingAuditRecord& c) {
       << " in view, " << c.outside << " outside" << (c.undecided ? ", " + std::to_string(c.undecided) + " undecided" : "")
       << "):";
   for (size_t b = 0; b < c.boxes.size(); ++b) {
-    const CullBoxRecord& box = c.boxes[b];
-    std::string name = box.box;
+    const CullBoxAudit& box = c.boxes[b];
+    std::string name(cull_box_name(static_cast<CullBox>(b)));
     std::replace(name.begin(), name.end(), '_', '-');
-    out << (b ? " |" : "") << " " << name << (box.box == "every_action" ? " (this run's)" : "") << " "
+    out << (b ? " |" : "") << " " << name << (static_cast<CullBox>(b) == CullBox::EveryAction ? " (this run's)" : "") << " "
         << box.false_culls << " false culls, " << box.missed_culls << " missed, slack " << fixed(box.slack_mean, 2) << "x";
   }
   out << "\n";
   return out.str();
 }
 
-std::string format_profile(const RunReport& report) {
+std::string format_profile(const Result& report) {
   std::ostringstream out;
   const RunDescription& run = report.run;
-  if (report.frames.empty())
+  if (report.frame_records.empty())
     return report.partial ? "no frames measured: interrupted during the warm-up\n" : "no frames measured\n";
-  const FrameRecord& frame = report.frames[median_frame(report.frames)];
+  const FrameRecord& frame = report.frame_records[median_frame(report.frame_records)];
   double total = frame.times.total_ms();
   char line[160];
   std::snprintf(line, sizeof line, "Frametime : %8.2fms (%.1ffps)   median of %zu frames\n", total,
-                total > 0 ? 1000.0 / total : 0.0, report.frames.size());
+                total > 0 ? 1000.0 / total : 0.0, report.frame_records.size());
   out << line;
   for (size_t c = 0; c < kCategoryCount; ++c) {
     double ms = frame.times.ms[c];
@@ -152,7 +152,7 @@ std::string format_profile(const RunReport& report) {
   }
   // The GPU's own time, from timer queries: beside the categories, not one of
   // them (GPU Latency stays the CPU's wait in finish). Never a made-up zero.
-  std::vector<double> gpu = gpu_ms(report.frames);
+  std::vector<double> gpu = gpu_ms(report.frame_records);
   if (!gpu.empty() && below_timer_resolution(summarize(gpu).median, run))
     std::snprintf(line, sizeof line, "%-11s: %8s     below the timer's resolution (%s ms): not a measurement\n",
                   "GPU time", "-", significant(run.gpu_timer_resolution_ms).c_str());
@@ -166,7 +166,7 @@ std::string format_profile(const RunReport& report) {
   out << line;
   out << format_gpu_passes(report, gpu);
   // The slow frames, which a median hides: a game stutters on its p99.
-  std::vector<double> totals = frame_ms(report.frames);
+  std::vector<double> totals = frame_ms(report.frame_records);
   Summary s = summarize(totals);
   // (The median is Frametime's, above: one median per run.)
   std::snprintf(line, sizeof line, "Slow frames: p95 %.2f | p99 %.2f | max %.2f ms\n", s.p95, s.p99,
@@ -241,7 +241,7 @@ std::string format_profile(const RunReport& report) {
   }
   if (run.action_choice == "random") out << " (seed " << run.seed << ")";
   else if (!run.action.empty()) out << " (" << run.action << ")";
-  out << " | " << report.frames.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
+  out << " | " << report.frame_records.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
   if (report.animation) {
     const AnimationRecord& a = *report.animation;
@@ -255,17 +255,19 @@ std::string format_profile(const RunReport& report) {
   if (report.mesh_lod) {
     const MeshLodRecord& m = *report.mesh_lod;
     out << "mesh LOD: copies on screen by level (0: full mesh)";
-    for (size_t l = 0; l < m.copies.size(); ++l) out << (l ? " / " : " ") << m.copies[l];
+    for (size_t l = 0; l < m.levels.size(); ++l) out << (l ? " / " : " ") << m.levels[l].copies;
     out << " | error by level";
-    for (size_t l = 1; l < m.copies.size(); ++l)
-      out << (l > 1 ? " / " : " ") << fixed(m.error[l] * 1000.0, 2) << " mm (" << fixed(m.error_fraction[l] * 100.0, 2)
-          << "% of height" << (m.copies[l] ? ", " + fixed(m.error_px[l], 2) + " px" : std::string()) << ")";
+    for (size_t l = 1; l < m.levels.size(); ++l) {
+      const MeshLevelRecord& level = m.levels[l];
+      out << (l > 1 ? " / " : " ") << fixed(level.error * 1000.0, 2) << " mm (" << fixed(level.error_fraction * 100.0, 2)
+          << "% of height" << (level.copies ? ", " + fixed(level.error_px, 2) + " px" : std::string()) << ")";
+    }
     out << "\n";
   }
   if (report.drawn_error) out << format_drawn_error(*report.drawn_error);
   if (report.culling_audit) out << format_culling_audit(*report.culling_audit);
   if (report.partial)
-    out << "partial: interrupted after " << report.frames.size() << " of " << report.frames_planned
+    out << "partial: interrupted after " << report.frame_records.size() << " of " << report.frames_planned
         << " frames; the figures above are of those\n";
   return out.str();
 }
@@ -288,10 +290,10 @@ std::string csv_header() {
   return header;
 }
 
-void write_csv(const RunReport& report, std::ostream& out) {
+void write_csv(const Result& report, std::ostream& out) {
   out << csv_header() << "\n";
-  for (size_t i = 0; i < report.frames.size(); ++i) {
-    const FrameRecord& f = report.frames[i];
+  for (size_t i = 0; i < report.frame_records.size(); ++i) {
+    const FrameRecord& f = report.frame_records[i];
     out << i << "," << report.run.mode << "," << report.run.characters << "," << report.run.threads << ","
         << fixed(f.times.total_ms(), 4);
     for (double ms : f.times.ms) out << "," << fixed(ms, 4);

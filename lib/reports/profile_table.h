@@ -6,20 +6,20 @@
 #include <string>
 #include <vector>
 
-#include "result/run_report.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
 // The BGE overlay for the median frame, then a line describing the run.
-std::string format_profile(const RunReport& report);
+std::string format_profile(const Result& report);
 // The culling audit's line under the table: per box, false and missed culls
 // (copy-frames) and its slack.
-std::string format_culling_audit(const CullingAuditRecord& audit);
+std::string format_culling_audit(const CullingAudit& audit);
 // The drawn error's line under the table, in millimetres (model units x 1000).
 std::string format_drawn_error(const DrawnErrorRecord& error);
 
 // Header, then one row per frame (docs/formats.md).
-void write_csv(const RunReport& report, std::ostream& out);
+void write_csv(const Result& report, std::ostream& out);
 std::string csv_header();
 
 

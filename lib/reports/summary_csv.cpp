@@ -23,19 +23,16 @@ std::string summary_csv_header() {
          "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes";
 }
 
-void write_summary_csv(const std::vector<const RunReport*>& runs, std::ostream& out) {
+void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out) {
   out << summary_csv_header() << "\n";
-  for (const RunReport* report : runs) {
-    std::vector<double> frame, cpu;
-    for (const FrameRecord& f : report->frames) {
-      frame.push_back(f.times.total_ms());
-      cpu.push_back(f.cpu_ms);
-    }
+  for (const Result* report : runs) {
+    const std::vector<double>& frame = report->samples.frame_ms;
+    const std::vector<double>& cpu = report->samples.cpu_ms;
     // A rate per median; empty where the median is 0 (no frames), never inf.
     auto rate = [](double median_ms) { return median_ms > 0 ? fixed(1000.0 / median_ms, 2) : std::string(); };
     Summary f = summarize(frame), c = summarize(cpu);
     out << csv_field(report->run.mode) << "," << report->run.characters << "," << report->run.threads << ","
-        << report->frames.size() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
+        << report->frames() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
         << rate(f.median) << "," << fixed(c.median, 4) << "," << fixed(c.p95, 4) << "," << fixed(c.p99, 4) << ","
         << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes
         << "\n";

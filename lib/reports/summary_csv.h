@@ -17,6 +17,6 @@ namespace crowdprof {
 std::string summary_csv_header();
 
 // The header, then a row per run in the order given.
-void write_summary_csv(const std::vector<const RunReport*>& runs, std::ostream& out);
+void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out);
 
 }  // namespace crowdprof

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "measuring/stats.h"
 
@@ -48,4 +49,54 @@ double metric_median(const Result& result, std::string_view key) {
   std::vector<double> measured = finite(*values);
   return measured.empty() ? 0 : summarize(measured).median;
 }
+size_t median_frame(const std::vector<FrameRecord>& frames) {
+  if (frames.empty()) return 0;
+  std::vector<size_t> order(frames.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return frames[a].times.total_ms() < frames[b].times.total_ms();
+  });
+  return order[(order.size() - 1) / 2];
+}
+
+void record_samples(Result& r) {
+  const std::vector<FrameRecord>& frames = r.frame_records;
+  r.samples = ResultSamples{};
+  for (const FrameRecord& f : frames) {
+    r.samples.frame_ms.push_back(f.times.total_ms());
+    r.samples.cpu_ms.push_back(f.cpu_ms);
+    if (r.calibration_probe) r.samples.probe_ms.push_back(f.probe_ms);
+    for (size_t c = 0; c < kCategoryCount; ++c) r.samples.category_ms[c].push_back(f.times.ms[c]);
+  }
+  // GPU times only when a timer measured some frame: never a column of NaN.
+  if (std::any_of(frames.begin(), frames.end(), [](const FrameRecord& f) { return std::isfinite(f.gpu_ms); }))
+    for (const FrameRecord& f : frames) r.samples.gpu_ms.push_back(f.gpu_ms);
+  bool split = std::any_of(frames.begin(), frames.end(), [](const FrameRecord& f) { return f.gpu_passes.timed(); });
+  for (size_t p = 0; split && p < kGpuPassCount; ++p)
+    for (const FrameRecord& f : frames) r.samples.gpu_pass_ms[p].push_back(f.gpu_passes.ms[p]);
+  r.pipeline_statistics.reset();
+  if (std::any_of(frames.begin(), frames.end(), [](const FrameRecord& f) { return f.gpu_passes.has_stats(); })) {
+    auto& medians = r.pipeline_statistics.emplace();
+    for (size_t p = 0; p < kGpuPassCount; ++p)
+      for (size_t s = 0; s < kPipelineStatCount; ++s) {
+        std::vector<double> values;
+        for (const FrameRecord& f : frames)
+          if (f.gpu_passes.has_stats()) values.push_back(f.gpu_passes.stats[p][s]);
+        medians[p][s] = quantile(values, 0.5);
+      }
+  }
+  r.samples.calibrated = calibrated_frames(r.samples.frame_ms, r.samples.probe_ms);
+  for (const CounterField& field : kCounterFields) {
+    std::vector<double> values;
+    for (const FrameRecord& f : frames) values.push_back(static_cast<double>(f.counters.*field.member));
+    r.counters.values.*field.member = static_cast<uint64_t>(quantile(values, 0.5));
+  }
+  r.counters.present.fill(true);
+  if (r.instructions && r.instructions->source == "perf_event") {
+    std::vector<double> counts;
+    for (const FrameRecord& f : frames) counts.push_back(static_cast<double>(f.instructions));
+    r.instructions->per_frame = quantile(counts, 0.5);
+  }
+}
+
 }  // namespace crowdprof

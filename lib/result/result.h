@@ -18,6 +18,7 @@
 #include "measuring/counters.h"
 #include "measuring/environment.h"
 #include "measuring/gpu_passes.h"
+#include "scene/cull_audit.h"
 
 namespace crowdprof {
 
@@ -78,20 +79,27 @@ struct AnimationRecord {
   uint64_t copies_checked = 0, copies_deviating = 0;
 };
 
-// Mesh LOD (issue 29): per level (0: the full mesh), the copies on screen at it
-// in the last frame and the error it is drawn with: meshoptimizer's estimate
-// of the level's distance from the full surface (bind pose), the worst
-// character's, in model units (mm for glTF's metres x 1000), as a share of its
-// height, and in pixels at the largest copy drawn at the level.
+// Mesh LOD (issue 29): one level (0: the full mesh), the copies on screen at it
+// in the last frame and the error it is drawn with: meshoptimizer's estimate of
+// the level's distance from the full surface (bind pose; 0 at level 0), the
+// worst character's (a level no character has: 0), in model units (mm for
+// glTF's metres x 1000), as a share of that character's height, and in pixels
+// at the largest copy drawn at the level (0 when none is).
+struct MeshLevelRecord {
+  uint64_t copies = 0;
+  double error = 0, error_fraction = 0, error_px = 0;
+};
 struct MeshLodRecord {
-  std::vector<uint64_t> copies;
-  std::vector<double> error, error_fraction, error_px;
+  std::vector<MeshLevelRecord> levels;  // one to four
 };
 
-// What the run's savings cost in fidelity (issue 29 item 2; frame/crowd_bench.h's
-// DrawnError): the last frame's copies on screen as drawn against their exact,
-// full-detail pose, per drawn vertex; and how often copies changed their
-// update period (popping), per second of the run.
+// What the run's savings cost in fidelity (issue 29 item 2;
+// CrowdBench::measure_drawn_error): the last frame's copies on screen as drawn
+// (shared, held by update-rate LOD or the budget, a baked blend; at their mesh
+// level) against their exact, full-detail pose, per drawn vertex: its distance
+// from the same vertex posed exactly, plus its level's error. Float positions:
+// packed vertices' quantisation is not in it. And how often copies changed
+// their update period (popping), per second of the run.
 struct DrawnErrorRecord {
   uint64_t copies_checked = 0, copies_deviating = 0, vertices = 0, copy_stride = 1;
   double max = 0, rms = 0;                    // model units (mm = x 1000 for glTF's metres)
@@ -99,22 +107,6 @@ struct DrawnErrorRecord {
   double max_px = 0, rms_px = 0;
   double mesh_max = 0;              // the largest mesh-level error included (model units)
   double switches_per_second = 0;   // changes of update period, all copies
-};
-
-// The culling audit (issue 29): copies posed exactly over `frames` poses and
-// tested vertex by vertex against the frustum, beside what each box strategy
-// decided (scene/culling_audit.h). Counts are of copy-frames.
-struct CullBoxRecord {
-  std::string box;  // bind_pose, every_action (the run's own), own_action or tight
-  uint64_t drawn = 0, false_culls = 0, missed_culls = 0;
-  uint64_t worst_frame_false_culls = 0, worst_frame_missed_culls = 0;
-  double slack_mean = 0, slack_max = 0;  // box volume over the tight box's
-};
-struct CullingAuditRecord {
-  uint64_t frames = 0, copies = 0, copy_stride = 1;
-  uint64_t in_view = 0, outside = 0, undecided = 0;
-  std::vector<CullBoxRecord> boxes;
-  double ms = 0;  // what the audit took, after the run (wall clock)
 };
 
 // The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
@@ -223,7 +215,8 @@ struct Result {
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;
   std::optional<MeshLodRecord> mesh_lod;  // with --mesh-lod on
-  std::optional<CullingAuditRecord> culling_audit;
+  // The culling audit (issue 29), as scene/cull_audit.h records it.
+  std::optional<CullingAudit> culling_audit;
   std::optional<DrawnErrorRecord> drawn_error;
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
@@ -233,9 +226,24 @@ struct Result {
   // The process that measured it, when several were (check --runs, the A/B).
   std::optional<int64_t> pid;
   std::optional<double> started_s, wall_s;
+  // Each measured frame as the bench loop recorded it (per-frame counters: the
+  // CSV's rows and the profile table's median frame), in the process that ran
+  // it; record_samples() makes the stored columns above from them. Not stored:
+  // a result read from a file has none.
+  std::vector<FrameRecord> frame_records;
 
   size_t frames() const { return samples.frame_ms.size(); }
 };
+
+// Fills what a result stores of its frames from result.frame_records, once the
+// run is over: the per-frame samples (GPU times only when a timer measured some
+// frame; the calibrated ratio when the probe ran), the median of each counter
+// and of each pass's pipeline statistics, and the instructions per frame
+// counted by perf_event (callgrind's total is filled in by who ran it).
+void record_samples(Result& result);
+
+// Index of the frame whose time is the median (the lower one for an even count).
+size_t median_frame(const std::vector<FrameRecord>& frames);
 
 // Each frame over its probe: samples.calibrated from frame_ms and probe_ms
 // (empty when either is, or they differ in length; a probe of 0 gives NaN).

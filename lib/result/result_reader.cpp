@@ -412,16 +412,16 @@ void read_extras(const Reader& in, Result& r) {
   }
   if (in.has("/mesh_lod")) {
     in.object("/mesh_lod");
-    MeshLodRecord m;
     auto is_whole = [](const json& v) { return whole(v); };
-    m.copies = in.array_of<uint64_t>("/mesh_lod/copies", is_whole, "an array of copy counts");
-    m.error = in.array_of<double>("/mesh_lod/error", milliseconds, "an array of distances");
-    m.error_fraction = in.array_of<double>("/mesh_lod/error_fraction", milliseconds, "an array of fractions");
-    m.error_px = in.array_of<double>("/mesh_lod/error_px", milliseconds, "an array of pixels");
-    const size_t levels = m.copies.size();
-    in.require(levels >= 1 && levels <= 4 && m.error.size() == levels && m.error_fraction.size() == levels &&
-                   m.error_px.size() == levels,
+    const auto copies = in.array_of<uint64_t>("/mesh_lod/copies", is_whole, "an array of copy counts");
+    const auto error = in.array_of<double>("/mesh_lod/error", milliseconds, "an array of distances");
+    const auto fraction = in.array_of<double>("/mesh_lod/error_fraction", milliseconds, "an array of fractions");
+    const auto px = in.array_of<double>("/mesh_lod/error_px", milliseconds, "an array of pixels");
+    const size_t levels = copies.size();
+    in.require(levels >= 1 && levels <= 4 && error.size() == levels && fraction.size() == levels && px.size() == levels,
                "/mesh_lod", "arrays of one to four levels, all as long");
+    MeshLodRecord m;
+    for (size_t l = 0; l < levels; ++l) m.levels.push_back({copies[l], error[l], fraction[l], px[l]});
     r.mesh_lod = std::move(m);
   }
   if (in.has("/drawn_error")) {
@@ -447,7 +447,7 @@ void read_extras(const Reader& in, Result& r) {
   }
   if (in.has("/culling_audit")) {
     in.object("/culling_audit");
-    CullingAuditRecord c;
+    CullingAudit c;
     c.frames = in.count("/culling_audit/frames");
     c.copies = in.count("/culling_audit/copies");
     c.copy_stride = in.count("/culling_audit/copy_stride");
@@ -457,13 +457,14 @@ void read_extras(const Reader& in, Result& r) {
     c.ms = in.number_or("/culling_audit/ms", 0.0);
     in.require(c.copy_stride >= 1, "/culling_audit/copy_stride", "a whole number, 1 or more");
     in.require(c.ms >= 0, "/culling_audit/ms", "a number, 0 or more");
-    for (const auto& [name, value] : in.object("/culling_audit/boxes").items()) {
-      in.require(name == "bind_pose" || name == "every_action" || name == "own_action" || name == "tight",
-                 "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
+    const json& boxes = in.object("/culling_audit/boxes");
+    in.require(boxes.size() == kCullBoxes, "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
+    for (size_t k = 0; k < kCullBoxes; ++k) {
+      const std::string name(cull_box_name(static_cast<CullBox>(k)));
+      in.require(boxes.contains(name), "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
       const std::string at = "/culling_audit/boxes/" + name;
       in.object(at);
-      CullBoxRecord b;
-      b.box = name;
+      CullBoxAudit& b = c.boxes[k];
       b.drawn = in.count(at + "/drawn");
       b.false_culls = in.count(at + "/false_culls");
       b.missed_culls = in.count(at + "/missed_culls");
@@ -471,9 +472,7 @@ void read_extras(const Reader& in, Result& r) {
       b.worst_frame_missed_culls = in.count(at + "/worst_frame_missed_culls");
       b.slack_mean = in.number(at + "/slack_mean");
       b.slack_max = in.number(at + "/slack_max");
-      c.boxes.push_back(std::move(b));
     }
-    in.require(c.boxes.size() == 4, "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
     r.culling_audit = std::move(c);
   }
   if (in.has("/instructions")) {

@@ -52,7 +52,14 @@ json animation_json(const AnimationRecord& a) {
 }
 
 json mesh_lod_json(const MeshLodRecord& m) {
-  return {{"copies", m.copies}, {"error", m.error}, {"error_fraction", m.error_fraction}, {"error_px", m.error_px}};
+  json copies = json::array(), error = json::array(), fraction = json::array(), px = json::array();
+  for (const MeshLevelRecord& l : m.levels) {
+    copies.push_back(l.copies);
+    error.push_back(l.error);
+    fraction.push_back(l.error_fraction);
+    px.push_back(l.error_px);
+  }
+  return {{"copies", copies}, {"error", error}, {"error_fraction", fraction}, {"error_px", px}};
 }
 
 json drawn_error_json(const DrawnErrorRecord& e) {
@@ -64,16 +71,18 @@ json drawn_error_json(const DrawnErrorRecord& e) {
           {"mesh_max", e.mesh_max},             {"switches_per_second", e.switches_per_second}};
 }
 
-json culling_audit_json(const CullingAuditRecord& c) {
+json culling_audit_json(const CullingAudit& c) {
   json boxes = json::object();
-  for (const CullBoxRecord& b : c.boxes)
-    boxes[b.box] = {{"drawn", b.drawn},
+  for (size_t k = 0; k < kCullBoxes; ++k) {
+    const CullBoxAudit& b = c.boxes[k];
+    boxes[std::string(cull_box_name(static_cast<CullBox>(k)))] = {{"drawn", b.drawn},
                     {"false_culls", b.false_culls},
                     {"missed_culls", b.missed_culls},
                     {"worst_frame_false_culls", b.worst_frame_false_culls},
                     {"worst_frame_missed_culls", b.worst_frame_missed_culls},
                     {"slack_mean", b.slack_mean},
                     {"slack_max", b.slack_max}};
+  }
   return {{"frames", c.frames},   {"copies", c.copies},       {"copy_stride", c.copy_stride},
           {"in_view", c.in_view}, {"outside", c.outside}, {"undecided", c.undecided}, {"boxes", boxes},
           {"ms", c.ms}};

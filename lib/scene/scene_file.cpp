@@ -20,7 +20,7 @@ using nlohmann::json;
 
 // Reports problems as "<file>: <key>: <problem>", the key as a path such as
 // characters[1].count.
-struct Reader {
+struct SceneReader {
   std::string file;
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
@@ -83,7 +83,7 @@ struct Reader {
 
 // "generate": {"bones", "vertices", "seed", "lods", "draco"}, each optional,
 // with gen's defaults and ranges.
-GeneratedCharacter generated_character(const Reader& r, const json& value, const std::string& key) {
+GeneratedCharacter generated_character(const SceneReader& r, const json& value, const std::string& key) {
   r.only_keys(value, key, {"bones", "vertices", "seed", "lods", "draco"});
   GeneratedCharacter g;
   HumanoidOptions& h = g.humanoid;
@@ -95,7 +95,7 @@ GeneratedCharacter generated_character(const Reader& r, const json& value, const
   if (value.contains("seed")) h.seed = static_cast<uint32_t>(r.whole(value["seed"], key + ".seed", 0, 0xffffffffLL));
   if (value.contains("lods")) h.lod_levels = static_cast<int>(r.whole(value["lods"], key + ".lods", 0, 3));
   if (value.contains("draco")) {
-    if (!value["draco"].is_boolean()) r.fail(key + ".draco", "expected true or false, got " + Reader::type_of(value["draco"]));
+    if (!value["draco"].is_boolean()) r.fail(key + ".draco", "expected true or false, got " + SceneReader::type_of(value["draco"]));
     g.draco = value["draco"].get<bool>();
   }
   return g;
@@ -143,7 +143,7 @@ std::string fnv1a64_hex(std::string_view bytes) {
 }
 
 SceneFile load_scene_file(const std::string& path) {
-  Reader r{path};
+  SceneReader r{path};
   std::ifstream in(path, std::ios::binary);
   std::error_code missing;
   if (!in) throw InputError(path, std::filesystem::exists(path, missing) ? "cannot be read" : "no such file");
@@ -163,7 +163,7 @@ SceneFile load_scene_file(const std::string& path) {
   if (!doc.contains("characters")) r.fail("characters", "missing: a scene needs at least one character");
   const json& characters = doc["characters"];
   if (!characters.is_array() || characters.empty())
-    r.fail("characters", "expected a list of at least one character, got " + Reader::type_of(characters));
+    r.fail("characters", "expected a list of at least one character, got " + SceneReader::type_of(characters));
   if (characters.size() > 1000) r.fail("characters", "at most 1,000 characters");
   std::string folder = folder_of(path);
   for (size_t i = 0; i < characters.size(); ++i) {
@@ -207,7 +207,7 @@ SceneFile load_scene_file(const std::string& path) {
         if (!(total > 0)) r.fail(key + ".actions", "weights must not all be zero");
       } else {
         r.fail(key + ".actions", "expected shared, random, or an object of weights by action name, got " +
-                                     Reader::type_of(actions));
+                                     SceneReader::type_of(actions));
       }
     }
     if (entry.contains("action")) {

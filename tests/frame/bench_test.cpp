@@ -10,6 +10,7 @@
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "reports/profile_table.h"
+#include "result/result_codec.h"
 #include "test_support.h"
 #include "characters.h"
 
@@ -162,8 +163,8 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   RunOptions options;
   options.frames = 4;
   options.warmup = 1;
-  RunReport report = run_bench(bench, "humanoid", options);
-  ASSERT_EQ(report.frames.size(), 4u);
+  Result report = run_bench(bench, "humanoid", options);
+  ASSERT_EQ(report.frame_records.size(), 4u);
 
   std::stringstream csv;
   write_csv(report, csv);
@@ -188,7 +189,8 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   }
   EXPECT_EQ(rows, 4);
 
-  nlohmann::json j = nlohmann::json::parse(to_json(report).dump());
+  record_samples(report);
+  nlohmann::json j = nlohmann::json::parse(result_to_json(report).dump());
   EXPECT_EQ(j["mode"], "master");
   EXPECT_EQ(j["frames"], 4);
   ASSERT_EQ(j["samples"]["cpu_ms"].size(), cpu.size());

@@ -182,7 +182,7 @@ TEST(CapacityRun, RoundsMeasureEveryModeStillSearchingSideBySide) {
   for (ModeCapacity& m : modes) m.rule = rule_of(10.0, 4, 1000, 0.0);
   std::vector<std::vector<size_t>> rounds;
   CapacityMeasure measure = [&](std::span<const size_t> active, std::span<const size_t> ns) {
-    std::vector<RunReport> reports;
+    std::vector<Result> reports;
     rounds.emplace_back(ns.begin(), ns.end());
     for (size_t k = 0; k < active.size(); ++k) {
       double per = active[k] == 0 ? 2.0 : 0.5;  // frame ms per character; Animations gets half
@@ -214,9 +214,9 @@ TEST(CapacityRun, RoundsMeasureEveryModeStillSearchingSideBySide) {
   // A round cut short ends the run: its points are kept, marked, and left out.
   size_t calls = 0;
   CapacityMeasure interrupted = [&](std::span<const size_t> active, std::span<const size_t> ns) {
-    std::vector<RunReport> reports = measure(active, ns);
+    std::vector<Result> reports = measure(active, ns);
     if (++calls == 3)
-      for (RunReport& r : reports) r.partial = true;
+      for (Result& r : reports) r.partial = true;
     return reports;
   };
   run = run_capacity(modes, CapacityMetric{}, interrupted);
@@ -373,13 +373,13 @@ TEST(CapacityCli, RefusesBadInputWithOneLine) {
 // the mean of the two middle frames against the lower of them).
 TEST(CapacityReport, APointsMedianIsTheProfileTablesMedianFrame) {
   for (const std::vector<double>& frames : {std::vector<double>{1.0, 2.0, 3.0, 10.0}, std::vector<double>{5.0, 4.0, 9.0}}) {
-    const RunReport report = test::fake_run("threaded", 40, frames, 0.5);
+    const Result report = test::fake_run("threaded", 40, frames, 0.5);
     const CapacityPoint p = capacity_point(report, CapacityMetric{}, 40, 1);
-    const double median_frame_ms = report.frames[median_frame(report.frames)].times.total_ms();
+    const double median_frame_ms = report.frame_records[median_frame(report.frame_records)].times.total_ms();
     EXPECT_DOUBLE_EQ(p.median_ms, median_frame_ms);
     EXPECT_DOUBLE_EQ(p.frame_median_ms, median_frame_ms);
     std::vector<double> totals;
-    for (const FrameRecord& f : report.frames) totals.push_back(f.times.total_ms());
+    for (const FrameRecord& f : report.frame_records) totals.push_back(f.times.total_ms());
     EXPECT_DOUBLE_EQ(quantile(totals, 0.5), median_frame_ms) << "the runs table's median";
     char frametime[64];
     std::snprintf(frametime, sizeof frametime, "Frametime : %8.2fms", median_frame_ms);

@@ -52,18 +52,18 @@ TEST(Compare, ModesRunInBlocksAndEachGetsItsFrames) {
     EXPECT_EQ(done, ++progress);
     EXPECT_EQ(total, 27u);
   };
-  std::vector<RunReport> reports = run_interleaved(benches, "humanoid", options, 3);
+  std::vector<Result> reports = run_interleaved(benches, "humanoid", options, 3);
   ASSERT_EQ(reports.size(), 3u);
   for (size_t m = 0; m < 3; ++m) {
     EXPECT_EQ(reports[m].run.mode, configs[m].mode_name);
-    EXPECT_EQ(reports[m].frames.size(), 7u);
+    EXPECT_EQ(reports[m].frames(), 7u);
     EXPECT_EQ(reports[m].run.warmup, 2u);
     EXPECT_EQ(benches[m]->frames_run(), 9u);
   }
   // Every mode computes the same poses for the copies it draws.
   EXPECT_EQ(reports[0].digest, reports[1].digest);
   EXPECT_EQ(reports[0].digest, reports[2].digest);
-  EXPECT_LT(reports[1].frames[0].counters.poses_updated, reports[0].frames[0].counters.poses_updated);
+  EXPECT_LT(reports[1].frame_records[0].counters.poses_updated, reports[0].frame_records[0].counters.poses_updated);
 
   // The frames, in the order they ran: 3 of master, 3 of culled, 3 of
   // threaded, then again; the last block is what is left of 9.

@@ -16,6 +16,7 @@
 #include "gen/humanoid.h"
 #include "measuring/trace.h"
 #include "reports/profile_table.h"
+#include "result/result_codec.h"
 #include "one_joint_character.h"
 #include "test_support.h"
 #include "characters.h"
@@ -266,7 +267,7 @@ TEST(CrowdScale, SharedActionIsOnePoseAndOneMeshAFrame) {
     if (storage == SIZE_MAX) storage = shared.storage_of(i);
     EXPECT_EQ(shared.storage_of(i), storage);  // one mesh, drawn by every copy on screen
   }
-  AnimationFidelity fidelity = shared.measure_fidelity();
+  AnimationRecord fidelity = shared.measure_animation();
   EXPECT_EQ(fidelity.max_deviation, 0.0);
   EXPECT_EQ(fidelity.copies_deviating, 0u);
   EXPECT_EQ(fidelity.copies_checked, a.counters.copies_visible);
@@ -348,14 +349,14 @@ TEST(CrowdScale, DeviationOfAQuantumWorkedByHand) {
   config.mode.share_quantum_s = 0.4;
   CrowdBench bench(slider(), config);
   last_of_frames(bench, 4);
-  AnimationFidelity fidelity = bench.measure_fidelity();
+  AnimationRecord fidelity = bench.measure_animation();
   EXPECT_EQ(fidelity.copies_checked, 1u);
   EXPECT_EQ(fidelity.copies_deviating, 1u);
   EXPECT_NEAR(fidelity.max_deviation, 0.1, 1e-6);
-  EXPECT_NEAR(fidelity.deviation_fraction, 0.05, 1e-6);
+  EXPECT_NEAR(fidelity.deviation_fraction_of_height, 0.05, 1e-6);
   // Frame 4 shows t = 0.4 s: exact again.
   bench.step();
-  EXPECT_EQ(bench.measure_fidelity().max_deviation, 0.0);
+  EXPECT_EQ(bench.measure_animation().max_deviation, 0.0);
 }
 
 TEST(CrowdScale, UpdateRateLodHoldsAndCountsByHand) {
@@ -376,9 +377,9 @@ TEST(CrowdScale, UpdateRateLodHoldsAndCountsByHand) {
     EXPECT_EQ(frames[f].counters.poses_updated, updated[f]) << f;
     EXPECT_EQ(frames[f].counters.copies_held, 1 - updated[f]) << f;
   }
-  AnimationFidelity fidelity = bench.measure_fidelity();
+  AnimationRecord fidelity = bench.measure_animation();
   EXPECT_NEAR(fidelity.max_deviation, 0.25, 1e-6);
-  EXPECT_NEAR(fidelity.deviation_fraction, 0.125, 1e-6);
+  EXPECT_NEAR(fidelity.deviation_fraction_of_height, 0.125, 1e-6);
   EXPECT_EQ(bench.schedule().longest_gap, 2u);
   EXPECT_EQ(bench.schedule().copies_by_rate[1], 1u);
 }
@@ -471,19 +472,20 @@ TEST(CrowdScale, RunReportsTheSchedule) {
   RunOptions options;
   options.frames = 6;
   options.warmup = 2;
-  RunReport report = run_bench(bench, "humanoid", options);
+  Result report = run_bench(bench, "humanoid", options);
   ASSERT_TRUE(report.animation.has_value());
   EXPECT_EQ(report.animation->copies_by_rate.size(), kRateCount);
-  nlohmann::json j = to_json(report);
+  record_samples(report);
+  nlohmann::json j = result_to_json(report);
   EXPECT_EQ(j["switches"]["share"], true);
   EXPECT_EQ(j["switches"]["anim_budget"], 2.0);
   EXPECT_TRUE(j.contains("animation"));
   EXPECT_NE(format_profile(report).find("longest gap"), std::string::npos);
   // Modes without issue 13's switches report nothing new.
   CrowdBench plain(small_humanoid(), config_for("threaded", 1, 24, ActionChoice::Random));
-  RunReport plain_report = run_bench(plain, "humanoid", options);
+  Result plain_report = run_bench(plain, "humanoid", options);
   EXPECT_FALSE(plain_report.animation.has_value());
-  EXPECT_FALSE(to_json(plain_report)["switches"].contains("share"));
+  EXPECT_FALSE(result_to_json(plain_report)["switches"].contains("share"));
 }
 
 // --- from the command line ------------------------------------------------------

@@ -67,10 +67,10 @@ TEST(CullingAuditBench, TheReportCarriesItAndSaysItUnderTheTable) {
   RunOptions options;
   options.frames = 2;
   options.warmup = 0;
-  RunReport report = run_bench(bench, "humanoid.glb", options);
+  Result report = run_bench(bench, "humanoid.glb", options);
   ASSERT_TRUE(report.culling_audit);
-  ASSERT_EQ(report.culling_audit->boxes.size(), kCullBoxes);
-  EXPECT_EQ(report.culling_audit->boxes[1].box, "every_action");
+  EXPECT_EQ(report.culling_audit->copies, 40u);
+  EXPECT_GT(report.culling_audit->ms, 0.0) << "the audit's own time, measured where it runs";
   const std::string text = format_profile(report);
   EXPECT_NE(text.find("culling audit (16 exact poses of 40 copies in "), std::string::npos) << text;
   EXPECT_NE(text.find("every-action (this run's) 0 false culls"), std::string::npos) << text;

@@ -28,7 +28,7 @@ BenchConfig error_config(int threads, size_t copies = 300) {
   return config;
 }
 
-DrawnError run_and_measure(BenchConfig config, size_t frames = 7) {
+DrawnErrorRecord run_and_measure(BenchConfig config, size_t frames = 7) {
   CrowdBench bench(test::default_humanoid(), config);
   for (size_t f = 0; f < frames; ++f) bench.step();
   return bench.measure_drawn_error(900);
@@ -37,7 +37,7 @@ DrawnError run_and_measure(BenchConfig config, size_t frames = 7) {
 }  // namespace
 
 TEST(DrawnError, ExactModesDrawExactly) {
-  const DrawnError e = run_and_measure(error_config(2));
+  const DrawnErrorRecord e = run_and_measure(error_config(2));
   EXPECT_GT(e.copies_checked, 100u);
   EXPECT_EQ(e.copies_deviating, 0u);
   EXPECT_EQ(e.max, 0.0);
@@ -48,7 +48,7 @@ TEST(DrawnError, ExactModesDrawExactly) {
 TEST(DrawnError, UpdateLodStraysAndTheFiguresHangTogether) {
   BenchConfig config = error_config(2);
   config.mode.update_lod = true;
-  const DrawnError e = run_and_measure(config);
+  const DrawnErrorRecord e = run_and_measure(config);
   EXPECT_GT(e.copies_deviating, 0u) << "far copies are held between updates";
   EXPECT_GT(e.max, 0.0);
   EXPECT_GT(e.rms, 0.0);
@@ -60,7 +60,7 @@ TEST(DrawnError, UpdateLodStraysAndTheFiguresHangTogether) {
   // The same figures on one thread: the copies are summed in their order.
   BenchConfig one = config;
   one.threads = 1;
-  const DrawnError single = run_and_measure(one);
+  const DrawnErrorRecord single = run_and_measure(one);
   EXPECT_EQ(single.max, e.max);
   EXPECT_EQ(single.rms, e.rms);
   EXPECT_EQ(single.copies_deviating, e.copies_deviating);
@@ -71,10 +71,10 @@ TEST(DrawnError, MeshLodAddsEachLevelsErrorToThePose) {
   config.mode.mesh_lod = true;
   CrowdBench bench(test::default_humanoid(), config);
   bench.step();
-  const DrawnError e = bench.measure_drawn_error(900);
+  const DrawnErrorRecord e = bench.measure_drawn_error(900);
   // Exact poses, coarser meshes: the error is the levels' (meshoptimizer's) alone.
   double coarsest = 0;
-  for (const MeshLevelFidelity& level : bench.mesh_lod_fidelity(900))
+  for (const MeshLevelRecord& level : bench.mesh_lod_fidelity(900).levels)
     if (level.copies) coarsest = std::max(coarsest, level.error);
   EXPECT_GT(coarsest, 0.0);
   EXPECT_DOUBLE_EQ(e.mesh_max, coarsest);
@@ -86,8 +86,8 @@ TEST(DrawnError, MeshLodAddsEachLevelsErrorToThePose) {
 TEST(DrawnError, LargeCrowdsAreSampled) {
   CrowdBench bench(test::default_humanoid(), error_config(2));
   bench.step();
-  const DrawnError all = bench.measure_drawn_error(900);
-  const DrawnError some = bench.measure_drawn_error(900, 50);
+  const DrawnErrorRecord all = bench.measure_drawn_error(900);
+  const DrawnErrorRecord some = bench.measure_drawn_error(900, 50);
   EXPECT_GT(some.copy_stride, 1u);
   EXPECT_LE(some.copies_checked, 50u);
   EXPECT_EQ(some.copies_checked, (all.copies_checked + some.copy_stride - 1) / some.copy_stride);
@@ -164,9 +164,9 @@ TEST(DrawnError, RateSwitchesAreTheMeasuredFramesInBenchAndCompareAlike) {
   options.warmup = 10;
   options.frames = 60;
   CrowdBench alone(test::default_humanoid(), budget);
-  const RunReport report = run_bench(alone, "humanoid.glb", options);
+  const Result report = run_bench(alone, "humanoid.glb", options);
   uint64_t measured = 0;
-  for (const FrameRecord& frame : report.frames) measured += frame.rate_switches;
+  for (const FrameRecord& frame : report.frame_records) measured += frame.rate_switches;
   EXPECT_GT(alone.schedule().rate_switches, measured) << "the warm-up's slow frames switched periods";
   ASSERT_TRUE(report.drawn_error);
   EXPECT_DOUBLE_EQ(report.drawn_error->switches_per_second,
@@ -174,7 +174,7 @@ TEST(DrawnError, RateSwitchesAreTheMeasuredFramesInBenchAndCompareAlike) {
   BenchConfig threaded = error_config(1, 160);
   CrowdBench a(test::default_humanoid(), threaded), b(test::default_humanoid(), budget);
   CrowdBench* benches[] = {&a, &b};
-  const std::vector<RunReport> compared = run_interleaved(benches, "humanoid.glb", options, 10);
+  const std::vector<Result> compared = run_interleaved(benches, "humanoid.glb", options, 10);
   ASSERT_TRUE(compared[1].drawn_error);
   EXPECT_DOUBLE_EQ(compared[1].drawn_error->switches_per_second, report.drawn_error->switches_per_second);
   // Both texts print that one figure.

@@ -53,9 +53,9 @@ TEST(GpuTimePlacement, ATimeLongerThanItsFrameIsNotReported) {
   RunOptions options;
   options.frames = 3;
   options.warmup = 0;
-  RunReport report = run_bench(bench, "humanoid", options);
-  ASSERT_EQ(report.frames.size(), 3u);
-  EXPECT_TRUE(std::isnan(report.frames[0].gpu_ms)) << report.frames[0].gpu_ms;
-  EXPECT_EQ(report.frames[1].gpu_ms, 0.25);
-  EXPECT_EQ(report.frames[2].gpu_ms, 0.25);
+  Result report = run_bench(bench, "humanoid", options);
+  ASSERT_EQ(report.frame_records.size(), 3u);
+  EXPECT_TRUE(std::isnan(report.frame_records[0].gpu_ms)) << report.frame_records[0].gpu_ms;
+  EXPECT_EQ(report.frame_records[1].gpu_ms, 0.25);
+  EXPECT_EQ(report.frame_records[2].gpu_ms, 0.25);
 }

@@ -116,26 +116,26 @@ TEST(MeshLodBench, CopiesOffScreenAreSkinnedAtTheCoarsestLevelWithCullingOff) {
 TEST(MeshLodBench, TheRunRecordsEachLevelsCopiesAndError) {
   CrowdBench bench(test::default_humanoid(), lod_config("threaded", 1, 1000));
   Counters c = bench.step().counters;
-  RunReport report;
+  Result report;
   record_mesh_lod(bench, report);
   ASSERT_TRUE(report.mesh_lod);
   const MeshLodRecord& m = *report.mesh_lod;
-  ASSERT_EQ(m.copies.size(), 4u);
-  EXPECT_EQ(m.copies[0], c.lod0_copies);
-  EXPECT_EQ(m.copies[2], c.lod2_copies);
-  EXPECT_EQ(m.copies[3], c.lod3_copies);
-  EXPECT_EQ(m.error[0], 0.0);
+  ASSERT_EQ(m.levels.size(), 4u);
+  EXPECT_EQ(m.levels[0].copies, c.lod0_copies);
+  EXPECT_EQ(m.levels[2].copies, c.lod2_copies);
+  EXPECT_EQ(m.levels[3].copies, c.lod3_copies);
+  EXPECT_EQ(m.levels[0].error, 0.0);
   for (size_t l = 1; l < 4; ++l) {
-    EXPECT_GT(m.error[l], m.error[l - 1]) << l;
-    EXPECT_NEAR(m.error_fraction[l], m.error[l] / standing_of(test::default_humanoid()).height, 1e-9) << l;
-    EXPECT_EQ(m.error_px[l] > 0, m.copies[l] > 0) << l;
+    EXPECT_GT(m.levels[l].error, m.levels[l - 1].error) << l;
+    EXPECT_NEAR(m.levels[l].error_fraction, m.levels[l].error / standing_of(test::default_humanoid()).height, 1e-9) << l;
+    EXPECT_EQ(m.levels[l].error_px > 0, m.levels[l].copies > 0) << l;
   }
   // 1,000 humanoids from the default camera are a few dozen pixels tall: under a pixel of error.
-  EXPECT_LT(m.error_px[3], 1.0);
+  EXPECT_LT(m.levels[3].error_px, 1.0);
   BenchConfig plain = lod_config("threaded", 1, 10);
   plain.mode.mesh_lod = false;
   CrowdBench without(test::default_humanoid(), plain);
-  RunReport none;
+  Result none;
   record_mesh_lod(without, none);
   EXPECT_FALSE(none.mesh_lod);
 }

@@ -160,7 +160,7 @@ TEST(Standing, TheBudgetsDrawnErrorIsInMetresOfTheStandingHeight) {
     for (int f = 0; f < 5; ++f) bench.step();
     return bench.measure_drawn_error(900);
   };
-  const DrawnError y = measure(original), z = measure(z_up_humanoid());
+  const DrawnErrorRecord y = measure(original), z = measure(z_up_humanoid());
   ASSERT_GT(y.max, 0.0) << "snapped times stray";
   EXPECT_EQ(z.copies_checked, y.copies_checked);
   EXPECT_PRED2(within_percent, z.max, y.max);
@@ -180,7 +180,7 @@ TEST(Standing, MeshLodLevelsInARunAreInMetresOfTheStandingHeight) {
     config.mode.mesh_lod = true;
     CrowdBench bench(c, config);
     bench.step();
-    return bench.mesh_lod_fidelity(900);
+    return bench.mesh_lod_fidelity(900).levels;
   };
   const auto y = levels(original), z = levels(z_up_humanoid());
   SkinnedMesh ordered = z_up_humanoid().mesh;

@@ -46,7 +46,7 @@ json small_result(const std::string& mode = "culled") {
   RunOptions options;
   options.frames = 10;
   options.warmup = 1;
-  return to_json(run_bench(bench, "scenes/humanoid.glb", options));
+  return result_to_json(run_bench(bench, "scenes/humanoid.glb", options));
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "reports/profile_table.h"
 #include "render/framebuffer.h"
 #include "render/gpu_timer.h"
+#include "result/result_codec.h"
 #include "render_support.h"
 #include "test_support.h"
 #include "characters.h"
@@ -74,14 +75,15 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   RunOptions options;
   options.frames = 5;
   options.warmup = 2;
-  RunReport report = run_bench(bench, "humanoid", options);
-  ASSERT_EQ(report.frames.size(), 5u);
-  for (const FrameRecord& f : report.frames) EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << f.gpu_ms;
+  Result report = run_bench(bench, "humanoid", options);
+  ASSERT_EQ(report.frame_records.size(), 5u);
+  for (const FrameRecord& f : report.frame_records) EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << f.gpu_ms;
   std::string table = format_profile(report);
   EXPECT_NE(table.find("\nGPU time   : "), std::string::npos) << table;
   EXPECT_NE(table.find("median of 5 frames, GL timer queries"), std::string::npos) << table;
   EXPECT_LT(table.find("GPU Latency:"), table.find("GPU time   :")) << "beside the categories";
-  nlohmann::json j = to_json(report);
+  record_samples(report);
+  nlohmann::json j = result_to_json(report);
   EXPECT_EQ(j["gpu_time"]["available"], true);
   EXPECT_GT(j["gpu_time"]["median_ms"].get<double>(), 0.0);
   ASSERT_EQ(j["samples"]["gpu_ms"].size(), 5u);
@@ -117,13 +119,14 @@ TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
   options.frames = 3;
   options.warmup = 1;
   for (CrowdBench* bench : {&with_gl, &without_gl}) {
-    RunReport report = run_bench(*bench, "humanoid", options);
-    for (const FrameRecord& f : report.frames) EXPECT_TRUE(std::isnan(f.gpu_ms));
+    Result report = run_bench(*bench, "humanoid", options);
+    for (const FrameRecord& f : report.frame_records) EXPECT_TRUE(std::isnan(f.gpu_ms));
     std::string why = bench == &with_gl ? "no GL_TIME_ELAPSED timer" : "no GL backend";
     std::string table = format_profile(report);
     EXPECT_NE(table.find("GPU time   :      n/a     "), std::string::npos) << table;
     EXPECT_NE(table.find(why), std::string::npos) << table;
-    nlohmann::json j = to_json(report);
+    record_samples(report);
+    nlohmann::json j = result_to_json(report);
     EXPECT_EQ(j["gpu_time"]["available"], false);
     EXPECT_TRUE(j["gpu_time"]["median_ms"].is_null());
     EXPECT_NE(j["gpu_time"]["reason"].get<std::string>().find(why), std::string::npos);
@@ -151,11 +154,12 @@ TEST(GpuTimer, ItsResolutionIsMeasuredOnTheFirstFrame) {
   RunOptions options;
   options.frames = 2;
   options.warmup = 0;
-  RunReport report = run_bench(bench, "humanoid", options);
+  Result report = run_bench(bench, "humanoid", options);
   double resolution = report.run.gpu_timer_resolution_ms;
   EXPECT_GT(resolution, 0.0);
   EXPECT_LT(resolution, 1.0) << "a timer that cannot tell a millisecond is no timer";
-  EXPECT_EQ(to_json(report)["gpu_time"]["resolution_ms"].get<double>(), resolution);
+  record_samples(report);
+  EXPECT_EQ(result_to_json(report)["gpu_time"]["resolution_ms"].get<double>(), resolution);
 }
 
 // A GPU time the timer cannot tell from nothing is shown as such, by the
@@ -165,14 +169,15 @@ TEST(GpuTimer, ATimeBelowTheTimersResolutionIsNotShownAsMeasured) {
   RunOptions options;
   options.frames = 3;
   options.warmup = 0;
-  RunReport report = run_bench(bench, "humanoid", options);
+  Result report = run_bench(bench, "humanoid", options);
   report.run.gpu_timing_missing.clear();
   report.run.gpu_timer_resolution_ms = 0.002;
-  for (FrameRecord& f : report.frames) f.gpu_ms = 0.0004;
+  for (FrameRecord& f : report.frame_records) f.gpu_ms = 0.0004;
   std::string table = format_profile(report);
   EXPECT_NE(table.find("GPU time   :        -     below the timer's resolution (0.002 ms)"), std::string::npos) << table;
   EXPECT_EQ(table.find("0.00ms   median"), std::string::npos) << table;
-  nlohmann::json j = to_json(report);
+  record_samples(report);
+  nlohmann::json j = result_to_json(report);
   EXPECT_EQ(j["gpu_time"]["below_resolution"], true);
   HtmlReportInput page;
   add_result_document(page, j, "tiny.json");
@@ -181,12 +186,13 @@ TEST(GpuTimer, ATimeBelowTheTimersResolutionIsNotShownAsMeasured) {
   comparison.runs = {report};
   EXPECT_NE(format_comparison(comparison).find("<0.0020"), std::string::npos) << format_comparison(comparison);
   // Above it, the number.
-  for (FrameRecord& f : report.frames) f.gpu_ms = 0.5;
+  for (FrameRecord& f : report.frame_records) f.gpu_ms = 0.5;
   table = format_profile(report);
   EXPECT_NE(table.find("GPU time   :     0.50ms   median of 3 frames"), std::string::npos) << table;
-  EXPECT_EQ(to_json(report)["gpu_time"]["below_resolution"], false);
+  record_samples(report);
+  EXPECT_EQ(result_to_json(report)["gpu_time"]["below_resolution"], false);
   // Above it but below 0.01 ms: in microseconds, never 0.00ms.
-  for (FrameRecord& f : report.frames) f.gpu_ms = 0.0042;
+  for (FrameRecord& f : report.frame_records) f.gpu_ms = 0.0042;
   table = format_profile(report);
   EXPECT_NE(table.find("GPU time   :      4.2us   median of 3 frames"), std::string::npos) << table;
 }
@@ -203,10 +209,10 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
   RunOptions options;
   options.frames = 7;
   options.warmup = 2;
-  std::vector<RunReport> reports = run_interleaved(benches, "humanoid", options, 3);
-  for (const RunReport& report : reports) {
-    ASSERT_EQ(report.frames.size(), 7u);
-    for (const FrameRecord& f : report.frames)
+  std::vector<Result> reports = run_interleaved(benches, "humanoid", options, 3);
+  for (const Result& report : reports) {
+    ASSERT_EQ(report.frame_records.size(), 7u);
+    for (const FrameRecord& f : report.frame_records)
       EXPECT_TRUE(std::isfinite(f.gpu_ms) && f.gpu_ms > 0) << report.run.mode;
   }
   // compare's table shows it beside the categories; without a timer, no column.
@@ -214,8 +220,8 @@ TEST(GpuTimer, InterleavedModesSharingOneRendererEachGetTheirFramesTimes) {
   comparison.runs = reports;
   std::string table = format_comparison(comparison);
   EXPECT_NE(table.find("gpu_latency_ms  gpu_ms"), std::string::npos) << table;
-  for (RunReport& report : comparison.runs)
-    for (FrameRecord& f : report.frames) f.gpu_ms = std::nan("");
+  for (Result& report : comparison.runs)
+    for (FrameRecord& f : report.frame_records) f.gpu_ms = std::nan("");
   EXPECT_EQ(format_comparison(comparison).find("gpu_ms"), std::string::npos);
 }
 

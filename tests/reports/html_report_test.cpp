@@ -21,19 +21,20 @@ using nlohmann::json;
 namespace {
 
 // A run as a bench would describe it, made up from frame times.
-RunReport fake_bench(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
-  RunReport run = test::fake_run(mode, characters, frame_ms, 0.25);
+Result fake_bench(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
+  Result run = test::fake_run(mode, characters, frame_ms, 0.25);
   run.run.switches = ModeSwitches{};
   run.run.switches.animation_culling = true;
   return run;
 }
 
 json fake_result(const std::string& mode, size_t characters, const std::vector<double>& frame_ms) {
-  RunReport run = fake_bench(mode, characters, frame_ms);
+  Result run = fake_bench(mode, characters, frame_ms);
   run.run.character = "walker";
   run.run.warmup = 2;
   run.environment.cpu = "Test CPU <9000>";
-  return to_json(run);
+  record_samples(run);
+  return result_to_json(run);
 }
 
 // The fill colour of the series (or legend entry) named `name` in a chart.
@@ -66,20 +67,22 @@ TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
 }
 
 TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
-  RunReport run = test::fake_run("compute", 40, {2, 3, 4}, 0.25);
+  Result run = test::fake_run("compute", 40, {2, 3, 4}, 0.25);
   run.run.switches.passes = 2;  // prepass and colour
   run.run.pipeline_statistics_missing = "";
-  for (FrameRecord& f : run.frames) {
+  for (FrameRecord& f : run.frame_records) {
     f.gpu_ms = 2.0;
     f.gpu_passes.ms = {0.5, 0.4, 0, 0.9};
     for (auto& pass : f.gpu_passes.stats) pass.fill(1234567);
   }
   HtmlReportInput input;
-  add_result_document(input, to_json(run), "a.json");
-  for (FrameRecord& f : run.frames)
+  record_samples(run);
+  add_result_document(input, result_to_json(run), "a.json");
+  for (FrameRecord& f : run.frame_records)
     for (auto& pass : f.gpu_passes.stats) pass.fill(std::nan(""));
   run.run.pipeline_statistics_missing = "softpipe lacks ARB_pipeline_statistics_query";
-  add_result_document(input, to_json(run), "b.json");
+  record_samples(run);
+  add_result_document(input, result_to_json(run), "b.json");
   std::string html = html_report(input);
   ASSERT_NE(html.find("id=\"gpu-passes\""), std::string::npos);
   EXPECT_EQ(test::occurrences(html, ">prepass</td>"), 2u);

@@ -92,7 +92,7 @@ std::string xml_problem(const std::string& xml) {
 }
 
 // Frames charged 30% to Animations and 70% to Rasterizer, so the stacked bars have two layers.
-RunReport svg_run(const std::string& mode, size_t characters, std::vector<double> frame_ms) {
+Result svg_run(const std::string& mode, size_t characters, std::vector<double> frame_ms) {
   return test::fake_run(mode, characters, frame_ms, 0.3);
 }
 
