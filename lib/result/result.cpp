@@ -92,6 +92,11 @@ void record_samples(Result& r) {
     r.counters.values.*field.member = static_cast<uint64_t>(quantile(values, 0.5));
   }
   r.counters.present.fill(true);
+  std::vector<double> per_copy;
+  for (const FrameRecord& f : frames)
+    if (f.counters.copies_visible > 0)
+      per_copy.push_back(static_cast<double>(f.counters.bytes_uploaded) / static_cast<double>(f.counters.copies_visible));
+  r.bytes_uploaded_per_copy_on_screen = per_copy.empty() ? 0.0 : quantile(per_copy, 0.5);
   if (r.instructions && r.instructions->source == "perf_event") {
     std::vector<double> counts;
     for (const FrameRecord& f : frames) counts.push_back(static_cast<double>(f.instructions));

@@ -211,6 +211,10 @@ struct Result {
   // results without the key). Digests of runs that differ here differ by design.
   std::string vertex_order = "joints";
   std::string stores;  // "streaming" or "regular" (skinning/output_stores.h); "" when not recorded
+  // Bytes sent to GL buffers in a frame per copy on screen (bytes_uploaded over
+  // copies_visible), the median of the frames with a copy on screen (0 without
+  // one, or without a GL backend). Absent from results before 2026-11-29.
+  std::optional<double> bytes_uploaded_per_copy_on_screen;
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;

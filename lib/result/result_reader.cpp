@@ -395,6 +395,10 @@ void read_extras(const Reader& in, Result& r) {
   if (r.vertex_order != "file" && r.vertex_order != "joints")
     in.fail("\"vertex_order\" is \"" + printable(r.vertex_order, 40) + "\"; it should be \"file\" or \"joints\"");
   r.stores = in.text_or("/stores", "");
+  if (in.has("/bytes_uploaded_per_copy_on_screen")) {
+    r.bytes_uploaded_per_copy_on_screen = in.number("/bytes_uploaded_per_copy_on_screen");
+    in.require(*r.bytes_uploaded_per_copy_on_screen >= 0, "/bytes_uploaded_per_copy_on_screen", "a number, 0 or more");
+  }
   r.partial = in.flag_or("/partial", false);
   r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;
   if (in.has("/animation")) {

@@ -259,6 +259,31 @@ TEST(ResultCodec, TheVertexOrderReadsBack) {
   }
 }
 
+TEST(ResultCodec, BytesUploadedPerCopyOnScreenIsTheMedianFrameAndReadsBack) {
+  Result run = test::fake_run("instanced", 40, {1.0, 1.0, 1.0, 1.0});
+  // 800 bytes for 10 copies, 900 for 30, none on screen, 700 for 7: 80, 30, -, 100.
+  const uint64_t bytes[] = {800, 900, 500, 700}, on_screen[] = {10, 30, 0, 7};
+  for (size_t f = 0; f < 4; ++f) {
+    run.frame_records[f].counters.bytes_uploaded = bytes[f];
+    run.frame_records[f].counters.copies_visible = on_screen[f];
+  }
+  record_samples(run);
+  ASSERT_TRUE(run.bytes_uploaded_per_copy_on_screen);
+  EXPECT_DOUBLE_EQ(*run.bytes_uploaded_per_copy_on_screen, 80.0) << "the middle of 30, 80 and 100";
+  json doc = result_to_json(run);
+  EXPECT_DOUBLE_EQ(doc.at("bytes_uploaded_per_copy_on_screen").get<double>(), 80.0);
+  EXPECT_EQ(result_from_json(doc, "r.json").bytes_uploaded_per_copy_on_screen, 80.0);
+  // A result from before the field reads without it, and writes without it.
+  doc.erase("bytes_uploaded_per_copy_on_screen");
+  EXPECT_FALSE(result_from_json(doc, "r.json").bytes_uploaded_per_copy_on_screen);
+  EXPECT_FALSE(result_to_json(result_from_json(doc, "r.json")).contains("bytes_uploaded_per_copy_on_screen"));
+  doc["bytes_uploaded_per_copy_on_screen"] = -1;
+  EXPECT_THROW(result_from_json(doc, "r.json"), InputError);
+  // No copy on screen in any frame: 0, not a division by zero.
+  Result empty = test::fake_run("instanced", 40, {1.0});
+  EXPECT_EQ(empty.bytes_uploaded_per_copy_on_screen, 0.0);
+}
+
 TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(result_to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
