@@ -61,6 +61,8 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
 
 void record_samples(Result& r) {
   const std::vector<FrameRecord>& frames = r.frame_records;
+  // A result read from a file keeps no frames: what it stores is all there is.
+  if (frames.empty() && r.frames() > 0) return;
   r.samples = ResultSamples{};
   for (const FrameRecord& f : frames) {
     r.samples.frame_ms.push_back(f.times.total_ms());

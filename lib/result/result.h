@@ -243,7 +243,9 @@ struct Result {
 // run is over: the per-frame samples (GPU times only when a timer measured some
 // frame; the calibrated ratio when the probe ran), the median of each counter
 // and of each pass's pipeline statistics, and the instructions per frame
-// counted by perf_event (callgrind's total is filled in by who ran it).
+// counted by perf_event (callgrind's total is filled in by who ran it). A
+// result without frame records that has samples (one read from a file) is
+// left as it is.
 void record_samples(Result& result);
 
 // Index of the frame whose time is the median (the lower one for an even count).

@@ -475,7 +475,6 @@ TEST(CrowdScale, RunReportsTheSchedule) {
   Result report = run_bench(bench, "humanoid", options);
   ASSERT_TRUE(report.animation.has_value());
   EXPECT_EQ(report.animation->copies_by_rate.size(), kRateCount);
-  record_samples(report);
   nlohmann::json j = result_to_json(report);
   EXPECT_EQ(j["switches"]["share"], true);
   EXPECT_EQ(j["switches"]["anim_budget"], 2.0);
