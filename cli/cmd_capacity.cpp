@@ -142,12 +142,14 @@ int capacity(CapacityCliOptions& o) {
     });
   if (!o.svg.empty()) write_text(o.svg, "SVG", [&](std::ostream& out) { out << capacity_svg(result); });
   if (!o.bench.html.empty()) {
-    nlohmann::json document = capacity_to_json(result);
-    if (document["runs"].empty()) {
+    const bool measured = std::any_of(result.modes.begin(), result.modes.end(),
+                                      [](const ModeCapacity& mode) { return mode.fit_run || mode.fail_run; });
+    if (!measured) {
       std::cerr << "crowdprof: note: no crowd size was measured whole: no HTML report written to " << o.bench.html << "\n";
     } else {
       HtmlReportInput input;
-      add_result_document(input, document, "this capacity search");
+      add_document(input, result_document_from_json(capacity_to_json(result), "this capacity search"),
+                   "this capacity search");
       write_html_report(o.bench.html, std::move(input));
     }
   }

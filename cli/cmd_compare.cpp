@@ -243,7 +243,7 @@ int compare(CompareCliOptions& o) {
               << tracer->dropped() << " later ones were dropped\n";
   if (!o.bench.html.empty()) {
     HtmlReportInput input;
-    add_result_document(input, comparison_to_json(comparison), "this comparison");
+    add_document(input, result_document_from_json(comparison_to_json(comparison), "this comparison"), "this comparison");
     write_html_report(o.bench.html, std::move(input));
   }
   if (partial) {

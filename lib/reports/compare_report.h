@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/profile_table.h"
-#include "reports/sweep_axis.h"
+#include "result/sweep_axis.h"
 
 namespace crowdprof {
 

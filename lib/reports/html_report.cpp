@@ -41,77 +41,13 @@ std::string base64(const std::string& bytes) {
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
-// A comparison's sweep rows, each field checked before use.
-void add_sweep(HtmlReportInput& input, const json& doc, const std::string& path) {
-  if (!doc.contains("sweep")) return;
-  const json& sweep = doc["sweep"];
-  if (!sweep.is_array()) throw InputError(path, "\"sweep\" should be an array");
-  if (doc.contains("sweep_axis")) {
-    if (doc["sweep_axis"] == "passes") input.sweep_axis = SweepAxis::Passes;
-    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
-  }
-  std::string axis(to_string(input.sweep_axis));
-  for (const json& row : sweep) {
-    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains(axis) &&
-              row[axis].is_number_unsigned() && row.contains("frame_median_ms") &&
-              row["frame_median_ms"].is_number() && std::isfinite(row["frame_median_ms"].get<double>()) &&
-              row["frame_median_ms"].get<double>() >= 0;
-    if (!ok) throw InputError(path, "a \"sweep\" row without mode, " + axis + " and frame_median_ms");
-    input.sweep.push_back({row["mode"].get<std::string>(), row[axis].get<size_t>(), row["frame_median_ms"].get<double>()});
-  }
-}
-
-// A capacity result's search and outcome per mode, each field checked before use.
-CapacitySection read_capacity(const json& doc, const std::string& path) {
-  auto bad = [&](const std::string& what) { return InputError(path, "a capacity result whose " + what); };
-  auto number = [&](const json& v, const char* what) {
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
-      throw bad(std::string(what) + " is not a non-negative number");
-    return v.get<double>();
-  };
-  auto count = [&](const json& v, const char* what) {
-    if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<int64_t>() >= 0))
-      throw bad(std::string(what) + " is not a whole number");
-    return v.get<size_t>();
-  };
-  CapacitySection c;
-  c.budget_ms = number(doc.value("budget_ms", json()), "\"budget_ms\"");
-  const json metric = doc.value("metric", json());
-  if (!metric.is_string()) throw bad("\"metric\" is not a string");
-  c.metric = metric.get<std::string>();
-  const json search = doc.value("search", json::object());
-  if (!search.is_object()) throw bad("\"search\" is not an object");
-  c.start = count(search.value("start", json(0)), "\"search.start\"");
-  c.precision = number(search.value("resolution", json(0.0)), "\"search.resolution\"");
-  c.frames_per_point = count(doc.value("frames_per_point", json(0)), "\"frames_per_point\"");
-  c.warmup = count(doc.value("warmup_frames", json(0)), "\"warmup_frames\"");
-  const json modes = doc.value("modes", json());
-  if (!modes.is_array()) throw bad("\"modes\" is not an array");
-  for (const json& m : modes) {
-    if (!m.is_object() || !m.value("mode", json()).is_string()) throw bad("mode has no name");
-    CapacitySection::Row row;
-    row.mode = m["mode"].get<std::string>();
-    row.threads = count(m.value("threads", json(0)), "\"threads\"");
-    row.cap = count(m.value("cap", json(0)), "\"cap\"");
-    for (auto [key, n, ms] : {std::tuple{"largest_fit", &row.fits, &row.fits_ms}, {"first_over", &row.over, &row.over_ms}}) {
-      const json point = m.value(key, json());
-      if (point.is_null()) continue;
-      if (!point.is_object()) throw bad(std::string("\"") + key + "\" is not a point");
-      *n = count(point.value("characters", json()), "point's \"characters\"");
-      *ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
-    }
-    c.rows.push_back(std::move(row));
-  }
-  return c;
-}
-
 // The lead of a capacity page: per mode, the largest crowd within the budget.
-std::string capacity_section(const CapacitySection& c) {
+std::string capacity_section(const CapacityRecord& c) {
   std::string out = "<section id=\"capacity\"><h2>Capacity: the largest crowd whose median " + h(c.metric) +
                     " time fits " + report_number(c.budget_ms, 3) + " ms</h2>\n<table><tr><th class=\"name\">mode</th>"
                     "<th>threads</th><th>capacity (characters)</th><th>its median ms</th><th>first over</th>"
                     "<th>its median ms</th></tr>\n";
-  for (const CapacitySection::Row& row : c.rows) {
+  for (const CapacityRecord::Row& row : c.rows) {
     out += "<tr><td class=\"name\">" + h(row.mode) + "</td><td>" + std::to_string(row.threads) + "</td><td><b>" +
            (row.fits ? std::to_string(*row.fits) : std::string("none")) + "</b></td><td>" +
            (row.fits ? report_number(row.fits_ms, 3) : std::string("-")) + "</td><td>" +
@@ -575,19 +511,14 @@ void require_png(const std::string& bytes, const std::string& path) {
     throw InputError(path, "not a PNG image");
 }
 
-void add_result_document(HtmlReportInput& input, const json& doc, const std::string& source) {
-  std::string kind = document_kind(doc);
-  if (kind != "bench" && kind != "compare" && kind != "capacity")
-    throw InputError(source, "a '" + kind + "' result; report reads results of bench, check, compare and capacity --json");
-  // A capacity search holds a comparison's runs (one per mode, at its
-  // capacity) and sweep (every size it tried).
-  for (Result& run : bench_results_in(doc, source)) input.runs.push_back({"", std::move(run), source});
-  if (kind == "bench") return;
-  add_sweep(input, doc, source);
-  if (kind == "capacity") input.capacity = read_capacity(doc, source);
-  if (kind == "capacity" && doc.value("metric", json("")) == "frame" && doc.contains("budget_ms") &&
-      doc["budget_ms"].is_number() && doc["budget_ms"].get<double>() > 0)
-    input.sweep_budget_ms = doc["budget_ms"].get<double>();
+void add_document(HtmlReportInput& input, ResultDocument document, const std::string& source) {
+  for (Result& run : document.runs) input.runs.push_back({"", std::move(run), source});
+  if (document.kind == "bench") return;
+  input.sweep_axis = document.sweep_axis;
+  input.sweep.insert(input.sweep.end(), document.sweep.begin(), document.sweep.end());
+  if (document.capacity && document.capacity->metric == "frame" && document.capacity->budget_ms > 0)
+    input.sweep_budget_ms = document.capacity->budget_ms;
+  if (document.capacity) input.capacity = std::move(document.capacity);
 }
 
 void add_result(HtmlReportInput& input, Result result, const std::string& source) {
@@ -595,7 +526,7 @@ void add_result(HtmlReportInput& input, Result result, const std::string& source
 }
 
 void add_result_file(HtmlReportInput& input, const std::string& path) {
-  add_result_document(input, read_json_file(path), path);
+  add_document(input, read_result_document(path), path);
   input.sources.push_back(path);
 }
 

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gate/regression.h"
+#include "result/result_document.h"
 #include "reports/report_charts.h"
 
 namespace crowdprof {
@@ -24,25 +25,6 @@ struct CheckSection {
   std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
 };
 
-// What a capacity search found (capacity --json), the page's lead.
-struct CapacitySection {
-  double budget_ms = 0;
-  std::string metric;  // "frame" or a category
-  size_t start = 0;
-  double precision = 0;  // the search stops when over - fits <= max(1, precision x fits)
-  size_t frames_per_point = 0, warmup = 0;
-  struct Row {
-    std::string mode;
-    size_t threads = 0;
-    std::optional<size_t> fits;  // the largest crowd within the budget (none: not even the smallest)
-    double fits_ms = 0;
-    std::optional<size_t> over;  // the smallest crowd found over it (none: the cap fits)
-    double over_ms = 0;
-    size_t cap = 0;
-  };
-  std::vector<Row> rows;
-};
-
 struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
   std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
@@ -50,19 +32,18 @@ struct HtmlReportInput {
   SweepAxis sweep_axis = SweepAxis::Characters;
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
-  std::optional<CapacitySection> capacity;
+  std::optional<CapacityRecord> capacity;
   std::string command;  // what made the page ("diff"), named in its title when no check or capacity is
   std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
 };
 
-// Adds a result read from `path`: a bench result (bench or check --json) or a
-// comparison (compare --json, its runs and sweep). InputError naming the file
-// when it is not crowdprof's, truncated, of another format or incomplete.
+// Adds the document read from `path` (read_result_document): a bench result,
+// a comparison's runs and sweep, or a capacity search. InputError naming the
+// file when it is not crowdprof's, truncated, of another format or incomplete.
 void add_result_file(HtmlReportInput& input, const std::string& path);
 
-// The same for a document made in this process or read by the caller
-// (`source` names it in errors).
-void add_result_document(HtmlReportInput& input, const nlohmann::json& doc, const std::string& source);
+// The same for a document already read (`source` names it on the page).
+void add_document(HtmlReportInput& input, ResultDocument document, const std::string& source);
 
 // A bench result already read (or made in this process).
 void add_result(HtmlReportInput& input, Result result, const std::string& source);

@@ -13,7 +13,8 @@
 #include "result/result.h"
 #include "reports/cost_error.h"
 #include "reports/svg_chart.h"
-#include "reports/sweep_axis.h"
+#include "result/result_document.h"
+#include "result/sweep_axis.h"
 
 namespace crowdprof {
 
@@ -25,13 +26,6 @@ struct ReportRun {
   std::string source;  // the file it came from ("" when made in this process)
 };
 
-// A median frame time at one point of a sweep (compare --sweep, or several
-// results of different crowd sizes).
-struct SweepPoint {
-  std::string mode;
-  size_t x = 0;  // on the axis: copies, or passes
-  double frame_median_ms = 0;
-};
 
 // Frame budgets drawn on frame-time charts: 60 and 30 frames a second.
 inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};

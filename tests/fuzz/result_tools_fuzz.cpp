@@ -1,7 +1,7 @@
 // Fuzz target: bytes as a result file given to `crowdprof diff` and
 // `crowdprof report`: bench, check or compare JSON. Both read the file with
 // read_json_file and then take it apart their own way (bench_results_in for
-// diff, add_result_document for the report), so each reader is driven to its
+// diff, add_document for the report), so each reader is driven to its
 // end: the file diffed against itself and the page made. Each must refuse with
 // an InputError or finish; any other exception, nlohmann's JSON_ASSERT reached
 // (an unguarded read), a regression of a file against itself, or a sanitizer
@@ -38,7 +38,7 @@ void run_report(const nlohmann::json& doc, const std::string& path) {
   using namespace crowdprof;
   HtmlReportInput input;
   input.sources = {path};
-  add_result_document(input, doc, path);
+  add_document(input, result_document_from_json(doc, path), path);
   (void)html_report(input);
 }
 

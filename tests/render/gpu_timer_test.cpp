@@ -102,7 +102,7 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   std::getline(csv, row);
   EXPECT_EQ(row.find("n/a"), std::string::npos) << row;
   HtmlReportInput page;
-  add_result_document(page, j, "gpu.json");
+  add_document(page, result_document_from_json(j, "gpu.json"), "gpu.json");
   std::string html = html_report(page);
   std::string cell = "GPU time (median)</td><td>" + report_number(j["gpu_time"]["median_ms"].get<double>(), 2) + "</td>";
   EXPECT_NE(html.find(cell), std::string::npos) << "the HTML report's table too";
@@ -136,7 +136,7 @@ TEST(GpuTimer, WithoutTimerQueriesTheReportSaysSoAndPrintsNoNumber) {
     std::getline(csv, row);
     EXPECT_NE(row.find(",n/a,"), std::string::npos) << "gpu_ms, then cpu_ms: " << row;
     HtmlReportInput page;
-    add_result_document(page, j, "none.json");
+    add_document(page, result_document_from_json(j, "none.json"), "none.json");
     std::string html = html_report(page);
     size_t at = html.find("GPU time (median)</td><td>n/a</td><td class=\"name\">");
     ASSERT_NE(at, std::string::npos) << "the HTML report's table too";
@@ -177,7 +177,7 @@ TEST(GpuTimer, ATimeBelowTheTimersResolutionIsNotShownAsMeasured) {
   nlohmann::json j = result_to_json(report);
   EXPECT_EQ(j["gpu_time"]["below_resolution"], true);
   HtmlReportInput page;
-  add_result_document(page, j, "tiny.json");
+  add_document(page, result_document_from_json(j, "tiny.json"), "tiny.json");
   EXPECT_NE(html_report(page).find("below the timer's resolution"), std::string::npos);
   Comparison comparison;
   comparison.runs = {report};

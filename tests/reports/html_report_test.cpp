@@ -47,8 +47,8 @@ std::string series_colour(const std::string& html, const std::string& name) {
 
 TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
   HtmlReportInput two;
-  add_result_document(two, fake_result("threaded", 40, {0.7, 0.8, 0.9}), "a.json");
-  add_result_document(two, fake_result("master", 40, {10, 12, 11}), "b.json");
+  add_document(two, result_document_from_json(fake_result("threaded", 40, {0.7, 0.8, 0.9}), "a.json"), "a.json");
+  add_document(two, result_document_from_json(fake_result("master", 40, {10, 12, 11}), "b.json"), "b.json");
   std::string html = html_report(two);
   const size_t headline = html.find("id=\"headline\""), profile = html.find("id=\"profile\"");
   ASSERT_NE(headline, std::string::npos);
@@ -59,7 +59,7 @@ TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
   EXPECT_NE(html.find("<table class=\"counters\">"), std::string::npos) << "counters as a table";
   HtmlReportInput six;
   for (const char* mode : {"master", "culled", "threaded", "shared", "budget", "hwskin"})
-    add_result_document(six, fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json");
+    add_document(six, result_document_from_json(fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json"), std::string(mode) + ".json");
   html = html_report(six);
   EXPECT_NE(html.find("class=\"by-run\""), std::string::npos) << "six runs: a row each";
   EXPECT_EQ(test::occurrences(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
@@ -76,12 +76,12 @@ TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
   }
   HtmlReportInput input;
   record_samples(run);
-  add_result_document(input, result_to_json(run), "a.json");
+  add_document(input, result_document_from_json(result_to_json(run), "a.json"), "a.json");
   for (FrameRecord& f : run.frame_records)
     for (auto& pass : f.gpu_passes.stats) pass.fill(std::nan(""));
   run.run.pipeline_statistics_missing = "softpipe lacks ARB_pipeline_statistics_query";
   record_samples(run);
-  add_result_document(input, result_to_json(run), "b.json");
+  add_document(input, result_document_from_json(result_to_json(run), "b.json"), "b.json");
   std::string html = html_report(input);
   ASSERT_NE(html.find("id=\"gpu-passes\""), std::string::npos);
   EXPECT_EQ(test::occurrences(html, ">prepass</td>"), 2u);
@@ -90,13 +90,13 @@ TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
   EXPECT_NE(html.find("unavailable: softpipe lacks ARB_pipeline_statistics_query"), std::string::npos);
   EXPECT_NE(html.find("90% of the frame's GPU time"), std::string::npos) << "0.5 + 0.4 + 0.9 of 2 ms";
   HtmlReportInput plain;
-  add_result_document(plain, fake_result("threaded", 40, {1, 2}), "c.json");
+  add_document(plain, result_document_from_json(fake_result("threaded", 40, {1, 2}), "c.json"), "c.json");
   EXPECT_EQ(html_report(plain).find("id=\"gpu-passes\""), std::string::npos) << "no GPU passes, no section";
 }
 
 TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   HtmlReportInput input;
-  add_result_document(input, fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json");
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json"), "a.json");
   input.screenshot_png = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) + std::string(20, '\0');
   std::string html = html_report(input);
   for (const char* section : {"id=\"profile\"", "id=\"frame-time\"", "id=\"categories\"", "id=\"environment\"",
@@ -125,7 +125,7 @@ TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
 
 TEST(HtmlReport, FastFramesNameTheBudgetsInsteadOfSquashingTheChart) {
   HtmlReportInput input;
-  add_result_document(input, fake_result("threaded", 40, {1, 1.2, 1.1}), "a.json");
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {1, 1.2, 1.1}), "a.json"), "a.json");
   std::string html = html_report(input);
   EXPECT_EQ(test::occurrences(html, "<g class=\"budget\""), 0u);
   EXPECT_EQ(test::occurrences(html, "class=\"budget above\""), 2u);
@@ -133,10 +133,10 @@ TEST(HtmlReport, FastFramesNameTheBudgetsInsteadOfSquashingTheChart) {
 
 TEST(HtmlReport, SeveralRunsSideBySideWithASweepAndOneColourPerMode) {
   HtmlReportInput input;
-  add_result_document(input, fake_result("threaded", 40, {3, 3, 3}), "t40.json");
-  add_result_document(input, fake_result("master", 40, {9, 9, 10}), "m40.json");
-  add_result_document(input, fake_result("threaded", 80, {6, 6, 6}), "t80.json");
-  add_result_document(input, fake_result("master", 80, {18, 19, 18}), "m80.json");
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {3, 3, 3}), "t40.json"), "t40.json");
+  add_document(input, result_document_from_json(fake_result("master", 40, {9, 9, 10}), "m40.json"), "m40.json");
+  add_document(input, result_document_from_json(fake_result("threaded", 80, {6, 6, 6}), "t80.json"), "t80.json");
+  add_document(input, result_document_from_json(fake_result("master", 80, {18, 19, 18}), "m80.json"), "m80.json");
   std::string html = html_report(input);
   EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"4\""), std::string::npos);
   EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
@@ -178,7 +178,7 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
   CheckOptions options;
   options.metrics = {"frame_ms", "animations_ms", "rasterizer_ms"};
   HtmlReportInput input;
-  add_result_document(input, current, "current");
+  add_document(input, result_document_from_json(current, "current"), "current");
   input.check = CheckSection{check_results(result_from_json(base, "base.json"), result_from_json(current, "current"), options),
                              options, "base.json"};
   std::string html = html_report(input);
@@ -326,17 +326,17 @@ TEST(HtmlReport, SavingsAreDrawnAsCostAgainstErrorWithTheirFront) {
   exact["drawn_error"] = error(0);
   lod["drawn_error"] = error(0.5);
   bent["drawn_error"] = error(2.5);  // the fastest, past the 1 px threshold: never on the front
-  add_result_document(input, exact, "t.json");
-  add_result_document(input, lod, "l.json");
-  add_result_document(input, bent, "b.json");
-  add_result_document(input, slow, "m.json");  // no drawn error: no point
+  add_document(input, result_document_from_json(exact, "t.json"), "t.json");
+  add_document(input, result_document_from_json(lod, "l.json"), "l.json");
+  add_document(input, result_document_from_json(bent, "b.json"), "b.json");
+  add_document(input, result_document_from_json(slow, "m.json"), "m.json");  // no drawn error: no point
   const std::string html = html_report(input);
   // The front, then one dot per run with an error.
   EXPECT_NE(html.find("data-chart=\"cost-error\" data-series=\"4\""), std::string::npos) << html.substr(0, 400);
   EXPECT_NE(html.find("data-name=\"Pareto front\" data-geometry=\"line\" data-points=\"2\""), std::string::npos);
   EXPECT_NE(html.find("data-name=\"budget (past 1 px)\""), std::string::npos);
   HtmlReportInput one;
-  add_result_document(one, exact, "t.json");
-  add_result_document(one, slow, "m.json");
+  add_document(one, result_document_from_json(exact, "t.json"), "t.json");
+  add_document(one, result_document_from_json(slow, "m.json"), "m.json");
   EXPECT_EQ(html_report(one).find("cost-error"), std::string::npos) << "one point weighs nothing";
 }

@@ -124,7 +124,7 @@ using Reader = std::function<void(const json& doc, const json& intact, const std
 void report_reader(const json& doc, const json&, const std::string& path) {
   HtmlReportInput input;
   input.sources = {path};
-  add_result_document(input, doc, path);
+  add_document(input, result_document_from_json(doc, path), path);
   (void)html_report(input);
 }
 
@@ -308,14 +308,14 @@ TEST(UntrustedResults, HostileNamesAreEscapedInTheHtmlReport) {
   unknown_switch["runs"][0]["switches"][script] = quote;
   HtmlReportInput refused;
   try {
-    add_result_document(refused, unknown_switch, "hostile.json");
+    add_document(refused, result_document_from_json(unknown_switch, "hostile.json"), "hostile.json");
     ADD_FAILURE() << "a switch no crowdprof has was read";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no switch '" + script + "'"), std::string::npos) << e.what();
   }
   HtmlReportInput input;
   input.sources = {quote + script + ".json"};
-  add_result_document(input, doc, "hostile.json");
+  add_document(input, result_document_from_json(doc, "hostile.json"), "hostile.json");
   std::string html = html_report(input);
   // The page's own two scripts (its error hook and self-check), none of theirs.
   size_t scripts = 0;

@@ -1,0 +1,63 @@
+// The documents crowdprof writes with --json, read into types so that the
+// reports take records, never JSON: a bench result (bench, check), a
+// comparison (compare: its runs and its sweep) or a capacity search (capacity:
+// its outcome per mode, the runs at each mode's capacity and every point it
+// tried). Bench results themselves are result_codec.h's.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "result/result.h"
+#include "result/sweep_axis.h"
+
+namespace crowdprof {
+
+// A median frame time at one point of a sweep (compare --sweep, or several
+// results of different crowd sizes).
+struct SweepPoint {
+  std::string mode;
+  size_t x = 0;  // on the axis: copies, or passes
+  double frame_median_ms = 0;
+};
+
+// What a capacity search found (capacity --json).
+struct CapacityRecord {
+  double budget_ms = 0;
+  std::string metric;  // "frame" or a category
+  size_t start = 0;
+  double precision = 0;  // the search stops when over - fits <= max(1, precision x fits)
+  size_t frames_per_point = 0, warmup = 0;
+  struct Row {
+    std::string mode;
+    size_t threads = 0;
+    std::optional<size_t> fits;  // the largest crowd within the budget (none: not even the smallest)
+    double fits_ms = 0;
+    std::optional<size_t> over;  // the smallest crowd found over it (none: the cap fits)
+    double over_ms = 0;
+    size_t cap = 0;
+  };
+  std::vector<Row> rows;
+};
+
+struct ResultDocument {
+  std::string kind = "bench";  // "bench" (bench, check), "compare" or "capacity"
+  std::vector<Result> runs;    // the bench result; a comparison's runs; a search's runs at each capacity
+  std::vector<SweepPoint> sweep;  // compare --sweep, or every point a capacity search measured
+  SweepAxis sweep_axis = SweepAxis::Characters;
+  std::optional<CapacityRecord> capacity;  // kind "capacity"
+};
+
+// The document `doc` (read from `path`, which errors name), every field
+// checked before use. InputError for another kind of document (a diff, a
+// check's verdict) or a field of the wrong type or range, as result_from_json
+// for each run.
+ResultDocument result_document_from_json(const nlohmann::json& doc, const std::string& path);
+// read_json_file, then result_document_from_json.
+ResultDocument read_result_document(const std::string& path);
+
+}  // namespace crowdprof
