@@ -26,18 +26,6 @@ std::vector<double> frame_ms(const Result& run) {
   return out;
 }
 
-nlohmann::json medians_json(const ModeMedians& m, const Result& run, bool with_passes = false) {
-  nlohmann::json categories;
-  for (size_t c = 0; c < kCategoryCount; ++c)
-    categories[series_name(static_cast<Category>(c))] = m.category_ms[c];
-  nlohmann::json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
-                      {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
-                      {"speedup", m.speedup}, {"digest", run.digest}};
-  if (with_passes || m.passes != 1) j["passes"] = m.passes;
-  const FrameRecord& median = run.frame_records.empty() ? FrameRecord{} : run.frame_records[median_frame(run.frame_records)];
-  for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = median.counters.*field.member;
-  return j;
-}
 
 }  // namespace
 
@@ -66,6 +54,8 @@ std::vector<ModeMedians> mode_medians(const std::vector<Result>& runs) {
     }
     auto [first, inserted] = first_at_size.emplace(std::pair(m.characters, m.passes), m.frame_ms);
     m.speedup = m.frame_ms > 0 ? first->second / m.frame_ms : 0.0;
+    m.digest = run.digest;
+    if (!run.frame_records.empty()) m.counters = run.frame_records[median_frame(run.frame_records)].counters;
     out.push_back(m);
   }
   return out;
@@ -161,30 +151,20 @@ void write_comparison_csv(const Comparison& comparison, std::ostream& out) {
     if (!is_main_point(comparison, run)) write(run);
 }
 
+ResultDocument comparison_document(const Comparison& comparison) {
+  ResultDocument d;
+  d.kind = "compare";
+  d.runs = comparison.runs;
+  d.summary = mode_medians(comparison.runs);
+  d.sweep = mode_medians(comparison.sweep);
+  d.sweep_axis = comparison.sweep_axis;
+  d.block_frames = comparison.block;
+  d.partial = !comparison.runs.empty() && comparison.runs.front().partial;
+  return d;
+}
+
 nlohmann::json comparison_to_json(const Comparison& comparison) {
-  nlohmann::json j;
-  nlohmann::json runs = nlohmann::json::array(), summary = nlohmann::json::array(), sweep = nlohmann::json::array();
-  std::vector<ModeMedians> medians = mode_medians(comparison.runs);
-  for (size_t r = 0; r < comparison.runs.size(); ++r) {
-    runs.push_back(result_to_json(comparison.runs[r]));
-    summary.push_back(medians_json(medians[r], comparison.runs[r]));
-    j["modes"].push_back(medians[r].mode);
-  }
-  std::vector<ModeMedians> sweep_medians = mode_medians(comparison.sweep);
-  for (size_t r = 0; r < comparison.sweep.size(); ++r) sweep.push_back(medians_json(sweep_medians[r], comparison.sweep[r], comparison.sweep_axis == SweepAxis::Passes));
-  if (!runs.empty()) {
-    j["crowdprof"] = runs[0]["crowdprof"];
-    j["environment"] = runs[0]["environment"];
-    j["scene"] = runs[0]["scene"];
-  }
-  j["crowdprof"]["kind"] = "compare";
-  if (!comparison.runs.empty() && comparison.runs.front().partial) j["partial"] = true;
-  j["block_frames"] = comparison.block;
-  j["summary"] = summary;
-  j["sweep"] = sweep;
-  if (comparison.sweep_axis != SweepAxis::Characters) j["sweep_axis"] = to_string(comparison.sweep_axis);
-  j["runs"] = runs;
-  return j;
+  return result_document_to_json(comparison_document(comparison));
 }
 
 std::string comparison_svg(const Comparison& comparison) {

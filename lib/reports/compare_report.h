@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/profile_table.h"
+#include "result/result_document.h"
 #include "result/sweep_axis.h"
 
 namespace crowdprof {
@@ -21,19 +22,8 @@ struct Comparison {
   size_t block = 10;             // frames per block of the interleaving
 };
 
-// Median over frames of every mode, its categories and the speedup.
-struct ModeMedians {
-  std::string mode;
-  size_t characters = 0;
-  uint32_t passes = 1;
-  int threads = 1;
-  double frame_ms = 0;
-  double category_ms[kCategoryCount]{};
-  double speedup = 0;  // the first mode's frame_ms over this one's (same size and passes)
-  size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
-};
-
-// Per run, with speedups against the first run of the same size.
+// Per run (result/result_document.h's ModeMedians), with speedups against the
+// first run of the same size.
 std::vector<ModeMedians> mode_medians(const std::vector<Result>& runs);
 
 // Whether `run` of the sweep is at the main runs' point (their size, or their
@@ -51,9 +41,12 @@ std::string format_comparison(const Comparison& comparison);
 // bench's CSV (one row per frame) for every run, the main runs first: one header.
 void write_comparison_csv(const Comparison& comparison, std::ostream& out);
 
-// {"crowdprof": {..., "kind": "compare"}, "environment", "block_frames",
-//  "modes", "summary": [per mode], "sweep": [per size and mode], "runs": [bench
-//  JSON per mode]}.
+// The comparison as a typed document (kind "compare"): its runs, a summary row
+// per run and a row per point of the sweep.
+ResultDocument comparison_document(const Comparison& comparison);
+// result_document_to_json(comparison_document(comparison)): {"crowdprof":
+// {..., "kind": "compare"}, "environment", "block_frames", "modes", "summary":
+// [per mode], "sweep": [per size and mode], "runs": [bench JSON per mode]}.
 nlohmann::json comparison_to_json(const Comparison& comparison);
 
 // Frame time per frame, one line per mode (the thesis's figure 11); a stacked

@@ -515,7 +515,7 @@ void add_document(HtmlReportInput& input, ResultDocument document, const std::st
   for (Result& run : document.runs) input.runs.push_back({"", std::move(run), source});
   if (document.kind == "bench") return;
   input.sweep_axis = document.sweep_axis;
-  input.sweep.insert(input.sweep.end(), document.sweep.begin(), document.sweep.end());
+  for (const ModeMedians& m : document.sweep) input.sweep.push_back({m.mode, m.on(document.sweep_axis), m.frame_ms});
   if (document.capacity && document.capacity->metric == "frame" && document.capacity->budget_ms > 0)
     input.sweep_budget_ms = document.capacity->budget_ms;
   if (document.capacity) input.capacity = std::move(document.capacity);

@@ -1,6 +1,8 @@
 #include "result/result_document.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string_view>
 #include <tuple>
 
 #include "base/errors.h"
@@ -12,24 +14,81 @@ namespace {
 
 using nlohmann::json;
 
-// A comparison's sweep rows, each field checked before use.
-void read_sweep(ResultDocument& out, const json& doc, const std::string& path) {
-  if (!doc.contains("sweep")) return;
-  const json& sweep = doc["sweep"];
-  if (!sweep.is_array()) throw InputError(path, "\"sweep\" should be an array");
-  if (doc.contains("sweep_axis")) {
-    if (doc["sweep_axis"] == "passes") out.sweep_axis = SweepAxis::Passes;
-    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
+// A row of a comparison's summary or sweep (or a capacity search's sweep),
+// each field checked before use: mode, the axis and frame_median_ms are
+// needed; the rest is read when present.
+ModeMedians read_row(const json& row, SweepAxis axis, const std::string& path, const char* list) {
+  const std::string key(to_string(axis));
+  auto finite = [](const json& v) { return v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() >= 0; };
+  bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains(key) &&
+            row[key].is_number_unsigned() && row.contains("frame_median_ms") && finite(row["frame_median_ms"]);
+  if (!ok) throw InputError(path, std::string("a \"") + list + "\" row without mode, " + key + " and frame_median_ms");
+  auto bad = [&](const std::string& field) {
+    return InputError(path, std::string("a \"") + list + "\" row whose \"" + field + "\" is not what crowdprof writes");
+  };
+  ModeMedians m;
+  m.mode = row["mode"].get<std::string>();
+  m.frame_ms = row["frame_median_ms"].get<double>();
+  for (const char* whole : {"characters", "passes", "threads"}) {
+    if (!row.contains(whole)) continue;
+    const json& value = row[whole];
+    const bool counted = value.is_number_unsigned() || (value.is_number_integer() && value.get<int64_t>() >= 0);
+    if (!counted || value.get<uint64_t>() > (uint64_t{1} << 31)) throw bad(whole);
+    const uint64_t v = value.get<uint64_t>();
+    if (std::string_view(whole) == "characters") m.characters = static_cast<size_t>(v);
+    else if (std::string_view(whole) == "passes") m.passes = static_cast<uint32_t>(v);
+    else m.threads = static_cast<int>(v);
   }
-  std::string axis(to_string(out.sweep_axis));
-  for (const json& row : sweep) {
-    bool ok = row.is_object() && row.contains("mode") && row["mode"].is_string() && row.contains(axis) &&
-              row[axis].is_number_unsigned() && row.contains("frame_median_ms") &&
-              row["frame_median_ms"].is_number() && std::isfinite(row["frame_median_ms"].get<double>()) &&
-              row["frame_median_ms"].get<double>() >= 0;
-    if (!ok) throw InputError(path, "a \"sweep\" row without mode, " + axis + " and frame_median_ms");
-    out.sweep.push_back({row["mode"].get<std::string>(), row[axis].get<size_t>(), row["frame_median_ms"].get<double>()});
+  if (row.contains("speedup")) {
+    if (!finite(row["speedup"])) throw bad("speedup");
+    m.speedup = row["speedup"].get<double>();
   }
+  if (row.contains("digest")) {
+    if (!row["digest"].is_string()) throw bad("digest");
+    m.digest = row["digest"].get<std::string>();
+  }
+  if (row.contains("categories_median_ms")) {
+    const json& categories = row["categories_median_ms"];
+    if (!categories.is_object()) throw bad("categories_median_ms");
+    for (size_t k = 0; k < kCategoryCount; ++k) {
+      const std::string name = series_name(static_cast<Category>(k));
+      if (!categories.contains(name)) continue;
+      if (!finite(categories[name])) throw bad("categories_median_ms." + name);
+      m.category_ms[k] = categories[name].get<double>();
+    }
+  }
+  if (row.contains("counters")) {
+    const json& counters = row["counters"];
+    if (!counters.is_object()) throw bad("counters");
+    for (const CounterField& field : kCounterFields) {
+      const std::string name(field.name);
+      if (!counters.contains(name)) continue;
+      if (!counters[name].is_number_unsigned()) throw bad("counters." + name);
+      m.counters.*field.member = counters[name].get<uint64_t>();
+    }
+  }
+  return m;
+}
+
+// The rows of `list` ("summary" or "sweep"), when the document has it.
+std::vector<ModeMedians> read_rows(const json& doc, const char* list, SweepAxis axis, const std::string& path) {
+  std::vector<ModeMedians> out;
+  if (!doc.contains(list)) return out;
+  const json& rows = doc[list];
+  if (!rows.is_array()) throw InputError(path, std::string("\"") + list + "\" should be an array");
+  for (const json& row : rows) out.push_back(read_row(row, axis, path, list));
+  return out;
+}
+
+json row_json(const ModeMedians& m, bool with_passes) {
+  json categories = json::object();
+  for (size_t k = 0; k < kCategoryCount; ++k) categories[series_name(static_cast<Category>(k))] = m.category_ms[k];
+  json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
+            {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
+            {"speedup", m.speedup}, {"digest", m.digest}};
+  if (with_passes || m.passes != 1) j["passes"] = m.passes;
+  for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = m.counters.*field.member;
+  return j;
 }
 
 // A capacity result's search and outcome per mode, each field checked before use.
@@ -87,13 +146,50 @@ ResultDocument result_document_from_json(const json& doc, const std::string& pat
   // capacity) and sweep (every size it tried).
   out.runs = bench_results_in(doc, path);
   if (out.kind == "bench") return out;
-  read_sweep(out, doc, path);
+  if (doc.contains("sweep_axis")) {
+    if (doc["sweep_axis"] == "passes") out.sweep_axis = SweepAxis::Passes;
+    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
+  }
+  out.summary = read_rows(doc, "summary", SweepAxis::Characters, path);
+  out.sweep = read_rows(doc, "sweep", out.sweep_axis, path);
+  if (doc.contains("block_frames")) {
+    if (!doc["block_frames"].is_number_unsigned()) throw InputError(path, "\"block_frames\" should be a whole number");
+    out.block_frames = doc["block_frames"].get<size_t>();
+  }
+  out.partial = doc.contains("partial") && doc["partial"] == true;
   if (out.kind == "capacity") out.capacity = read_capacity(doc, path);
   return out;
 }
 
 ResultDocument read_result_document(const std::string& path) {
   return result_document_from_json(read_json_file(path), path);
+}
+
+json result_document_to_json(const ResultDocument& d) {
+  if (d.kind == "bench") return d.runs.empty() ? json::object() : result_to_json(d.runs.front());
+  if (d.kind != "compare") throw std::logic_error("result_document_to_json: a '" + d.kind + "' document");
+  json j;
+  json runs = json::array(), summary = json::array(), sweep = json::array(), modes = json::array();
+  for (const Result& run : d.runs) runs.push_back(result_to_json(run));
+  for (const ModeMedians& m : d.summary) {
+    summary.push_back(row_json(m, false));
+    modes.push_back(m.mode);
+  }
+  for (const ModeMedians& m : d.sweep) sweep.push_back(row_json(m, d.sweep_axis == SweepAxis::Passes));
+  if (!runs.empty()) {
+    j["crowdprof"] = runs[0]["crowdprof"];
+    j["environment"] = runs[0]["environment"];
+    j["scene"] = runs[0]["scene"];
+  }
+  j["crowdprof"]["kind"] = d.kind;
+  if (d.partial) j["partial"] = true;
+  j["block_frames"] = d.block_frames;
+  if (!modes.empty()) j["modes"] = modes;
+  j["summary"] = summary;
+  j["sweep"] = sweep;
+  if (d.sweep_axis != SweepAxis::Characters) j["sweep_axis"] = to_string(d.sweep_axis);
+  j["runs"] = runs;
+  return j;
 }
 
 }  // namespace crowdprof

@@ -5,6 +5,7 @@
 // tried). Bench results themselves are result_codec.h's.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -23,6 +24,24 @@ struct SweepPoint {
   std::string mode;
   size_t x = 0;  // on the axis: copies, or passes
   double frame_median_ms = 0;
+};
+
+// One mode at one point in a comparison (its summary row, or a sweep row):
+// medians over the frames of the frame and each category, the speedup over
+// the first mode of the same size and passes, the digest and the median
+// frame's counters. A capacity search's sweep rows hold mode, characters and
+// frame_ms only.
+struct ModeMedians {
+  std::string mode;
+  size_t characters = 0;
+  uint32_t passes = 1;
+  int threads = 1;
+  double frame_ms = 0;
+  std::array<double, kCategoryCount> category_ms{};
+  double speedup = 0;  // the first mode's frame_ms over this one's (same size and passes)
+  std::string digest;
+  Counters counters;   // of the median frame
+  size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
 };
 
 // What a capacity search found (capacity --json).
@@ -47,8 +66,11 @@ struct CapacityRecord {
 struct ResultDocument {
   std::string kind = "bench";  // "bench" (bench, check), "compare" or "capacity"
   std::vector<Result> runs;    // the bench result; a comparison's runs; a search's runs at each capacity
-  std::vector<SweepPoint> sweep;  // compare --sweep, or every point a capacity search measured
+  std::vector<ModeMedians> summary;  // compare: one row per run
+  std::vector<ModeMedians> sweep;    // compare --sweep, or every point a capacity search measured whole
   SweepAxis sweep_axis = SweepAxis::Characters;
+  size_t block_frames = 10;  // compare: frames per block of the interleaving
+  bool partial = false;      // stopped early (^C)
   std::optional<CapacityRecord> capacity;  // kind "capacity"
 };
 
@@ -59,5 +81,10 @@ struct ResultDocument {
 ResultDocument result_document_from_json(const nlohmann::json& doc, const std::string& path);
 // read_json_file, then result_document_from_json.
 ResultDocument read_result_document(const std::string& path);
+
+// The document as crowdprof writes it (docs/formats.md): a bench result's own
+// JSON; a comparison's header (from its first run), block_frames, modes,
+// summary, sweep (sweep_axis when it is not characters) and runs.
+nlohmann::json result_document_to_json(const ResultDocument& document);
 
 }  // namespace crowdprof

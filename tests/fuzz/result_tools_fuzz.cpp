@@ -1,8 +1,9 @@
 // Fuzz target: bytes as a result file given to `crowdprof diff` and
 // `crowdprof report`: bench, check or compare JSON. Both read the file with
 // read_json_file and then take it apart their own way (bench_results_in for
-// diff, add_document for the report), so each reader is driven to its
-// end: the file diffed against itself and the page made. Each must refuse with
+// diff, the typed document for the report), so each reader is driven to its
+// end: the file diffed against itself, a comparison written and read back,
+// and the page made. Each must refuse with
 // an InputError or finish; any other exception, nlohmann's JSON_ASSERT reached
 // (an unguarded read), a regression of a file against itself, or a sanitizer
 // report is a finding.
@@ -18,6 +19,7 @@
 #include "reports/html_report.h"
 #include "gate/regression.h"
 #include "result/result_codec.h"
+#include "result/result_document.h"
 
 namespace {
 
@@ -36,9 +38,18 @@ void run_diff(const nlohmann::json& doc, const std::string& path) {
 
 void run_report(const nlohmann::json& doc, const std::string& path) {
   using namespace crowdprof;
+  ResultDocument document = result_document_from_json(doc, path);
+  // The codec reads back what it writes of a comparison, to the same document.
+  if (document.kind == "compare") {
+    nlohmann::json written = result_document_to_json(document);
+    if (result_document_to_json(result_document_from_json(written, path)) != written) {
+      std::fprintf(stderr, "fuzz: a comparison written and read back changed\n");
+      std::abort();
+    }
+  }
   HtmlReportInput input;
   input.sources = {path};
-  add_document(input, result_document_from_json(doc, path), path);
+  add_document(input, std::move(document), path);
   (void)html_report(input);
 }
 

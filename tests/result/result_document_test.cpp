@@ -1,0 +1,74 @@
+// The documents that hold results (compare and capacity --json) are read into
+// types by one reader, and a comparison is written by the codec's one writer:
+// what it writes it reads back to the same document, and a hostile row is
+// refused naming it.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "base/errors.h"
+#include "fake_run.h"
+#include "reports/compare_report.h"
+#include "result/result_document.h"
+
+namespace crowdprof {
+namespace {
+
+using nlohmann::json;
+
+Comparison two_modes_and_a_sweep() {
+  Comparison c;
+  c.runs = {test::fake_run("master", 40, {10, 11, 9}, 0.5), test::fake_run("threaded", 40, {5, 5, 6}, 0.5)};
+  c.runs[1].frame_records[1].counters.copies_visible = 31;
+  c.sweep = {c.runs[0], c.runs[1], test::fake_run("master", 80, {20, 21, 19}), test::fake_run("threaded", 80, {8, 9, 8})};
+  record_samples(c.runs[1]);
+  c.block = 5;
+  return c;
+}
+
+TEST(ResultDocument, AComparisonReadsBackToTheSameDocument) {
+  const json written = comparison_to_json(two_modes_and_a_sweep());
+  const ResultDocument read = result_document_from_json(written, "c.json");
+  EXPECT_EQ(read.kind, "compare");
+  ASSERT_EQ(read.runs.size(), 2u);
+  ASSERT_EQ(read.summary.size(), 2u);
+  EXPECT_DOUBLE_EQ(read.summary[1].frame_ms, 5.0);
+  EXPECT_DOUBLE_EQ(read.summary[1].speedup, 2.0);
+  EXPECT_EQ(read.summary[1].counters.copies_visible, 31u) << "the median frame's counters";
+  EXPECT_EQ(read.summary[0].digest, "00000000000000aa");
+  ASSERT_EQ(read.sweep.size(), 4u);
+  EXPECT_EQ(read.sweep[3].characters, 80u);
+  EXPECT_DOUBLE_EQ(read.sweep[3].speedup, 20.0 / 8.0);
+  EXPECT_EQ(read.block_frames, 5u);
+  EXPECT_EQ(result_document_to_json(read), written);
+}
+
+TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
+  const json good = comparison_to_json(two_modes_and_a_sweep());
+  struct Case {
+    const char* list;
+    const char* field;
+    json value;
+    const char* says;
+  };
+  for (const Case& c : {Case{"summary", "threads", "two", "a \"summary\" row whose \"threads\""},
+                        Case{"summary", "speedup", -1.0, "a \"summary\" row whose \"speedup\""},
+                        Case{"sweep", "frame_median_ms", nullptr, "a \"sweep\" row without mode, characters and frame_median_ms"},
+                        Case{"sweep", "counters", json::array(), "a \"sweep\" row whose \"counters\""}}) {
+    json doc = good;
+    doc[c.list][0][c.field] = c.value;
+    try {
+      result_document_from_json(doc, "c.json");
+      ADD_FAILURE() << c.list << "." << c.field << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("c.json"), std::string::npos) << e.what();
+    }
+  }
+  json diff = good;
+  diff["crowdprof"]["kind"] = "diff";
+  EXPECT_THROW(result_document_from_json(diff, "d.json"), InputError);
+}
+
+}  // namespace
+}  // namespace crowdprof
