@@ -22,6 +22,7 @@
 #include "base/errors.h"
 
 #include "result/result.h"
+#include "result/result_document.h"
 
 namespace crowdprof {
 
@@ -34,18 +35,6 @@ struct CapacityRule {
   // Empty when the rule can run, else why not, naming the setting: "{budget}
   // must be a number of milliseconds above 0" (cli/ spells it --budget).
   SettingText Validate() const;
-};
-
-// One crowd size measured for one mode.
-struct CapacityPoint {
-  size_t n = 0;
-  double median_ms = 0;  // the metric's median over the point's frames: the search reads this
-  double p95_ms = 0, p99_ms = 0, min_ms = 0, max_ms = 0;
-  double frame_median_ms = 0;  // the whole frame's median (the same as median_ms for the frame metric)
-  size_t frames = 0;
-  size_t round = 0;      // 1 for the first round of the run
-  bool partial = false;  // measured in a round cut short by ^C: shown, never used by the search
-  std::string digest;
 };
 
 // The next N to measure after `tried` (in any order; partial points are

@@ -17,20 +17,6 @@ std::string metric_column(const CapacityMetric& metric) {
   return metric.category ? std::string(category_column(*metric.category)) : "frame";
 }
 
-nlohmann::json point_json(const CapacityPoint& p, const CapacityRule& rule) {
-  return {{"characters", p.n},
-          {"median_ms", p.median_ms},
-          {"p95_ms", p.p95_ms},
-          {"p99_ms", p.p99_ms},
-          {"min_ms", p.min_ms},
-          {"max_ms", p.max_ms},
-          {"frame_median_ms", p.frame_median_ms},
-          {"frames", p.frames},
-          {"fits", p.median_ms <= rule.budget_ms},
-          {"round", p.round},
-          {"partial", p.partial},
-          {"digest", p.digest}};
-}
 
 }  // namespace
 
@@ -65,46 +51,39 @@ std::string format_capacity(const CapacityRun& run) {
   return out + notes;
 }
 
-nlohmann::json capacity_to_json(const CapacityRun& run) {
-  nlohmann::json j;
-  if (run.first) {
-    nlohmann::json first = result_to_json(*run.first);
-    j["crowdprof"] = first["crowdprof"];
-    j["environment"] = first["environment"];
-    j["scene"] = first["scene"];
-    j["scene"].erase("characters");  // each point has its own
-  }
-  j["crowdprof"]["kind"] = "capacity";
+ResultDocument capacity_document(const CapacityRun& run) {
+  ResultDocument d;
+  d.kind = "capacity";
+  d.described = run.first;
+  d.block_frames = run.block;
+  d.partial = run.partial;
+  CapacityRecord& c = d.capacity.emplace();
   const CapacityRule rule = run.modes.empty() ? CapacityRule{} : run.modes.front().rule;
-  j["budget_ms"] = rule.budget_ms;
-  j["metric"] = run.metric.name();
-  j["search"] = {{"start", rule.start}, {"resolution", rule.resolution},
-                 {"rule", "doubling from start while the median fits, then bisection until first_over - largest_fit "
-                          "<= max(1, floor(resolution * largest_fit))"}};
-  j["block_frames"] = run.block;
-  j["frames_per_point"] = run.frames;
-  j["warmup_frames"] = run.warmup;
-  j["partial"] = run.partial;
-  j["modes"] = nlohmann::json::array();
+  c.budget_ms = rule.budget_ms;
+  c.metric = run.metric.name();
+  c.start = rule.start;
+  c.precision = rule.resolution;
+  c.frames_per_point = run.frames;
+  c.warmup = run.warmup;
   for (const ModeCapacity& mode : run.modes) {
-    nlohmann::json m = {{"mode", mode.mode}, {"threads", mode.threads}, {"cap", mode.rule.cap},
-                        {"capped", mode.result.capped}, {"non_monotonic", mode.result.non_monotonic}};
-    m["largest_fit"] = mode.result.fit ? point_json(*mode.result.fit, mode.rule) : nlohmann::json();
-    m["first_over"] = mode.result.fail ? point_json(*mode.result.fail, mode.rule) : nlohmann::json();
-    m["points"] = nlohmann::json::array();
-    for (const CapacityPoint& p : mode.tried) {
-      m["points"].push_back(point_json(p, mode.rule));
-      if (!p.partial) j["sweep"].push_back({{"mode", mode.mode}, {"characters", p.n}, {"frame_median_ms", p.frame_median_ms}});
-    }
-    j["modes"].push_back(m);
+    c.rows.push_back({mode.mode, static_cast<size_t>(mode.threads), mode.rule.cap, mode.result.capped,
+                      mode.result.non_monotonic, mode.result.fit, mode.result.fail, mode.tried});
+    for (const CapacityPoint& p : mode.tried)
+      if (!p.partial) {
+        ModeMedians point;
+        point.mode = mode.mode;
+        point.characters = p.n;
+        point.frame_ms = p.frame_median_ms;
+        d.sweep.push_back(point);
+      }
     // The bench result at the mode's capacity (at the first size over when none fit).
     const std::optional<Result>& run_at = mode.fit_run ? mode.fit_run : mode.fail_run;
-    if (run_at) j["runs"].push_back(result_to_json(*run_at));
+    if (run_at) d.runs.push_back(*run_at);
   }
-  if (!j.contains("sweep")) j["sweep"] = nlohmann::json::array();
-  if (!j.contains("runs")) j["runs"] = nlohmann::json::array();
-  return j;
+  return d;
 }
+
+nlohmann::json capacity_to_json(const CapacityRun& run) { return result_document_to_json(capacity_document(run)); }
 
 std::string capacity_svg(const CapacityRun& run) {
   ModeColours colours;

@@ -24,8 +24,10 @@ std::string format_capacity(const CapacityRun& run);
 //  "capped", "non_monotonic", "points": [...]}], "sweep": [{"mode",
 //  "characters", "frame_median_ms"} per point, as compare's], "runs": [the bench
 //  result at each mode's largest fit, else at its first size over]}: `report`
-//  reads it as it reads a comparison.
+//  reads it as it reads a comparison. result_document_to_json(capacity_document(run)).
 nlohmann::json capacity_to_json(const CapacityRun& run);
+// The search as a typed document (kind "capacity"), which the codec writes.
+ResultDocument capacity_document(const CapacityRun& run);
 
 // The metric's median against the crowd size (log scale), one line per mode
 // (the presets keep their colours, chart_colours.h), and the budget.

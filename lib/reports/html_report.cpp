@@ -49,10 +49,10 @@ std::string capacity_section(const CapacityRecord& c) {
                     "<th>its median ms</th></tr>\n";
   for (const CapacityRecord::Row& row : c.rows) {
     out += "<tr><td class=\"name\">" + h(row.mode) + "</td><td>" + std::to_string(row.threads) + "</td><td><b>" +
-           (row.fits ? std::to_string(*row.fits) : std::string("none")) + "</b></td><td>" +
-           (row.fits ? report_number(row.fits_ms, 3) : std::string("-")) + "</td><td>" +
-           (row.over ? std::to_string(*row.over) : "over " + std::to_string(row.cap) + " (the cap fits)") + "</td><td>" +
-           (row.over ? report_number(row.over_ms, 3) : std::string("-")) + "</td></tr>\n";
+           (row.fit ? std::to_string(row.fit->n) : std::string("none")) + "</b></td><td>" +
+           (row.fit ? report_number(row.fit->median_ms, 3) : std::string("-")) + "</td><td>" +
+           (row.over ? std::to_string(row.over->n) : "over " + std::to_string(row.cap) + " (the cap fits)") + "</td><td>" +
+           (row.over ? report_number(row.over->median_ms, 3) : std::string("-")) + "</td></tr>\n";
   }
   out += "</table>\n<p>Search: from " + std::to_string(c.start) +
          " characters, doubling while the median fits, then halving the gap until the first crowd over is within " +

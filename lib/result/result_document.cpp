@@ -123,13 +123,38 @@ CapacityRecord read_capacity(const json& doc, const std::string& path) {
     row.mode = m["mode"].get<std::string>();
     row.threads = count(m.value("threads", json(0)), "\"threads\"");
     row.cap = count(m.value("cap", json(0)), "\"cap\"");
-    for (auto [key, n, ms] : {std::tuple{"largest_fit", &row.fits, &row.fits_ms}, {"first_over", &row.over, &row.over_ms}}) {
+    auto flag = [&](const char* key) {
+      const json v = m.value(key, json(false));
+      if (!v.is_boolean()) throw bad(std::string("\"") + key + "\" is not true or false");
+      return v.get<bool>();
+    };
+    row.capped = flag("capped");
+    row.non_monotonic = flag("non_monotonic");
+    auto read_point = [&](const json& point) {
+      if (!point.is_object()) throw bad("point is not an object");
+      CapacityPoint p;
+      p.n = count(point.value("characters", json()), "point's \"characters\"");
+      p.median_ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
+      for (auto [key, ms] : {std::pair{"p95_ms", &p.p95_ms}, {"p99_ms", &p.p99_ms}, {"min_ms", &p.min_ms},
+                             {"max_ms", &p.max_ms}, {"frame_median_ms", &p.frame_median_ms}})
+        *ms = number(point.value(key, json(0.0)), key);
+      p.frames = count(point.value("frames", json(0)), "point's \"frames\"");
+      p.round = count(point.value("round", json(0)), "point's \"round\"");
+      const json partial = point.value("partial", json(false)), digest = point.value("digest", json(""));
+      if (!partial.is_boolean() || !digest.is_string()) throw bad("point's \"partial\" or \"digest\" is of another type");
+      p.partial = partial.get<bool>();
+      p.digest = digest.get<std::string>();
+      return p;
+    };
+    for (auto [key, slot] : {std::pair{"largest_fit", &row.fit}, {"first_over", &row.over}}) {
       const json point = m.value(key, json());
       if (point.is_null()) continue;
       if (!point.is_object()) throw bad(std::string("\"") + key + "\" is not a point");
-      *n = count(point.value("characters", json()), "point's \"characters\"");
-      *ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
+      *slot = read_point(point);
     }
+    const json points = m.value("points", json::array());
+    if (!points.is_array()) throw bad("\"points\" is not an array");
+    for (const json& point : points) row.points.push_back(read_point(point));
     c.rows.push_back(std::move(row));
   }
   return c;
@@ -165,8 +190,61 @@ ResultDocument read_result_document(const std::string& path) {
   return result_document_from_json(read_json_file(path), path);
 }
 
+namespace {
+
+json point_json(const CapacityPoint& p, double budget_ms) {
+  return {{"characters", p.n},         {"median_ms", p.median_ms},
+          {"p95_ms", p.p95_ms},        {"p99_ms", p.p99_ms},
+          {"min_ms", p.min_ms},        {"max_ms", p.max_ms},
+          {"frame_median_ms", p.frame_median_ms}, {"frames", p.frames},
+          {"fits", p.median_ms <= budget_ms},     {"round", p.round},
+          {"partial", p.partial},      {"digest", p.digest}};
+}
+
+json capacity_json(const ResultDocument& d) {
+  const CapacityRecord& c = *d.capacity;
+  json j;
+  const Result* head = d.described ? &*d.described : d.runs.empty() ? nullptr : &d.runs.front();
+  if (head) {
+    json first = result_to_json(*head);
+    j["crowdprof"] = first["crowdprof"];
+    j["environment"] = first["environment"];
+    j["scene"] = first["scene"];
+    j["scene"].erase("characters");  // each point has its own
+  }
+  j["crowdprof"]["kind"] = "capacity";
+  j["budget_ms"] = c.budget_ms;
+  j["metric"] = c.metric;
+  j["search"] = {{"start", c.start}, {"resolution", c.precision},
+                 {"rule", "doubling from start while the median fits, then bisection until first_over - largest_fit "
+                          "<= max(1, floor(resolution * largest_fit))"}};
+  j["block_frames"] = d.block_frames;
+  j["frames_per_point"] = c.frames_per_point;
+  j["warmup_frames"] = c.warmup;
+  j["partial"] = d.partial;
+  j["modes"] = json::array();
+  for (const CapacityRecord::Row& row : c.rows) {
+    json m = {{"mode", row.mode}, {"threads", row.threads}, {"cap", row.cap},
+              {"capped", row.capped}, {"non_monotonic", row.non_monotonic}};
+    m["largest_fit"] = row.fit ? point_json(*row.fit, c.budget_ms) : json();
+    m["first_over"] = row.over ? point_json(*row.over, c.budget_ms) : json();
+    m["points"] = json::array();
+    for (const CapacityPoint& p : row.points) m["points"].push_back(point_json(p, c.budget_ms));
+    j["modes"].push_back(m);
+  }
+  j["sweep"] = json::array();
+  for (const ModeMedians& s : d.sweep)
+    j["sweep"].push_back({{"mode", s.mode}, {"characters", s.characters}, {"frame_median_ms", s.frame_ms}});
+  j["runs"] = json::array();
+  for (const Result& run : d.runs) j["runs"].push_back(result_to_json(run));
+  return j;
+}
+
+}  // namespace
+
 json result_document_to_json(const ResultDocument& d) {
   if (d.kind == "bench") return d.runs.empty() ? json::object() : result_to_json(d.runs.front());
+  if (d.kind == "capacity" && d.capacity) return capacity_json(d);
   if (d.kind != "compare") throw std::logic_error("result_document_to_json: a '" + d.kind + "' document");
   json j;
   json runs = json::array(), summary = json::array(), sweep = json::array(), modes = json::array();

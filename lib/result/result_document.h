@@ -44,7 +44,20 @@ struct ModeMedians {
   size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
 };
 
-// What a capacity search found (capacity --json).
+// One crowd size measured for one mode.
+struct CapacityPoint {
+  size_t n = 0;
+  double median_ms = 0;  // the metric's median over the point's frames: the search reads this
+  double p95_ms = 0, p99_ms = 0, min_ms = 0, max_ms = 0;
+  double frame_median_ms = 0;  // the whole frame's median (the same as median_ms for the frame metric)
+  size_t frames = 0;
+  size_t round = 0;      // 1 for the first round of the run
+  bool partial = false;  // measured in a round cut short by ^C: shown, never used by the search
+  std::string digest;
+};
+
+// What a capacity search found (capacity --json): its rule, and per mode the
+// points it measured and the boundary they give.
 struct CapacityRecord {
   double budget_ms = 0;
   std::string metric;  // "frame" or a category
@@ -54,11 +67,12 @@ struct CapacityRecord {
   struct Row {
     std::string mode;
     size_t threads = 0;
-    std::optional<size_t> fits;  // the largest crowd within the budget (none: not even the smallest)
-    double fits_ms = 0;
-    std::optional<size_t> over;  // the smallest crowd found over it (none: the cap fits)
-    double over_ms = 0;
     size_t cap = 0;
+    bool capped = false;         // the cap fits
+    bool non_monotonic = false;  // a larger crowd was more than 10% faster than a smaller one
+    std::optional<CapacityPoint> fit;   // the largest crowd within the budget (none: not even the smallest)
+    std::optional<CapacityPoint> over;  // the smallest crowd found over it (none: the cap fits)
+    std::vector<CapacityPoint> points;  // in the order measured
   };
   std::vector<Row> rows;
 };
@@ -72,6 +86,9 @@ struct ResultDocument {
   size_t block_frames = 10;  // compare: frames per block of the interleaving
   bool partial = false;      // stopped early (^C)
   std::optional<CapacityRecord> capacity;  // kind "capacity"
+  // capacity: the first run measured, whose build, environment and scene head
+  // the document (none read back: then the first of `runs` heads it).
+  std::optional<Result> described;
 };
 
 // The document `doc` (read from `path`, which errors name), every field
@@ -84,7 +101,9 @@ ResultDocument read_result_document(const std::string& path);
 
 // The document as crowdprof writes it (docs/formats.md): a bench result's own
 // JSON; a comparison's header (from its first run), block_frames, modes,
-// summary, sweep (sweep_axis when it is not characters) and runs.
+// summary, sweep (sweep_axis when it is not characters) and runs; a capacity
+// search's header (without the crowd's size), its rule, per mode its points
+// and boundary, the sweep of whole points and the runs at each capacity.
 nlohmann::json result_document_to_json(const ResultDocument& document);
 
 }  // namespace crowdprof

@@ -2,7 +2,8 @@
 // `crowdprof report`: bench, check or compare JSON. Both read the file with
 // read_json_file and then take it apart their own way (bench_results_in for
 // diff, the typed document for the report), so each reader is driven to its
-// end: the file diffed against itself, a comparison written and read back,
+// end: the file diffed against itself, a comparison or capacity search written
+// and read back,
 // and the page made. Each must refuse with
 // an InputError or finish; any other exception, nlohmann's JSON_ASSERT reached
 // (an unguarded read), a regression of a file against itself, or a sanitizer
@@ -39,11 +40,12 @@ void run_diff(const nlohmann::json& doc, const std::string& path) {
 void run_report(const nlohmann::json& doc, const std::string& path) {
   using namespace crowdprof;
   ResultDocument document = result_document_from_json(doc, path);
-  // The codec reads back what it writes of a comparison, to the same document.
-  if (document.kind == "compare") {
+  // The codec reads back what it writes of a comparison or a capacity search,
+  // to the same document.
+  if (document.kind != "bench") {
     nlohmann::json written = result_document_to_json(document);
     if (result_document_to_json(result_document_from_json(written, path)) != written) {
-      std::fprintf(stderr, "fuzz: a comparison written and read back changed\n");
+      std::fprintf(stderr, "fuzz: a %s document written and read back changed\n", document.kind.c_str());
       std::abort();
     }
   }

@@ -43,6 +43,44 @@ TEST(ResultDocument, AComparisonReadsBackToTheSameDocument) {
   EXPECT_EQ(result_document_to_json(read), written);
 }
 
+TEST(ResultDocument, ACapacitySearchReadsBackToTheSameDocument) {
+  ResultDocument d;
+  d.kind = "capacity";
+  d.block_frames = 4;
+  d.runs = {test::fake_run("threaded", 640, {12, 13, 12})};
+  CapacityRecord& c = d.capacity.emplace();
+  c.budget_ms = 16.7;
+  c.metric = "frame";
+  c.start = 10;
+  c.precision = 0.05;
+  c.frames_per_point = 3;
+  c.warmup = 1;
+  CapacityPoint fit{640, 12.0, 13.0, 13.0, 12.0, 13.0, 12.0, 3, 2, false, "00000000000000aa"};
+  CapacityPoint over{1280, 25.0, 26.0, 26.0, 24.0, 26.0, 25.0, 3, 3, false, "00000000000000bb"};
+  c.rows.push_back({"threaded", 2, 100000, false, false, fit, over, {fit, over}});
+  for (const CapacityPoint& p : {fit, over}) {
+    ModeMedians point;
+    point.mode = "threaded";
+    point.characters = p.n;
+    point.frame_ms = p.frame_median_ms;
+    d.sweep.push_back(point);
+  }
+  const json written = result_document_to_json(d);
+  EXPECT_EQ(written["modes"][0]["largest_fit"]["fits"], true);
+  EXPECT_EQ(written["modes"][0]["first_over"]["fits"], false);
+  EXPECT_FALSE(written["scene"].contains("characters")) << "each point has its own";
+  const ResultDocument read = result_document_from_json(written, "cap.json");
+  ASSERT_TRUE(read.capacity);
+  ASSERT_EQ(read.capacity->rows.size(), 1u);
+  ASSERT_TRUE(read.capacity->rows[0].over);
+  EXPECT_EQ(read.capacity->rows[0].over->digest, "00000000000000bb");
+  EXPECT_EQ(read.capacity->rows[0].points.size(), 2u);
+  EXPECT_EQ(result_document_to_json(read), written);
+  json hostile = written;
+  hostile["modes"][0]["points"][1]["partial"] = "yes";
+  EXPECT_THROW(result_document_from_json(hostile, "cap.json"), InputError);
+}
+
 TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
   const json good = comparison_to_json(two_modes_and_a_sweep());
   struct Case {
