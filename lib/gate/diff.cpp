@@ -188,39 +188,45 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
   return out.str();
 }
 
-nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options) {
+DiffRecord diff_record(const Diff& diff, const CheckOptions& options) {
   Environment env = current_environment();
-  json j;
-  j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"kind", "diff"}};
-  j["a"] = diff.a;
-  j["b"] = diff.b;
-  j["tolerance"] = options.tolerance;
-  j["alpha"] = options.alpha;
-  j["pairs"] = json::array();
+  DiffRecord d;
+  d.version = env.version;
+  d.commit = env.commit;
+  d.a = diff.a;
+  d.b = diff.b;
+  d.tolerance = options.tolerance;
+  d.alpha = options.alpha;
   for (const DiffPair& pair : diff.pairs) {
     const CheckResult& r = pair.check;
-    json p = {{"mode", pair.mode}, {"characters", pair.characters}, {"regressed", r.regressed()}, {"notes", pair.notes}};
-    p["metrics"] = json::array();
-    for (const MetricCheck& m : r.metrics)
-      p["metrics"].push_back({{"metric", m.metric},
-                              {"a_median_ms", m.baseline.median},
-                              {"b_median_ms", m.current.median},
-                              {"unit", m.value_unit},
-                              {"change", std::isfinite(m.change) ? json(m.change) : json(nullptr)},
-                              {"p", m.tested ? json(m.test.p) : json(nullptr)},
-                              {"p_holm", m.tested ? json(m.p_adjusted) : json(nullptr)},
-                              {"tested", m.tested},
-                              {"floor_ms", m.floor_ms},
-                              {"verdict", verdict(m, options)}});
-    p["counters"] = json::array();
-    for (const CounterDifference& d : r.counters) p["counters"].push_back({{"name", d.name}, {"a", d.baseline}, {"b", d.current}});
-    for (const std::string& name : r.counters_missing) p["counters"].push_back({{"name", name}, {"a", nullptr}, {"b", nullptr}});
-    p["digest"] = {{"a", r.baseline_digest}, {"b", r.current_digest}, {"same", r.baseline_digest == r.current_digest}};
-    if (r.digest_not_comparable()) p["digest"]["note"] = r.digest_note();
-    j["pairs"].push_back(p);
+    DiffRecord::Pair p{pair.mode, pair.characters, r.regressed(), pair.notes, {}, {}, r.baseline_digest, r.current_digest,
+                       r.digest_not_comparable() ? r.digest_note() : std::string()};
+    for (const MetricCheck& m : r.metrics) {
+      DiffRecord::Metric metric;
+      metric.metric = m.metric;
+      metric.unit = m.value_unit;
+      metric.verdict = verdict(m, options);
+      metric.a_median = m.baseline.median;
+      metric.b_median = m.current.median;
+      metric.floor_ms = m.floor_ms;
+      if (std::isfinite(m.change)) metric.change = m.change;
+      if (m.tested) {
+        metric.p = m.test.p;
+        metric.p_holm = m.p_adjusted;
+      }
+      metric.tested = m.tested;
+      p.metrics.push_back(std::move(metric));
+    }
+    for (const CounterDifference& c : r.counters) p.counters.push_back({c.name, c.baseline, c.current});
+    for (const std::string& name : r.counters_missing) p.counters.push_back({name, std::nullopt, std::nullopt});
+    d.pairs.push_back(std::move(p));
   }
-  j["regressed"] = diff.regressed();
-  return j;
+  d.regressed = diff.regressed();
+  return d;
+}
+
+nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options) {
+  return diff_record_to_json(diff_record(diff, options));
 }
 
 }  // namespace crowdprof

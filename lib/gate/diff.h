@@ -17,6 +17,7 @@
 
 #include "gate/regression.h"
 #include "result/result.h"
+#include "result/result_document.h"
 
 namespace crowdprof {
 
@@ -57,5 +58,8 @@ std::string format_diff(const Diff& diff, const CheckOptions& options);
 //  "pairs": [{"mode", "characters", "metrics": [...], "counters": [...],
 //  "digest": {...}, "notes", "regressed"}], "regressed"} (docs/formats.md).
 nlohmann::json diff_to_json(const Diff& diff, const CheckOptions& options);
+// The same as a typed record (result/result_document.h), which the codec
+// writes: diff_to_json is diff_record_to_json(diff_record(diff, options)).
+DiffRecord diff_record(const Diff& diff, const CheckOptions& options);
 
 }  // namespace crowdprof

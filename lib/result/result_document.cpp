@@ -270,4 +270,125 @@ json result_document_to_json(const ResultDocument& d) {
   return j;
 }
 
+json diff_record_to_json(const DiffRecord& d) {
+  json j;
+  j["crowdprof"] = {{"version", d.version}, {"commit", d.commit}, {"kind", "diff"}};
+  j["a"] = d.a;
+  j["b"] = d.b;
+  j["tolerance"] = d.tolerance;
+  j["alpha"] = d.alpha;
+  j["pairs"] = json::array();
+  auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
+  for (const DiffRecord::Pair& pair : d.pairs) {
+    json p = {{"mode", pair.mode}, {"characters", pair.characters}, {"regressed", pair.regressed}, {"notes", pair.notes}};
+    p["metrics"] = json::array();
+    for (const DiffRecord::Metric& m : pair.metrics)
+      p["metrics"].push_back({{"metric", m.metric},        {"a_median_ms", m.a_median}, {"b_median_ms", m.b_median},
+                              {"unit", m.unit},            {"change", optional(m.change)}, {"p", optional(m.p)},
+                              {"p_holm", optional(m.p_holm)}, {"tested", m.tested},   {"floor_ms", m.floor_ms},
+                              {"verdict", m.verdict}});
+    p["counters"] = json::array();
+    for (const DiffRecord::Counter& counter : pair.counters)
+      p["counters"].push_back({{"name", counter.name}, {"a", optional(counter.a)}, {"b", optional(counter.b)}});
+    p["digest"] = {{"a", pair.digest_a}, {"b", pair.digest_b}, {"same", pair.digest_a == pair.digest_b}};
+    if (!pair.digest_note.empty()) p["digest"]["note"] = pair.digest_note;
+    j["pairs"].push_back(p);
+  }
+  j["regressed"] = d.regressed;
+  return j;
+}
+
+DiffRecord diff_record_from_json(const json& doc, const std::string& path) {
+  auto bad = [&](const std::string& field, const char* should) {
+    return InputError(path, "\"" + field + "\" should be " + should);
+  };
+  auto object = [&](const json& parent, const std::string& key, const std::string& at) -> const json& {
+    if (!parent.contains(key) || !parent[key].is_object()) throw bad(at, "an object");
+    return parent[key];
+  };
+  auto array = [&](const json& parent, const std::string& key, const std::string& at) -> const json& {
+    if (!parent.contains(key) || !parent[key].is_array()) throw bad(at, "an array");
+    return parent[key];
+  };
+  auto text = [&](const json& parent, const std::string& key, const std::string& at) {
+    if (!parent.contains(key) || !parent[key].is_string()) throw bad(at, "a string");
+    return parent[key].get<std::string>();
+  };
+  auto flag = [&](const json& parent, const std::string& key, const std::string& at) {
+    if (!parent.contains(key) || !parent[key].is_boolean()) throw bad(at, "true or false");
+    return parent[key].get<bool>();
+  };
+  auto number = [&](const json& parent, const std::string& key, const std::string& at) {
+    if (!parent.contains(key) || !parent[key].is_number() || !std::isfinite(parent[key].get<double>()))
+      throw bad(at, "a number");
+    return parent[key].get<double>();
+  };
+  auto maybe_number = [&](const json& parent, const std::string& key, const std::string& at) -> std::optional<double> {
+    if (parent.contains(key) && parent[key].is_null()) return std::nullopt;
+    return number(parent, key, at);
+  };
+  auto whole = [&](const json& v) { return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0); };
+  if (document_kind(doc) != "diff") throw InputError(path, "not a crowdprof diff (its \"crowdprof.kind\" is not \"diff\")");
+  DiffRecord d;
+  const json& tag = object(doc, "crowdprof", "crowdprof");
+  d.version = text(tag, "version", "crowdprof.version");
+  d.commit = text(tag, "commit", "crowdprof.commit");
+  d.a = text(doc, "a", "a");
+  d.b = text(doc, "b", "b");
+  d.tolerance = number(doc, "tolerance", "tolerance");
+  d.alpha = number(doc, "alpha", "alpha");
+  d.regressed = flag(doc, "regressed", "regressed");
+  const json& pairs = array(doc, "pairs", "pairs");
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const std::string at = "pairs[" + std::to_string(i) + "]";
+    if (!pairs[i].is_object()) throw bad(at, "an object");
+    const json& p = pairs[i];
+    DiffRecord::Pair pair;
+    pair.mode = text(p, "mode", at + ".mode");
+    if (!p.contains("characters") || !whole(p["characters"])) throw bad(at + ".characters", "a whole number");
+    pair.characters = p["characters"].get<size_t>();
+    pair.regressed = flag(p, "regressed", at + ".regressed");
+    for (const json& note : array(p, "notes", at + ".notes")) {
+      if (!note.is_string()) throw bad(at + ".notes", "an array of strings");
+      pair.notes.push_back(note.get<std::string>());
+    }
+    const json& metrics = array(p, "metrics", at + ".metrics");
+    for (size_t k = 0; k < metrics.size(); ++k) {
+      const std::string mat = at + ".metrics[" + std::to_string(k) + "]";
+      if (!metrics[k].is_object()) throw bad(mat, "an object");
+      const json& m = metrics[k];
+      DiffRecord::Metric metric;
+      metric.metric = text(m, "metric", mat + ".metric");
+      metric.unit = text(m, "unit", mat + ".unit");
+      metric.verdict = text(m, "verdict", mat + ".verdict");
+      metric.a_median = number(m, "a_median_ms", mat + ".a_median_ms");
+      metric.b_median = number(m, "b_median_ms", mat + ".b_median_ms");
+      metric.floor_ms = number(m, "floor_ms", mat + ".floor_ms");
+      metric.change = maybe_number(m, "change", mat + ".change");
+      metric.p = maybe_number(m, "p", mat + ".p");
+      metric.p_holm = maybe_number(m, "p_holm", mat + ".p_holm");
+      metric.tested = flag(m, "tested", mat + ".tested");
+      pair.metrics.push_back(std::move(metric));
+    }
+    for (const json& c : array(p, "counters", at + ".counters")) {
+      if (!c.is_object()) throw bad(at + ".counters", "an array of objects");
+      DiffRecord::Counter counter;
+      counter.name = text(c, "name", at + ".counters.name");
+      for (auto [key, slot] : {std::pair{"a", &counter.a}, {"b", &counter.b}}) {
+        if (!c.contains(key)) throw bad(at + ".counters." + key, "a whole number or null");
+        if (c[key].is_null()) continue;
+        if (!c[key].is_number_unsigned()) throw bad(at + ".counters." + key, "a whole number or null");
+        *slot = c[key].get<uint64_t>();
+      }
+      pair.counters.push_back(std::move(counter));
+    }
+    const json& digest = object(p, "digest", at + ".digest");
+    pair.digest_a = text(digest, "a", at + ".digest.a");
+    pair.digest_b = text(digest, "b", at + ".digest.b");
+    if (digest.contains("note")) pair.digest_note = text(digest, "note", at + ".digest.note");
+    d.pairs.push_back(std::move(pair));
+  }
+  return d;
+}
+
 }  // namespace crowdprof

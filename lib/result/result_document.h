@@ -2,7 +2,8 @@
 // reports take records, never JSON: a bench result (bench, check), a
 // comparison (compare: its runs and its sweep) or a capacity search (capacity:
 // its outcome per mode, the runs at each mode's capacity and every point it
-// tried). Bench results themselves are result_codec.h's.
+// tried); and diff's verdicts (DiffRecord). Bench results themselves are
+// result_codec.h's.
 #pragma once
 
 #include <array>
@@ -90,6 +91,40 @@ struct ResultDocument {
   // the document (none read back: then the first of `runs` heads it).
   std::optional<Result> described;
 };
+
+// What `crowdprof diff --json` writes: per pair of results (by mode and crowd
+// size) each metric's medians, change and verdict, the counters that differ
+// and the digests (gate/diff.h makes it).
+struct DiffRecord {
+  struct Metric {
+    std::string metric, unit = "ms", verdict;  // verdict: "same", "SLOWER", "faster" or "not tested"
+    double a_median = 0, b_median = 0, floor_ms = 0;
+    std::optional<double> change, p, p_holm;  // none: not finite, or not tested
+    bool tested = false;
+  };
+  struct Counter {
+    std::string name;
+    std::optional<uint64_t> a, b;  // none: missing in B (and so not compared)
+  };
+  struct Pair {
+    std::string mode;
+    size_t characters = 0;
+    bool regressed = false;
+    std::vector<std::string> notes;
+    std::vector<Metric> metrics;
+    std::vector<Counter> counters;
+    std::string digest_a, digest_b, digest_note;  // the note only when the digests are not comparable
+  };
+  std::string version, commit;  // of the crowdprof that judged
+  std::string a, b;             // the files, as named
+  double tolerance = 0, alpha = 0;
+  std::vector<Pair> pairs;
+  bool regressed = false;
+};
+
+// diff's document, every field checked (InputError naming `path` and the field).
+DiffRecord diff_record_from_json(const nlohmann::json& doc, const std::string& path);
+nlohmann::json diff_record_to_json(const DiffRecord& diff);
 
 // The document `doc` (read from `path`, which errors name), every field
 // checked before use. InputError for another kind of document (a diff, a

@@ -30,7 +30,12 @@ void run_diff(const nlohmann::json& doc, const std::string& path) {
   CheckOptions options;
   Diff diff = diff_results(runs, path, runs, path, options);
   (void)format_diff(diff, options);
-  (void)diff_to_json(diff, options).dump();
+  // The codec reads back the diff it writes, to the same document.
+  const nlohmann::json written = diff_to_json(diff, options);
+  if (diff_record_to_json(diff_record_from_json(written, path)) != written) {
+    std::fprintf(stderr, "fuzz: a diff written and read back changed\n");
+    std::abort();
+  }
   if (diff.regressed()) {
     std::fprintf(stderr, "fuzz: a result regressed against itself in diff\n");
     std::abort();

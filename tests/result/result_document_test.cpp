@@ -8,6 +8,7 @@
 
 #include "base/errors.h"
 #include "fake_run.h"
+#include "gate/diff.h"
 #include "reports/compare_report.h"
 #include "result/result_document.h"
 
@@ -79,6 +80,31 @@ TEST(ResultDocument, ACapacitySearchReadsBackToTheSameDocument) {
   json hostile = written;
   hostile["modes"][0]["points"][1]["partial"] = "yes";
   EXPECT_THROW(result_document_from_json(hostile, "cap.json"), InputError);
+}
+
+TEST(ResultDocument, ADiffReadsBackToTheSameDocument) {
+  std::vector<Result> a = {test::fake_run("threaded", 40, {5, 5, 6})};
+  std::vector<Result> b = {test::fake_run("threaded", 40, {6, 6, 7})};
+  b[0].frame_records[1].counters.copies_visible = 9;
+  b[0].digest = "00000000000000bb";
+  record_samples(b[0]);
+  const json written = diff_to_json(diff_results(a, "a.json", b, "b.json", CheckOptions{}), CheckOptions{});
+  const DiffRecord read = diff_record_from_json(written, "d.json");
+  ASSERT_EQ(read.pairs.size(), 1u);
+  EXPECT_TRUE(read.regressed) << "other work: the counters and digest changed";
+  EXPECT_EQ(read.pairs[0].digest_b, "00000000000000bb");
+  ASSERT_FALSE(read.pairs[0].metrics.empty());
+  EXPECT_FALSE(read.pairs[0].metrics[0].p) << "results measured apart get no p-value";
+  EXPECT_EQ(diff_record_to_json(read), written);
+  json hostile = written;
+  hostile["pairs"][0]["metrics"][0]["a_median_ms"] = "fast";
+  try {
+    diff_record_from_json(hostile, "d.json");
+    ADD_FAILURE() << "a string median was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pairs[0].metrics[0].a_median_ms"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(diff_record_from_json(comparison_to_json(two_modes_and_a_sweep()), "c.json"), InputError);
 }
 
 TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
