@@ -160,10 +160,28 @@ CapacityRecord read_capacity(const json& doc, const std::string& path) {
   return c;
 }
 
+// The document's "crowdprof.format", when it names one, as bench results'
+// (result_codec.h): a format this crowdprof does not read is refused the same way.
+void require_format(const json& doc, const std::string& path) {
+  if (!doc.is_object() || !doc.contains("crowdprof") || !doc["crowdprof"].is_object()) return;
+  const json& tag = doc["crowdprof"];
+  if (!tag.contains("format")) return;
+  if (!tag["format"].is_number_integer()) throw InputError(path, "\"crowdprof.format\" should be a whole number");
+  const int64_t format = tag["format"].get<int64_t>();
+  if (format < kOldestResultFormat || format > kResultFormat) {
+    const json version = tag.value("version", json("?"));
+    throw InputError(path, "result format " + std::to_string(format) + " (crowdprof " +
+                               (version.is_string() ? version.get<std::string>() : std::string("?")) +
+                               "); this crowdprof reads formats " + std::to_string(kOldestResultFormat) + " to " +
+                               std::to_string(kResultFormat) + ": record it again with this version");
+  }
+}
+
 }  // namespace
 
 ResultDocument result_document_from_json(const json& doc, const std::string& path) {
   ResultDocument out;
+  require_format(doc, path);
   out.kind = document_kind(doc);
   if (out.kind != "bench" && out.kind != "compare" && out.kind != "capacity")
     throw InputError(path, "a '" + out.kind + "' result; report reads results of bench, check, compare and capacity --json");
@@ -272,7 +290,7 @@ json result_document_to_json(const ResultDocument& d) {
 
 json diff_record_to_json(const DiffRecord& d) {
   json j;
-  j["crowdprof"] = {{"version", d.version}, {"commit", d.commit}, {"kind", "diff"}};
+  j["crowdprof"] = {{"version", d.version}, {"commit", d.commit}, {"kind", "diff"}, {"format", kResultFormat}};
   j["a"] = d.a;
   j["b"] = d.b;
   j["tolerance"] = d.tolerance;
@@ -328,6 +346,7 @@ DiffRecord diff_record_from_json(const json& doc, const std::string& path) {
     return number(parent, key, at);
   };
   auto whole = [&](const json& v) { return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0); };
+  require_format(doc, path);
   if (document_kind(doc) != "diff") throw InputError(path, "not a crowdprof diff (its \"crowdprof.kind\" is not \"diff\")");
   DiffRecord d;
   const json& tag = object(doc, "crowdprof", "crowdprof");

@@ -105,6 +105,19 @@ TEST(ResultDocument, ADiffReadsBackToTheSameDocument) {
     EXPECT_NE(std::string(e.what()).find("pairs[0].metrics[0].a_median_ms"), std::string::npos) << e.what();
   }
   EXPECT_THROW(diff_record_from_json(comparison_to_json(two_modes_and_a_sweep()), "c.json"), InputError);
+  // Versioned as results are: a format this crowdprof does not read is refused.
+  EXPECT_EQ(written["crowdprof"]["format"], kResultFormat);
+  json future = written;
+  future["crowdprof"]["format"] = kResultFormat + 1;
+  try {
+    diff_record_from_json(future, "d.json");
+    ADD_FAILURE() << "a future format was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("this crowdprof reads formats"), std::string::npos) << e.what();
+  }
+  json compare = comparison_to_json(two_modes_and_a_sweep());
+  compare["crowdprof"]["format"] = kResultFormat + 1;
+  EXPECT_THROW(result_document_from_json(compare, "c.json"), InputError);
 }
 
 TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
