@@ -19,7 +19,6 @@ namespace crowdprof {
 
 namespace {
 
-using nlohmann::json;
 
 std::string h(const std::string& text) { return xml_escape(text); }
 

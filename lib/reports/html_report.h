@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "gate/regression.h"
 #include "result/result_document.h"
 #include "reports/report_charts.h"
