@@ -43,6 +43,11 @@ nlohmann::json read_json_file(const std::string& path);
 // read_json_file, then result_from_json.
 Result read_result(const std::string& path);
 
+// Why a document of `format` (written by crowdprof `version`) is not read, or ""
+// when this crowdprof reads that format: one message for results and the
+// documents that hold them.
+std::string unreadable_format(int64_t format, const std::string& version);
+
 // The kind a crowdprof document names ("bench", "compare", "capacity", "check",
 // "ab_check", ...); "bench" when it names none.
 std::string document_kind(const nlohmann::json& doc);

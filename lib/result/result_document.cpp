@@ -168,13 +168,9 @@ void require_format(const json& doc, const std::string& path) {
   if (!tag.contains("format")) return;
   if (!tag["format"].is_number_integer()) throw InputError(path, "\"crowdprof.format\" should be a whole number");
   const int64_t format = tag["format"].get<int64_t>();
-  if (format < kOldestResultFormat || format > kResultFormat) {
-    const json version = tag.value("version", json("?"));
-    throw InputError(path, "result format " + std::to_string(format) + " (crowdprof " +
-                               (version.is_string() ? version.get<std::string>() : std::string("?")) +
-                               "); this crowdprof reads formats " + std::to_string(kOldestResultFormat) + " to " +
-                               std::to_string(kResultFormat) + ": record it again with this version");
-  }
+  const json version = tag.value("version", json("?"));
+  const std::string why = unreadable_format(format, version.is_string() ? version.get<std::string>() : "?");
+  if (!why.empty()) throw InputError(path, why);
 }
 
 }  // namespace

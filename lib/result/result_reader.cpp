@@ -134,6 +134,16 @@ class Reader {
   const std::string& path_;
 };
 
+}  // namespace
+
+std::string unreadable_format(int64_t format, const std::string& version) {
+  if (format >= kOldestResultFormat && format <= kResultFormat) return "";
+  return "result format " + std::to_string(format) + " (crowdprof " + version + "); this crowdprof reads formats " +
+         std::to_string(kOldestResultFormat) + " to " + std::to_string(kResultFormat) + ": record it again with this version";
+}
+
+namespace {
+
 void read_header(const Reader& in, const json& doc, Result& r) {
   if (!doc.is_object() || !doc.contains("crowdprof") || !doc["crowdprof"].is_object())
     in.fail("not a crowdprof result (no \"crowdprof\" section)");
@@ -143,11 +153,8 @@ void read_header(const Reader& in, const json& doc, Result& r) {
     in.fail("not a crowdprof result (no \"crowdprof.format\")");
   int64_t format = doc["crowdprof"]["format"].get<int64_t>();
   const json& version = doc["crowdprof"].contains("version") ? doc["crowdprof"]["version"] : json();
-  if (format < kOldestResultFormat || format > kResultFormat)
-    in.fail("result format " + std::to_string(format) + " (crowdprof " +
-            (version.is_string() ? version.get<std::string>() : std::string("?")) + "); this crowdprof reads formats " +
-            std::to_string(kOldestResultFormat) + " to " + std::to_string(kResultFormat) +
-            ": record it again with this version");
+  const std::string why = unreadable_format(format, version.is_string() ? version.get<std::string>() : "?");
+  if (!why.empty()) in.fail(why);
   r.format = static_cast<int>(format);
   r.environment.version = in.text_or("/crowdprof/version", "?");
   r.environment.commit = in.text_or("/crowdprof/commit", "?");
