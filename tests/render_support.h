@@ -67,6 +67,7 @@ struct Shot {
   FrustumTest frustum = FrustumTest::Cpu;
   bool mesh_lod = false;
   MeshLodThresholds mesh_lod_at;
+  IndexOrder index_order = IndexOrder::Optimized;
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -86,6 +87,7 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   config.mode.frustum = shot.frustum;
   config.mode.mesh_lod = shot.mesh_lod;
   config.mode.mesh_lod_at = shot.mesh_lod_at;
+  config.mode.index_order = shot.index_order;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;

@@ -4,6 +4,8 @@
 #include <array>
 #include <numeric>
 
+#include <meshoptimizer.h>
+
 namespace crowdprof {
 
 namespace {
@@ -69,6 +71,37 @@ std::vector<uint32_t> order_vertices_by_joints(SkinnedMesh& mesh) {
   for (uint32_t& index : mesh.indices)
     if (index < n) index = new_of_old[index];
   return old_of_new;
+}
+
+std::vector<uint32_t> vertex_cache_order(const SkinnedMesh& mesh) {
+  std::vector<uint32_t> out = mesh.indices;
+  const size_t n = mesh.vertex_count();
+  for (const Primitive& p : mesh.primitives) {
+    if (p.first_index > out.size() || p.index_count > out.size() - p.first_index || p.index_count % 3 != 0) continue;
+    uint32_t* first = out.data() + p.first_index;
+    // meshoptimizer asserts (aborts) on an index past the vertex count.
+    if (std::any_of(first, first + p.index_count, [&](uint32_t i) { return i >= n; })) continue;
+    meshopt_optimizeVertexCache(first, first, p.index_count, n);
+  }
+  return out;
+}
+
+VertexCacheFigures analyze_vertex_cache(std::span<const uint32_t> indices, size_t vertex_count,
+                                        const VertexCacheModel& model) {
+  VertexCacheFigures figures;
+  if (indices.size() < 3 || indices.size() % 3 != 0 ||
+      std::any_of(indices.begin(), indices.end(), [&](uint32_t i) { return i >= vertex_count; }))
+    return figures;
+  const meshopt_VertexCacheStatistics stats = meshopt_analyzeVertexCache(
+      indices.data(), indices.size(), vertex_count, model.cache_size, model.warp_size, model.primgroup_size);
+  // Over the vertices the triangles use, not the array's: a primitive uses a
+  // part of a mesh's vertices.
+  std::vector<char> used(vertex_count, 0);
+  size_t distinct = 0;
+  for (uint32_t i : indices) distinct += used[i] ? 0 : (used[i] = 1);
+  figures.acmr = static_cast<double>(stats.vertices_transformed) / static_cast<double>(indices.size() / 3);
+  figures.atvr = static_cast<double>(stats.vertices_transformed) / static_cast<double>(distinct);
+  return figures;
 }
 
 void order_vertices_for_skinning(Character& character) {

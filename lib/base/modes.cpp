@@ -138,6 +138,7 @@ std::string_view to_string(PaletteStorage palettes) {
   return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
 }
 std::string_view to_string(FrustumTest frustum) { return frustum == FrustumTest::Gpu ? "gpu" : "cpu"; }
+std::string_view to_string(IndexOrder order) { return order == IndexOrder::File ? "file" : "optimized"; }
 std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 
 }  // namespace crowdprof

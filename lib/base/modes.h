@@ -67,6 +67,15 @@ enum class VertexFormat : uint8_t {
   Packed,  // positions quantised to 16 bits in the character's box, normals 10:10:10:2: 10 bytes
 };
 
+// The order an index buffer lists each mesh's triangles in for the GPU
+// (issue 52). The GPU shades a vertex again when it has left its post-
+// transform cache; files rarely order triangles for it, so most vertices are
+// shaded about twice.
+enum class IndexOrder : uint8_t {
+  File,       // as the file lists them
+  Optimized,  // meshoptimizer's vertex-cache order; the vertices keep skinning's order
+};
+
 // Update-rate LOD (issue 13): a copy whose box spans at least lod[0] of the
 // screen's height is updated every frame, at least lod[1] every 2nd frame, at
 // least lod[2] every 4th, smaller ones every 8th. Between updates a copy holds
@@ -116,6 +125,7 @@ struct ModeSwitches {
   FrustumTest frustum = FrustumTest::Cpu;
   bool mesh_lod = false;  // far copies skin and draw simplified meshes
   MeshLodThresholds mesh_lod_at;
+  IndexOrder index_order = IndexOrder::Optimized;  // results without it ran in File order
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -145,5 +155,6 @@ std::string_view to_string(VertexFormat format);
 std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
 std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
 std::string_view to_string(FrustumTest frustum);      // "cpu", "gpu"
+std::string_view to_string(IndexOrder order);         // "file", "optimized"
 
 }  // namespace crowdprof

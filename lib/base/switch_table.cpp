@@ -68,6 +68,7 @@ constexpr std::array kFormats = {VertexFormat::Float, VertexFormat::Packed};
 constexpr std::array kPalettes = {PaletteStorage::Uniforms, PaletteStorage::Buffer};
 constexpr std::array kDraws = {DrawMethod::PerCopy, DrawMethod::Instanced};
 constexpr std::array kFrustumTests = {FrustumTest::Cpu, FrustumTest::Gpu};
+constexpr std::array kIndexOrders = {IndexOrder::File, IndexOrder::Optimized};
 
 // Seconds, as a decimal or a fraction 1/N.
 std::string set_share_quantum(ModeSwitches& s, std::string_view text) {
@@ -207,6 +208,13 @@ const std::array kSwitches = {
                              shortest(s.mesh_lod_at.level_3));
                },
                set_mesh_lod_thresholds, false},
+    SwitchSpec{"index_order", "file|optimized",
+               "The order the GPU gets each mesh's triangles in: file, as the file lists them; optimized, "
+               "meshoptimizer's vertex-cache order, so the GPU shades each vertex about once (the vertices keep "
+               "the order skinning batches them in). Results without it ran in file order",
+               [](const ModeSwitches& s) { return json(to_string(s.index_order)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.index_order, t, kIndexOrders); }, false,
+               "file"},
 };
 
 }  // namespace
@@ -247,7 +255,7 @@ json switches_to_json(const ModeSwitches& s) {
   json switches = json::object();
   for (const SwitchSpec& spec : kSwitches) {
     json value = spec.get(s);
-    if (spec.always_recorded || value != spec.get(plain)) switches[std::string(spec.name)] = std::move(value);
+    if (spec.always_recorded || !spec.when_absent.empty() || value != spec.get(plain)) switches[std::string(spec.name)] = std::move(value);
   }
   return switches;
 }
@@ -255,6 +263,8 @@ json switches_to_json(const ModeSwitches& s) {
 std::string switches_from_json(const json& switches, ModeSwitches& s) {
   if (!switches.is_object()) return "expected an object of switches";
   s = ModeSwitches{};
+  for (const SwitchSpec& spec : kSwitches)
+    if (!spec.when_absent.empty() && !switches.contains(std::string(spec.name))) spec.set(s, spec.when_absent);
   for (const auto& [name, value] : switches.items()) {
     const SwitchSpec* spec = find_switch(name);
     if (!spec) return "no switch '" + name + "' (the switches are " + switch_names() + ")";

@@ -34,6 +34,10 @@ struct SwitchSpec {
   // the thesis's are recorded only when set, so results made before them still
   // match the same mode.
   bool always_recorded = true;
+  // The value a result that lacks the switch ran with, when it is not today's
+  // default (a default changed after results were recorded); such a switch is
+  // always recorded. Empty: the default.
+  std::string_view when_absent = {};
 };
 
 // In the order help lists them.
@@ -57,7 +61,8 @@ std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s);
 nlohmann::json switches_to_json(const ModeSwitches& s);
 
 // Reads a result's "switches" object: a switch it leaves out holds its default
-// (results made before the switch existed ran with that value). Returns "" or
+// (results made before the switch existed ran with that value), or its
+// when_absent value. Returns "" or
 // what is wrong ("culling: expected on or off", "no switch 'x'").
 std::string switches_from_json(const nlohmann::json& switches, ModeSwitches& s);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "asset/vertex_order.h"
 #include "render/gpu_frame_buffers.h"
 #include "render/techniques/technique.h"
 
@@ -25,14 +26,19 @@ CharacterMeshes::CharacterMeshes(std::span<const Character* const> characters)
     m.vertices = mesh.vertex_count();
     m.joints = character->skeleton.joint_count();
     m.index_count = static_cast<GLsizei>(mesh.indices.size());
-    m.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.size() * sizeof(uint32_t), mesh.indices.data(),
-                            GL_STATIC_DRAW);
+    std::vector<uint32_t> both = mesh.indices;
+    const std::vector<uint32_t> optimized = vertex_cache_order(mesh);
+    both.insert(both.end(), optimized.begin(), optimized.end());
+    m.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, both.size() * sizeof(uint32_t), both.data(), GL_STATIC_DRAW);
     meshes_.push_back(m);
   }
 }
 
-MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest) const {
-  if (level == 0 || levels.first_index.empty()) return {rest_vao, instanced_vao, indices, index_count, nullptr, 0};
+MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest, IndexOrder order) const {
+  if (level == 0 || levels.first_index.empty()) {
+    const size_t first = order == IndexOrder::Optimized ? static_cast<size_t>(index_count) : 0;
+    return {rest_vao, instanced_vao, indices, index_count, reinterpret_cast<const void*>(first * sizeof(uint32_t)), 0};
+  }
   const size_t l = std::min(level, levels.first_index.size()) - 1;
   return {levels.rest_vao, levels.instanced_vao, levels.indices, levels.index_count[l],
           reinterpret_cast<const void*>(levels.first_index[l] * sizeof(uint32_t)),

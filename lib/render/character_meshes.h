@@ -9,6 +9,7 @@
 
 #include "asset/character.h"
 #include "asset/mesh_lod.h"
+#include "base/modes.h"
 #include "render/gl.h"
 
 namespace crowdprof {
@@ -26,6 +27,8 @@ struct MeshLevelDraw {
 struct CharacterMesh {
   size_t vertices = 0, joints = 0;
   GLsizei index_count = 0;
+  // The full mesh's triangles twice, one order after the other: the file's,
+  // then vertex-cache order (asset/vertex_order.h), at index index_count.
   GLuint indices = 0;
   // The rest mesh (0 until upload_rest_mesh): positions, normals, joints, weights.
   GLuint rest_buffers[4] = {0, 0, 0, 0};
@@ -39,14 +42,16 @@ struct CharacterMesh {
     std::vector<GLsizei> index_count;
   } levels;
 
-  // How to draw level `level` (0: the full mesh): from the rest mesh (GPU
-  // skinning, `rest` true) or from vertices skinned on the CPU.
-  MeshLevelDraw draw_of(size_t level, bool rest) const;
+  // How to draw level `level` (0: the full mesh) with its triangles in
+  // `order`: from the rest mesh (GPU skinning, `rest` true) or from vertices
+  // skinned on the CPU. Levels 1.. are in vertex-cache order whatever `order`
+  // says: mesh LOD builds them so.
+  MeshLevelDraw draw_of(size_t level, bool rest, IndexOrder order) const;
 };
 
 class CharacterMeshes {
  public:
-  // Uploads each character's indices. A current GL context is needed here and
+  // Uploads each character's indices, in both orders. A current GL context is needed here and
   // at every call; the characters must outlive this.
   explicit CharacterMeshes(std::span<const Character* const> characters);
   ~CharacterMeshes();

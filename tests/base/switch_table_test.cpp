@@ -31,7 +31,7 @@ TEST(SwitchTable, EverySwitchChangesTheSwitches) {
       {"skinning", "gpu"},    {"palettes", "buffer"},    {"draw", "instanced"},   {"vertex_format", "packed"},
       {"share", "on"},        {"share_quantum", "1/30"}, {"update_lod", "on"},    {"lod_thresholds", "0.5,0.25,0.1"},
       {"anim_budget", "2"},   {"passes", "3"},           {"frustum", "gpu"},      {"mesh_lod", "on"},
-      {"mesh_lod_thresholds", "0.5,0.25,0.1"}};
+      {"mesh_lod_thresholds", "0.5,0.25,0.1"}, {"index_order", "file"}};
   ASSERT_EQ(other.size(), switch_table().size());
   for (const SwitchSpec& spec : switch_table()) {
     ModeSwitches s;
@@ -73,11 +73,30 @@ TEST(SwitchTable, AnOlderResultReadsWithTheDefaults) {
   json old = {{"lookups", "bundled"}, {"culling", true}, {"pose", "per-copy"}, {"parallel", true}, {"skinning", "animations"}};
   ModeSwitches s;
   ASSERT_EQ(switches_from_json(old, s), "");
+  // It drew the file's triangles in the file's order: the default then.
+  EXPECT_EQ(s.index_order, IndexOrder::File);
+  s.index_order = IndexOrder::Optimized;
   EXPECT_TRUE(s == find_mode("threaded")->switches);
   EXPECT_NE(switches_from_json({{"warp", true}}, s), "");
   EXPECT_NE(switches_from_json({{"culling", "sometimes"}}, s).find("culling"), std::string::npos);
   EXPECT_NE(switches_from_json(json::array(), s), "");
   EXPECT_NE(switches_from_json({{"culling", json::array()}}, s), "");
+}
+
+TEST(SwitchTable, IndexOrderIsOptimizedForNewRunsAndRecordedAlways) {
+  const ModeSwitches plain;
+  EXPECT_EQ(plain.index_order, IndexOrder::Optimized);
+  const json recorded = switches_to_json(plain);
+  ASSERT_TRUE(recorded.contains("index_order"));
+  EXPECT_EQ(recorded["index_order"], "optimized");
+  ModeSwitches back;
+  ASSERT_EQ(switches_from_json(recorded, back), "");
+  EXPECT_TRUE(back == plain);
+  ModeSwitches file;
+  file.index_order = IndexOrder::File;
+  ASSERT_EQ(switches_from_json(switches_to_json(file), back), "");
+  EXPECT_EQ(back.index_order, IndexOrder::File);
+  EXPECT_NE(switches_from_json({{"index_order", "random"}}, back).find("file, optimized"), std::string::npos);
 }
 
 TEST(SwitchTable, HelpNamesEveryPresetsValue) {

@@ -127,7 +127,7 @@ void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, c
     glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
   };
   const GpuCull* gpu_cull = cull_for(view);
-  if (!gpu_cull) return draw_instance_runs(buffers_, meshes, bind_table, counters);
+  if (!gpu_cull) return draw_instance_runs(buffers_, meshes, view.mode.index_order, bind_table, counters);
   for (size_t k = 0; k < meshes.size(); ++k) {
     if (k >= tables_.size() || !tables_[k]) continue;
     bind_table(k);

@@ -76,7 +76,7 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, c
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
-    const MeshLevelDraw level = meshes[k].draw_of(view.level_of(i), true);
+    const MeshLevelDraw level = meshes[k].draw_of(view.level_of(i), true, view.mode.index_order);
     glBindVertexArray(level.vao);
     const uint32_t record = next_[draw_group(view, i)]++;
     if (buffers_.page_of(record) != bound) buffers_.bind_page(bound = buffers_.page_of(record));

@@ -123,7 +123,7 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
   if (!rest || mesh.joints > joints_ || mesh.vertices > vertices_)
     throw GlError("compute skinning asked of a renderer not prepared for it");
   const size_t level_vertices = view.vertices_of(copies_.front());
-  const MeshLevelDraw drawn = mesh.draw_of(level, false);
+  const MeshLevelDraw drawn = mesh.draw_of(level, false, view.mode.index_order);
   auto vertices = static_cast<GLuint>(level_vertices);
   size_t copy_stride = level_vertices * 2 * sizeof(glm::vec4);
   const uint64_t palette_bytes = mesh.joints * 3 * sizeof(glm::vec4);

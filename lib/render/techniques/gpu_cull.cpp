@@ -60,7 +60,7 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   for (size_t g = 0; g < meshes.size() * per_kind_; ++g) {
     const size_t k = g / per_kind_, level = g % per_kind_;
     drawn_[g] = baked[k] && (level == 0 || (view.mode.mesh_lod && level <= view.characters[k].mesh_lods.size()));
-    const MeshLevelDraw d = meshes[k].draw_of(level, true);
+    const MeshLevelDraw d = meshes[k].draw_of(level, true, view.mode.index_order);
     cleared_.push_back({static_cast<uint32_t>(d.index_count), 0,
                         static_cast<uint32_t>(reinterpret_cast<uintptr_t>(d.first_index) / sizeof(uint32_t)),
                         d.base_vertex, static_cast<uint32_t>(first_record[g])});
@@ -112,7 +112,7 @@ void GpuCull::draw(size_t k, const CharacterMesh& mesh, GLuint instances, Counte
     const size_t g = k * per_kind_ + level;
     if (!drawn_[g]) continue;
     // The command's base_instance is where the level's records start.
-    glBindVertexArray(mesh.draw_of(level, true).instanced_vao);
+    glBindVertexArray(mesh.draw_of(level, true, IndexOrder::File).instanced_vao);
     glBindVertexBuffer(kInstanceStream, instances, 0, sizeof(GpuInstance));
     glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
                            reinterpret_cast<const void*>(static_cast<uintptr_t>(g * sizeof(Command))));

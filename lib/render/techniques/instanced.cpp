@@ -21,14 +21,14 @@ void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Cou
   counters.gpu_palette_bytes = buffers_.gpu_bytes();
 }
 
-void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
+void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   set_copy_colours(program_);
-  draw_instance_runs(buffers_, meshes, [](size_t) {}, counters);
+  draw_instance_runs(buffers_, meshes, view.mode.index_order, [](size_t) {}, counters);
 }
 
-void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes,
+void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes, IndexOrder order,
                         const std::function<void(size_t)>& bind_character, Counters& counters) {
   size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
@@ -37,7 +37,7 @@ void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& m
     const size_t k = group / kMeshLevels;
     if (k != bound) bind_character(bound = k);
     // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
-    const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true);
+    const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true, order);
     glBindVertexArray(level.instanced_vao);
     // One instanced draw per page the group's palettes take (one, below the
     // storage-block limit, and for records with no palette).

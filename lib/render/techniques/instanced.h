@@ -20,9 +20,9 @@ namespace crowdprof {
 // draw group (character and mesh level: draw_group) and palette page of the
 // runs begin() reserved in `buffers`, each instance reading its record as
 // per-instance attributes through the level's instanced VAO. The program is
-// bound; `bind_character(k)` binds what character k's draws read besides
+// bound; triangles in `order`; `bind_character(k)` binds what character k's draws read besides
 // (baked: its table and joint count), before its first draw.
-void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes,
+void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes, IndexOrder order,
                         const std::function<void(size_t)>& bind_character, Counters& counters);
 
 // kCopyColours into `program`'s uniform `colours`, which a record's colour

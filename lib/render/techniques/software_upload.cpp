@@ -142,7 +142,7 @@ SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, size_
 void SoftwareUpload::draw_placed(const FrameView& view, const CharacterMesh& mesh, const Placed& p, bool send_model,
                                  Counters& counters) {
   size_t i = p.copy;
-  const MeshLevelDraw level = mesh.draw_of(view.level_of(i), false);
+  const MeshLevelDraw level = mesh.draw_of(view.level_of(i), false, view.mode.index_order);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, level.indices);  // part of the VAO: the copy's character's (level's)
   if (view.packed()) {
     glBindVertexBuffer(0, p.buffer, 0, static_cast<GLsizei>(kPackedPositionBytes));

@@ -43,7 +43,7 @@ void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, 
     const CharacterMesh& mesh = meshes[k];
     if (!mesh.rest_vao || mesh.joints > bone_limit_)
       throw GlError("GPU skinning asked of a renderer whose character is over its bone limit");
-    const MeshLevelDraw level = mesh.draw_of(view.level_of(i), true);
+    const MeshLevelDraw level = mesh.draw_of(view.level_of(i), true, view.mode.index_order);
     glBindVertexArray(level.vao);
     std::span<const SkinMatrix> palette = view.palette(i);
     for (size_t j = 0; j < mesh.joints; ++j) put_rows(palette[j], &rows_[3 * j]);
