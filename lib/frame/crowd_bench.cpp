@@ -282,6 +282,7 @@ void CrowdBench::count_gpu_culled_work(Counters& counters) {
       c.*kLodCopies[level] = copies;
       c.*kLodVertices[level] = copies * prepared_[k].vertices_of(level);
       c.*kLodTriangles[level] = copies * triangles_of(k, level);
+      c.vertices_drawn += copies * prepared_[k].vertices_of(level);
       c.copies_visible += copies;
     }
     c.copies_visible = std::min(c.copies_visible, copies_of_character_[k]);
@@ -302,6 +303,7 @@ void CrowdBench::add_lod_counters(Counters& counters) const {
       counters.*kLodVertices[level] += c.*kLodVertices[level];
       counters.*kLodTriangles[level] += c.*kLodTriangles[level];
     }
+  for (const Counters& c : character_counters_) counters.vertices_drawn += c.vertices_drawn;
 }
 
 void CrowdBench::count_work(Counters& counters) {
@@ -321,6 +323,7 @@ void CrowdBench::count_work(Counters& counters) {
       const size_t k = crowd_.kind[i], level = level_of(i);
       ++(c.*kLodCopies[level]);
       c.*kLodTriangles[level] += triangles_of(k, level);
+      c.vertices_drawn += prepared_[k].vertices_of(level);
       // The GPU skins every copy it draws, once a frame.
       if (skins_on_gpu(prepared_[k].site)) c.*kLodVertices[level] += prepared_[k].vertices_of(level);
     }

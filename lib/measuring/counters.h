@@ -42,6 +42,10 @@ struct Counters {
   uint64_t lod0_copies = 0, lod1_copies = 0, lod2_copies = 0, lod3_copies = 0;
   uint64_t lod0_vertices = 0, lod1_vertices = 0, lod2_vertices = 0, lod3_vertices = 0;
   uint64_t lod0_triangles = 0, lod1_triangles = 0, lod2_triangles = 0, lod3_triangles = 0;
+  // Vertices of the meshes drawn in one pass: over the copies on screen (with
+  // frustum gpu, as the cull pass counted them), their level's vertex count.
+  // What each pass's vertex-shader invocations are divided by (vertex reuse).
+  uint64_t vertices_drawn = 0;
 };
 
 struct CounterField {
@@ -49,7 +53,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 30> kCounterFields = {{
+inline constexpr std::array<CounterField, 31> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -80,6 +84,7 @@ inline constexpr std::array<CounterField, 30> kCounterFields = {{
     {"lod1_triangles", &Counters::lod1_triangles},
     {"lod2_triangles", &Counters::lod2_triangles},
     {"lod3_triangles", &Counters::lod3_triangles},
+    {"vertices_drawn", &Counters::vertices_drawn},
 }};
 // The lod*_ counters of level L.
 inline constexpr uint64_t Counters::*kLodCopies[4] = {&Counters::lod0_copies, &Counters::lod1_copies,

@@ -177,6 +177,17 @@ window.addEventListener('load', function () {
 </script>
 )";
 
+// The switches a result records, in the table's order as options spell them
+// ("--culling on, --index-order optimized"): words a narrow page can wrap.
+std::string switches_line(const ModeSwitches& switches) {
+  const nlohmann::json recorded = switches_to_json(switches);
+  std::string line;
+  for (const SwitchSpec& spec : switch_table())
+    if (recorded.contains(std::string(spec.name)))
+      line += (line.empty() ? "" : ", ") + option_spelling(spec.name) + " " + switch_text(recorded[std::string(spec.name)]);
+  return line;
+}
+
 // Rows of what a run was measured on: the machine and build the result recorded,
 // which GL drew, the threads, the mode and crowdprof's version.
 std::vector<std::pair<std::string, std::string>> environment_rows(const Result& result) {
@@ -191,7 +202,7 @@ std::vector<std::pair<std::string, std::string>> environment_rows(const Result& 
           {"renderer", run.renderer},
           {"simd", e.simd},
           {"threads", std::to_string(run.threads)},
-          {"mode", run.mode + " " + switches_to_json(run.switches).dump()}};
+          {"mode", run.mode + ": " + switches_line(run.switches)}};
 }
 
 std::string environment_section(const std::vector<ReportRun>& runs) {
@@ -393,7 +404,7 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
     std::replace(name.begin(), name.end(), '_', ' ');
     out += "<th>" + h(name) + "</th>";
   }
-  out += "</tr>\n";
+  out += "<th>invocations per vertex drawn</th></tr>\n";
   for (const ReportRun& run : runs) {
     const Result& r = run.result;
     if (r.samples.gpu_pass_ms[0].empty()) continue;
@@ -406,8 +417,11 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
       if (r.pipeline_statistics) {
         for (size_t s = 0; s < kPipelineStatCount; ++s)
           out += "<td>" + with_thousands(static_cast<uint64_t>((*r.pipeline_statistics)[p][s])) + "</td>";
+        const double reuse =
+            r.invocations_per_vertex_drawn ? (*r.invocations_per_vertex_drawn)[p] : std::nan("");
+        out += "<td>" + (std::isfinite(reuse) ? report_number(reuse, 3) : std::string("-")) + "</td>";
       } else {
-        out += "<td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">unavailable: " +
+        out += "<td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount + 1) + "\">unavailable: " +
                h(r.run.pipeline_statistics_missing.empty() ? "not recorded" : r.run.pipeline_statistics_missing) +
                "</td>";
       }
@@ -415,7 +429,7 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
     }
     double gpu = metric_median(r, "gpu_ms");
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\"><i>passes together</i></td><td>" +
-           report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount) + "\">" +
+           report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount + 1) + "\">" +
            (gpu > 0 ? report_number(100.0 * sum / gpu, 0) + "% of the frame's GPU time (" + report_number(gpu, 3) + " ms)"
                     : std::string("the frame's GPU time is not known")) +
            "</td></tr>\n";

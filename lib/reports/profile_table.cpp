@@ -49,23 +49,14 @@ std::string short_time(double ms) {
 }
 
 // The frame's GPU time by pass (median of the frames split), the passes'
-// sum against the median GPU time, and each pass's pipeline statistics.
+// sum against the median GPU time, each pass's pipeline statistics and its
+// vertex reuse, as the result recorded them.
 std::string format_gpu_passes(const Result& report, const std::vector<double>& gpu) {
   const RunDescription& run = report.run;
-  std::array<std::vector<double>, kGpuPassCount> ms;
-  std::array<std::array<std::vector<double>, kPipelineStatCount>, kGpuPassCount> stats;
-  for (const FrameRecord& f : report.frame_records) {
-    if (!f.gpu_passes.timed()) continue;
-    for (size_t p = 0; p < kGpuPassCount; ++p) {
-      ms[p].push_back(f.gpu_passes.ms[p]);
-      for (size_t s = 0; f.gpu_passes.has_stats() && s < kPipelineStatCount; ++s)
-        stats[p][s].push_back(f.gpu_passes.stats[p][s]);
-    }
-  }
-  if (ms[0].empty()) return {};
+  if (report.samples.gpu_pass_ms[0].empty()) return {};
   const uint32_t passes = run.switches.passes;
   std::string out = "GPU passes : ";
-  const GpuPassMedians medians = gpu_pass_medians(ms, passes);
+  const GpuPassMedians medians = gpu_pass_medians(report.samples.gpu_pass_ms, passes);
   const double sum = medians.sum;
   for (size_t p = 0; p < kGpuPassCount; ++p) {
     if (!pass_drawn(static_cast<GpuPass>(p), passes)) continue;
@@ -78,11 +69,10 @@ std::string format_gpu_passes(const Result& report, const std::vector<double>& g
   else
     out += "   medians; the GPU time is below the timer's resolution: not a measurement";
   out += "\n";
-  if (stats[0][0].empty()) {
-    out += "Pipeline statistics: unavailable (" +
-           (run.pipeline_statistics_missing.empty() ? std::string("not read back") : run.pipeline_statistics_missing) +
-           ")\n";
-    return out;
+  if (!report.pipeline_statistics) {
+    const std::string why =
+        run.pipeline_statistics_missing.empty() ? std::string("not read back") : run.pipeline_statistics_missing;
+    return out + "Pipeline statistics: unavailable (" + why + ")\nVertex reuse: not counted (" + why + ")\n";
   }
   std::vector<std::vector<std::string>> rows = {{"per frame (median)"}};
   for (size_t p = 0; p < kGpuPassCount; ++p)
@@ -93,9 +83,18 @@ std::string format_gpu_passes(const Result& report, const std::vector<double>& g
     rows.push_back({name});
     for (size_t p = 0; p < kGpuPassCount; ++p)
       if (pass_drawn(static_cast<GpuPass>(p), passes))
-        rows.back().push_back(with_thousands(static_cast<uint64_t>(quantile(stats[p][s], 0.5))));
+        rows.back().push_back(with_thousands(static_cast<uint64_t>((*report.pipeline_statistics)[p][s])));
   }
-  return out + "Pipeline statistics (ARB_pipeline_statistics_query):\n" + align_columns(rows, {0});
+  if (report.invocations_per_vertex_drawn) {
+    rows.push_back({"invocations per vertex drawn"});
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      if (!pass_drawn(static_cast<GpuPass>(p), passes)) continue;
+      const double reuse = (*report.invocations_per_vertex_drawn)[p];
+      rows.back().push_back(std::isfinite(reuse) ? fixed(reuse, 3) : std::string("-"));
+    }
+  }
+  return out + "Pipeline statistics (ARB_pipeline_statistics_query; index order " +
+         std::string(to_string(run.switches.index_order)) + "):\n" + align_columns(rows, {0});
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "reports/summary_csv.h"
 
+#include <cmath>
+#include <limits>
+
 #include "base/number_text.h"
 #include "measuring/stats.h"
 
@@ -20,7 +23,8 @@ std::string csv_field(const std::string& text) {
 
 std::string summary_csv_header() {
   return "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,cpu_median_ms,"
-         "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes";
+         "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes,index_order,colour_invocations_per_vertex,"
+         "prepass_invocations_per_vertex,shadows_invocations_per_vertex";
 }
 
 void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out) {
@@ -35,7 +39,15 @@ void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out
         << report->frames() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
         << rate(f.median) << "," << fixed(c.median, 4) << "," << fixed(c.p95, 4) << "," << fixed(c.p99, 4) << ","
         << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes
-        << "\n";
+        << "," << to_string(report->run.switches.index_order);
+    // Vertex reuse by pass: empty where the GL did not count it or the pass drew nothing.
+    for (GpuPass pass : {GpuPass::Colour, GpuPass::Prepass, GpuPass::Shadows}) {
+      const double reuse = report->invocations_per_vertex_drawn
+                               ? (*report->invocations_per_vertex_drawn)[static_cast<size_t>(pass)]
+                               : std::numeric_limits<double>::quiet_NaN();
+      out << "," << (std::isfinite(reuse) ? fixed(reuse, 4) : std::string());
+    }
+    out << "\n";
   }
 }
 

@@ -49,6 +49,11 @@ double metric_median(const Result& result, std::string_view key) {
   std::vector<double> measured = finite(*values);
   return measured.empty() ? 0 : summarize(measured).median;
 }
+uint32_t crowd_draws_in(GpuPass pass, uint32_t passes) {
+  if (pass == GpuPass::Skinning || !pass_drawn(pass, passes)) return 0;
+  return pass == GpuPass::Shadows ? passes - 2 : 1;
+}
+
 size_t median_frame(const std::vector<FrameRecord>& frames) {
   if (frames.empty()) return 0;
   std::vector<size_t> order(frames.size());
@@ -77,6 +82,7 @@ void record_samples(Result& r) {
   for (size_t p = 0; split && p < kGpuPassCount; ++p)
     for (const FrameRecord& f : frames) r.samples.gpu_pass_ms[p].push_back(f.gpu_passes.ms[p]);
   r.pipeline_statistics.reset();
+  r.invocations_per_vertex_drawn.reset();
   if (std::any_of(frames.begin(), frames.end(), [](const FrameRecord& f) { return f.gpu_passes.has_stats(); })) {
     auto& medians = r.pipeline_statistics.emplace();
     for (size_t p = 0; p < kGpuPassCount; ++p)
@@ -86,6 +92,16 @@ void record_samples(Result& r) {
           if (f.gpu_passes.has_stats()) values.push_back(f.gpu_passes.stats[p][s]);
         medians[p][s] = quantile(values, 0.5);
       }
+    auto& reuse = r.invocations_per_vertex_drawn.emplace();
+    const auto vs = static_cast<size_t>(PipelineStat::VertexShaderInvocations);
+    for (size_t p = 0; p < kGpuPassCount; ++p) {
+      const uint32_t draws = crowd_draws_in(static_cast<GpuPass>(p), r.run.switches.passes);
+      std::vector<double> ratios;
+      for (const FrameRecord& f : frames)
+        if (f.gpu_passes.has_stats() && draws > 0 && f.counters.vertices_drawn > 0)
+          ratios.push_back(f.gpu_passes.stats[p][vs] / (static_cast<double>(f.counters.vertices_drawn) * draws));
+      reuse[p] = ratios.empty() ? std::numeric_limits<double>::quiet_NaN() : quantile(ratios, 0.5);
+    }
   }
   r.samples.calibrated = calibrated_frames(r.samples.frame_ms, r.samples.probe_ms);
   for (const CounterField& field : kCounterFields) {

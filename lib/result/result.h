@@ -224,6 +224,11 @@ struct Result {
   std::optional<DrawnErrorRecord> drawn_error;
   // Median per frame of each pass's pipeline statistics, when the GL had them.
   std::optional<std::array<std::array<double, kPipelineStatCount>, kGpuPassCount>> pipeline_statistics;
+  // Vertex reuse, with the statistics: per pass, the median over frames of its
+  // vertex-shader invocations over the vertices it drew (the vertices_drawn
+  // counter, times the pass's draws of the crowd: one, or the shadow
+  // cascades). 1: each vertex shaded once; NaN where the pass drew nothing.
+  std::optional<std::array<double, kGpuPassCount>> invocations_per_vertex_drawn;
   std::optional<InstructionRecord> instructions;
   int calibration_probe = 0;  // the probe's version with samples.probe_ms, else 0
   std::optional<PooledRuns> runs;
@@ -247,6 +252,10 @@ struct Result {
 // result without frame records that has samples (one read from a file) is
 // left as it is.
 void record_samples(Result& result);
+
+// Times a frame of `passes` (modes.h) draws the crowd in `pass`: 0 for the
+// skinning pass, the shadow cascades for shadows, else 1 when drawn.
+uint32_t crowd_draws_in(GpuPass pass, uint32_t passes);
 
 // Index of the frame whose time is the median (the lower one for an even count).
 size_t median_frame(const std::vector<FrameRecord>& frames);

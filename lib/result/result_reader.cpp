@@ -314,11 +314,16 @@ void read_gpu_passes(const Reader& in, Result& r, size_t frames) {
     std::string name = in.text(at + "/pass");
     auto known = std::find(kGpuPassNames.begin(), kGpuPassNames.end(), name);
     if (known == kGpuPassNames.end()) in.fail("\"gpu_time.passes\" names no pass '" + name + "'");
+    const auto pass = static_cast<size_t>(known - kGpuPassNames.begin());
+    if (in.has(at + "/invocations_per_vertex_drawn")) {
+      if (!r.invocations_per_vertex_drawn) r.invocations_per_vertex_drawn.emplace().fill(std::numeric_limits<double>::quiet_NaN());
+      (*r.invocations_per_vertex_drawn)[pass] = in.number(at + "/invocations_per_vertex_drawn");
+    }
     if (!in.has(at + "/statistics")) continue;
     in.object(at + "/statistics");
     auto& medians = r.pipeline_statistics ? *r.pipeline_statistics : r.pipeline_statistics.emplace();
     for (size_t s = 0; s < kPipelineStatCount; ++s)
-      medians[static_cast<size_t>(known - kGpuPassNames.begin())][s] =
+      medians[pass][s] =
           static_cast<double>(in.count(at + "/statistics/" + std::string(kPipelineStatNames[s])));
   }
 }

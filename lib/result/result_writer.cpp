@@ -123,6 +123,8 @@ void write_gpu_passes(const Result& r, double gpu_median, json& gpu_time, json& 
         statistics[std::string(kPipelineStatNames[s])] = std::llround((*r.pipeline_statistics)[p][s]);
       pass["statistics"] = statistics;
     }
+    if (r.invocations_per_vertex_drawn && std::isfinite((*r.invocations_per_vertex_drawn)[p]))
+      pass["invocations_per_vertex_drawn"] = (*r.invocations_per_vertex_drawn)[p];
     passes.push_back(pass);
     json per_frame = json::array();
     for (double v : r.samples.gpu_pass_ms[p]) per_frame.push_back(std::isfinite(v) ? json(v) : json(nullptr));
