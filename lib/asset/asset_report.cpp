@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "asset/mesh_lod.h"
+#include "asset/vertex_order.h"
 #include "asset/standing.h"
 
 namespace crowdprof {
@@ -63,6 +64,57 @@ nlohmann::json describe_mesh_lods(const Character& character) {
   return levels;
 }
 
+// For each primitive of the mesh, then each mesh LOD level: every cache
+// model's ACMR and ATVR (asset/vertex_order.h) in the order given (the file's;
+// a level's as mesh LOD builds it) and in vertex-cache order.
+nlohmann::json describe_vertex_cache(const Character& character) {
+  nlohmann::json parts = nlohmann::json::array();
+  auto describe = [](const SkinnedMesh& mesh, std::span<const uint32_t> given, std::span<const uint32_t> optimized) {
+    nlohmann::json models = nlohmann::json::array();
+    for (const VertexCacheModel& model : kVertexCacheModels) {
+      const VertexCacheFigures a = analyze_vertex_cache(given, mesh.vertex_count(), model);
+      const VertexCacheFigures b = analyze_vertex_cache(optimized, mesh.vertex_count(), model);
+      models.push_back({{"model", model.name},
+                        {"cache_size", model.cache_size},
+                        {"warp_size", model.warp_size},
+                        {"primgroup_size", model.primgroup_size},
+                        {"file", {{"acmr", a.acmr}, {"atvr", a.atvr}}},
+                        {"optimized", {{"acmr", b.acmr}, {"atvr", b.atvr}}}});
+    }
+    return models;
+  };
+  const SkinnedMesh& mesh = character.mesh;
+  const std::vector<uint32_t> optimized = vertex_cache_order(mesh);
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const Primitive& prim = mesh.primitives[p];
+    if (prim.first_index > mesh.indices.size() || prim.index_count > mesh.indices.size() - prim.first_index) continue;
+    const std::span<const uint32_t> given(mesh.indices.data() + prim.first_index, prim.index_count);
+    const std::span<const uint32_t> ordered(optimized.data() + prim.first_index, prim.index_count);
+    parts.push_back({{"primitive", p}, {"models", describe(mesh, given, ordered)}});
+  }
+  const std::vector<MeshLod> lods = mesh_lods_of(character);
+  for (size_t l = 0; l < lods.size(); ++l) {
+    const std::vector<uint32_t> level_optimized = vertex_cache_order(lods[l].mesh);
+    parts.push_back({{"level", l + 1}, {"models", describe(lods[l].mesh, lods[l].mesh.indices, level_optimized)}});
+  }
+  return parts;
+}
+
+// "1.23/1.98 -> 0.71/1.14" per model, on one line.
+std::string vertex_cache_line(const nlohmann::json& models) {
+  std::string line;
+  for (const nlohmann::json& m : models) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%s%s %u/%u/%u %.2f/%.2f -> %.2f/%.2f", line.empty() ? "" : "; ",
+                  m["model"].get<std::string>().c_str(), m["cache_size"].get<unsigned>(),
+                  m["warp_size"].get<unsigned>(), m["primgroup_size"].get<unsigned>(),
+                  m["file"]["acmr"].get<double>(), m["file"]["atvr"].get<double>(),
+                  m["optimized"]["acmr"].get<double>(), m["optimized"]["atvr"].get<double>());
+    line += text;
+  }
+  return line;
+}
+
 }  // namespace
 
 nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
@@ -89,6 +141,7 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
                                  {"draco_decoded", c.draco_decoded},
                                  {"mesh_lods", describe_mesh_lods(c)},
                                  {"mesh_lods_source", mesh_lods_source(c)},
+                                 {"vertex_cache", describe_vertex_cache(c)},
                                  {"shared_bytes", c.shared_bytes()}});
   }
   if (asset.characters.empty()) {
@@ -138,6 +191,10 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
           << lods[l]["vertices"].get<size_t>() << " vertices, error " << error;
     }
     out << "\n";
+    out << "  vertex cache: ACMR/ATVR (vertices shaded per triangle / per vertex), file order -> optimized\n";
+    for (const nlohmann::json& part : describe_vertex_cache(c))
+      out << "    " << (part.contains("primitive") ? "primitive " + part["primitive"].dump() : "LOD " + part["level"].dump())
+          << ": " << vertex_cache_line(part["models"]) << "\n";
     out << "  influences:  1: " << h[0] << "  2: " << h[1] << "  3: " << h[2] << "  4: " << h[3] << " vertices\n";
     const Fixups& f = c.fixups;
     out << "  fix-ups:     " << (f.total() ? "" : "none");
