@@ -8,7 +8,9 @@ std::string BenchRendering::backend_name() const {
 
 std::string BenchRendering::renderer_name() const {
   if (!context) return "none";
-  return context->renderer() + " (" + context->platform() + ", OpenGL " + context->version() + ")";
+  // The vendor names the driver where the renderer names only the chip.
+  return context->renderer() + " (" + context->platform() + ", OpenGL " + context->version() + ", GL_VENDOR " +
+         context->vendor() + ")";
 }
 
 BenchRendering open_rendering(BackendChoice choice, std::span<const Character* const> characters, size_t copies,

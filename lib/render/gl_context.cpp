@@ -36,6 +36,7 @@ void GlContext::initialise() {
   };
   renderer_ = text(GL_RENDERER);
   version_ = text(GL_VERSION);
+  vendor_ = text(GL_VENDOR);
   GLint major = 0, minor = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);

@@ -40,9 +40,10 @@ class GlContext {
   // How the backend got its device: "EGL device /dev/dri/renderD128",
   // "EGL surfaceless platform", "OSMesa".
   const std::string& platform() const { return platform_; }
-  // GL_RENDERER and GL_VERSION, read when the context was made.
+  // GL_RENDERER, GL_VERSION and GL_VENDOR, read when the context was made.
   const std::string& renderer() const { return renderer_; }
   const std::string& version() const { return version_; }
+  const std::string& vendor() const { return vendor_; }
 
  protected:
   GlContext(GlBackend backend, std::string platform) : backend_(backend), platform_(std::move(platform)) {}
@@ -55,7 +56,7 @@ class GlContext {
 
  private:
   GlBackend backend_;
-  std::string platform_, renderer_, version_;
+  std::string platform_, renderer_, version_, vendor_;
 };
 
 // Each throws GlUnavailable saying what was tried and why it failed.

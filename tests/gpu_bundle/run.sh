@@ -10,15 +10,18 @@
 #   results.json                every run's result (or why it has none), with the renderer
 #   report.html                 crowdprof report of every run that finished
 #   summary.md                  one row per run: frame, Animations, Rasterizer, GPU time and
-#                               its split by pass
+#                               its split by pass, index order, the colour pass's invocations
+#                               per vertex drawn and the bytes sent a copy on screen
 # Each run has a time limit (LIMIT, seconds, default 60): one that is cut off,
 # refused or failed is a row that says so, and the script goes on, so that it
 # fits a call of 10 minutes; once BUDGET seconds (default 540) have gone, the
 # runs left are rows that say they were not run. It refuses to measure when the renderer is a
 # software rasteriser (llvmpipe, softpipe, swrast): bundled loader libraries can
 # make a run fall back silently. ALLOW_SOFTWARE=1 lifts that (the bundle's test).
-# Environment: MODES ("hwskin buffer instanced compute baked baked+frustum=gpu
-# threaded"; a mode may carry switches as compare spells them), SIZES
+# Environment: MODES ("hwskin hwskin+index_order=file buffer instanced
+# instanced+index_order=file compute baked baked+frustum=gpu threaded": the
+# GPU-skinned modes in both index orders; a mode may carry switches as compare
+# spells them), SIZES
 # ("160 10000 100000"), PASSES ("1 4"), LIMIT (60), BUDGET (540), FRAMES and
 # WARMUP (by size: 120/5 at 160, 30/3 to 10,000, 8/2 above).
 set -uo pipefail
@@ -50,11 +53,12 @@ probe=$("$crowdprof" bench "$scene" -n 4 --frames 1 --warmup 0 --backend egl --m
 renderer=$(sed -n 's/^renderer \(.*\) | [0-9]* draw calls.*/\1/p' <<<"$probe")
 echo "gpu-run: $("$crowdprof" --version)"
 echo "gpu-run: renderer $renderer"
+echo "gpu-run: GL_VENDOR $(sed -n 's/.*, GL_VENDOR \(.*\))$/\1/p' <<<"$renderer")"
 if grep -Eqi 'llvmpipe|softpipe|swrast|software' <<<"$renderer" && [[ ${ALLOW_SOFTWARE:-0} != 1 ]]; then
   fail "the renderer is a software rasteriser ($renderer), not the GPU: is the driver's EGL vendor library visible? (__EGL_VENDOR_LIBRARY_FILENAMES)"
 fi
 
-read -r -a modes <<<"${MODES:-hwskin buffer instanced compute baked baked+frustum=gpu threaded}"
+read -r -a modes <<<"${MODES:-hwskin hwskin+index_order=file buffer instanced instanced+index_order=file compute baked baked+frustum=gpu threaded}"
 for mode in "${modes[@]}"; do
   IFS='+' read -r -a parts <<<"$mode"
   for switch in "${parts[@]:1}"; do
@@ -66,8 +70,8 @@ read -r -a pass_counts <<<"${PASSES:-1 4}"
 limit=${LIMIT:-60} budget=${BUDGET:-540}
 json_text() { sed 's/\\/\\\\/g; s/"/\\"/g' | tr -d '\000-\037' | head -c 400; }
 {
-  echo "| mode | copies | passes | frame | Animations | Rasterizer | GPU time | GPU by pass | wall s |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  echo "| mode | copies | passes | frame | Animations | Rasterizer | GPU time | GPU by pass | wall s | index order | invocations per vertex, colour | bytes a copy on screen |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } >"$out/summary.md"
 entries=()
 for n in "${sizes[@]}"; do
@@ -86,7 +90,7 @@ for n in "${sizes[@]}"; do
     done
     if ((SECONDS >= budget)); then
       entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"not run: the ${budget} s budget was spent\"}")
-      echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 |" >>"$out/summary.md"
+      echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 ||||" >>"$out/summary.md"
       continue
     fi
     start=$SECONDS
@@ -99,13 +103,18 @@ for n in "${sizes[@]}"; do
       figure() { sed -n "s/^$1 *: *\([0-9.]*[mu]s\).*/\1/p" "$run.txt"; }
       gpu=$(figure 'GPU time')
       by_pass=$(sed -n 's/^GPU passes : \(.*\)   medians.*/\1/p' "$run.txt" | sed 's/ | /, /g')
-      echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall |" >>"$out/summary.md"
+      # The order the triangles were drawn in, the colour pass's vertex reuse (the
+      # last column of the statistics' row) and the bytes sent a copy on screen.
+      order=$(sed -n 's/.*"index_order": *"\([a-z]*\)".*/\1/p' "$run.json" | head -1)
+      reuse=$(awk '/^invocations per vertex drawn/ {print $NF}' "$run.txt")
+      bytes=$(sed -n 's/.*"bytes_uploaded_per_copy_on_screen": *\([0-9.e+]*\).*/\1/p' "$run.json" | head -1)
+      echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall | ${order:-file} | ${reuse:-n/a} | ${bytes:-n/a} |" >>"$out/summary.md"
     else
       if ((status == 124 || status == 137)); then why="cut off after the ${limit} s limit"
       else why="exit $status: $(tr '\n' ' ' <"$run.err" | head -c 300)"; fi
       rm -f "$run.json"
       entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"$(json_text <<<"$why")\"}")
-      echo "| $mode | $n | $passes | $why ||||| $wall |" >>"$out/summary.md"
+      echo "| $mode | $n | $passes | $why ||||| $wall ||||" >>"$out/summary.md"
     fi
     echo "gpu-run: $mode at $n copies, $passes passes: ${wall} s, exit $status"
   done
