@@ -1,0 +1,49 @@
+// Blending several local poses of one skeleton into one (a crossfade between
+// two actions, issue 53; layers, issue 56), in ozz-animation's BlendingJob's
+// terms: each layer a pose and a weight, the rest pose filling in below a
+// threshold of total weight.
+#pragma once
+
+#include <span>
+
+#include "animation/local_pose.h"
+
+namespace crowdprof {
+
+// One pose of a blend and how much of it to take.
+struct BlendLayer {
+  const LocalPose* pose = nullptr;
+  float weight = 0.0f;  // >= 0; 0 leaves the layer out
+};
+
+// Per joint: translations and scales are the layers' weighted mean; rotations
+// the normalised weighted sum of their quaternions, each turned onto the
+// hemisphere of the sum so far (normalised lerp on the shortest arc). Where the
+// weights add up to less than `threshold`, the rest pose is added with what is
+// missing, so a blend of nearly nothing tends to rest instead of dividing by
+// almost zero (ozz's rule). A layer of weight 1 alone gives its pose back (its
+// rotations renormalised: within 1e-7); weight 0 layers are skipped, not
+// special-cased.
+//
+// Why normalised lerp and not slerp (which the BGE uses for its two-pose
+// blend): it is what ozz and Unreal blend with, it takes any number of layers
+// in any order (slerp is defined for two), and costs a multiply-add per
+// component. Between two poses it is exact at weights 0, 1/2 and 1 and moves
+// non-uniformly in between: for rotations 90 degrees apart the angle reached at
+// weight 1/4 is 21.6 degrees against slerp's 22.5, less apart for closer ones,
+// and a crossfade's poses are close (the same skeleton, the same moment of
+// motion).
+struct BlendingJob {
+  std::span<const BlendLayer> layers;
+  const LocalPose* rest = nullptr;  // reset_to_rest's pose of the same skeleton
+  float threshold = 0.1f;           // > 0
+  LocalPose* output = nullptr;      // sized like `rest`; may be one of the layers' poses
+
+  // Rest and output set and sized alike, threshold finite and > 0, at least one
+  // layer, each with a pose sized like rest and a finite weight >= 0.
+  bool Validate() const;
+  // False (and no output) when !Validate(). Allocates nothing.
+  [[nodiscard]] bool Run() const;
+};
+
+}  // namespace crowdprof
