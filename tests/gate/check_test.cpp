@@ -244,6 +244,15 @@ TEST(Check, ResultsOfAnotherRunAreRefused) {
   Result elsewhere = baseline;
   elsewhere.run.file = "/elsewhere/scenes/humanoid.glb";  // the same file name: the same scene
   EXPECT_NO_THROW(require_same_run(baseline, elsewhere, "base.json"));
+  // A build from before --index-order ran in file order: the same run when
+  // nothing is drawn, another when a GL draws the triangles.
+  Result older = baseline, newer = baseline;
+  older.run.switches.index_order = IndexOrder::File;
+  newer.run.switches.index_order = IndexOrder::Optimized;
+  older.run.backend = newer.run.backend = "none";
+  EXPECT_NO_THROW(require_same_run(older, newer, "base.json"));
+  older.run.backend = newer.run.backend = "egl";
+  EXPECT_THROW(require_same_run(older, newer, "base.json"), InputError);
 }
 
 TEST(Check, BrokenBaselinesAreInputErrors) {
