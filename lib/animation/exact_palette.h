@@ -19,7 +19,7 @@ namespace crowdprof {
 
 // Scratch grown on first use and reused by later calls: one per thread.
 struct ExactPalette {
-  LocalPose pose;
+  LocalPose pose, from_pose;
   SamplingCursor cursor;
   std::vector<glm::mat4> model;
   std::vector<SkinMatrix> palette;
@@ -28,6 +28,12 @@ struct ExactPalette {
   // when `action` is null; one matrix per joint, valid until the next call.
   std::span<const SkinMatrix> at(const Skeleton& skeleton, const Action* action, std::span<const int32_t> targets,
                                  float time);
+  // A copy fading (issue 53): `from` at `from_time` and `action` at `time`,
+  // each sampled from rest, blended with `weight` of `action`
+  // (animation/blending.h, over `rest`).
+  std::span<const SkinMatrix> fading(const Skeleton& skeleton, const LocalPose& rest, const Action& from,
+                                     std::span<const int32_t> from_targets, float from_time, const Action& action,
+                                     std::span<const int32_t> targets, float time, float weight);
 };
 
 }  // namespace crowdprof

@@ -115,6 +115,15 @@ SettingText conflicts(const ModeSwitches& s) {
            "in size: it needs {share} off";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
+  if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s)
+    return "{blend_in} is at most half of {transitions}: a copy's fades must not overlap (changes come after at "
+           "least half the mean)";
+  if (s.transitions_s > 0 && s.share_poses)
+    return "{transitions} fade each copy on its own pose; {share} on does not share fading poses yet: it needs "
+           "{share} off";
+  if (s.transitions_s > 0 && s.skinning == SkinningSite::Baked)
+    return "{transitions} fade between actions on the CPU's poses; skinning baked does not fade yet: use "
+           "{skinning} gpu, compute or animations";
   return {};
 }
 
@@ -138,6 +147,7 @@ std::string_view to_string(PaletteStorage palettes) {
   return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
 }
 std::string_view to_string(FrustumTest frustum) { return frustum == FrustumTest::Gpu ? "gpu" : "cpu"; }
+std::string_view to_string(Crossfade crossfade) { return crossfade == Crossfade::Frozen ? "frozen" : "sampled"; }
 std::string_view to_string(IndexOrder order) { return order == IndexOrder::File ? "file" : "optimized"; }
 std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
 

@@ -76,6 +76,12 @@ enum class IndexOrder : uint8_t {
   Optimized,  // meshoptimizer's vertex-cache order; the vertices keep skinning's order
 };
 
+// How a copy fades into its next action (issue 53).
+enum class Crossfade : uint8_t {
+  Frozen,   // toward the pose it had when the change came, one action sampled a frame (the BGE's)
+  Sampled,  // both actions sampled every frame of the fade (blend trees': ozz, Unreal)
+};
+
 // Update-rate LOD (issue 13): a copy whose box spans at least lod[0] of the
 // screen's height is updated every frame, at least lod[1] every 2nd frame, at
 // least lod[2] every 4th, smaller ones every 8th. Between updates a copy holds
@@ -126,6 +132,11 @@ struct ModeSwitches {
   bool mesh_lod = false;  // far copies skin and draw simplified meshes
   MeshLodThresholds mesh_lod_at;
   IndexOrder index_order = IndexOrder::Optimized;  // results without it ran in File order
+  // Transitions (issue 53): > 0, each copy changes action after about this
+  // many seconds (scene/transitions.h), fading over blend_in_s.
+  double transitions_s = 0.0;
+  double blend_in_s = 0.25;
+  Crossfade crossfade = Crossfade::Sampled;
 
   bool operator==(const ModeSwitches&) const = default;
 };
@@ -156,5 +167,6 @@ std::string_view to_string(PaletteStorage palettes);  // "uniforms", "buffer"
 std::string_view to_string(DrawMethod draw);          // "per-copy", "instanced"
 std::string_view to_string(FrustumTest frustum);      // "cpu", "gpu"
 std::string_view to_string(IndexOrder order);         // "file", "optimized"
+std::string_view to_string(Crossfade crossfade);      // "frozen", "sampled"
 
 }  // namespace crowdprof

@@ -69,6 +69,15 @@ constexpr std::array kPalettes = {PaletteStorage::Uniforms, PaletteStorage::Buff
 constexpr std::array kDraws = {DrawMethod::PerCopy, DrawMethod::Instanced};
 constexpr std::array kFrustumTests = {FrustumTest::Cpu, FrustumTest::Gpu};
 constexpr std::array kIndexOrders = {IndexOrder::File, IndexOrder::Optimized};
+constexpr std::array kCrossfades = {Crossfade::Frozen, Crossfade::Sampled};
+
+// Seconds from 0 to 3600; `what` names the value in the message.
+std::string set_seconds(double& field, std::string_view text, const char* what) {
+  std::optional<double> value = parse_number(text);
+  if (!value || !(*value >= 0 && *value <= 3600)) return std::string("expected ") + what;
+  field = *value;
+  return {};
+}
 
 // Seconds, as a decimal or a fraction 1/N.
 std::string set_share_quantum(ModeSwitches& s, std::string_view text) {
@@ -215,6 +224,26 @@ const std::array kSwitches = {
                [](const ModeSwitches& s) { return json(to_string(s.index_order)); },
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.index_order, t, kIndexOrders); }, false,
                "file"},
+    SwitchSpec{"transitions", "SECONDS",
+               "Each copy changes to another action of its character after an interval drawn from the seed around "
+               "this mean (half to one and a half times it), fading in over --blend-in; with --actions shared a "
+               "group changes as one; a character of one action re-enters it at a new phase. 0: no changes",
+               [](const ModeSwitches& s) { return json(s.transitions_s); },
+               [](ModeSwitches& s, std::string_view t) {
+                 return set_seconds(s.transitions_s, t, "seconds from 0 (no changes) to 3600");
+               },
+               false},
+    SwitchSpec{"blend_in", "SECONDS",
+               "With transitions: how long a copy fades from its last action into its next (at most half of "
+               "--transitions); 0 snaps",
+               [](const ModeSwitches& s) { return json(s.blend_in_s); },
+               [](ModeSwitches& s, std::string_view t) { return set_seconds(s.blend_in_s, t, "seconds from 0 to 3600"); },
+               false},
+    SwitchSpec{"crossfade", "frozen|sampled",
+               "With transitions: frozen fades toward the pose held when the change came, one action sampled a "
+               "frame (the BGE's); sampled samples both actions every frame of the fade (blend trees': ozz, Unreal)",
+               [](const ModeSwitches& s) { return json(to_string(s.crossfade)); },
+               [](ModeSwitches& s, std::string_view t) { return set_choice(s.crossfade, t, kCrossfades); }, false},
 };
 
 }  // namespace

@@ -33,8 +33,12 @@ uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
   const uint64_t vertex_bytes = !cpu_vertices(mode)                         ? 0
                                 : mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes
                                                                              : kFloatVertexBytes;
+  // Transitions: the pose and cursor of the action a copy fades from.
+  const uint64_t fading = mode.transitions_s > 0
+                              ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4 + 32
+                              : 0;
   return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
-         channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */;
+         channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */ + fading;
 }
 uint64_t slot_bytes(const Character& c) {
   const uint64_t channels = max_channels(c);
@@ -81,6 +85,19 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     if (!skins_on_gpu(p.site)) vertices += whole_batches(p.vertices);
     const Character& character = *characters[crowd.kind[i]];
     if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
+  }
+  if (mode.transitions_s > 0) {
+    actions = crowd.action;
+    from_actions = crowd.action;
+    weights.assign(n, 1.0f);
+    from_times.assign(n, 0.0f);
+    changes.assign(n, 0);
+    cursor_change.assign(n, 0);
+    frozen_change.assign(n, 0);
+    from_cursors.resize(n);
+    from_poses.resize(n);
+    sampled_twice.assign(n, 0);
+    for (size_t i = 0; i < n; ++i) reset_to_rest(characters[crowd.kind[i]]->skeleton, &from_poses[i]);
   }
   const bool shared = mode.pose == PoseStorage::SharedScratch;
   const size_t slots = shared ? characters.size() : n;

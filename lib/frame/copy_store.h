@@ -33,6 +33,17 @@ struct CopyStore {
   std::vector<float> times;                // this frame's time on its action's clock (Logic)
   std::vector<uint8_t> visible;            // inside the frustum (the last Scenegraph stage)
   std::vector<SamplingCursor> cursors;
+  // Transitions (issue 53), per copy; empty without them. The Logic stage
+  // writes the action each copy plays now, its weight (< 1 while fading) and
+  // the action it fades from with that one's time (frozen: at the change);
+  // the pose update keeps the second cursor and pose, and which change each
+  // copy's cursors and frozen pose were set for.
+  std::vector<uint16_t> actions, from_actions;
+  std::vector<float> weights, from_times;
+  std::vector<uint32_t> changes, cursor_change, frozen_change;
+  std::vector<SamplingCursor> from_cursors;
+  std::vector<LocalPose> from_poses;
+  std::vector<uint8_t> sampled_twice;  // the last evaluation sampled both actions
   // Per pose storage (one per copy): offsets into palettes and the vertices.
   // Each storage's vertices start on a cache line (whole batches of
   // kSkinBatch vertices), so that skinning can stream whole lines.

@@ -51,6 +51,9 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   character_counters_.resize(characters_.size());
   if (mode.mesh_lod) choose_mesh_levels();
   store_ = std::make_unique<CopyStore>(characters_, prepared_, crowd_, mode, mesh_level_);
+  if (mode.transitions_s > 0)
+    transitions_ = std::make_unique<TransitionSchedule>(
+        characters_, crowd_, TransitionTiming{mode.transitions_s, mode.blend_in_s}, config.crowd.seed);
   std::vector<uint8_t> posed_on_cpu;
   for (const PreparedCharacter& p : prepared_) posed_on_cpu.push_back(p.posed_on_cpu);
   planner_ = std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));
@@ -231,6 +234,7 @@ void CrowdBench::enter(Category category) {
 float CrowdBench::copy_time(size_t copy, double seconds) const {
   const Character& character = character_of(copy);
   if (character.actions.empty()) return 0.0f;
+
   const Action& action = character.actions[crowd_.action[copy]];
   double duration = action.duration();
   double local = duration > 0 ? std::fmod(static_cast<double>(crowd_.phase[copy]) + seconds, duration) : 0.0;
@@ -240,8 +244,27 @@ float CrowdBench::copy_time(size_t copy, double seconds) const {
 void CrowdBench::update_logic() {
   if (!gpu_visible_.empty()) return;  // frustum gpu: the cull pass computes each copy's time (cull.comp)
   const double t = static_cast<double>(frame_) / config_.fps;
+  if (transitions_) return update_transitions(t);
   for (size_t i = 0; i < crowd_.size(); ++i)
     if (!character_of(i).actions.empty()) store_->times[i] = copy_time(i, t);
+}
+
+void CrowdBench::update_transitions(double t) {
+  transitions_->advance(t);
+  CopyStore& s = *store_;
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    const std::vector<Action>& actions = character_of(i).actions;
+    if (actions.empty()) continue;
+    const CopyAction& c = (*transitions_)[i];
+    s.actions[i] = c.now.action;
+    s.times[i] = c.now.local_time(actions[c.now.action], t);
+    s.changes[i] = c.changes;
+    s.weights[i] = c.weight;
+    s.from_actions[i] = c.before.action;
+    // Frozen: the old action where the change found it; sampled: where it is now.
+    const double from_at = config_.mode.crossfade == Crossfade::Frozen ? c.changed_at : t;
+    s.from_times[i] = c.before.local_time(actions[c.before.action], from_at);
+  }
 }
 
 void CrowdBench::update_poses(Counters& counters) {
@@ -333,6 +356,12 @@ void CrowdBench::count_work(Counters& counters) {
     const size_t k = crowd_.kind[job.leader];
     Counters& c = character_counters_[k];
     ++c.poses_updated;
+    ++c.actions_sampled;
+    if (transitions_ && store_->weights[job.leader] < 1.0f) {
+      ++c.fades;
+      c.actions_sampled += store_->sampled_twice[job.leader];
+      c.joints_blended += prepared_[k].joints;
+    }
     if (skins_on_gpu(prepared_[k].site)) continue;
     const size_t level = level_of(job.storage), vertices = prepared_[k].vertices_of(level);
     c.vertices_skinned += vertices;
@@ -347,6 +376,9 @@ void CrowdBench::count_work(Counters& counters) {
     culled += c.copies_culled;
     skinned += c.vertices_skinned;
     fallback += c.copies_fallback;
+    counters.actions_sampled += c.actions_sampled;
+    counters.fades += c.fades;
+    counters.joints_blended += c.joints_blended;
   }
   counters.poses_updated = posed;
   counters.copies_culled = culled;

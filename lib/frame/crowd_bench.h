@@ -25,7 +25,9 @@
 #include "measuring/counters.h"
 #include "result/result.h"
 #include "scene/camera.h"
+#include "animation/exact_palette.h"
 #include "scene/crowd.h"
+#include "scene/transitions.h"
 #include "scene/culling_audit.h"
 
 namespace crowdprof {
@@ -197,8 +199,15 @@ class CrowdBench {
   void place_baked_instances();
   // Copy `copy`'s place among its baked samples at action time `time`.
   BakedInstance baked_instance(size_t copy, float time) const;
-  // The action time copy `copy` shows `seconds` into the run.
+  // The action time copy `copy` shows `seconds` into the run, on the clock of
+  // the action it starts with (with transitions, until its first change).
   float copy_time(size_t copy, double seconds) const;
+  // Copy `copy`'s exact palette in the last frame (the reference of the
+  // drawn-error and fidelity checks): its action at `time`; with transitions
+  // the action it played then (at `time`), blended as its fade stood.
+  std::span<const SkinMatrix> exact_palette(size_t copy, float time, ExactPalette& scratch) const;
+  // Logic with transitions: each copy's action, time and fade at `t`.
+  void update_transitions(double t);
   // Overhead: the frame's work by character and in all, from who was posed
   // and where each character is skinned.
   void count_work(Counters& counters);
@@ -226,6 +235,7 @@ class CrowdBench {
   std::vector<PreparedCharacter> prepared_;  // per character; immutable once made
   BakeRecord bake_summary_;
   std::unique_ptr<CopyStore> store_;
+  std::unique_ptr<TransitionSchedule> transitions_;  // with --transitions
   std::unique_ptr<UpdatePlanner> planner_;
   std::unique_ptr<PoseUpdater> poser_;
   std::vector<CharacterView> character_views_;

@@ -24,6 +24,22 @@
 
 namespace crowdprof {
 
+std::span<const SkinMatrix> CrowdBench::exact_palette(size_t copy, float time, ExactPalette& scratch) const {
+  const Character& character = character_of(copy);
+  const PreparedCharacter& kind = prepared_[crowd_.kind[copy]];
+  if (character.actions.empty()) return scratch.at(character.skeleton, nullptr, {}, time);
+  if (!transitions_) {
+    const size_t a = crowd_.action[copy];
+    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time);
+  }
+  const size_t a = store_->actions[copy], from = store_->from_actions[copy];
+  if (!(store_->weights[copy] < 1.0f))
+    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time);
+  return scratch.fading(character.skeleton, kind.rest_pose, character.actions[from], kind.bindings[from].targets,
+                        store_->from_times[copy], character.actions[a], kind.bindings[a].targets, time,
+                        store_->weights[copy]);
+}
+
 AnimationRecord CrowdBench::measure_animation() const {
   AnimationRecord fidelity;
   const UpdateSchedule& plan = schedule();
@@ -42,9 +58,7 @@ AnimationRecord CrowdBench::measure_animation() const {
     ++fidelity.copies_deviating;
     const Character& character = character_of(i);
     const PreparedCharacter& kind = prepared_[crowd_.kind[i]];
-    const std::span<const SkinMatrix> palette =
-        reference.at(character.skeleton, &character.actions[crowd_.action[i]],
-                     kind.bindings[crowd_.action[i]].targets, store_->times[i]);
+    const std::span<const SkinMatrix> palette = exact_palette(i, store_->times[i], reference);
     for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
     // Both skinned here, so that a copy skinned on the GPU is measured too.
     run_job(SkinningJob{skinning_matrices(i), &kind.skinning_plan, 0, kind.vertices, drawn, drawn_normals},
@@ -110,11 +124,8 @@ DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t ma
       if (kind.vertices == 0) continue;
       CopyError& e = copies[n];
       e.checked = true;
-      const float time = copy_time(i, seconds);
-      const Action* action = character.actions.empty() ? nullptr : &character.actions[crowd_.action[i]];
-      std::span<const int32_t> targets;
-      if (action) targets = kind.bindings[crowd_.action[i]].targets;
-      const std::span<const SkinMatrix> exact = s.reference.at(character.skeleton, action, targets, time);
+      const float time = transitions_ ? store_->times[i] : copy_time(i, seconds);
+      const std::span<const SkinMatrix> exact = exact_palette(i, time, s.reference);
       // The palette drawn: the baked blend the shader makes, or the pose storage's.
       std::span<const SkinMatrix> drawn = skinning_matrices(i);
       if (kind.site == SkinningSite::Baked) {

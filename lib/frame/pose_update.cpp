@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "animation/blending.h"
 #include "animation/pose.h"
 #include "animation/run_job.h"
 #include "measuring/category_clock.h"
@@ -45,6 +46,7 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   const size_t threads = parallel ? static_cast<size_t>(std::max(1, context.threads)) : 1;
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
+  if (context.mode.transitions_s > 0) blended_.resize(model_threads_);
   if (parallel) {
     threads_ = bench_threads(threads);
     arena_ = threads_->arena.get();
@@ -141,30 +143,73 @@ void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* looku
   const Character& character = *context_.characters[k];
   const PreparedCharacter& prepared = context_.prepared[k];
   const Skeleton& skeleton = character.skeleton;
-  const size_t action_index = crowd_.action[copy];
-  const Action& action = character.actions[action_index];
-  const ActionBindings& bindings = prepared.bindings[action_index];
+  const bool transitions = !store_.actions.empty();
+  const size_t action_index = transitions ? store_.actions[copy] : crowd_.action[copy];
   LocalPose& pose = store_.poses[slot];
-  std::span<const int32_t> targets = bindings.targets;
-  if (context_.mode.lookups == Lookups::PerFrameString) {
-    std::span<int32_t> scratch = std::span(store_.targets).subspan(store_.slot_channels[slot], action.channels.size());
-    size_t count = 0;
-    run_job(ResolvePathsJob{&skeleton, &bindings, scratch, &count}, "ResolvePathsJob");
-    *lookups += count;
-    targets = scratch;
-  }
   // A shared scratch pose still holds the previous copy's joints: start from rest,
   // as the BGE's pose swap copied the armature's own pose in.
   if (context_.mode.pose == PoseStorage::SharedScratch) reset_to_rest(skeleton, &pose);
-  // The leader's own cursor: its action, and its time moving forward.
-  run_job(SamplingJob{&action, job.time, targets, &store_.cursors[copy], &pose}, "SamplingJob");
+  if (transitions && store_.cursor_change[copy] != store_.changes[copy]) {
+    // A new action since the copy was last posed: its cursors start afresh,
+    // and a joint the new action leaves alone starts from rest, not from the
+    // old action's last value.
+    store_.cursor_change[copy] = store_.changes[copy];
+    reset_cursor(character.actions[action_index], &store_.cursors[copy]);
+    reset_cursor(character.actions[store_.from_actions[copy]], &store_.from_cursors[copy]);
+    reset_to_rest(skeleton, &pose);
+    reset_to_rest(skeleton, &store_.from_poses[copy]);
+  }
+  sample_action(job, slot, action_index, job.time, store_.cursors[copy], pose, lookups);
+  const LocalPose* shown = transitions ? fade(job, slot, pose, lookups) : &pose;
   std::span<glm::mat4> model = std::span(model_).subspan(worker_index() * model_joints_, prepared.joints);
-  run_job(LocalToModelJob{&skeleton, &pose, model}, "LocalToModelJob");
+  run_job(LocalToModelJob{&skeleton, shown, model}, "LocalToModelJob");
   run_job(SkinningMatricesJob{&skeleton, model,
                               std::span(store_.palettes).subspan(store_.joint_offset[job.storage], prepared.joints)},
           "SkinningMatricesJob");
   store_.storage_time[job.storage] = job.time;
   if (skin && prepared.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
+}
+
+void PoseUpdater::sample_action(const StateJob& job, size_t slot, size_t action_index, float time,
+                                SamplingCursor& cursor, LocalPose& pose, uint64_t* lookups) {
+  const size_t k = crowd_.kind[job.leader];
+  const Action& action = context_.characters[k]->actions[action_index];
+  const ActionBindings& bindings = context_.prepared[k].bindings[action_index];
+  std::span<const int32_t> targets = bindings.targets;
+  if (context_.mode.lookups == Lookups::PerFrameString) {
+    std::span<int32_t> scratch = std::span(store_.targets).subspan(store_.slot_channels[slot], action.channels.size());
+    size_t count = 0;
+    run_job(ResolvePathsJob{&context_.characters[k]->skeleton, &bindings, scratch, &count}, "ResolvePathsJob");
+    *lookups += count;
+    targets = scratch;
+  }
+  run_job(SamplingJob{&action, time, targets, &cursor, &pose}, "SamplingJob");
+}
+
+const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups) {
+  const size_t copy = job.leader;
+  store_.sampled_twice[copy] = 0;
+  const float weight = store_.weights[copy];
+  if (!(weight < 1.0f)) return &pose;
+  LocalPose& from = store_.from_poses[copy];
+  // Sampled: the old action at its time now, every frame. Frozen: the old
+  // action at the change, once per change (the BGE's m_blendinpose).
+  const bool frozen = context_.mode.crossfade == Crossfade::Frozen;
+  if (!frozen || store_.frozen_change[copy] != store_.changes[copy]) {
+    sample_action(job, slot, store_.from_actions[copy], store_.from_times[copy], store_.from_cursors[copy], from,
+                  lookups);
+    store_.frozen_change[copy] = store_.changes[copy];
+    store_.sampled_twice[copy] = 1;
+  }
+  // Into the thread's scratch, not the copy's pose: a joint the new action
+  // leaves alone must keep its rest value after the fade, as it would
+  // sampled from rest.
+  const PreparedCharacter& prepared = context_.prepared[crowd_.kind[copy]];
+  LocalPose& blended = blended_[worker_index()];
+  blended = prepared.rest_pose;  // sized for this character; reuses its storage
+  const BlendLayer layers[] = {{&from, 1.0f - weight}, {&pose, weight}};
+  run_job(BlendingJob{layers, &prepared.rest_pose, 0.1f, &blended}, "BlendingJob");
+  return &blended;
 }
 
 size_t PoseUpdater::worker_index() const {

@@ -63,6 +63,14 @@ class PoseUpdater {
   // `skin`: also skin the job's storage when its character is skinned in
   // Animations (else the caller skins it, in parts: skin_range).
   void update_state(const StateJob& job, size_t slot, uint64_t* lookups, bool skin);
+  // Samples action `action_index` of the job's character at `time` into
+  // `pose` through `cursor` (resolving its paths into the slot's scratch with
+  // string lookups).
+  void sample_action(const StateJob& job, size_t slot, size_t action_index, float time, SamplingCursor& cursor,
+                     LocalPose& pose, uint64_t* lookups);
+  // Transitions: the pose a copy shows, `pose` or, fading, its blend with the
+  // pose of the action it leaves (in the thread's scratch).
+  const LocalPose* fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups);
   // How many parts update() skins each of this frame's states in: 1, or with
   // fewer states than threads (on a parallel mode skinning in Animations) two
   // parts a thread, so that one state keeps every thread busy.
@@ -98,6 +106,7 @@ class PoseUpdater {
   // written and read back from memory every frame at 10,000 copies. Cache-line
   // aligned (a mat4 is one line), so that no two threads' regions share a line.
   std::vector<glm::mat4, CacheLineAllocator<glm::mat4>> model_;
+  std::vector<LocalPose> blended_;  // transitions: per thread, a fading copy's blended pose
   size_t model_joints_ = 0, model_threads_ = 1;
   // Per state when its mesh is skinned in parts: whether its pose is built yet.
   static constexpr uint8_t kNotPosed = 0, kPosing = 1, kPosed = 2;

@@ -30,6 +30,7 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
       p.max_channels = std::max(p.max_channels, action.channels.size());
     }
     p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
+    reset_to_rest(character.skeleton, &p.rest_pose);
     p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
     if (mode.mesh_lod) {
       p.mesh_lods = mesh_lods_of(character);

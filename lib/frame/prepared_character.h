@@ -11,6 +11,7 @@
 
 #include "animation/bake.h"
 #include "animation/binding.h"
+#include "animation/local_pose.h"
 #include "asset/character.h"
 #include "asset/mesh_lod.h"
 #include "frame/frame_view.h"
@@ -31,6 +32,7 @@ struct PreparedCharacter {
   // their samples); a character without actions stands in its rest pose.
   bool posed_on_cpu = false;
   std::vector<ActionBindings> bindings;  // per action
+  LocalPose rest_pose;                   // what a blend falls back to (animation/blending.h)
   SkinningPlan skinning_plan;            // the mesh prepared for skinning
   BakedCharacter baked;                  // mode baked only
   PositionQuantisation quantisation;     // packed vertices: the character's animated box

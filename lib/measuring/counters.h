@@ -46,6 +46,10 @@ struct Counters {
   // frustum gpu, as the cull pass counted them), their level's vertex count.
   // What each pass's vertex-shader invocations are divided by (vertex reuse).
   uint64_t vertices_drawn = 0;
+  // Transitions (issue 53): actions sampled (one per pose evaluation, two for
+  // a fade that samples the action it leaves), evaluations of fading copies,
+  // and joints blended in them.
+  uint64_t actions_sampled = 0, fades = 0, joints_blended = 0;
 };
 
 struct CounterField {
@@ -53,7 +57,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 31> kCounterFields = {{
+inline constexpr std::array<CounterField, 34> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -85,6 +89,9 @@ inline constexpr std::array<CounterField, 31> kCounterFields = {{
     {"lod2_triangles", &Counters::lod2_triangles},
     {"lod3_triangles", &Counters::lod3_triangles},
     {"vertices_drawn", &Counters::vertices_drawn},
+    {"actions_sampled", &Counters::actions_sampled},
+    {"fades", &Counters::fades},
+    {"joints_blended", &Counters::joints_blended},
 }};
 // The lod*_ counters of level L.
 inline constexpr uint64_t Counters::*kLodCopies[4] = {&Counters::lod0_copies, &Counters::lod1_copies,

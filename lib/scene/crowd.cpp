@@ -122,6 +122,8 @@ Crowd make_crowd(std::span<const Character* const> characters, const CrowdOption
     }
     crowd.action.push_back(action);
     crowd.phase.push_back(phase);
+    crowd.schedule_stream.push_back(
+        static_cast<uint32_t>(group.actions == ActionChoice::Shared ? n + pick : i));
   }
   crowd.crowd_box = crowd.world_boxes.empty() ? Aabb{} : crowd.world_boxes.front();
   for (const Aabb& box : crowd.world_boxes) {

@@ -60,6 +60,10 @@ struct Crowd {
   std::vector<uint16_t> kind;       // per copy, index into the characters
   std::vector<uint16_t> action;     // per copy, index into its character's actions
   std::vector<float> phase;         // per copy, seconds into its action at t = 0
+  // Per copy, which random stream its action changes are drawn from
+  // (scene/transitions.h): its own (its index), or with shared actions its
+  // group's (past every copy's), so that the group changes as one.
+  std::vector<uint32_t> schedule_stream;
   std::vector<Aabb> character_boxes;  // per character: animated_bounds
   std::vector<Aabb> world_boxes;    // per copy
   Aabb crowd_box;                   // around every copy

@@ -31,7 +31,8 @@ TEST(SwitchTable, EverySwitchChangesTheSwitches) {
       {"skinning", "gpu"},    {"palettes", "buffer"},    {"draw", "instanced"},   {"vertex_format", "packed"},
       {"share", "on"},        {"share_quantum", "1/30"}, {"update_lod", "on"},    {"lod_thresholds", "0.5,0.25,0.1"},
       {"anim_budget", "2"},   {"passes", "3"},           {"frustum", "gpu"},      {"mesh_lod", "on"},
-      {"mesh_lod_thresholds", "0.5,0.25,0.1"}, {"index_order", "file"}};
+      {"mesh_lod_thresholds", "0.5,0.25,0.1"}, {"index_order", "file"},
+      {"transitions", "2"}, {"blend_in", "0.5"}, {"crossfade", "frozen"}};
   ASSERT_EQ(other.size(), switch_table().size());
   for (const SwitchSpec& spec : switch_table()) {
     ModeSwitches s;

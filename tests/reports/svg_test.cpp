@@ -7,6 +7,7 @@
 #include "fake_run.h"
 #include "reports/compare_report.h"
 #include "reports/svg_chart.h"
+#include "test_support.h"
 
 using namespace crowdprof;
 
