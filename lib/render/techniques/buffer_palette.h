@@ -29,7 +29,7 @@ inline size_t draw_group(const FrameView& view, size_t copy) {
 // crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
 // exceed one storage block (`max_block_bytes`).
 // `on_screen` is scratch, kept by the caller so that frames allocate nothing.
-uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced);
 
 class BufferPalette final : public Technique {

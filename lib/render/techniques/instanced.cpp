@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "frame/frame_view.h"
+#include "render/shader_sources.h"
 #include "render/techniques/buffer_palette.h"
 
 namespace crowdprof {
@@ -17,18 +18,21 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
 }
 
 void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, gl_, true);
-  counters.gpu_palette_bytes = buffers_.gpu_bytes();
+  counters.bytes_uploaded += placements_.update(view, gl_);  // nothing once the crowd is placed
+  const SentBytes sent = send_palettes(view, meshes, buffers_, on_screen_, gl_, true);
+  count_palette_bytes(counters, sent.palettes);
+  count_record_bytes(counters, sent.records);
+  counters.gpu_palette_bytes = buffers_.gpu_bytes() + placements_.gpu_bytes();
 }
 
 void Instanced::draw(const FrameView&, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   set_copy_colours(program_);
-  draw_instance_runs(buffers_, meshes, [](size_t) {}, counters);
+  draw_instance_runs(buffers_, placements_, meshes, [](size_t) {}, counters);
 }
 
-void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes,
+void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
                         const std::function<void(size_t)>& bind_character, Counters& counters) {
   size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
@@ -39,11 +43,12 @@ void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& m
     // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
     const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true);
     glBindVertexArray(level.instanced_vao);
-    // One instanced draw per page the group's palettes take (one, below the
-    // storage-block limit, and for records with no palette).
+    // One instanced draw per page the group's palettes and placements take
+    // (one, below the storage-block limit).
     for (uint32_t from = run.first; from < run.first + run.count;) {
       const InstanceRun part = buffers.page_run(group, from);
       buffers.bind_page(buffers.page_of(from));
+      placements.bind_page(buffers.placement_page_of(from));
       glBindVertexBuffer(kInstanceStream, buffers.instance_buffer(),
                          static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
                          sizeof(GpuInstance));
@@ -61,5 +66,7 @@ void set_copy_colours(const GlProgram& program) {
 }
 
 std::string copy_colours_define() { return "#define COLOURS " + std::to_string(kCopyColours.size()) + "\n"; }
+
+std::string placements_define() { return std::string(embedded_shader("shaders/placements.glsl")); }
 
 }  // namespace crowdprof
