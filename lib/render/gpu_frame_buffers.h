@@ -49,7 +49,7 @@ namespace crowdprof {
 // One instance's record (shaders/instances.glsl; baked.vert and cull.comp
 // read and write the same): what a copy on screen sends each frame.
 struct GpuInstance {
-  uint32_t copy = 0;          // the copy: its placement (gpu_placements.h)
+  uint32_t copy = 0;          // the copy, from its page of placements' first (gpu_placements.h)
   uint32_t palette_base = 0;  // the palette's first row in the palette buffer (baked: its action's in the table)
   uint32_t source[2] = {0, 0};
 };
@@ -102,7 +102,8 @@ class GpuFrameBuffers {
   // (empty for 0) to fill, which it points palette_base at.
   std::span<glm::vec4> add(size_t kind, uint32_t copy, size_t palette_rows);
   // Appends a record for `kind` that sends no palette (another skinning
-  // source: its palette_base and source words as given); on palette page 0.
+  // source: its palette_base and source words as given, its copy counted from
+  // 0 and stored from its page's first); on palette page 0.
   void add_record(size_t kind, const GpuInstance& record);
   // The records and rows added since begin().
   InstanceRun run(size_t kind) const { return runs_[kind]; }
