@@ -7,6 +7,7 @@
 
 #include "frame/frame_view.h"
 #include "render/gl_errors.h"
+#include "render/shader_sources.h"
 #include "render/techniques/technique.h"
 
 namespace crowdprof {
@@ -57,20 +58,29 @@ uint64_t GpuPlacements::update(const FrameView& view, const GlFeatures& gl) {
 }
 
 size_t GpuPlacements::copies_per_page(const GlFeatures& gl) {
-  const auto block = static_cast<uint64_t>(std::max<int64_t>(gl.max_storage_block_bytes, 0));
-  const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.storage_offset_alignment, 1));
+  const auto block = static_cast<uint64_t>(std::max<int64_t>(gl.max_uniform_block_bytes, 0));
+  const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.uniform_offset_alignment, 1));
   // Copies from one offset a range may start at to the next, and whole
   // cycles of the colours: a copy's colour follows from its index in its page.
   const uint64_t step = std::lcm(align / std::gcd(align, uint64_t{sizeof(GpuPlacement)}), uint64_t{kCopyColours.size()});
   return std::max<uint64_t>(block / sizeof(GpuPlacement) / step * step, step);
 }
 
+std::string GpuPlacements::shader_source(PlacementBlock block, const GlFeatures& gl) {
+  const std::string define = block == PlacementBlock::Storage
+                                 ? "#define PLACEMENTS_IN_STORAGE\n"
+                                 : "#define PLACEMENT_ROWS " + std::to_string(3 * copies_per_page(gl)) + "\n";
+  return define + std::string(embedded_shader("shaders/placements.glsl"));
+}
+
 void GpuPlacements::bind_page(uint32_t page) const {
   const uint64_t page_bytes = page_copies_ * sizeof(GpuPlacement);
   const uint64_t offset = page * page_bytes;
   const uint64_t size = std::min(page_bytes, gpu_bytes() - offset);
-  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kPlacementBinding, buffer_, static_cast<GLintptr>(offset),
+  glBindBufferRange(GL_UNIFORM_BUFFER, kPlacementBinding, buffer_, static_cast<GLintptr>(offset),
                     static_cast<GLsizeiptr>(size));
 }
+
+void GpuPlacements::bind_storage() const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPlacementBinding, buffer_); }
 
 }  // namespace crowdprof

@@ -49,11 +49,12 @@ TEST(PagedPalettes, SmallBlocksDrawTheSameImage) {
   }
 }
 
-// More placements than a 64 KiB page holds (1,362 of 48 bytes): the
-// records are vertex attributes and the placements are paged, so the crowd
-// is drawn, not refused, and draws the image it draws unpaged; baked draws
-// through the same records (once, its placements lived in one storage block:
-// a real GPU with 64 KiB blocks refused 1,000 instanced copies).
+// More records than a 64 KiB block holds, and more placements than a 64 KiB
+// uniform page (1,362 of 48 bytes): the records are vertex attributes and the
+// placements are paged, so the crowd is drawn, not refused, and draws the
+// image it draws with large storage blocks; baked draws through the same
+// records (once, its placements lived in one storage block: a real GPU with
+// 64 KiB blocks refused 1,000 instanced copies).
 TEST(PagedPalettes, InstancedRecordsPastOneBlockAreDrawn) {
   OPEN_GL_OR_SKIP(context);
   for (const char* mode : {"instanced", "baked"}) {
@@ -68,8 +69,9 @@ TEST(PagedPalettes, InstancedRecordsPastOneBlockAreDrawn) {
     ASSERT_GT(whole.counters.copies_visible, 1362u) << mode;
     EXPECT_EQ(paged.counters.copies_visible, whole.counters.copies_visible) << mode;
     if (std::string(mode) == "baked") {
-      EXPECT_EQ(whole.counters.draw_calls, 1u) << "no palette to page: one draw";
-      EXPECT_EQ(paged.counters.draw_calls, 2u) << "one draw a page of placements";
+      // No palette to page: one draw a page of placements (llvmpipe's uniform blocks are 64 KiB).
+      EXPECT_EQ(whole.counters.draw_calls, 2u);
+      EXPECT_EQ(paged.counters.draw_calls, 2u);
     }
     EXPECT_EQ(paged.digest, whole.digest) << mode;
     ASSERT_GT(covered(whole.rgba), whole.rgba.size() / 4 / 200) << mode;

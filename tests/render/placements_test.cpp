@@ -77,6 +77,31 @@ TEST(Placements, RecordsAreAtMost16BytesACopyOnScreenAndPlacementsGoOnce) {
   }
 }
 
+// Past one uniform page of placements (1,362 copies in llvmpipe's 64 KiB
+// blocks) a draw per page: instanced draws what CPU skinning draws, and
+// CPU-culled baked what frustum gpu's draws read from one storage block.
+TEST(Placements, PagesOfPlacementsDrawWhatOneBlockAndTheCpuDraw) {
+  OPEN_GL_OR_SKIP(context);
+  Shot shot;
+  shot.copies = 2000;
+  shot.frame = 1;
+  Frame cpu = render(*context, thirty_bone_humanoid(), shot);
+  shot.mode = "instanced";
+  Frame instanced = render(*context, thirty_bone_humanoid(), shot);
+  ASSERT_GT(instanced.counters.copies_visible, 1362u) << "copies on screen past the first page";
+  EXPECT_EQ(instanced.counters.draw_calls, 2u) << "a draw a page of placements";
+  shot.mode = "baked";
+  Frame paged = render(*context, thirty_bone_humanoid(), shot);
+  shot.frustum = FrustumTest::Gpu;
+  Frame one_block = render(*context, thirty_bone_humanoid(), shot);
+  EXPECT_EQ(paged.counters.draw_calls, 2u);
+  EXPECT_EQ(one_block.counters.draw_calls, 1u);
+  const size_t pixels = cpu.rgba.size() / 4;
+  ASSERT_GT(covered(cpu.rgba), pixels / 200);
+  EXPECT_LE(pixels_differing(cpu.rgba, instanced.rgba, 4) * 2000, pixels);
+  EXPECT_LE(pixels_differing(one_block.rgba, paged.rgba, 4) * 2000, pixels);
+}
+
 TEST(Placements, AMovedCopyIsSentAgainAndOnlyIt) {
   OPEN_GL_OR_SKIP(context);
   context->make_current();

@@ -44,8 +44,12 @@ class BakedSkinning final : public Technique {
 
  private:
   GlFeatures gl_;
-  GlProgram program_;
-  GLint joint_count_ = -1;
+  // Reading the placements from uniform pages (CPU-culled, or a crowd that
+  // fits one page), or from one storage block (frustum gpu past one page:
+  // its indirect draws cannot change pages).
+  GlProgram program_, cull_program_;
+  GLint joint_count_ = -1, cull_joint_count_ = -1;
+  bool cull_reads_storage(const FrameView& view) const;
   std::vector<GLuint> tables_;  // per character: every sample's 3x4 rows, 48 bytes a joint (0: not baked)
   GpuFrameBuffers buffers_;     // the records, without palettes
   GpuPlacements placements_;    // every copy's model matrix and colour, sent when they change

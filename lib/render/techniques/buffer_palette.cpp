@@ -22,9 +22,10 @@ bool palette_copy(const FrameView& view, size_t copy) {
 
 }  // namespace
 
-std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
+std::vector<ShaderStage> buffer_palette_stages(bool instanced, const GlFeatures& gl) {
   std::string defines =
-      instanced ? "#define INSTANCED\n" + copy_colours_define() + placements_define() : "";
+      instanced ? "#define INSTANCED\n" + copy_colours_define() + GpuPlacements::shader_source(PlacementBlock::Uniform, gl)
+                : "";
   defines += std::string(embedded_shader("shaders/instances.glsl"));
   return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
@@ -53,7 +54,7 @@ SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, Gp
 }
 
 BufferPalette::BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
-  program_ = GlProgram(buffer_palette_stages(false));
+  program_ = GlProgram(buffer_palette_stages(false, gl));
   model_ = program_.uniform("model");
   colour_ = program_.uniform("base_colour");
   base_ = program_.uniform("palette_base");

@@ -49,7 +49,8 @@ class BufferPalette final : public Technique {
   std::vector<uint32_t> next_;       // scratch: per draw group, the next record to draw
 };
 
-// shaders/buffer_skin.vert with shaders/instances.glsl ahead of it.
-std::vector<ShaderStage> buffer_palette_stages(bool instanced);
+// shaders/buffer_skin.vert with shaders/instances.glsl ahead of it (and, when
+// `instanced`, the placements as uniform pages of `gl`'s blocks).
+std::vector<ShaderStage> buffer_palette_stages(bool instanced, const GlFeatures& gl);
 
 }  // namespace crowdprof

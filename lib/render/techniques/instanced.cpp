@@ -3,13 +3,12 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "frame/frame_view.h"
-#include "render/shader_sources.h"
 #include "render/techniques/buffer_palette.h"
 
 namespace crowdprof {
 
 Instanced::Instanced(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
-  program_ = GlProgram(buffer_palette_stages(true));
+  program_ = GlProgram(buffer_palette_stages(true, gl));
   for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);
 }
 
@@ -66,7 +65,5 @@ void set_copy_colours(const GlProgram& program) {
 }
 
 std::string copy_colours_define() { return "#define COLOURS " + std::to_string(kCopyColours.size()) + "\n"; }
-
-std::string placements_define() { return std::string(embedded_shader("shaders/placements.glsl")); }
 
 }  // namespace crowdprof

@@ -33,8 +33,6 @@ void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& pla
 // number).
 void set_copy_colours(const GlProgram& program);
 std::string copy_colours_define();
-// shaders/placements.glsl, for a vertex shader that reads the placements.
-std::string placements_define();
 
 class Instanced final : public Technique {
  public:
