@@ -2,10 +2,11 @@
 // Mode `baked` (issue 12): every action was sampled at load into a table of
 // skinning matrices (rows of their 3x4 parts). Copies are drawn through the
 // instanced path that mode instanced uses (issue 30): an instanced draw covers
-// a character's visible copies at one mesh level, and each instance's record
-// (render/gpu_frame_buffers.h, GpuInstance) arrives as per-instance attributes:
-// its model matrix and colour, and, where instanced has its palette, which
-// samples to read and where between them. The matrices are interpolated
+// a character's visible copies at one mesh level, and each instance's 16-byte
+// record (render/gpu_frame_buffers.h, GpuInstance) arrives as per-instance
+// attributes: its copy, whose placement (model matrix) was sent once
+// (shaders/placements.glsl, inserted ahead of this file), and, where instanced
+// has its palette, which samples to read and where between them. The matrices are interpolated
 // linearly between the two samples around the copy's time, then the vertex is
 // skinned as in hwskin.vert.
 
@@ -13,11 +14,10 @@ layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in uvec4 joints;
 layout(location = 3) in vec4 weights;
-layout(location = 4) in mat4 instance_model;  // GpuInstance.model, locations 4-7
-// x: the first row of the copy's action in the table (3 x its sample 0 x
-// joint_count); y: its colour; z: the action's samples - 1; w: the copy's
-// position among them (sample index and fraction), a float's bits.
-layout(location = 8) in uvec4 instance_data;
+// x: the copy; y: the first row of its action in the table (3 x its sample 0
+// x joint_count); z: the action's samples - 1; w: the copy's position among
+// them (sample index and fraction), a float's bits.
+layout(location = 4) in uvec4 instance_data;
 
 // Sample s, joint j: rows baked[3 (s joint_count + j)] .. + 2.
 layout(std430, binding = 0) readonly buffer Baked { vec4 baked[]; };
@@ -34,7 +34,7 @@ void main() {
   float at = uintBitsToFloat(instance_data.w);
   uint first = min(uint(at), intervals - 1u);
   float w = min(at - float(first), 1.0);
-  uint a = instance_data.x + 3u * first * joint_count, b = a + 3u * joint_count;
+  uint a = instance_data.y + 3u * first * joint_count, b = a + 3u * joint_count;
   vec4 row0 = vec4(0.0), row1 = vec4(0.0), row2 = vec4(0.0);
   for (int k = 0; k < 4; ++k) {
     uint j = 3u * joints[k];
@@ -48,7 +48,8 @@ void main() {
   vec3 n = vec3(dot(row0.xyz, normal), dot(row1.xyz, normal), dot(row2.xyz, normal));
   float length_n = length(n);
   n = length_n > 0.0 ? n / length_n : n;
-  world_normal = mat3(instance_model) * n;
-  instance_colour = colours[instance_data.y];
-  gl_Position = view_projection * (instance_model * vec4(skinned, 1.0));
+  mat4 model = placement_model(instance_data.x);
+  world_normal = mat3(model) * n;
+  instance_colour = colours[placement_colour(instance_data.x)];
+  gl_Position = view_projection * (model * vec4(skinned, 1.0));
 }

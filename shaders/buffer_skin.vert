@@ -3,9 +3,9 @@
 // storage buffer (shaders/instances.glsl, inserted ahead of this file) instead
 // of a uniform array: no 128-bone limit. Without INSTANCED (mode buffer) a draw
 // is one copy, named by uniforms; with INSTANCED (mode instanced) a draw is
-// every copy of a character, and each instance's record of instances.glsl
-// arrives as per-instance attributes (fetched once per instance, where reading
-// the storage block would gather it for every vertex).
+// every copy of a character, and each instance's 16-byte record of
+// instances.glsl arrives as per-instance attributes (fetched once per
+// instance); its placement, sent once, is read from placements.glsl's buffer.
 
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -13,8 +13,7 @@ layout(location = 2) in uvec4 joints;
 layout(location = 3) in vec4 weights;
 
 #ifdef INSTANCED
-layout(location = 4) in mat4 instance_model;  // Instance.model, locations 4-7
-layout(location = 8) in uvec4 instance_data;  // palette_base, colour, source0, source1
+layout(location = 4) in uvec4 instance_data;  // copy, palette_base, source0, source1
 uniform vec3 colours[COLOURS];
 flat out vec3 instance_colour;
 #else
@@ -27,9 +26,9 @@ out vec3 world_normal;
 
 void main() {
 #ifdef INSTANCED
-  mat4 model = instance_model;
-  uint base = instance_data.x;
-  instance_colour = colours[instance_data.y];
+  mat4 model = placement_model(instance_data.x);
+  uint base = instance_data.y;
+  instance_colour = colours[placement_colour(instance_data.x)];
 #else
   uint base = palette_base;
 #endif

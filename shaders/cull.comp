@@ -4,16 +4,15 @@
 // Scenegraph does (scene/camera.cpp: intersects); a copy on screen takes the
 // next slot of its character's indirect draw (an atomic add on the command's
 // instance count) and writes its record there, as the CPU-culled path sends it
-// (render/gpu_frame_buffers.h, GpuInstance: the instanced path's records): its
-// model matrix and colour, which samples and where between them, from the
-// simulated clock, as CrowdBench::update_logic and baked_position compute them
+// (render/gpu_frame_buffers.h, GpuInstance: the instanced path's records): the
+// copy (its placement is sent once, render/gpu_placements.h), which samples and
+// where between them, from the simulated clock, as CrowdBench::update_logic and baked_position compute them
 // on the CPU. With mesh LOD it also picks the
 // copy's mesh level from the share of the screen's height its box spans, as
 // scene/screen_size.cpp does, and appends it to that level's draw.
 layout(local_size_x = 64) in;
 
 struct CullCopy {
-  mat4 model;    // the copy's placement
   vec4 box_min;  // xyz: the copy's world box
   vec4 box_max;
   uint kind;          // its character: the command it is drawn by
@@ -27,11 +26,10 @@ struct CullCopy {
 };
 layout(std430, binding = 0) readonly buffer Copies { CullCopy copies[]; };
 
-// As baked.vert reads them (std430, 80 bytes: GpuInstance).
+// As baked.vert reads them (std430, 16 bytes: GpuInstance).
 struct Instance {
-  mat4 model;
+  uint copy;
   uint first_row;  // GpuInstance.palette_base
-  uint colour;
   uint intervals;  // source[0]
   uint position;   // source[1]: a float's bits
 };
@@ -55,7 +53,6 @@ uniform float lod_thresholds[3];  // mesh LOD: level 1 below [0], 2 below [1], 3
 uniform uint commands_per_kind;   // 4 with mesh LOD, else 1
 uniform double seconds;  // the frame's time, in double as the CPU's clock
 uniform uint copy_count;
-uniform uint colour_count;  // the copy colours a record indexes (kCopyColours)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -94,5 +91,5 @@ void main() {
   uint command = c.kind * commands_per_kind + level;
   uint slot = atomicAdd(commands[command].instance_count, 1u);
   instances[commands[command].base_instance + slot] =
-      Instance(c.model, c.first_row, i % colour_count, c.intervals, floatBitsToUint(position));
+      Instance(i, c.first_row, c.intervals, floatBitsToUint(position));
 }

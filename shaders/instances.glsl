@@ -8,7 +8,8 @@ layout(std430, binding = 0) readonly buffer Palettes {
   vec4 bone_rows[];
 };
 
-// The instanced draws' records (render/gpu_frame_buffers.h, GpuInstance: a
-// mat4 model, then palette_base, colour and two words of the skinning
-// source's: unused here, baked.vert's interval count and position) reach the vertex shader as per-instance attributes, not as
-// a storage block: no block-size limit bounds how many copies a draw takes.
+// The instanced draws' records (render/gpu_frame_buffers.h, GpuInstance: the
+// copy, whose placement shaders/placements.glsl holds, then palette_base and
+// two words of the skinning source's: unused here, baked.vert's interval
+// count and position) reach the vertex shader as per-instance attributes, not
+// as a storage block: fetched once per instance, not gathered per vertex.

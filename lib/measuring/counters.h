@@ -19,6 +19,9 @@ struct Counters {
   uint64_t vertices_skinned = 0;  // vertices skinned on the CPU
   uint64_t channel_lookups = 0;   // string-path lookups (zero with bundled lookups)
   uint64_t bytes_uploaded = 0;    // vertex data and bone matrices sent to the GPU
+  // Of bytes_uploaded (issue 52): GPU skinning's palettes, and its per-copy
+  // records (instanced and baked's instance records; a draw's model matrix).
+  uint64_t palette_bytes_uploaded = 0, record_bytes_uploaded = 0;
   uint64_t draw_calls = 0;
   uint64_t copies_fallback = 0;   // copies skinned on the CPU although the mode skins on the GPU
   // GPU memory the palettes of GPU-skinned copies live in: the uniform array
@@ -57,7 +60,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 34> kCounterFields = {{
+inline constexpr std::array<CounterField, 36> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -92,6 +95,8 @@ inline constexpr std::array<CounterField, 34> kCounterFields = {{
     {"actions_sampled", &Counters::actions_sampled},
     {"fades", &Counters::fades},
     {"joints_blended", &Counters::joints_blended},
+    {"palette_bytes_uploaded", &Counters::palette_bytes_uploaded},
+    {"record_bytes_uploaded", &Counters::record_bytes_uploaded},
 }};
 // The lod*_ counters of level L.
 inline constexpr uint64_t Counters::*kLodCopies[4] = {&Counters::lod0_copies, &Counters::lod1_copies,

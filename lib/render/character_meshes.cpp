@@ -87,20 +87,14 @@ void upload_rest_arrays(const SkinnedMesh& mesh, GLuint indices, GLuint (&buffer
   }
 }
 
-// The records of shaders/instances.glsl as per-instance attributes 4-8 of the
-// bound VAO (the model's columns, then palette offset, colour and the source
-// words): llvmpipe fetches them once per instance, where reading them from
-// the storage buffer costs a gather per vertex (1.2x the CPU time,
-// docs/rendering.md).
+// The records of shaders/instances.glsl as a per-instance attribute of the
+// bound VAO (copy, palette offset and the source words, one uvec4): llvmpipe
+// fetches it once per instance, where reading it from a storage buffer costs
+// a gather per vertex (1.2x the CPU time, docs/rendering.md).
 void add_instance_attributes() {
-  for (GLuint column = 0; column < 4; ++column) {
-    glEnableVertexAttribArray(4 + column);
-    glVertexAttribFormat(4 + column, 4, GL_FLOAT, GL_FALSE, column * static_cast<GLuint>(sizeof(glm::vec4)));
-    glVertexAttribBinding(4 + column, kInstanceStream);
-  }
-  glEnableVertexAttribArray(8);
-  glVertexAttribIFormat(8, 4, GL_UNSIGNED_INT, static_cast<GLuint>(sizeof(glm::mat4)));
-  glVertexAttribBinding(8, kInstanceStream);
+  glEnableVertexAttribArray(kInstanceAttribute);
+  glVertexAttribIFormat(kInstanceAttribute, 4, GL_UNSIGNED_INT, 0);
+  glVertexAttribBinding(kInstanceAttribute, kInstanceStream);
   glVertexBindingDivisor(kInstanceStream, 1);
 }
 

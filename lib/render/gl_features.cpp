@@ -19,6 +19,12 @@ GlFeatures read_gl_features(std::string_view hide) {
   value = 0;
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &value);
   if (value > 0) f.storage_offset_alignment = value;
+  bytes = 0;
+  glGetInteger64v(GL_MAX_UNIFORM_BLOCK_SIZE, &bytes);
+  if (bytes > 0) f.max_uniform_block_bytes = bytes;
+  value = 0;
+  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &value);
+  if (value > 0) f.uniform_offset_alignment = value;
   value = 0;
   glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &value);
   f.compute_storage_blocks = value;

@@ -17,6 +17,10 @@ struct GlFeatures {
   int64_t max_storage_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   // GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT: where a bound range may start.
   int64_t storage_offset_alignment = 256;
+  // GL_MAX_UNIFORM_BLOCK_SIZE (4.3 promises 16 KiB) and
+  // GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT: the placements' pages (gpu_placements.h).
+  int64_t max_uniform_block_bytes = 16384;
+  int64_t uniform_offset_alignment = 256;
   // Shader storage blocks a compute shader may use (skinning compute); 0 means
   // no compute shaders to speak of.
   int64_t compute_storage_blocks = 0;

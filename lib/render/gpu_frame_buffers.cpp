@@ -57,6 +57,8 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
   }
   if (instances > instances_.size()) instances_.resize(instances);
   if (instances > page_of_.size()) page_of_.resize(instances);
+  if (instances > placement_page_of_.size()) placement_page_of_.resize(instances);
+  placement_page_copies_ = GpuPlacements::copies_per_page(gl);
   if (palette_bytes / sizeof(glm::vec4) > rows_.size()) rows_.resize(palette_bytes / sizeof(glm::vec4));
   if (!palette_buffer_) glGenBuffers(1, &palette_buffer_);
   if (!instance_buffer_) glGenBuffers(1, &instance_buffer_);
@@ -97,11 +99,11 @@ void GpuFrameBuffers::begin(std::span<const uint32_t> counts) {
   rows_used_ = 0;
 }
 
-std::span<glm::vec4> GpuFrameBuffers::add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows) {
+std::span<glm::vec4> GpuFrameBuffers::add(size_t kind, uint32_t copy, size_t palette_rows) {
   const uint32_t index = runs_[kind].first + filled_[kind]++;
   GpuInstance& record = instances_[index];
-  record.model = model;
-  record.colour = colour;
+  record.copy = static_cast<uint32_t>(copy % placement_page_copies_);
+  placement_page_of_[index] = static_cast<uint32_t>(copy / placement_page_copies_);
   if (palette_rows > page_rows_) throw GlError("a palette larger than a storage block asked of the palette buffer");
   // A palette that would cross into the next page starts it.
   size_t page = rows_used_ / page_rows_;
@@ -118,13 +120,15 @@ std::span<glm::vec4> GpuFrameBuffers::add(size_t kind, const glm::mat4& model, u
 void GpuFrameBuffers::add_record(size_t kind, const GpuInstance& record) {
   const uint32_t index = runs_[kind].first + filled_[kind]++;
   instances_[index] = record;
+  instances_[index].copy = static_cast<uint32_t>(record.copy % placement_page_copies_);
   page_of_[index] = 0;
+  placement_page_of_[index] = static_cast<uint32_t>(record.copy / placement_page_copies_);
 }
 
 InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {
   const uint32_t end = runs_[kind].first + runs_[kind].count;
   uint32_t last = from;
-  while (last < end && page_of_[last] == page_of_[from]) ++last;
+  while (last < end && page_of_[last] == page_of_[from] && placement_page_of_[last] == placement_page_of_[from]) ++last;
   return {from, last - from};
 }
 
@@ -137,14 +141,14 @@ void GpuFrameBuffers::bind_page(uint32_t page) const {
                     static_cast<GLsizeiptr>(size));
 }
 
-uint64_t GpuFrameBuffers::upload(bool with_instances) {
+SentBytes GpuFrameBuffers::upload(bool with_instances) {
   // The rows left empty at pages' ends go up too (one upload).
-  uint64_t sent = rows_used_ * sizeof(glm::vec4);
-  palette_capacity_bytes_ = std::max(palette_capacity_bytes_, sent);
+  SentBytes sent{rows_used_ * sizeof(glm::vec4), 0};
+  palette_capacity_bytes_ = std::max(palette_capacity_bytes_, sent.palettes);
   if (palette_capacity_bytes_ > 0) {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, palette_buffer_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(palette_capacity_bytes_), nullptr, GL_STREAM_DRAW);
-    if (rows_used_) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(sent), rows_.data());
+    if (rows_used_) glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(sent.palettes), rows_.data());
     bind_page(0);
   }
   if (with_instances) {
@@ -155,7 +159,7 @@ uint64_t GpuFrameBuffers::upload(bool with_instances) {
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_capacity_bytes_), nullptr, GL_STREAM_DRAW);
     if (records) glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), instances_.data());
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    sent += bytes;
+    sent.records = bytes;
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   return sent;

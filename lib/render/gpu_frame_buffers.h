@@ -1,9 +1,11 @@
 // The per-frame buffers of GPU-skinned copies in the buffer, instanced and
 // baked modes: every palette drawn this frame in one shader storage buffer
-// (none for baked, whose palettes are its table), and one record per instance
-// (transform, palette offset, colour, two words of the skinning source's) in
-// another, read as per-instance vertex attributes (shaders/instances.glsl says
-// the layout).
+// (none for baked, whose palettes are its table), and one 16-byte record per
+// instance (the copy, its palette offset, two words of the skinning source's)
+// in another, read as per-instance vertex attributes (shaders/instances.glsl
+// says the layout). What never changes for a copy, its placement, is not in
+// the record: it was sent once (render/gpu_placements.h) and the record names
+// the copy.
 //
 // Paged palettes (issue 30): a shader may see at most one storage block of the
 // palette buffer (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe: about
@@ -22,10 +24,12 @@
 // draw_instance_runs (render/techniques/instanced.h), as instanced does. Its
 // vertex shader reads the records as per-instance attributes (not a storage
 // block, whose size limit would cap the copies a draw takes): instance_buffer()
-// at vertex binding kInstanceStream with offset first x 80 and divisor 1, the
-// model's columns at locations 4-7 and (palette_base, colour, source0, source1)
-// as a uvec4 at location 8, as the renderer's instanced VAOs do
-// (render/character_meshes.cpp). A compute pass may write the records itself
+// at vertex binding kInstanceStream with offset first x 16 and divisor 1,
+// (copy, palette_base, source0, source1) as a uvec4 at location
+// kInstanceAttribute, as the renderer's instanced VAOs do
+// (render/character_meshes.cpp). Records name their copy from the first of
+// its page of placements (gpu_placements.h): a draw takes records of one page
+// of palettes and one of placements. A compute pass may write the records itself
 // (frustum gpu: render/techniques/gpu_cull.h): reserve_gpu_records() gives the
 // buffer its storage.
 #pragma once
@@ -38,22 +42,31 @@
 
 #include "render/gl.h"
 #include "render/gl_features.h"
+#include "render/gpu_placements.h"
 
 namespace crowdprof {
 
-// One record of Instances (shaders/instances.glsl; baked.vert reads the same).
+// One instance's record (shaders/instances.glsl; baked.vert and cull.comp
+// read and write the same): what a copy on screen sends each frame.
 struct GpuInstance {
-  glm::mat4 model{1.0f};
+  uint32_t copy = 0;          // the copy, from its page of placements' first (gpu_placements.h)
   uint32_t palette_base = 0;  // the palette's first row in the palette buffer (baked: its action's in the table)
-  uint32_t colour = 0;        // index into the frame's colours
   uint32_t source[2] = {0, 0};
 };
-static_assert(sizeof(GpuInstance) == 80, "std430 layout of struct Instance");
+static_assert(sizeof(GpuInstance) == 16, "one uvec4 attribute");
 
 // The palettes' binding point, as shaders/instances.glsl names it.
 inline constexpr GLuint kPaletteBinding = 0;
-// The vertex buffer binding an instanced draw reads the records from.
+// The vertex buffer binding an instanced draw reads the records from, and
+// the attribute location they arrive at.
 inline constexpr GLuint kInstanceStream = 4;
+inline constexpr GLuint kInstanceAttribute = 4;
+
+// Bytes one frame sent: palette rows and instance records apart.
+struct SentBytes {
+  uint64_t palettes = 0, records = 0;
+  uint64_t total() const { return palettes + records; }
+};
 
 // Where one kind's instances are in this frame's records.
 struct InstanceRun {
@@ -85,18 +98,21 @@ class GpuFrameBuffers {
   // Starts a frame: kind k gets `counts[k]` records, one run after another,
   // which add() fills in order. `counts` must fit the reservation.
   void begin(std::span<const uint32_t> counts);
-  // Appends a record for `kind`; returns its 3 x joints palette rows (empty
-  // for 0) to fill, which it points palette_base at.
-  std::span<glm::vec4> add(size_t kind, const glm::mat4& model, uint32_t colour, size_t palette_rows);
+  // Appends a record of `copy` for `kind`; returns its 3 x joints palette rows
+  // (empty for 0) to fill, which it points palette_base at.
+  std::span<glm::vec4> add(size_t kind, uint32_t copy, size_t palette_rows);
   // Appends a record for `kind` that sends no palette (another skinning
-  // source: its palette_base and source words as given); on page 0.
+  // source: its palette_base and source words as given, its copy counted from
+  // 0 and stored from its page's first); on palette page 0.
   void add_record(size_t kind, const GpuInstance& record);
   // The records and rows added since begin().
   InstanceRun run(size_t kind) const { return runs_[kind]; }
   // Counted from the start of the record's page.
   uint32_t palette_base(uint32_t record) const { return instances_[record].palette_base; }
   uint32_t page_of(uint32_t record) const { return page_of_[record]; }
-  // The records of `kind`'s run from `from` on that are on from's page.
+  // The page of placements the record's copy is on (GpuPlacements::bind_page).
+  uint32_t placement_page_of(uint32_t record) const { return placement_page_of_[record]; }
+  // The records of `kind`'s run from `from` on that are on from's pages.
   InstanceRun page_run(size_t kind, uint32_t from) const;
   // Binds page `page` of the palettes at kPaletteBinding (nothing when the
   // buffers hold records only).
@@ -106,7 +122,7 @@ class GpuFrameBuffers {
   // in fresh storage (orphaned, so no draw of the last frame is waited for) and
   // binds the palettes' first page at kPaletteBinding. Returns the bytes sent.
   // The records sent are those of the runs begin() reserved.
-  uint64_t upload(bool with_instances);
+  SentBytes upload(bool with_instances);
 
   // Bytes of GPU storage the two buffers hold.
   uint64_t gpu_bytes() const { return palette_capacity_bytes_ + instance_capacity_bytes_; }
@@ -123,6 +139,8 @@ class GpuFrameBuffers {
   std::vector<InstanceRun> runs_;
   std::vector<uint32_t> filled_;  // per kind, records added so far
   std::vector<uint32_t> page_of_;  // per record
+  std::vector<uint32_t> placement_page_of_;  // per record
+  size_t placement_page_copies_ = 1;
   size_t rows_used_ = 0;
   size_t page_rows_ = 0;           // rows a page holds
   GLuint palette_buffer_ = 0, instance_buffer_ = 0;

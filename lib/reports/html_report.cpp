@@ -469,7 +469,7 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
 
 // A p-value as the text reports print it: below 1e-4 in scientific notation,
 // never "0.0000", which reads as impossible.
-std::string p_text(double p) {
+std::string html_p_text(double p) {
   char text[32];
   std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
   return text;
@@ -493,7 +493,7 @@ std::string check_section(const CheckSection& check, std::string& charts) {
     out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + metric_value_text(metric, metric.baseline.median) +
            unit + "</td><td>" + metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
            (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
-           "</td><td>" + (metric.tested ? p_text(metric.p_adjusted) : "-") + "</td><td>" +
+           "</td><td>" + (metric.tested ? html_p_text(metric.p_adjusted) : "-") + "</td><td>" +
            metric_value_text(metric, metric.floor_ms) + unit +
            "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
   }

@@ -64,6 +64,20 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
   return order[(order.size() - 1) / 2];
 }
 
+namespace {
+
+// The median over the frames with a copy on screen of `bytes` per copy on
+// screen; 0 without such a frame.
+double median_per_copy_on_screen(const std::vector<FrameRecord>& frames, uint64_t Counters::*bytes) {
+  std::vector<double> per_copy;
+  for (const FrameRecord& f : frames)
+    if (f.counters.copies_visible > 0)
+      per_copy.push_back(static_cast<double>(f.counters.*bytes) / static_cast<double>(f.counters.copies_visible));
+  return per_copy.empty() ? 0.0 : quantile(per_copy, 0.5);
+}
+
+}  // namespace
+
 void record_samples(Result& r) {
   const std::vector<FrameRecord>& frames = r.frame_records;
   // A result read from a file keeps no frames: what it stores is all there is.
@@ -110,11 +124,9 @@ void record_samples(Result& r) {
     r.counters.values.*field.member = static_cast<uint64_t>(quantile(values, 0.5));
   }
   r.counters.present.fill(true);
-  std::vector<double> per_copy;
-  for (const FrameRecord& f : frames)
-    if (f.counters.copies_visible > 0)
-      per_copy.push_back(static_cast<double>(f.counters.bytes_uploaded) / static_cast<double>(f.counters.copies_visible));
-  r.bytes_uploaded_per_copy_on_screen = per_copy.empty() ? 0.0 : quantile(per_copy, 0.5);
+  r.bytes_uploaded_per_copy_on_screen = median_per_copy_on_screen(frames, &Counters::bytes_uploaded);
+  r.palette_bytes_per_copy_on_screen = median_per_copy_on_screen(frames, &Counters::palette_bytes_uploaded);
+  r.record_bytes_per_copy_on_screen = median_per_copy_on_screen(frames, &Counters::record_bytes_uploaded);
   if (r.instructions && r.instructions->source == "perf_event") {
     std::vector<double> counts;
     for (const FrameRecord& f : frames) counts.push_back(static_cast<double>(f.instructions));

@@ -215,6 +215,10 @@ struct Result {
   // copies_visible), the median of the frames with a copy on screen (0 without
   // one, or without a GL backend). Absent from results before 2026-11-29.
   std::optional<double> bytes_uploaded_per_copy_on_screen;
+  // Its parts for GPU skinning (issue 52): palettes and per-copy records
+  // (palette_bytes_uploaded, record_bytes_uploaded over copies_visible), each
+  // the median as above. Absent from results before 2026-11-29's second.
+  std::optional<double> palette_bytes_per_copy_on_screen, record_bytes_per_copy_on_screen;
   bool partial = false;       // stopped early (^C) ...
   size_t frames_planned = 0;  // ... of this many frames
   std::optional<AnimationRecord> animation;

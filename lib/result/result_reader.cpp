@@ -400,6 +400,14 @@ void read_runs(const Reader& in, Result& r) {
   r.runs = std::move(pool);
 }
 
+// An optional figure of bytes per copy on screen: absent in older results.
+std::optional<double> bytes_per_copy(const Reader& in, const std::string& pointer) {
+  if (!in.has(pointer)) return std::nullopt;
+  const double bytes = in.number(pointer);
+  in.require(bytes >= 0, pointer, "a number, 0 or more");
+  return bytes;
+}
+
 void read_extras(const Reader& in, Result& r) {
   r.digest = in.text("/digest");
   r.digest_cpu_vertices = in.flag_or("/digest_cpu_vertices", true);
@@ -407,10 +415,9 @@ void read_extras(const Reader& in, Result& r) {
   if (r.vertex_order != "file" && r.vertex_order != "joints")
     in.fail("\"vertex_order\" is \"" + printable(r.vertex_order, 40) + "\"; it should be \"file\" or \"joints\"");
   r.stores = in.text_or("/stores", "");
-  if (in.has("/bytes_uploaded_per_copy_on_screen")) {
-    r.bytes_uploaded_per_copy_on_screen = in.number("/bytes_uploaded_per_copy_on_screen");
-    in.require(*r.bytes_uploaded_per_copy_on_screen >= 0, "/bytes_uploaded_per_copy_on_screen", "a number, 0 or more");
-  }
+  r.bytes_uploaded_per_copy_on_screen = bytes_per_copy(in, "/bytes_uploaded_per_copy_on_screen");
+  r.palette_bytes_per_copy_on_screen = bytes_per_copy(in, "/palette_bytes_per_copy_on_screen");
+  r.record_bytes_per_copy_on_screen = bytes_per_copy(in, "/record_bytes_per_copy_on_screen");
   r.partial = in.flag_or("/partial", false);
   r.frames_planned = r.partial ? bounded(in.count_or("/frames_planned", r.frames()), in, "/frames_planned") : 0;
   if (in.has("/animation")) {

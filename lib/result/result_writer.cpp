@@ -229,6 +229,8 @@ nlohmann::json result_to_json(const Result& r) {
   j["vertex_order"] = r.vertex_order;
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.bytes_uploaded_per_copy_on_screen) j["bytes_uploaded_per_copy_on_screen"] = *r.bytes_uploaded_per_copy_on_screen;
+  if (r.palette_bytes_per_copy_on_screen) j["palette_bytes_per_copy_on_screen"] = *r.palette_bytes_per_copy_on_screen;
+  if (r.record_bytes_per_copy_on_screen) j["record_bytes_per_copy_on_screen"] = *r.record_bytes_per_copy_on_screen;
   if (r.animation) j["animation"] = animation_json(*r.animation);
   if (r.mesh_lod) j["mesh_lod"] = mesh_lod_json(*r.mesh_lod);
   if (r.drawn_error) j["drawn_error"] = drawn_error_json(*r.drawn_error);

@@ -37,8 +37,11 @@ TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
   EXPECT_EQ(j.at("digest_cpu_vertices"), false) << "the renderer skinned every copy";
   const nlohmann::json& k = j.at("counters");
   EXPECT_EQ(k.at("draw_calls"), 1);
-  // An 80-byte record a copy on screen (render/gpu_frame_buffers.h, GpuInstance).
-  EXPECT_EQ(k.at("bytes_uploaded").get<uint64_t>(), 80 * k.at("copies_visible").get<uint64_t>());
+  // A 16-byte record a copy on screen (render/gpu_frame_buffers.h, GpuInstance):
+  // the median frame sends no placement (they went up once).
+  EXPECT_EQ(k.at("bytes_uploaded").get<uint64_t>(), 16 * k.at("copies_visible").get<uint64_t>());
+  EXPECT_EQ(k.at("record_bytes_uploaded").get<uint64_t>(), 16 * k.at("copies_visible").get<uint64_t>());
+  EXPECT_EQ(k.at("palette_bytes_uploaded").get<uint64_t>(), 0u);
   EXPECT_EQ(k.at("poses_updated"), 0);
 }
 

@@ -104,24 +104,24 @@ TEST(GpuCull, AGlWithoutComputeShadersIsRefusedNamingThem) {
   }
 }
 
-// The pass reads the copies (128 bytes each) and writes their records (80 a
+// The pass reads the copies (64 bytes each) and writes their records (16 a
 // mesh level) as storage blocks: a crowd past one block is refused at load,
-// naming the limit and how many copies fit (64 KiB: 512).
+// naming the limit and how many copies fit (64 KiB: 1,024).
 TEST(GpuCull, ACrowdPastAStorageBlockIsRefusedSayingHowManyFit) {
   OPEN_GL_OR_SKIP(context);
   Shot shot;
   shot.mode = "baked";
-  shot.copies = 600;
+  shot.copies = 1100;
   shot.frustum = FrustumTest::Gpu;
   shot.bake_rate = 5.0f;  // a table that fits 64 KiB
   shot.hide_features = "small-blocks";
   try {
     render(*context, thirty_bone_humanoid(), shot);
-    FAIL() << "600 copies' records and boxes were bound past a 64 KiB block";
+    FAIL() << "1100 copies' records and boxes were bound past a 64 KiB block";
   } catch (const GlUnavailable& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << what;
-    EXPECT_NE(what.find("room for 512 copies, not 600"), std::string::npos) << what;
+    EXPECT_NE(what.find("room for 1024 copies, not 1100"), std::string::npos) << what;
     EXPECT_NE(what.find("frustum cpu"), std::string::npos) << what;
   }
   shot.copies = 500;  // fits: drawn

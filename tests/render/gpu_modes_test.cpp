@@ -182,13 +182,19 @@ TEST(GpuModes, CountersAreExact) {
     }
     EXPECT_EQ(buffer.counters.draw_calls, visible);
     EXPECT_EQ(buffer.counters.bytes_uploaded, visible * (palette + 64));
+    EXPECT_EQ(buffer.counters.palette_bytes_uploaded, visible * palette);
+    EXPECT_EQ(buffer.counters.record_bytes_uploaded, visible * 64) << "a model matrix a draw";
     EXPECT_EQ(buffer.counters.gpu_palette_bytes, copies * palette) << "room for every copy's palette";
     shot.mode = "instanced";
     Frame instanced = render(*context, c, shot);
     EXPECT_EQ(instanced.counters.copies_visible, visible);
     EXPECT_EQ(instanced.counters.draw_calls, 1u) << "one draw for all " << visible << " copies on screen";
-    EXPECT_EQ(instanced.counters.bytes_uploaded, visible * (palette + 80));
-    EXPECT_EQ(instanced.counters.gpu_palette_bytes, copies * (palette + 80));
+    // Frame 1: the placements went up in frame 0; a 16-byte record a copy on screen.
+    EXPECT_EQ(instanced.counters.bytes_uploaded, visible * (palette + 16));
+    EXPECT_EQ(instanced.counters.palette_bytes_uploaded, visible * palette);
+    EXPECT_EQ(instanced.counters.record_bytes_uploaded, visible * 16);
+    // Room for every copy's palette and record, and its placement (48 bytes).
+    EXPECT_EQ(instanced.counters.gpu_palette_bytes, copies * (palette + 16 + 48));
     // CPU skinning keeps no palette on the GPU.
     shot.mode = "threaded";
     EXPECT_EQ(render(*context, c, shot).counters.gpu_palette_bytes, 0u);

@@ -17,6 +17,7 @@
 #include "render/crowd_renderer.h"
 #include "render/gl_errors.h"
 #include "render/gpu_frame_buffers.h"
+#include "render/gpu_placements.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -166,8 +167,10 @@ TEST(GpuSkinning, BakedAndComputeMemoryOnTheGpuIsWhatTheyHold) {
   {
     CrowdBench bench(c, config);
     EXPECT_EQ(bench.bake_summary().samples, samples);
-    // The table (48 bytes a joint a sample) and room for a record a copy (80 bytes).
-    EXPECT_EQ(bench.animation_gpu_bytes(), samples * c.skeleton.joint_count() * 48 + 160 * sizeof(GpuInstance));
+    // The table (48 bytes a joint a sample), room for a record a copy (16
+    // bytes) and every copy's placement (48).
+    EXPECT_EQ(bench.animation_gpu_bytes(),
+              samples * c.skeleton.joint_count() * 48 + 160 * (sizeof(GpuInstance) + sizeof(GpuPlacement)));
     EXPECT_EQ(bench.step().counters.gpu_palette_bytes, bench.animation_gpu_bytes());
     EXPECT_GT(bench.bake_summary().bake_ms, 0.0);
   }

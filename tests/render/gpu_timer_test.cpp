@@ -96,7 +96,8 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
                                "updates_every_4,updates_every_8,updates_every_16,updates_every_32,updates_every_64,"
                                "lod0_copies,lod1_copies,lod2_copies,lod3_copies,lod0_vertices,lod1_vertices,"
                                "lod2_vertices,lod3_vertices,lod0_triangles,lod1_triangles,lod2_triangles,"
-                               "lod3_triangles,vertices_drawn,actions_sampled,fades,joints_blended,gpu_ms,cpu_ms"))
+                               "lod3_triangles,vertices_drawn,actions_sampled,fades,joints_blended,"
+                               "palette_bytes_uploaded,record_bytes_uploaded,gpu_ms,cpu_ms"))
       << header;
   std::string row;
   std::getline(csv, row);

@@ -5,6 +5,7 @@
 #include "fake_run.h"
 #include "measuring/stats.h"
 #include "reports/profile_table.h"
+#include "result/result_codec.h"
 
 using namespace crowdprof;
 

@@ -284,6 +284,40 @@ TEST(ResultCodec, BytesUploadedPerCopyOnScreenIsTheMedianFrameAndReadsBack) {
   EXPECT_EQ(empty.bytes_uploaded_per_copy_on_screen, 0.0);
 }
 
+// Issue 52: palettes and records apart, each its own median, beside the total.
+TEST(ResultCodec, PaletteAndRecordBytesPerCopyOnScreenReadBackAndAreOptional) {
+  Result run = test::fake_run("instanced", 40, {1.0, 1.0, 1.0});
+  // Frame 0 sends the placements too (in the total only): 16-byte records throughout.
+  const uint64_t total[] = {4000, 360, 680}, palettes[] = {320, 200, 520}, records[] = {160, 160, 160},
+                 on_screen[] = {10, 10, 10};
+  for (size_t f = 0; f < 3; ++f) {
+    Counters& k = run.frame_records[f].counters;
+    k.bytes_uploaded = total[f];
+    k.palette_bytes_uploaded = palettes[f];
+    k.record_bytes_uploaded = records[f];
+    k.copies_visible = on_screen[f];
+  }
+  record_samples(run);
+  EXPECT_DOUBLE_EQ(*run.bytes_uploaded_per_copy_on_screen, 68.0);
+  EXPECT_DOUBLE_EQ(*run.palette_bytes_per_copy_on_screen, 32.0);
+  EXPECT_DOUBLE_EQ(*run.record_bytes_per_copy_on_screen, 16.0);
+  json doc = result_to_json(run);
+  EXPECT_DOUBLE_EQ(doc.at("palette_bytes_per_copy_on_screen").get<double>(), 32.0);
+  EXPECT_DOUBLE_EQ(doc.at("record_bytes_per_copy_on_screen").get<double>(), 16.0);
+  const Result back = result_from_json(doc, "r.json");
+  EXPECT_EQ(back.palette_bytes_per_copy_on_screen, 32.0);
+  EXPECT_EQ(back.record_bytes_per_copy_on_screen, 16.0);
+  EXPECT_EQ(result_to_json(back), doc);
+  // A result from before them reads without them, and writes without them.
+  for (const char* key : {"palette_bytes_per_copy_on_screen", "record_bytes_per_copy_on_screen"}) {
+    json old = doc;
+    old.erase(key);
+    EXPECT_FALSE(result_to_json(result_from_json(old, "r.json")).contains(key)) << key;
+    old[key] = -16;
+    EXPECT_THROW(result_from_json(old, "r.json"), InputError) << key;
+  }
+}
+
 TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(result_to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);

@@ -10,8 +10,17 @@
 
 namespace crowdprof {
 
+namespace {
+
+std::vector<ShaderStage> baked_stages(PlacementBlock block, const GlFeatures& gl) {
+  return lit_stages("shaders/baked.vert", copy_colours_define() + GpuPlacements::shader_source(block, gl),
+                    "#define INSTANCED\n");
+}
+
+}  // namespace
+
 BakedSkinning::BakedSkinning(const GlFeatures& gl) : gl_(gl) {
-  program_ = GlProgram(lit_stages("shaders/baked.vert", copy_colours_define(), "#define INSTANCED\n"));
+  program_ = GlProgram(baked_stages(PlacementBlock::Uniform, gl));
   joint_count_ = program_.uniform("joint_count");
 }
 
@@ -44,6 +53,7 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   // earlier one was) takes nothing of its cull pass.
   std::erase_if(culls_, [&](const auto& entry) { return entry.first == &view; });
   const size_t copies = view.copies();
+  bytes += std::max<size_t>(copies, 1) * sizeof(GpuPlacement);  // the placements, sent at the first frame
   if (view.mode.frustum != FrustumTest::Gpu) {
     // A record per copy on screen, sent each frame.
     buffers_.reserve(copies, 0, 0, true, gl_);
@@ -71,8 +81,16 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
                             std::to_string(copies) + ": ",
                         "use fewer copies, or {frustum} cpu");
   buffers_.reserve_gpu_records(first[groups], gl_);
+  if (!cull_program_.id() && cull_reads_storage(view)) {
+    cull_program_ = GlProgram(baked_stages(PlacementBlock::Storage, gl_));
+    cull_joint_count_ = cull_program_.uniform("joint_count");
+  }
   culls_.emplace_back(&view, std::make_unique<GpuCull>(view, meshes, first, baked));
   gpu_bytes_ = bytes + buffers_.gpu_bytes() + culls_.back().second->gpu_bytes();
+}
+
+bool BakedSkinning::cull_reads_storage(const FrameView& view) const {
+  return view.copies() > GpuPlacements::copies_per_page(gl_);
 }
 
 GpuCull* BakedSkinning::cull_for(const FrameView& view) const {
@@ -90,6 +108,7 @@ bool BakedSkinning::visible_counts(const FrameView& view, std::span<uint64_t> pe
 }
 
 void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
+  counters.bytes_uploaded += placements_.update(view, gl_);  // nothing once the crowd is placed
   counters.gpu_palette_bytes = gpu_bytes_;
   if (GpuCull* cull = cull_for(view)) return cull->run(view, buffers_.instance_buffer(), counters);
   if (view.mode.frustum == FrustumTest::Gpu) throw GlError("frustum gpu asked of a renderer not prepared for this bench");
@@ -107,27 +126,35 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
     if (!drawn(i)) continue;
     const BakedInstance& b = view.baked[i];
     GpuInstance record;
-    record.model = view.world[i];
+    record.copy = static_cast<uint32_t>(i);
     record.palette_base = static_cast<uint32_t>(3 * b.first_sample * meshes[view.kind[i]].joints);
-    record.colour = static_cast<uint32_t>(i % kCopyColours.size());
     record.source[0] = b.intervals;
     record.source[1] = std::bit_cast<uint32_t>(b.position);
     buffers_.add_record(draw_group(view, i), record);
   }
-  counters.bytes_uploaded += buffers_.upload(true);
+  count_record_bytes(counters, buffers_.upload(true).records);
 }
 
 void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
                          Counters& counters) {
-  glUseProgram(program_.id());
-  set_frame_uniforms(program_, pass);
-  set_copy_colours(program_);
+  const GpuCull* gpu_cull = cull_for(view);
+  const bool storage = gpu_cull && cull_reads_storage(view);
+  const GlProgram& program = storage ? cull_program_ : program_;
+  const GLint joint_count = storage ? cull_joint_count_ : joint_count_;
+  glUseProgram(program.id());
+  set_frame_uniforms(program, pass);
+  set_copy_colours(program);
   auto bind_table = [&](size_t k) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPaletteBinding, tables_[k]);
-    glUniform1ui(joint_count_, static_cast<GLuint>(meshes[k].joints));
+    glUniform1ui(joint_count, static_cast<GLuint>(meshes[k].joints));
   };
-  const GpuCull* gpu_cull = cull_for(view);
-  if (!gpu_cull) return draw_instance_runs(buffers_, meshes, view.mode.index_order, bind_table, counters);
+  if (!gpu_cull) return draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order, bind_table, counters);
+  // The cull pass's copies fit one storage block (prepare), and their placements, smaller, too.
+  static_assert(sizeof(GpuPlacement) <= GpuCull::kBytesPerCopy);
+  if (storage)
+    placements_.bind_storage();
+  else
+    placements_.bind_page(0);
   for (size_t k = 0; k < meshes.size(); ++k) {
     if (k >= tables_.size() || !tables_[k]) continue;
     bind_table(k);

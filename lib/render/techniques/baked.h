@@ -1,11 +1,11 @@
 // Skinning from palettes sampled at load (mode baked, --skinning baked): each
 // character's actions are baked into a table of palettes on the GPU once, and
 // the copies are drawn through instanced's path (instanced.h): each frame sends
-// one 80-byte record per copy on screen (its model matrix and colour, which
-// samples, how far between them) and draws each character and mesh level with
-// one instanced draw; the vertex shader blends the two samples. With frustum
-// gpu the same records are made on the GPU (gpu_cull.h) and nothing per copy
-// is sent.
+// one 16-byte record per copy on screen (the copy, which samples, how far
+// between them; its placement was sent once, gpu_placements.h) and draws each
+// character and mesh level with one instanced draw; the vertex shader blends
+// the two samples. With frustum gpu the same records are made on the GPU
+// (gpu_cull.h) and nothing per copy is sent.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +17,7 @@
 #include "render/character_meshes.h"
 #include "render/gl_features.h"
 #include "render/gpu_frame_buffers.h"
+#include "render/gpu_placements.h"
 #include "render/techniques/gpu_cull.h"
 #include "render/techniques/technique.h"
 
@@ -31,7 +32,7 @@ class BakedSkinning final : public Technique {
   // meshes; makes room for the records (throws GlUnavailable past the GPU's
   // free memory, as GpuFrameBuffers::reserve).
   void prepare(const FrameView& view, CharacterMeshes& meshes);
-  // GPU storage held: tables, instance records and the cull pass's buffers.
+  // GPU storage held: tables, placements, instance records and the cull pass's buffers.
   uint64_t gpu_bytes() const { return gpu_bytes_; }
 
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
@@ -43,10 +44,15 @@ class BakedSkinning final : public Technique {
 
  private:
   GlFeatures gl_;
-  GlProgram program_;
-  GLint joint_count_ = -1;
+  // Reading the placements from uniform pages (CPU-culled, or a crowd that
+  // fits one page), or from one storage block (frustum gpu past one page:
+  // its indirect draws cannot change pages).
+  GlProgram program_, cull_program_;
+  GLint joint_count_ = -1, cull_joint_count_ = -1;
+  bool cull_reads_storage(const FrameView& view) const;
   std::vector<GLuint> tables_;  // per character: every sample's 3x4 rows, 48 bytes a joint (0: not baked)
   GpuFrameBuffers buffers_;     // the records, without palettes
+  GpuPlacements placements_;    // every copy's model matrix and colour, sent when they change
   uint64_t gpu_bytes_ = 0;
   // frustum gpu: writes the records and draws. One per bench prepared (a
   // compare's modes share the renderer, and each has its own switches: mesh

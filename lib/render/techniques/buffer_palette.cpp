@@ -22,14 +22,15 @@ bool palette_copy(const FrameView& view, size_t copy) {
 
 }  // namespace
 
-std::vector<ShaderStage> buffer_palette_stages(bool instanced) {
+std::vector<ShaderStage> buffer_palette_stages(bool instanced, const GlFeatures& gl) {
   std::string defines =
-      instanced ? "#define INSTANCED\n" + copy_colours_define() : "";
+      instanced ? "#define INSTANCED\n" + copy_colours_define() + GpuPlacements::shader_source(PlacementBlock::Uniform, gl)
+                : "";
   defines += std::string(embedded_shader("shaders/instances.glsl"));
   return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
 
-uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
   size_t copies = 0, rows = 0, largest = 0;
   on_screen.assign(meshes.size() * kMeshLevels, 0);
@@ -46,15 +47,14 @@ uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, Gpu
     if (!view.visible[i] || !palette_copy(view, i)) continue;
     size_t k = view.kind[i];
     std::span<const SkinMatrix> palette = view.palette(i);
-    std::span<glm::vec4> out = buffers.add(draw_group(view, i), view.world[i],
-                                           static_cast<uint32_t>(i % kCopyColours.size()), 3 * meshes[k].joints);
+    std::span<glm::vec4> out = buffers.add(draw_group(view, i), static_cast<uint32_t>(i), 3 * meshes[k].joints);
     for (size_t j = 0; j < meshes[k].joints; ++j) put_rows(palette[j], &out[3 * j]);
   }
   return buffers.upload(instanced);
 }
 
 BufferPalette::BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
-  program_ = GlProgram(buffer_palette_stages(false));
+  program_ = GlProgram(buffer_palette_stages(false, gl));
   model_ = program_.uniform("model");
   colour_ = program_.uniform("base_colour");
   base_ = program_.uniform("palette_base");
@@ -63,7 +63,7 @@ BufferPalette::BufferPalette(CharacterMeshes& meshes, const GlFeatures& gl) : gl
 }
 
 void BufferPalette::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, gl_, false);
+  count_palette_bytes(counters, send_palettes(view, meshes, buffers_, on_screen_, gl_, false).palettes);
   counters.gpu_palette_bytes = buffers_.palette_gpu_bytes();
 }
 
@@ -84,7 +84,7 @@ void BufferPalette::draw(const FrameView& view, const CharacterMeshes& meshes, c
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElementsBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index, level.base_vertex);
-    counters.bytes_uploaded += kModelBytes;  // the palette went up in upload()
+    count_record_bytes(counters, kModelBytes);  // the palette went up in upload()
     ++counters.draw_calls;
   }
 }

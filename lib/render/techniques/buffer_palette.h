@@ -29,7 +29,7 @@ inline size_t draw_group(const FrameView& view, size_t copy) {
 // crowd turns. Returns the bytes sent. Throws GlUnavailable when the palettes
 // exceed one storage block (`max_block_bytes`).
 // `on_screen` is scratch, kept by the caller so that frames allocate nothing.
-uint64_t send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
+SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced);
 
 class BufferPalette final : public Technique {
@@ -49,7 +49,8 @@ class BufferPalette final : public Technique {
   std::vector<uint32_t> next_;       // scratch: per draw group, the next record to draw
 };
 
-// shaders/buffer_skin.vert with shaders/instances.glsl ahead of it.
-std::vector<ShaderStage> buffer_palette_stages(bool instanced);
+// shaders/buffer_skin.vert with shaders/instances.glsl ahead of it (and, when
+// `instanced`, the placements as uniform pages of `gl`'s blocks).
+std::vector<ShaderStage> buffer_palette_stages(bool instanced, const GlFeatures& gl);
 
 }  // namespace crowdprof

@@ -152,7 +152,7 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
     glDispatchCompute((vertices + kComputeGroup - 1) / kComputeGroup, static_cast<GLuint>(count), 1);
     // The draws below read what the pass wrote as vertex attributes.
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-    counters.bytes_uploaded += count * palette_bytes;
+    count_palette_bytes(counters, count * palette_bytes);
     for (const DrawPass& pass : passes) {
       begin_pass(&pass);
       glUseProgram(draw_program_.id());
@@ -165,7 +165,7 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
         glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
         glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
         glDrawElements(GL_TRIANGLES, drawn.index_count, GL_UNSIGNED_INT, drawn.first_index);
-        counters.bytes_uploaded += kModelBytes;
+        count_record_bytes(counters, kModelBytes);
         ++counters.draw_calls;
       }
     }

@@ -1,11 +1,13 @@
 #include "render/techniques/gpu_cull.h"
 
 #include <algorithm>
+#include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "frame/frame_view.h"
 #include "render/character_meshes.h"
+#include "render/gl_errors.h"
 #include "render/gpu_frame_buffers.h"
 #include "render/shader_sources.h"
 #include "render/techniques/technique.h"
@@ -17,9 +19,8 @@ namespace {
 
 constexpr GLuint kCullGroup = 64;  // cull.comp's local_size_x
 
-// cull.comp's CullCopy, std430: a mat4, two vec4, then eight 4-byte fields.
+// cull.comp's CullCopy, std430: two vec4, then eight 4-byte fields.
 struct CullCopy {
-  glm::mat4 model;
   glm::vec4 box_min, box_max;
   uint32_t kind, first_row, intervals;
   float phase, start, end, duration;
@@ -40,7 +41,7 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   per_kind_uniform_ = program_.uniform("commands_per_kind");
   seconds_ = program_.uniform("seconds");
   copy_count_ = program_.uniform("copy_count");
-  colour_count_ = program_.uniform("colour_count");
+  check_record_stride();
   copy_count_value_ = view.copies();
   std::vector<CullCopy> copies(std::max<size_t>(copy_count_value_, 1));
   for (size_t i = 0; i < copy_count_value_; ++i) {
@@ -49,7 +50,7 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
     const auto levels = static_cast<uint32_t>(
         view.mode.mesh_lod ? std::min(view.character_of(i).mesh_lods.size() + 1, kMeshLevels) : 1);
     const auto first_row = static_cast<uint32_t>(3 * clock.first_sample * meshes[view.kind[i]].joints);
-    copies[i] = {view.world[i], glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], first_row,
+    copies[i] = {glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], first_row,
                  clock.intervals, clock.phase, clock.start, clock.end, clock.duration, levels};
   }
   copies_ = make_buffer(GL_SHADER_STORAGE_BUFFER, copies.size() * sizeof(CullCopy), copies.data(), GL_STATIC_DRAW);
@@ -68,6 +69,20 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
   commands_ = make_buffer(GL_SHADER_STORAGE_BUFFER, cleared_.size() * sizeof(Command), cleared_.data(),
                           GL_DYNAMIC_DRAW);
   gpu_bytes_ = copies.size() * sizeof(CullCopy) + cleared_.size() * sizeof(Command);
+}
+
+void GpuCull::check_record_stride() {
+  // The stride of Instances' array, as this GL laid it out: the draws fetch
+  // records sizeof(GpuInstance) apart.
+  const GLuint variable = glGetProgramResourceIndex(program_.id(), GL_BUFFER_VARIABLE, "instances[0].copy");
+  const GLenum property = GL_TOP_LEVEL_ARRAY_STRIDE;
+  GLint stride = 0;
+  if (variable != GL_INVALID_INDEX)
+    glGetProgramResourceiv(program_.id(), GL_BUFFER_VARIABLE, variable, 1, &property, 1, nullptr, &stride);
+  record_bytes_ = static_cast<uint64_t>(std::max(stride, 0));
+  if (record_bytes_ != sizeof(GpuInstance))
+    throw GlError("shaders/cull.comp writes records " + std::to_string(record_bytes_) + " bytes apart; the draws read them " +
+                  std::to_string(sizeof(GpuInstance)) + " bytes apart (GpuInstance)");
 }
 
 GpuCull::~GpuCull() {
@@ -92,7 +107,6 @@ void GpuCull::run(const FrameView& view, GLuint instances, Counters& counters) {
   glUniform1ui(per_kind_uniform_, static_cast<GLuint>(per_kind_));
   glUniform1d(seconds_, view.seconds);
   glUniform1ui(copy_count_, static_cast<GLuint>(copy_count_value_));
-  glUniform1ui(colour_count_, static_cast<GLuint>(kCopyColours.size()));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, copies_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, instances);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, commands_);

@@ -8,7 +8,7 @@
 namespace crowdprof {
 
 Instanced::Instanced(CharacterMeshes& meshes, const GlFeatures& gl) : gl_(gl) {
-  program_ = GlProgram(buffer_palette_stages(true));
+  program_ = GlProgram(buffer_palette_stages(true, gl));
   for (size_t k = 0; k < meshes.size(); ++k) meshes.upload_rest_mesh(k);
 }
 
@@ -17,18 +17,22 @@ uint64_t Instanced::bytes_per_copy(const CharacterMesh& mesh) {
 }
 
 void Instanced::upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) {
-  counters.bytes_uploaded += send_palettes(view, meshes, buffers_, on_screen_, gl_, true);
-  counters.gpu_palette_bytes = buffers_.gpu_bytes();
+  counters.bytes_uploaded += placements_.update(view, gl_);  // nothing once the crowd is placed
+  const SentBytes sent = send_palettes(view, meshes, buffers_, on_screen_, gl_, true);
+  count_palette_bytes(counters, sent.palettes);
+  count_record_bytes(counters, sent.records);
+  counters.gpu_palette_bytes = buffers_.gpu_bytes() + placements_.gpu_bytes();
 }
 
 void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) {
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   set_copy_colours(program_);
-  draw_instance_runs(buffers_, meshes, view.mode.index_order, [](size_t) {}, counters);
+  draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order, [](size_t) {}, counters);
 }
 
-void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes, IndexOrder order,
+void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
+                        IndexOrder order,
                         const std::function<void(size_t)>& bind_character, Counters& counters) {
   size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
@@ -39,11 +43,12 @@ void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& m
     // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
     const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true, order);
     glBindVertexArray(level.instanced_vao);
-    // One instanced draw per page the group's palettes take (one, below the
-    // storage-block limit, and for records with no palette).
+    // One instanced draw per page the group's palettes and placements take
+    // (one, below the storage-block limit).
     for (uint32_t from = run.first; from < run.first + run.count;) {
       const InstanceRun part = buffers.page_run(group, from);
       buffers.bind_page(buffers.page_of(from));
+      placements.bind_page(buffers.placement_page_of(from));
       glBindVertexBuffer(kInstanceStream, buffers.instance_buffer(),
                          static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
                          sizeof(GpuInstance));

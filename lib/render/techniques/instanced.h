@@ -1,7 +1,8 @@
 // The buffer palettes drawn with one instanced draw per character (mode
-// instanced, --draw instanced): each instance reads its model matrix, colour
-// and palette offset from a record (render/gpu_frame_buffers.h) fetched as
-// per-instance vertex attributes.
+// instanced, --draw instanced): each instance reads its copy and palette
+// offset from a 16-byte record (render/gpu_frame_buffers.h) fetched as
+// per-instance vertex attributes, and its copy's model matrix and colour from
+// the placements, sent once (render/gpu_placements.h).
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "render/character_meshes.h"
 #include "render/gl_features.h"
 #include "render/gpu_frame_buffers.h"
+#include "render/gpu_placements.h"
 #include "render/techniques/technique.h"
 
 namespace crowdprof {
@@ -19,10 +21,12 @@ namespace crowdprof {
 // The instanced path that instanced and baked share: one instanced draw per
 // draw group (character and mesh level: draw_group) and palette page of the
 // runs begin() reserved in `buffers`, each instance reading its record as
-// per-instance attributes through the level's instanced VAO. The program is
-// bound; triangles in `order`; `bind_character(k)` binds what character k's draws read besides
+// per-instance attributes through the level's instanced VAO and its copy's
+// placement from `placements`; triangles in `order`. The program is
+// bound; `bind_character(k)` binds what character k's draws read besides
 // (baked: its table and joint count), before its first draw.
-void draw_instance_runs(const GpuFrameBuffers& buffers, const CharacterMeshes& meshes, IndexOrder order,
+void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
+                        IndexOrder order,
                         const std::function<void(size_t)>& bind_character, Counters& counters);
 
 // kCopyColours into `program`'s uniform `colours`, which a record's colour
@@ -39,13 +43,15 @@ class Instanced final : public Technique {
   void upload(const FrameView& view, const CharacterMeshes& meshes, Counters& counters) override;
   void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) override;
 
-  // Bytes one copy of `mesh` costs to send: its palette's rows and its record.
+  // Bytes one copy of `mesh` costs to send a frame: its palette's rows and its
+  // record (its placement went once).
   static uint64_t bytes_per_copy(const CharacterMesh& mesh);
 
  private:
   GlFeatures gl_;
   GlProgram program_;
   GpuFrameBuffers buffers_;
+  GpuPlacements placements_;
   std::vector<uint32_t> on_screen_;  // scratch: per character, copies on screen
 };
 

@@ -55,6 +55,17 @@ void set_frame_uniforms(const GlProgram& program, const DrawPass& pass);
 // Bytes a copy's world matrix costs to send.
 inline constexpr uint64_t kModelBytes = sizeof(glm::mat4);
 
+// Bytes sent for GPU skinning, counted in bytes_uploaded and in their part:
+// palettes, or per-copy records (an instance record, a draw's model matrix).
+inline void count_palette_bytes(Counters& counters, uint64_t bytes) {
+  counters.bytes_uploaded += bytes;
+  counters.palette_bytes_uploaded += bytes;
+}
+inline void count_record_bytes(Counters& counters, uint64_t bytes) {
+  counters.bytes_uploaded += bytes;
+  counters.record_bytes_uploaded += bytes;
+}
+
 class Technique {
  public:
   virtual ~Technique() = default;

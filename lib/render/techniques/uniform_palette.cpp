@@ -51,7 +51,8 @@ void UniformPalette::draw(const FrameView& view, const CharacterMeshes& meshes, 
     glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(view.world[i]));
     glUniform3fv(colour_, 1, glm::value_ptr(copy_colour(i)));
     glDrawElementsBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index, level.base_vertex);
-    counters.bytes_uploaded += bytes_per_copy(mesh);
+    count_palette_bytes(counters, bytes_per_copy(mesh) - kModelBytes);
+    count_record_bytes(counters, kModelBytes);
     ++counters.draw_calls;
   }
 }
