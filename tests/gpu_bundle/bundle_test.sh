@@ -56,8 +56,8 @@ grep -q '^| instanced | 12 | 3 | [0-9.]*[mu]s |.*| skinning [0-9.]*[mu]s, prepas
 grep -q '^| nosuchmode | 12 | 1 | exit 2' "$work/out/summary.md" || fail "the failed run has no row"
 grep -q '^gpu-run: GL_VENDOR Mesa' "$work/run.log" || fail "no GL_VENDOR line: $(head -5 "$work/run.log")"
 # Each row ends with the index order, the colour pass's vertex reuse and the bytes a copy.
-grep -q '^| instanced | 12 | 1 | .*| optimized | [0-9.]* | [0-9.]* |$' "$work/out/summary.md" ||
-  fail "no index order, vertex reuse or bytes in instanced's row: $(cat "$work/out/summary.md")"
+grep -q '^| instanced | 12 | 1 | .*| optimized | [0-9.]* | [0-9.]* | 16.0 |$' "$work/out/summary.md" ||
+  fail "no index order, vertex reuse, bytes or 16-byte records in instanced's row: $(cat "$work/out/summary.md")"
 [[ -s $work/out/runs/baked_frustum_gpu-12-p1.json ]] || fail "no file for baked+frustum=gpu: $(ls "$work/out/runs")"
 # A switch without a value is refused before any run, saying why.
 if ALLOW_SOFTWARE=1 SIZES=12 MODES="baked+frustum" "$bundle/run.sh" "$work/novalue" >/dev/null 2>"$work/novalue.err"; then

@@ -11,7 +11,8 @@
 #   report.html                 crowdprof report of every run that finished
 #   summary.md                  one row per run: frame, Animations, Rasterizer, GPU time and
 #                               its split by pass, index order, the colour pass's invocations
-#                               per vertex drawn and the bytes sent a copy on screen
+#                               per vertex drawn, the bytes sent a copy on screen and how many
+#                               of them are per-copy records
 # Each run has a time limit (LIMIT, seconds, default 60): one that is cut off,
 # refused or failed is a row that says so, and the script goes on, so that it
 # fits a call of 10 minutes; once BUDGET seconds (default 540) have gone, the
@@ -70,8 +71,8 @@ read -r -a pass_counts <<<"${PASSES:-1 4}"
 limit=${LIMIT:-60} budget=${BUDGET:-540}
 json_text() { sed 's/\\/\\\\/g; s/"/\\"/g' | tr -d '\000-\037' | head -c 400; }
 {
-  echo "| mode | copies | passes | frame | Animations | Rasterizer | GPU time | GPU by pass | wall s | index order | invocations per vertex, colour | bytes a copy on screen |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| mode | copies | passes | frame | Animations | Rasterizer | GPU time | GPU by pass | wall s | index order | invocations per vertex, colour | bytes a copy on screen | of them records |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } >"$out/summary.md"
 entries=()
 for n in "${sizes[@]}"; do
@@ -90,7 +91,7 @@ for n in "${sizes[@]}"; do
     done
     if ((SECONDS >= budget)); then
       entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"not run: the ${budget} s budget was spent\"}")
-      echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 ||||" >>"$out/summary.md"
+      echo "| $mode | $n | $passes | not run: the ${budget} s budget was spent ||||| 0 |||||" >>"$out/summary.md"
       continue
     fi
     start=$SECONDS
@@ -108,13 +109,14 @@ for n in "${sizes[@]}"; do
       order=$(sed -n 's/.*"index_order": *"\([a-z]*\)".*/\1/p' "$run.json" | head -1)
       reuse=$(awk '/^invocations per vertex drawn/ {print $NF}' "$run.txt")
       bytes=$(sed -n 's/.*"bytes_uploaded_per_copy_on_screen": *\([0-9.e+]*\).*/\1/p' "$run.json" | head -1)
-      echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall | ${order:-file} | ${reuse:-n/a} | ${bytes:-n/a} |" >>"$out/summary.md"
+      records=$(sed -n 's/.*"record_bytes_per_copy_on_screen": *\([0-9.e+]*\).*/\1/p' "$run.json" | head -1)
+      echo "| $mode | $n | $passes | $(figure Frametime) | $(figure Animations) | $(figure Rasterizer) | ${gpu:-n/a} | ${by_pass:-n/a} | $wall | ${order:-file} | ${reuse:-n/a} | ${bytes:-n/a} | ${records:-n/a} |" >>"$out/summary.md"
     else
       if ((status == 124 || status == 137)); then why="cut off after the ${limit} s limit"
       else why="exit $status: $(tr '\n' ' ' <"$run.err" | head -c 300)"; fi
       rm -f "$run.json"
       entries+=("{\"mode\": \"$mode\", \"copies\": $n, \"passes\": $passes, \"error\": \"$(json_text <<<"$why")\"}")
-      echo "| $mode | $n | $passes | $why ||||| $wall ||||" >>"$out/summary.md"
+      echo "| $mode | $n | $passes | $why ||||| $wall |||||" >>"$out/summary.md"
     fi
     echo "gpu-run: $mode at $n copies, $passes passes: ${wall} s, exit $status"
   done
