@@ -118,9 +118,6 @@ SettingText conflicts(const ModeSwitches& s) {
   if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s)
     return "{blend_in} is at most half of {transitions}: a copy's fades must not overlap (changes come after at "
            "least half the mean)";
-  if (s.transitions_s > 0 && s.share_poses)
-    return "{transitions} fade each copy on its own pose; {share} on does not share fading poses yet: it needs "
-           "{share} off";
   if (s.transitions_s > 0 && s.skinning == SkinningSite::Baked)
     return "{transitions} fade between actions on the CPU's poses; skinning baked does not fade yet: use "
            "{skinning} gpu, compute or animations";

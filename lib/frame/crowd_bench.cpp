@@ -271,7 +271,10 @@ void CrowdBench::update_poses(Counters& counters) {
   // For tests of the budget: a replayed Animations time makes its choices reproducible.
   const std::vector<double>& replay = config_.replay_animations_ms;
   const double measured = replay.empty() || frame_ == 0 ? last_animations_ms_ : replay[(frame_ - 1) % replay.size()];
-  std::span<const StateJob> jobs = planner_->plan({frame_, store_->times, store_->visible, measured}, counters);
+  std::span<const StateJob> jobs = planner_->plan(
+      {frame_, store_->times, store_->visible, measured, store_->actions, store_->from_actions, store_->weights,
+       store_->from_times},
+      counters);
   counters.channel_lookups = poser_->update(jobs);
 }
 

@@ -29,8 +29,34 @@ UpdatePlanner::UpdatePlanner(std::span<const Character* const> characters, const
     sharing_.reset(crowd.kind, characters.size());
     changing_copies_.resize(n);
     changing_keys_.resize(n);
+    changing_times_.resize(n);
   }
 }
+
+namespace {
+
+// A fading copy's state as one key: its character in the top 16 bits (a state
+// lives in a storage of its character), bit 47 set (no unfading state has it:
+// actions stay below 32,768), and a hash of the actions, times and weight. Two
+// copies share a fading pose when all of those match.
+uint64_t fade_key(uint16_t kind, uint16_t action, float time, uint16_t from, float from_time, float weight) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto add = [&](uint64_t v) {
+    h ^= v;
+    h *= 0x100000001b3ull;
+    h ^= h >> 29;
+  };
+  uint32_t bits[3];
+  std::memcpy(&bits[0], &time, 4);
+  std::memcpy(&bits[1], &from_time, 4);
+  std::memcpy(&bits[2], &weight, 4);
+  add(action);
+  add(from);
+  for (uint32_t b : bits) add(b);
+  return (uint64_t{kind} << 48) | (uint64_t{1} << 47) | (h & ((uint64_t{1} << 47) - 1));
+}
+
+}  // namespace
 
 void UpdatePlanner::start_budget(std::span<const uint8_t> visible) {
   if (mode_.anim_budget_ms <= 0) return;
@@ -83,22 +109,38 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     last_update_[i] = frame;
     updated_[i] = 1;
     if (shift == 0) ++updated_every_frame; else ++updates_by_rate[shift];
-    float time = input.times[i];
-    if (quantum > 0) {
-      // The nearest multiple of the quantum from the action's start, never past its end.
-      const Action& action = characters_[crowd_.kind[i]]->actions[crowd_.action[i]];
-      double steps = std::nearbyint(static_cast<double>(time - action.start) / quantum);
-      time = std::min(action.end, action.start + static_cast<float>(steps * quantum));
-    }
+    const uint16_t action_index = input.actions.empty() ? crowd_.action[i] : input.actions[i];
+    const std::vector<Action>& actions = characters_[crowd_.kind[i]]->actions;
+    // The nearest multiple of the quantum from the action's start, never past its end.
+    auto snapped = [&](const Action& action, float t) {
+      if (quantum <= 0) return t;
+      double steps = std::nearbyint(static_cast<double>(t - action.start) / quantum);
+      return std::min(action.end, action.start + static_cast<float>(steps * quantum));
+    };
+    const float time = snapped(actions[action_index], input.times[i]);
     if (!share) {
       jobs_.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(i), time});
       continue;
     }
-    uint32_t bits;
-    std::memcpy(&bits, &time, sizeof bits);
-    uint64_t key = state_key(crowd_.kind[i], crowd_.action[i], bits);
+    uint64_t key;
+    if (!input.weights.empty() && input.weights[i] < 1.0f) {
+      // Fading: the fade's weight snapped as its clock would be (quantum over
+      // the fade's length), the old action's time as any time.
+      float weight = input.weights[i];
+      if (quantum > 0 && mode_.blend_in_s > 0) {
+        const double step = quantum / mode_.blend_in_s;
+        weight = std::min(1.0f, static_cast<float>(std::nearbyint(weight / step) * step));
+      }
+      key = fade_key(crowd_.kind[i], action_index, time, input.from_actions[i],
+                     snapped(actions[input.from_actions[i]], input.from_times[i]), weight);
+    } else {
+      uint32_t bits;
+      std::memcpy(&bits, &time, sizeof bits);
+      key = state_key(crowd_.kind[i], action_index, bits);
+    }
     if (sharing_.key_of(sharing_.shown(i)) == key) continue;  // still in the state it shows
     changing_copies_[changes] = static_cast<uint32_t>(i);
+    changing_times_[changes] = time;
     changing_keys_[changes++] = key;
   }
   by_rate[0] = every_frame;
@@ -125,10 +167,7 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     while (end < changes && changing_keys_[end] == key) ++end;
     bool evaluate = false;
     uint32_t storage = sharing_.take(copies.subspan(c, end - c), key, &evaluate);
-    float time;
-    auto bits = static_cast<uint32_t>(key);
-    std::memcpy(&time, &bits, sizeof time);
-    if (evaluate) jobs_.push_back({copies[c], storage, time});
+    if (evaluate) jobs_.push_back({copies[c], storage, changing_times_[c]});
     c = end;
   }
   return jobs_;

@@ -48,6 +48,10 @@ struct PlanInput {
   // The Animations time the budget's controller compares with its budget:
   // the last frame's.
   double animations_ms = 0;
+  // Transitions (frame/copy_store.h), per copy; empty without them: the
+  // action played now, its weight (< 1 fading) and the action and time faded from.
+  std::span<const uint16_t> actions, from_actions;
+  std::span<const float> weights, from_times;
 };
 
 class UpdatePlanner {
@@ -100,6 +104,7 @@ class UpdatePlanner {
   // Sharing, room for every copy: this frame's copies taking a new state, and its key.
   std::vector<uint32_t> changing_copies_;
   std::vector<uint64_t> changing_keys_;
+  std::vector<float> changing_times_;  // each changing copy's (snapped) time
   PoseSharing sharing_;
   BudgetPlan budget_plan_;
   uint64_t last_updates_ = 0;  // copy updates of the last frame, for the budget

@@ -188,3 +188,26 @@ TEST(Transitions, AFadeMovesNoJointFurtherThanItsActionsAndTheFadeAllow) {
   EXPECT_LE(worst_pop(0.4, 0.4), 0.0) << "a fade of 0.4 s within its bound";
   EXPECT_GT(worst_pop(0.0, 0.4), 0.0) << "a snap breaks the same bound";
 }
+
+// Sharing: copies whose actions, times and fade match share one evaluation;
+// with exact times (no quantum) the shared crowd shows what every copy
+// computed alone would, fading or not, and a group with shared actions fades
+// as one evaluation.
+TEST(Transitions, SharedPosesFadeAsTheCopiesAloneWould) {
+  for (ActionChoice actions : {ActionChoice::Shared, ActionChoice::Random}) {
+    BenchConfig alone_config = fading("threaded", Crossfade::Sampled), shared_config = fading("shared", Crossfade::Sampled);
+    alone_config.crowd.actions = shared_config.crowd.actions = actions;
+    shared_config.mode.share_quantum_s = 0.0;
+    CrowdBench alone(test::default_humanoid(), alone_config), shared(test::default_humanoid(), shared_config);
+    size_t fading_frames = 0;
+    for (int f = 0; f < 150; ++f) {
+      const Counters a = alone.step().counters, s = shared.step().counters;
+      ASSERT_EQ(alone.digest(), shared.digest()) << "frame " << f;
+      ASSERT_EQ(a.fades > 0, s.fades > 0) << "frame " << f;
+      if (s.fades == 0) continue;
+      ++fading_frames;
+      if (actions == ActionChoice::Shared) EXPECT_EQ(s.poses_updated, 1u) << "one fade for the whole group";
+    }
+    EXPECT_GT(fading_frames, 10u);
+  }
+}
