@@ -19,6 +19,7 @@ MeshLod compact(const SkinnedMesh& full, std::vector<uint32_t> indices) {
   std::vector<uint32_t> remap(full_vertices);
   const size_t kept = meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indices.size(), full_vertices);
   MeshLod level;
+  level.cache_ordered = true;
   SkinnedMesh& m = level.mesh;
   m.positions.resize(kept);
   m.normals.resize(kept);

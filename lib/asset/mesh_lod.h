@@ -22,6 +22,9 @@ struct MeshLod {
   // units; from mesh_lods_of, in world units (asset/standing.h), as every
   // figure shows it.
   float error = 0;
+  // Its triangles in vertex-cache order (build_mesh_lods makes them so; a
+  // file's own levels come as the file lists them).
+  bool cache_ordered = false;
 };
 
 // The levels built by default: half, a quarter and a tenth of the triangles,

@@ -41,7 +41,8 @@ MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest, IndexOrder order) 
   }
   const size_t l = std::min(level, levels.first_index.size()) - 1;
   return {levels.rest_vao, levels.instanced_vao, levels.indices, levels.index_count[l],
-          reinterpret_cast<const void*>(levels.first_index[l] * sizeof(uint32_t)),
+          reinterpret_cast<const void*>(
+              (order == IndexOrder::Optimized ? levels.first_optimized[l] : levels.first_index[l]) * sizeof(uint32_t)),
           rest ? static_cast<GLint>(levels.first_vertex[l]) : 0};
 }
 
@@ -112,6 +113,11 @@ void CharacterMeshes::upload_levels(size_t kind, std::span<const MeshLod> lods) 
     l.first_vertex.push_back(all.positions.size());
     l.index_count.push_back(static_cast<GLsizei>(lod.mesh.indices.size()));
     all.indices.insert(all.indices.end(), lod.mesh.indices.begin(), lod.mesh.indices.end());
+    l.first_optimized.push_back(lod.cache_ordered ? l.first_index.back() : all.indices.size());
+    if (!lod.cache_ordered) {
+      const std::vector<uint32_t> optimized = vertex_cache_order(lod.mesh);
+      all.indices.insert(all.indices.end(), optimized.begin(), optimized.end());
+    }
     all.positions.insert(all.positions.end(), lod.mesh.positions.begin(), lod.mesh.positions.end());
     all.normals.insert(all.normals.end(), lod.mesh.normals.begin(), lod.mesh.normals.end());
     all.joints.insert(all.joints.end(), lod.mesh.joints.begin(), lod.mesh.joints.end());

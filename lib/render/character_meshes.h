@@ -39,13 +39,16 @@ struct CharacterMesh {
   struct Levels {
     GLuint indices = 0, rest_buffers[4] = {0, 0, 0, 0}, rest_vao = 0, instanced_vao = 0;
     std::vector<size_t> first_index, first_vertex;  // per level 1..
+    // Per level 1..: where its triangles start in vertex-cache order (the same
+    // range as first_index for levels built in that order).
+    std::vector<size_t> first_optimized;
     std::vector<GLsizei> index_count;
   } levels;
 
   // How to draw level `level` (0: the full mesh) with its triangles in
   // `order`: from the rest mesh (GPU skinning, `rest` true) or from vertices
-  // skinned on the CPU. Levels 1.. are in vertex-cache order whatever `order`
-  // says: mesh LOD builds them so.
+  // skinned on the CPU. Levels mesh LOD builds are in vertex-cache order
+  // already; a file's own (MSFT_lod) take `order` as the full mesh does.
   MeshLevelDraw draw_of(size_t level, bool rest, IndexOrder order) const;
 };
 

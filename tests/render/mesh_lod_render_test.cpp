@@ -134,3 +134,36 @@ TEST(MeshLodRender, BenchesSharingARendererEachCullAsTheirSwitchesSay) {
     EXPECT_GT(pixels_differing(cpu_image, lod_image, 4), 0u) << round;
   }
 }
+
+// A file's own levels (MSFT_lod) come in the file's triangle order: under
+// --index-order optimized they are drawn in vertex-cache order as the full
+// mesh is, and the image is the file order's.
+TEST(MeshLodRender, TheFilesOwnLevelsTakeTheIndexOrder) {
+  OPEN_GL_OR_SKIP(context);
+  HumanoidOptions options;
+  options.lod_levels = 3;
+  const Character with_levels = generate_humanoid(options);
+  ASSERT_EQ(with_levels.file_lods.size(), 3u);
+  Shot shot;
+  shot.mode = "hwskin";
+  shot.copies = 60;
+  shot.frame = 2;
+  shot.mesh_lod = true;
+  shot.index_order = IndexOrder::File;
+  const Frame file = render(*context, with_levels, shot);
+  shot.index_order = IndexOrder::Optimized;
+  const Frame optimized = render(*context, with_levels, shot);
+  EXPECT_GT(file.counters.lod1_copies + file.counters.lod2_copies + file.counters.lod3_copies, 0u);
+  const size_t pixels = file.rgba.size() / 4;
+  ASSERT_GT(covered(file.rgba), pixels / 200);
+  EXPECT_LE(pixels_differing(file.rgba, optimized.rgba, 4) * 2000, pixels);
+  // Each level's optimized triangles are a range of their own in the index buffer.
+  context->make_current();
+  const Character* one[] = {&with_levels};
+  CharacterMeshes meshes(one);
+  meshes.upload_levels(0, mesh_lods_of(with_levels));
+  for (size_t level = 1; level <= 3; ++level)
+    EXPECT_NE(meshes[0].draw_of(level, true, IndexOrder::File).first_index,
+              meshes[0].draw_of(level, true, IndexOrder::Optimized).first_index)
+        << level;
+}
