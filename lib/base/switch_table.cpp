@@ -230,7 +230,13 @@ const std::array kSwitches = {
                "group changes as one; a character of one action re-enters it at a new phase. 0: no changes",
                [](const ModeSwitches& s) { return json(s.transitions_s); },
                [](ModeSwitches& s, std::string_view t) {
-                 return set_seconds(s.transitions_s, t, "seconds from 0 (no changes) to 3600");
+                 // A floor, so that a frame never holds more than a few changes of a copy.
+                 double value = 0;
+                 std::string problem = set_seconds(value, t, "0 (no changes) or seconds from 0.05 to 3600");
+                 if (problem.empty() && value > 0 && value < 0.05)
+                   problem = "expected 0 (no changes) or seconds from 0.05 to 3600";
+                 if (problem.empty()) s.transitions_s = value;
+                 return problem;
                },
                false},
     SwitchSpec{"blend_in", "SECONDS",

@@ -34,8 +34,11 @@ uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
                                 : mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes
                                                                              : kFloatVertexBytes;
   // Transitions: the pose and cursor of the action a copy fades from.
+  // Besides: the fade's per-copy words, the two vectors' headers, the
+  // schedule's state (scene/transitions.h) and its storage's action and weight.
   const uint64_t fading = mode.transitions_s > 0
-                              ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4 + 32
+                              ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4 +
+                                    32 + sizeof(SamplingCursor) + sizeof(LocalPose) + 56 + 8
                               : 0;
   return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */ + fading;
@@ -97,6 +100,8 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     from_cursors.resize(n);
     from_poses.resize(n);
     sampled_twice.assign(n, 0);
+    storage_action = crowd.action;
+    storage_weight.assign(n, 1.0f);
     for (size_t i = 0; i < n; ++i) reset_to_rest(characters[crowd.kind[i]]->skeleton, &from_poses[i]);
   }
   const bool shared = mode.pose == PoseStorage::SharedScratch;

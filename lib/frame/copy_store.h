@@ -49,6 +49,9 @@ struct CopyStore {
   // kSkinBatch vertices), so that skinning can stream whole lines.
   std::vector<size_t> joint_offset, vertex_offset;
   std::vector<float> storage_time;         // the time it was evaluated at (NaN: rest)
+  // Transitions: the action and fade weight it was evaluated with (empty without).
+  std::vector<uint16_t> storage_action;
+  std::vector<float> storage_weight;
   // Per pose slot: one per copy, or one per character with a shared scratch
   // pose (mode master); with per-frame string lookups, each slot's resolved
   // channels at slot_channels[slot] in targets.

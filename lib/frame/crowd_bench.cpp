@@ -360,7 +360,7 @@ void CrowdBench::count_work(Counters& counters) {
     Counters& c = character_counters_[k];
     ++c.poses_updated;
     ++c.actions_sampled;
-    if (transitions_ && store_->weights[job.leader] < 1.0f) {
+    if (transitions_ && job.weight < 1.0f) {
       ++c.fades;
       c.actions_sampled += store_->sampled_twice[job.leader];
       c.joints_blended += prepared_[k].joints;

@@ -54,7 +54,11 @@ AnimationRecord CrowdBench::measure_animation() const {
     if (!store_->visible[i] || !planner_->poses(i, store_->visible)) continue;
     ++fidelity.copies_checked;
     // Drawn at its exact time (same action: a copy's storage holds its own action).
-    if (store_->storage_time[storage_of(i)] == store_->times[i]) continue;
+    const size_t storage = storage_of(i);
+    const bool same_state = store_->storage_time[storage] == store_->times[i] &&
+                            (!transitions_ || (store_->storage_action[storage] == store_->actions[i] &&
+                                               store_->storage_weight[storage] == store_->weights[i]));
+    if (same_state) continue;
     ++fidelity.copies_deviating;
     const Character& character = character_of(i);
     const PreparedCharacter& kind = prepared_[crowd_.kind[i]];

@@ -46,7 +46,15 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   const size_t threads = parallel ? static_cast<size_t>(std::max(1, context.threads)) : 1;
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
-  if (context.mode.transitions_s > 0) blended_.resize(model_threads_);
+  if (context.mode.transitions_s > 0) {
+    // Room for the largest skeleton now, so that no frame allocates.
+    blended_.resize(model_threads_);
+    for (LocalPose& pose : blended_) {
+      pose.translations.reserve(model_joints_);
+      pose.rotations.reserve(model_joints_);
+      pose.scales.reserve(model_joints_);
+    }
+  }
   if (parallel) {
     threads_ = bench_threads(threads);
     arena_ = threads_->arena.get();
@@ -167,6 +175,10 @@ void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* looku
                               std::span(store_.palettes).subspan(store_.joint_offset[job.storage], prepared.joints)},
           "SkinningMatricesJob");
   store_.storage_time[job.storage] = job.time;
+  if (transitions) {
+    store_.storage_action[job.storage] = static_cast<uint16_t>(action_index);
+    store_.storage_weight[job.storage] = job.weight;
+  }
   if (skin && prepared.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
 }
 
@@ -189,15 +201,14 @@ void PoseUpdater::sample_action(const StateJob& job, size_t slot, size_t action_
 const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups) {
   const size_t copy = job.leader;
   store_.sampled_twice[copy] = 0;
-  const float weight = store_.weights[copy];
+  const float weight = job.weight;
   if (!(weight < 1.0f)) return &pose;
   LocalPose& from = store_.from_poses[copy];
   // Sampled: the old action at its time now, every frame. Frozen: the old
   // action at the change, once per change (the BGE's m_blendinpose).
   const bool frozen = context_.mode.crossfade == Crossfade::Frozen;
   if (!frozen || store_.frozen_change[copy] != store_.changes[copy]) {
-    sample_action(job, slot, store_.from_actions[copy], store_.from_times[copy], store_.from_cursors[copy], from,
-                  lookups);
+    sample_action(job, slot, store_.from_actions[copy], job.from_time, store_.from_cursors[copy], from, lookups);
     store_.frozen_change[copy] = store_.changes[copy];
     store_.sampled_twice[copy] = 1;
   }

@@ -30,6 +30,8 @@ UpdatePlanner::UpdatePlanner(std::span<const Character* const> characters, const
     changing_copies_.resize(n);
     changing_keys_.resize(n);
     changing_times_.resize(n);
+    changing_weights_.resize(n);
+    changing_from_times_.resize(n);
   }
 }
 
@@ -118,21 +120,25 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
       return std::min(action.end, action.start + static_cast<float>(steps * quantum));
     };
     const float time = snapped(actions[action_index], input.times[i]);
-    if (!share) {
-      jobs_.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(i), time});
-      continue;
-    }
-    uint64_t key;
-    if (!input.weights.empty() && input.weights[i] < 1.0f) {
-      // Fading: the fade's weight snapped as its clock would be (quantum over
-      // the fade's length), the old action's time as any time.
-      float weight = input.weights[i];
+    const bool fading = !input.weights.empty() && input.weights[i] < 1.0f;
+    float weight = 1.0f, from_time = 0.0f;
+    if (fading) {
+      // The fade's weight snapped as its clock would be (quantum over the
+      // fade's length), the old action's time as any time.
+      weight = input.weights[i];
       if (quantum > 0 && mode_.blend_in_s > 0) {
         const double step = quantum / mode_.blend_in_s;
         weight = std::min(1.0f, static_cast<float>(std::nearbyint(weight / step) * step));
       }
-      key = fade_key(crowd_.kind[i], action_index, time, input.from_actions[i],
-                     snapped(actions[input.from_actions[i]], input.from_times[i]), weight);
+      from_time = snapped(actions[input.from_actions[i]], input.from_times[i]);
+    }
+    if (!share) {
+      jobs_.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(i), time, weight, from_time});
+      continue;
+    }
+    uint64_t key;
+    if (fading && weight < 1.0f) {
+      key = fade_key(crowd_.kind[i], action_index, time, input.from_actions[i], from_time, weight);
     } else {
       uint32_t bits;
       std::memcpy(&bits, &time, sizeof bits);
@@ -141,6 +147,8 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     if (sharing_.key_of(sharing_.shown(i)) == key) continue;  // still in the state it shows
     changing_copies_[changes] = static_cast<uint32_t>(i);
     changing_times_[changes] = time;
+    changing_weights_[changes] = weight;
+    changing_from_times_[changes] = from_time;
     changing_keys_[changes++] = key;
   }
   by_rate[0] = every_frame;
@@ -167,7 +175,7 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     while (end < changes && changing_keys_[end] == key) ++end;
     bool evaluate = false;
     uint32_t storage = sharing_.take(copies.subspan(c, end - c), key, &evaluate);
-    if (evaluate) jobs_.push_back({copies[c], storage, changing_times_[c]});
+    if (evaluate) jobs_.push_back({copies[c], storage, changing_times_[c], changing_weights_[c], changing_from_times_[c]});
     c = end;
   }
   return jobs_;

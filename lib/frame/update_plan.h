@@ -27,6 +27,10 @@ namespace crowdprof {
 struct StateJob {
   uint32_t leader = 0, storage = 0;
   float time = 0;
+  // Transitions: the weight of the leader's action (< 1 fading) and the time
+  // of the action it fades from, as the state's key has them (snapped with
+  // the time under a quantum), so that a storage holds the state its key names.
+  float weight = 1, from_time = 0;
 };
 
 // How the run scheduled pose updates, over every frame run.
@@ -104,7 +108,8 @@ class UpdatePlanner {
   // Sharing, room for every copy: this frame's copies taking a new state, and its key.
   std::vector<uint32_t> changing_copies_;
   std::vector<uint64_t> changing_keys_;
-  std::vector<float> changing_times_;  // each changing copy's (snapped) time
+  std::vector<float> changing_times_;  // each changing copy's (snapped) time...
+  std::vector<float> changing_weights_, changing_from_times_;  // ...and fade
   PoseSharing sharing_;
   BudgetPlan budget_plan_;
   uint64_t last_updates_ = 0;  // copy updates of the last frame, for the budget

@@ -100,6 +100,15 @@ TEST(SwitchTable, IndexOrderIsOptimizedForNewRunsAndRecordedAlways) {
   EXPECT_NE(switches_from_json({{"index_order", "random"}}, back).find("file, optimized"), std::string::npos);
 }
 
+TEST(SwitchTable, TransitionsHaveAFloorSoThatAFrameHoldsFewChanges) {
+  ModeSwitches s;
+  const SwitchSpec& transitions = *find_switch("transitions");
+  EXPECT_EQ(transitions.set(s, "0"), "");
+  EXPECT_EQ(transitions.set(s, "0.05"), "");
+  EXPECT_NE(transitions.set(s, "0.0001").find("0.05"), std::string::npos);
+  EXPECT_DOUBLE_EQ(s.transitions_s, 0.05) << "a refused value leaves the switch as it was";
+}
+
 TEST(SwitchTable, HelpNamesEveryPresetsValue) {
   std::string values = preset_values(*find_switch("culling"));
   EXPECT_EQ(values, "off in master; on in the others");
