@@ -178,6 +178,7 @@ FrameRecord CrowdBench::step() {
   enter(Category::Animations);
   const uint64_t switches_before = planner_->schedule().rate_switches;
   update_poses(counters);
+  record.animation_stages = poser_->take_stage_times();
   record.rate_switches = planner_->schedule().rate_switches - switches_before;
   enter(Category::Scenegraph);
   update_scenegraph(counters);

@@ -46,6 +46,7 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   const size_t threads = parallel ? static_cast<size_t>(std::max(1, context.threads)) : 1;
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
+  stage_ns_.resize(model_threads_);
   if (context.mode.transitions_s > 0) {
     // Room for the largest skeleton now, so that no frame allocates.
     blended_.resize(model_threads_);
@@ -116,7 +117,9 @@ uint64_t PoseUpdater::update(std::span<const StateJob> jobs) {
         prefetch_while(jobs[j].storage, t % parts, parts, posed_[j]);
         while (posed_[j].load(std::memory_order_acquire) != kPosed) std::this_thread::yield();
       }
+      const auto since = CategoryClock::Clock::now();
       skin_range(jobs[j].storage, t % parts, parts);
+      stage_done(AnimationStage::Skinning, since);
     });
     return total.load();
   }
@@ -134,6 +137,25 @@ void PoseUpdater::skin(std::span<const StateJob> jobs) {
   for_each_index("skin", jobs.size(), [&](size_t j) { skin_storage(jobs[j].storage); });
 }
 
+AnimationStageTimes PoseUpdater::take_stage_times() {
+  AnimationStageTimes times;
+  for (StageNanoseconds& thread : stage_ns_)
+    for (size_t s = 0; s < kAnimationStageCount; ++s) {
+      times.ms[s] += static_cast<double>(thread.ns[s]) * 1e-6;
+      thread.ns[s] = 0;
+    }
+  return times;
+}
+
+CategoryClock::Clock::time_point PoseUpdater::stage_done(AnimationStage stage, CategoryClock::Clock::time_point since) {
+  const auto now = CategoryClock::Clock::now();
+  stage_ns_[worker_index()].ns[static_cast<size_t>(stage)] += (now - since).count();
+  if (context_.tracer)
+    context_.tracer->span(kAnimationStageNames[static_cast<size_t>(stage)], "animation", since, now,
+                          context_.trace_pid);
+  return now;
+}
+
 size_t PoseUpdater::skin_parts(size_t jobs) const {
   const auto threads = static_cast<size_t>(std::max(1, context_.threads));
   if (!arena_ || jobs == 0 || jobs >= threads || !skins_in_animations_) return 1;
@@ -146,6 +168,7 @@ size_t PoseUpdater::slot_of(size_t copy) const {
 }
 
 void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* lookups, bool skin) {
+  auto since = CategoryClock::Clock::now();
   const size_t copy = job.leader;
   const size_t k = crowd_.kind[copy];
   const Character& character = *context_.characters[k];
@@ -168,7 +191,8 @@ void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* looku
     reset_to_rest(skeleton, &store_.from_poses[copy]);
   }
   sample_action(job, slot, action_index, job.time, store_.cursors[copy], pose, lookups);
-  const LocalPose* shown = transitions ? fade(job, slot, pose, lookups) : &pose;
+  since = stage_done(AnimationStage::Sampling, since);
+  const LocalPose* shown = transitions ? fade(job, slot, pose, lookups, since) : &pose;
   std::span<glm::mat4> model = std::span(model_).subspan(worker_index() * model_joints_, prepared.joints);
   run_job(LocalToModelJob{&skeleton, shown, model}, "LocalToModelJob");
   run_job(SkinningMatricesJob{&skeleton, model,
@@ -179,7 +203,11 @@ void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* looku
     store_.storage_action[job.storage] = static_cast<uint16_t>(action_index);
     store_.storage_weight[job.storage] = job.weight;
   }
-  if (skin && prepared.site == SkinningSite::CpuInAnimations) skin_storage(job.storage);
+  since = stage_done(AnimationStage::LocalToModel, since);
+  if (skin && prepared.site == SkinningSite::CpuInAnimations) {
+    skin_storage(job.storage);
+    stage_done(AnimationStage::Skinning, since);
+  }
 }
 
 void PoseUpdater::sample_action(const StateJob& job, size_t slot, size_t action_index, float time,
@@ -198,7 +226,8 @@ void PoseUpdater::sample_action(const StateJob& job, size_t slot, size_t action_
   run_job(SamplingJob{&action, time, targets, &cursor, &pose}, "SamplingJob");
 }
 
-const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups) {
+const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups,
+                                   CategoryClock::Clock::time_point& since) {
   const size_t copy = job.leader;
   store_.sampled_twice[copy] = 0;
   const float weight = job.weight;
@@ -211,6 +240,7 @@ const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const Local
     sample_action(job, slot, store_.from_actions[copy], job.from_time, store_.from_cursors[copy], from, lookups);
     store_.frozen_change[copy] = store_.changes[copy];
     store_.sampled_twice[copy] = 1;
+    since = stage_done(AnimationStage::Sampling, since);
   }
   // Into the thread's scratch, not the copy's pose: a joint the new action
   // leaves alone must keep its rest value after the fade, as it would
@@ -220,6 +250,7 @@ const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const Local
   blended = prepared.rest_pose;  // sized for this character; reuses its storage
   const BlendLayer layers[] = {{&from, 1.0f - weight}, {&pose, weight}};
   run_job(BlendingJob{layers, &prepared.rest_pose, 0.1f, &blended}, "BlendingJob");
+  since = stage_done(AnimationStage::Blending, since);
   return &blended;
 }
 

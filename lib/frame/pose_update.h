@@ -21,6 +21,8 @@
 #include "base/modes.h"
 #include "frame/prepared_character.h"
 #include "frame/update_plan.h"
+#include "measuring/animation_stages.h"
+#include "measuring/category_clock.h"
 #include "scene/crowd.h"
 #include "skinning/output_buffer.h"
 
@@ -58,6 +60,9 @@ class PoseUpdater {
   uint64_t update(std::span<const StateJob> jobs);
   // Skins each job's storage (characters skinned in Rasterizer, mode master).
   void skin(std::span<const StateJob> jobs);
+  // The thread time update() spent in each stage since the last call, summed
+  // over the threads (skin()'s Rasterizer work is not in it).
+  AnimationStageTimes take_stage_times();
 
  private:
   // `skin`: also skin the job's storage when its character is skinned in
@@ -70,7 +75,12 @@ class PoseUpdater {
                      LocalPose& pose, uint64_t* lookups);
   // Transitions: the pose a copy shows, `pose` or, fading, its blend with the
   // pose of the action it leaves (in the thread's scratch).
-  const LocalPose* fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups);
+  // `since` moves on past the sampling and the blend it times.
+  const LocalPose* fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups,
+                        CategoryClock::Clock::time_point& since);
+  // Charges the time from `since` to now to `stage` on the calling thread (and
+  // records it as a span when tracing); returns now.
+  CategoryClock::Clock::time_point stage_done(AnimationStage stage, CategoryClock::Clock::time_point since);
   // How many parts update() skins each of this frame's states in: 1, or with
   // fewer states than threads (on a parallel mode skinning in Animations) two
   // parts a thread, so that one state keeps every thread busy.
@@ -107,6 +117,12 @@ class PoseUpdater {
   // aligned (a mat4 is one line), so that no two threads' regions share a line.
   std::vector<glm::mat4, CacheLineAllocator<glm::mat4>> model_;
   std::vector<LocalPose> blended_;  // transitions: per thread, a fading copy's blended pose
+  // Per thread, nanoseconds in each stage: a line each, so that no two threads
+  // write one.
+  struct alignas(64) StageNanoseconds {
+    std::array<int64_t, kAnimationStageCount> ns{};
+  };
+  std::vector<StageNanoseconds> stage_ns_;
   size_t model_joints_ = 0, model_threads_ = 1;
   // Per state when its mesh is skinned in parts: whether its pose is built yet.
   static constexpr uint8_t kNotPosed = 0, kPosing = 1, kPosed = 2;

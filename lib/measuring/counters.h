@@ -7,6 +7,7 @@
 #include <limits>
 #include <string_view>
 
+#include "measuring/animation_stages.h"
 #include "measuring/category_clock.h"
 #include "measuring/gpu_passes.h"
 
@@ -120,6 +121,9 @@ struct FrameRecord {
   // The calibration probe's time right after the frame (frame/calibration_probe.h),
   // ms; 0 when the run was not calibrated.
   double probe_ms = 0;
+  // Animations by stage, thread time summed over the threads
+  // (measuring/animation_stages.h).
+  AnimationStageTimes animation_stages;
   // The GPU's time for the frame from a GL timer query (GL_TIME_ELAPSED), ms;
   // NaN when not measured (no GL backend, no timer, or not read back). Not a
   // category: the GPU runs beside the CPU's frame, not in it.

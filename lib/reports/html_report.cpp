@@ -437,6 +437,30 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
   return out + "</table></section>\n";
 }
 
+// Each run's Animations by stage (thread ms, medians): only when some run has
+// the split (results before it have none).
+std::string animation_stages_section(const std::vector<ReportRun>& runs) {
+  if (std::none_of(runs.begin(), runs.end(), [](const ReportRun& r) { return animation_split(r.result).has_value(); }))
+    return {};
+  std::string out = "<section id=\"animation-stages\"><h2>Animations by stage (thread time, median a frame)</h2>\n"
+                    "<p>Each stage's time summed over the threads that ran it; on one thread they add up to "
+                    "Animations, less what the pose update spends between stages.</p>\n<table><tr>"
+                    "<th class=\"name\">run</th>";
+  for (std::string_view label : kAnimationStageLabels) out += "<th>" + std::string(label) + " ms</th>";
+  out += "<th>threads</th><th>of Animations' thread time</th></tr>\n";
+  for (const ReportRun& run : runs) {
+    std::optional<AnimationSplit> split = animation_split(run.result);
+    if (!split) continue;
+    out += "<tr><td class=\"name\">" + h(run.label) + "</td>";
+    for (size_t st = 0; st < kAnimationStageCount; ++st)
+      out += "<td>" + report_number(split->median_ms[st], 3) + " (" + report_number(100.0 * split->share[st], 0) +
+             "%)</td>";
+    out += "<td>" + std::to_string(split->threads) + "</td><td>" + report_number(100.0 * split->coverage, 0) +
+           "%</td></tr>\n";
+  }
+  return out + "</table></section>\n";
+}
+
 std::string percentile_table(const std::vector<ReportRun>& runs) {
   std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
                     "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
@@ -579,6 +603,7 @@ std::string html_report(const HtmlReportInput& given) {
   body += headline_section(input.runs);
   body += profile_section(input.runs);
   body += gpu_passes_section(input.runs);
+  body += animation_stages_section(input.runs);
 
   SvgDocument frame_svg;
   frame_svg.add(frame_time_chart(input.runs, colours));

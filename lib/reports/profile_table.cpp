@@ -171,6 +171,15 @@ std::string format_profile(const Result& report) {
   std::snprintf(line, sizeof line, "Slow frames: p95 %.2f | p99 %.2f | max %.2f ms\n", s.p95, s.p99,
                 s.max);
   out << line;
+  if (std::optional<AnimationSplit> split = animation_split(report)) {
+    out << "Animations by stage:";
+    for (size_t st = 0; st < kAnimationStageCount; ++st)
+      out << (st ? " |" : "") << " " << kAnimationStageLabels[st] << " " << fixed(split->median_ms[st], 2);
+    out << " ms of thread time (medians";
+    if (split->threads > 1) out << ", " << split->threads << " threads";
+    out << "; " << fixed(100.0 * split->coverage, 0) << "% of Animations'"
+        << (split->threads > 1 ? " thread time" : "") << ")\n";
+  }
   const Counters& k = frame.counters;
   if (run.crowd.size() > 1)
     out << run.characters << " characters of " << run.crowd.size() << " kinds (up to " << run.joints << " joints, "
@@ -181,7 +190,11 @@ std::string format_profile(const Result& report) {
       << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
       << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
       << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
-      << " lookups per frame\n";
+      << " lookups";
+  if (run.switches.transitions_s > 0)
+    out << ", " << k.actions_sampled << " actions sampled, " << k.fades << " fades, " << k.joints_blended
+        << " joints blended";
+  out << " per frame\n";
   if (run.backend != "none" || k.copies_fallback > 0) {
     out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
         << " bytes uploaded per frame";
@@ -286,6 +299,8 @@ std::string csv_header() {
   // when not measured; then the CPU time of every thread in the frame (check's
   // default metric).
   header += ",gpu_ms,cpu_ms";
+  // Then Animations by stage, thread ms (measuring/animation_stages.h).
+  for (size_t st = 0; st < kAnimationStageCount; ++st) header += "," + animation_stage_series(st);
   return header;
 }
 
@@ -298,6 +313,7 @@ void write_csv(const Result& report, std::ostream& out) {
     for (double ms : f.times.ms) out << "," << fixed(ms, 4);
     for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
     out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a")) << "," << fixed(f.cpu_ms, 4);
+    for (double ms : f.animation_stages.ms) out << "," << fixed(ms, 4);
     out << "\n";
   }
 }

@@ -23,6 +23,28 @@ std::vector<double> calibrated_frames(const std::vector<double>& frame_ms, const
   return ratios;
 }
 
+std::optional<AnimationSplit> animation_split(const Result& result) {
+  const ResultSamples& s = result.samples;
+  const size_t frames = s.frame_ms.size();
+  for (const std::vector<double>& stage : s.animation_stage_ms)
+    if (stage.size() != frames || frames == 0) return std::nullopt;
+  AnimationSplit split;
+  split.threads = result.run.switches.parallel ? std::max(1, result.run.threads) : 1;
+  double sum = 0;
+  for (size_t st = 0; st < kAnimationStageCount; ++st) sum += split.median_ms[st] = quantile(s.animation_stage_ms[st], 0.5);
+  if (!(sum > 0)) return std::nullopt;
+  for (size_t st = 0; st < kAnimationStageCount; ++st) split.share[st] = split.median_ms[st] / sum;
+  const std::vector<double>& animations = s.category_ms[static_cast<size_t>(Category::Animations)];
+  std::vector<double> covered;
+  for (size_t f = 0; f < frames; ++f) {
+    double staged = 0;
+    for (size_t st = 0; st < kAnimationStageCount; ++st) staged += s.animation_stage_ms[st][f];
+    if (animations[f] > 0) covered.push_back(staged / (animations[f] * split.threads));
+  }
+  split.coverage = covered.empty() ? 0 : quantile(covered, 0.5);
+  return split;
+}
+
 const std::vector<double>* metric_samples(const Result& result, std::string_view key) {
   const ResultSamples& s = result.samples;
   if (key == "frame_ms") return &s.frame_ms;
@@ -88,6 +110,8 @@ void record_samples(Result& r) {
     r.samples.cpu_ms.push_back(f.cpu_ms);
     if (r.calibration_probe) r.samples.probe_ms.push_back(f.probe_ms);
     for (size_t c = 0; c < kCategoryCount; ++c) r.samples.category_ms[c].push_back(f.times.ms[c]);
+    for (size_t st = 0; st < kAnimationStageCount; ++st)
+      r.samples.animation_stage_ms[st].push_back(f.animation_stages.ms[st]);
   }
   // GPU times only when a timer measured some frame: never a column of NaN.
   if (std::any_of(frames.begin(), frames.end(), [](const FrameRecord& f) { return std::isfinite(f.gpu_ms); }))

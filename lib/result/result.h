@@ -162,6 +162,9 @@ struct ResultSamples {
   // over its probe (a ratio: the frame in the machine's speed of that moment).
   // Both empty otherwise.
   std::vector<double> probe_ms, calibrated;
+  // Animations by stage, thread ms per frame (measuring/animation_stages.h);
+  // all empty in results recorded before the split (2026-11-29).
+  std::array<std::vector<double>, kAnimationStageCount> animation_stage_ms;
 };
 
 // The median counters per frame; results recorded before a counter existed
@@ -260,6 +263,19 @@ void record_samples(Result& result);
 // Times a frame of `passes` (modes.h) draws the crowd in `pass`: 0 for the
 // skinning pass, the shadow cascades for shadows, else 1 when drawn.
 uint32_t crowd_draws_in(GpuPass pass, uint32_t passes);
+
+// The Animations category by stage: each stage's median thread ms over the
+// frames, its share of the four medians' sum, the threads that ran them
+// (run.threads on a parallel mode, else 1), and the median over frames of
+// how much of Animations' thread time (its wall time x those threads) the
+// stages cover. Empty without a split (older results) or when no stage took
+// any time (nothing posed).
+struct AnimationSplit {
+  std::array<double, kAnimationStageCount> median_ms{}, share{};
+  int threads = 1;
+  double coverage = 0;
+};
+std::optional<AnimationSplit> animation_split(const Result& result);
 
 // Index of the frame whose time is the median (the lower one for an even count).
 size_t median_frame(const std::vector<FrameRecord>& frames);

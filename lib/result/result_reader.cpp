@@ -349,6 +349,10 @@ void read_samples(const Reader& in, Result& r) {
   }
   for (size_t c = 0; c < kCategoryCount; ++c)
     s.category_ms[c] = in.samples("/samples/" + series_key(r.format, static_cast<Category>(c)), frames);
+  // The Animations split (2026-11-29): all four stages or none.
+  if (in.has("/samples/" + animation_stage_series(0)))
+    for (size_t st = 0; st < kAnimationStageCount; ++st)
+      s.animation_stage_ms[st] = in.samples("/samples/" + animation_stage_series(st), frames);
   if (in.has("/samples/gpu_ms") && !in.at("/samples/gpu_ms").is_null())
     s.gpu_ms = in.samples("/samples/gpu_ms", frames, true);
   // No frame timed reads as not timed, as it is written.

@@ -220,6 +220,16 @@ nlohmann::json result_to_json(const Result& r) {
     j["categories"][name] = summary_json(s.category_ms[c]);
     samples[name] = s.category_ms[c];
   }
+  if (std::optional<AnimationSplit> split = animation_split(r)) {
+    json stages = json::object();
+    for (size_t st = 0; st < kAnimationStageCount; ++st) {
+      stages[std::string(kAnimationStageNames[st])] = summary_json(s.animation_stage_ms[st]);
+      stages[std::string(kAnimationStageNames[st])]["share"] = split->share[st];
+      samples[animation_stage_series(st)] = s.animation_stage_ms[st];
+    }
+    j["animations_split"] = {{"unit", "thread ms"}, {"threads", split->threads}, {"coverage", split->coverage},
+                             {"stages", stages}};
+  }
   write_gpu_time(r, j, samples);
   j["counters"] = json::object();
   for (size_t i = 0; i < kCounterFields.size(); ++i)

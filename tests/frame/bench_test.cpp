@@ -171,8 +171,11 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   std::string line;
   std::getline(csv, line);
   size_t columns = std::count(line.begin(), line.end(), ',') + 1;
-  EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 2);  // then gpu_ms, cpu_ms
-  EXPECT_TRUE(line.ends_with(",gpu_ms,cpu_ms")) << line;
+  // then gpu_ms, cpu_ms and Animations by stage
+  EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 2 + kAnimationStageCount);
+  EXPECT_TRUE(line.ends_with(",gpu_ms,cpu_ms,animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,"
+                             "animation_skinning_ms"))
+      << line;
   EXPECT_EQ(line.rfind("frame,mode,characters,threads,frame_ms,physics_ms", 0), 0u);
   int rows = 0;
   std::vector<double> cpu;
@@ -185,7 +188,7 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
     double frame = std::stod(cells[4]), sum = 0;
     for (size_t c = 0; c < kCategoryCount; ++c) sum += std::stod(cells[5 + c]);
     EXPECT_NEAR(sum, frame, frame * 0.01);
-    cpu.push_back(std::stod(cells.back()));
+    cpu.push_back(std::stod(cells[cells.size() - 1 - kAnimationStageCount]));
   }
   EXPECT_EQ(rows, 4);
 

@@ -285,6 +285,38 @@ TEST(ResultCodec, BytesUploadedPerCopyOnScreenIsTheMedianFrameAndReadsBack) {
 }
 
 // Issue 52: palettes and records apart, each its own median, beside the total.
+TEST(ResultCodec, TheAnimationSplitReadsBackAndIsOptional) {
+  Result report = test::fake_run("threaded", 40, {2.0, 2.5, 2.2}, 1.0);
+  report.run.threads = 2;
+  report.run.switches.parallel = true;
+  for (size_t f = 0; f < report.frame_records.size(); ++f)
+    report.frame_records[f].animation_stages.ms = {0.5 + 0.1 * static_cast<double>(f), 0.25, 0.5, 2.0};
+  record_samples(report);
+  const std::optional<AnimationSplit> split = animation_split(report);
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->threads, 2);
+  EXPECT_DOUBLE_EQ(split->median_ms[0], 0.6);
+  EXPECT_DOUBLE_EQ(split->share[3], 2.0 / 3.35);
+  // Per frame 3.25/4, 3.35/5 and 3.45/4.4 of Animations x 2 threads: the median is frame 2's.
+  EXPECT_DOUBLE_EQ(split->coverage, 3.45 / 4.4);
+  json written = result_to_json(report);
+  EXPECT_DOUBLE_EQ(written["animations_split"]["stages"]["skinning"]["median_ms"].get<double>(), 2.0);
+  Result read = result_from_json(written, "r.json");
+  EXPECT_EQ(read.samples.animation_stage_ms, report.samples.animation_stage_ms);
+  EXPECT_EQ(result_to_json(read), written);
+
+  // Results from before the split have none, and say nothing of it.
+  written["samples"].erase("animation_sampling_ms");
+  written["samples"].erase("animation_blending_ms");
+  written["samples"].erase("animation_local_to_model_ms");
+  written["samples"].erase("animation_skinning_ms");
+  written.erase("animations_split");
+  Result old = result_from_json(written, "r.json");
+  EXPECT_FALSE(animation_split(old));
+  EXPECT_FALSE(result_to_json(old).contains("animations_split"));
+  EXPECT_EQ(format_profile(old).find("Animations by stage"), std::string::npos);
+}
+
 TEST(ResultCodec, PaletteAndRecordBytesPerCopyOnScreenReadBackAndAreOptional) {
   Result run = test::fake_run("instanced", 40, {1.0, 1.0, 1.0});
   // Frame 0 sends the placements too (in the total only): 16-byte records throughout.
