@@ -28,7 +28,8 @@ bool cpu_vertices(const ModeSwitches& mode) {
 }
 
 // What one copy and one pose slot of a character cost.
-uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
+// `fades`: the copy may change action (transitions).
+uint64_t copy_bytes(const Character& c, const ModeSwitches& mode, bool fades) {
   const uint64_t channels = max_channels(c);
   const uint64_t vertex_bytes = !cpu_vertices(mode)                         ? 0
                                 : mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes
@@ -36,7 +37,7 @@ uint64_t copy_bytes(const Character& c, const ModeSwitches& mode) {
   // Transitions: the pose and cursor of the action a copy fades from.
   // Besides: the fade's per-copy words, the two vectors' headers, the
   // schedule's state (scene/transitions.h) and its storage's action and weight.
-  const uint64_t fading = mode.transitions_s > 0
+  const uint64_t fading = fades
                               ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4 +
                                     32 + sizeof(SamplingCursor) + sizeof(LocalPose) + 56 + 8
                               : 0;
@@ -53,18 +54,22 @@ uint64_t slot_bytes(const Character& c) {
 
 uint64_t estimate_bench_bytes(const Character& c, size_t copies, const ModeSwitches& mode) {
   uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies;
-  return c.shared_bytes() + copies * copy_bytes(c, mode) + slots * slot_bytes(c);
+  return c.shared_bytes() + copies * copy_bytes(c, mode, mode.transitions_s > 0) + slots * slot_bytes(c);
 }
 
 uint64_t estimate_bench_bytes(std::span<const Character* const> characters, const CrowdOptions& crowd,
                               const ModeSwitches& mode) {
   uint64_t bytes = 0;
   std::vector<size_t> copies(characters.size(), 0);
+  std::vector<uint8_t> fades(characters.size(), mode.transitions_s > 0);
   for (const CrowdGroup& group : crowd_groups(crowd))
-    if (group.character < copies.size()) copies[group.character] += group.copies;
+    if (group.character < copies.size()) {
+      copies[group.character] += group.copies;
+      if (group.transitions) fades[group.character] = group.transitions->mean_s > 0;
+    }
   for (size_t k = 0; k < characters.size(); ++k) {
     uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies[k];
-    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode) + slots * slot_bytes(*characters[k]);
+    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode, fades[k]) + slots * slot_bytes(*characters[k]);
   }
   return bytes;
 }
@@ -89,7 +94,7 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     const Character& character = *characters[crowd.kind[i]];
     if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
   }
-  if (mode.transitions_s > 0) {
+  if (!crowd.transitions.empty()) {
     actions = crowd.action;
     from_actions = crowd.action;
     weights.assign(n, 1.0f);

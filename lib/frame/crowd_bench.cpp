@@ -42,7 +42,13 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
       throw UsageError("random actions need a character with actions");
   }
   const ModeSwitches& mode = config.mode;
-  crowd_ = make_crowd(characters_, config.crowd);
+  CrowdOptions crowd = config.crowd;
+  crowd.transitions = {mode.transitions_s, mode.blend_in_s};
+  crowd_ = make_crowd(characters_, crowd);
+  if (!crowd_.transitions.empty() && mode.skinning == SkinningSite::Baked)
+    throw SettingsUsageError(
+        "the scene's groups change action (transitions), which fade on the CPU's poses; skinning baked does not "
+        "fade yet: use {skinning} gpu, compute or animations");
   camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect, config.lens);
   frustum_ = frustum_of(camera_.view_projection());
   // The immutable data first, then the arrays each copy writes, then the jobs.
@@ -51,9 +57,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   character_counters_.resize(characters_.size());
   if (mode.mesh_lod) choose_mesh_levels();
   store_ = std::make_unique<CopyStore>(characters_, prepared_, crowd_, mode, mesh_level_);
-  if (mode.transitions_s > 0)
-    transitions_ = std::make_unique<TransitionSchedule>(
-        characters_, crowd_, TransitionTiming{mode.transitions_s, mode.blend_in_s}, config.crowd.seed);
+  if (!crowd_.transitions.empty())
+    transitions_ = std::make_unique<TransitionSchedule>(characters_, crowd_, config.crowd.seed);
   std::vector<uint8_t> posed_on_cpu;
   for (const PreparedCharacter& p : prepared_) posed_on_cpu.push_back(p.posed_on_cpu);
   planner_ = std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));

@@ -47,7 +47,7 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
   stage_ns_.resize(model_threads_);
-  if (context.mode.transitions_s > 0) {
+  if (!context.crowd->transitions.empty()) {
     // Room for the largest skeleton now, so that no frame allocates.
     blended_.resize(model_threads_);
     for (LocalPose& pose : blended_) {

@@ -126,8 +126,9 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
       // The fade's weight snapped as its clock would be (quantum over the
       // fade's length), the old action's time as any time.
       weight = input.weights[i];
-      if (quantum > 0 && mode_.blend_in_s > 0) {
-        const double step = quantum / mode_.blend_in_s;
+      const double blend_in = crowd_.transitions[i].blend_in_s;
+      if (quantum > 0 && blend_in > 0) {
+        const double step = quantum / blend_in;
         weight = std::min(1.0f, static_cast<float>(std::nearbyint(weight / step) * step));
       }
       from_time = snapped(actions[input.from_actions[i]], input.from_times[i]);

@@ -124,7 +124,11 @@ Crowd make_crowd(std::span<const Character* const> characters, const CrowdOption
     crowd.phase.push_back(phase);
     crowd.schedule_stream.push_back(
         static_cast<uint32_t>(group.actions == ActionChoice::Shared ? n + pick : i));
+    crowd.transitions.push_back(group.transitions.value_or(options.transitions));
   }
+  if (std::none_of(crowd.transitions.begin(), crowd.transitions.end(),
+                   [](const TransitionTiming& t) { return t.mean_s > 0; }))
+    crowd.transitions.clear();
   crowd.crowd_box = crowd.world_boxes.empty() ? Aabb{} : crowd.world_boxes.front();
   for (const Aabb& box : crowd.world_boxes) {
     crowd.crowd_box.min = glm::min(crowd.crowd_box.min, box.min);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +21,13 @@ enum class ActionChoice : uint8_t {
   Weighted,  // a random phase, and an action drawn from a weighted list
 };
 
+// How often copies change action and how long they fade (issue 53;
+// scene/transitions.h): after an interval around mean_s, over blend_in_s.
+struct TransitionTiming {
+  double mean_s = 0.0;      // 0: the copy keeps its action
+  double blend_in_s = 0.0;  // >= 0, at most half of mean_s: fades never overlap
+};
+
 // The copies of one character and what they play.
 struct CrowdGroup {
   size_t character = 0;  // index into the crowd's characters
@@ -27,6 +35,8 @@ struct CrowdGroup {
   ActionChoice actions = ActionChoice::Shared;
   int shared_action = 0;        // with Shared: the action every copy plays
   std::vector<double> weights;  // with Weighted: one per action of the character, not all zero
+  // The group's own transitions (a scene file's "transitions"), else the crowd's.
+  std::optional<TransitionTiming> transitions;
 };
 
 // Where copies stand: a grid of rows across X, front row at +Z.
@@ -47,6 +57,8 @@ struct CrowdOptions {
   // counts add up to something else (a crowd-size sweep of a mixed scene).
   std::vector<CrowdGroup> groups;
   CrowdLayout layout;
+  // The transitions of groups that state none (--transitions, --blend-in).
+  TransitionTiming transitions;
 };
 
 // The groups `options` describes, with counts that add up to options.copies
@@ -64,6 +76,8 @@ struct Crowd {
   // (scene/transitions.h): its own (its index), or with shared actions its
   // group's (past every copy's), so that the group changes as one.
   std::vector<uint32_t> schedule_stream;
+  // Per copy, its group's transitions; empty when no copy changes action.
+  std::vector<TransitionTiming> transitions;
   std::vector<Aabb> character_boxes;  // per character: animated_bounds
   std::vector<Aabb> world_boxes;    // per copy
   Aabb crowd_box;                   // around every copy

@@ -11,6 +11,7 @@
 
 #include "base/errors.h"
 #include "base/input_file.h"
+#include "base/modes.h"
 
 namespace crowdprof {
 
@@ -120,6 +121,25 @@ std::string folder_of(const std::string& path) {
   return parent.empty() ? std::string() : parent.string() + "/";
 }
 
+// A group's "transitions" (0: it keeps its actions; else seconds, as
+// --transitions takes) and "blend_in" (as --blend-in, its default too; at most
+// half of the group's transitions, so that its fades never overlap).
+TransitionTiming group_transitions(const SceneReader& r, const json& entry, const std::string& key) {
+  TransitionTiming t;
+  t.mean_s = r.number(entry["transitions"], key + ".transitions", 0, 3600);
+  if (t.mean_s > 0 && t.mean_s < 0.05)
+    r.fail(key + ".transitions", "expected 0 (no changes) or seconds from 0.05 to 3600");
+  const bool given = entry.contains("blend_in");
+  t.blend_in_s = given ? r.number(entry["blend_in"], key + ".blend_in", 0, 3600) : ModeSwitches{}.blend_in_s;
+  if (t.mean_s > 0 && t.blend_in_s > 0.5 * t.mean_s) {
+    char why[160];
+    std::snprintf(why, sizeof why, "%s%g s is more than half of transitions (%g s): fades would overlap",
+                  given ? "" : "the default ", t.blend_in_s, t.mean_s);
+    r.fail(key + ".blend_in", why);
+  }
+  return t;
+}
+
 }  // namespace
 
 size_t SceneFile::copies() const {
@@ -169,7 +189,7 @@ SceneFile load_scene_file(const std::string& path) {
   for (size_t i = 0; i < characters.size(); ++i) {
     std::string key = "characters[" + std::to_string(i) + "]";
     const json& entry = characters[i];
-    r.only_keys(entry, key, {"file", "generate", "count", "actions", "action"});
+    r.only_keys(entry, key, {"file", "generate", "count", "actions", "action", "transitions", "blend_in"});
     SceneCharacter c;
     if (entry.contains("file") && entry.contains("generate")) r.fail(key + ".generate", "with file: give one of the two");
     if (!entry.contains("file") && !entry.contains("generate")) r.fail(key + ".file", "missing (or generate)");
@@ -214,6 +234,9 @@ SceneFile load_scene_file(const std::string& path) {
       if (c.actions != ActionChoice::Shared) r.fail(key + ".action", "only with \"actions\": \"shared\"");
       c.action = r.text(entry["action"], key + ".action");
     }
+    if (entry.contains("blend_in") && !entry.contains("transitions"))
+      r.fail(key + ".blend_in", "only with \"transitions\" in the same entry");
+    if (entry.contains("transitions")) c.transitions = group_transitions(r, entry, key);
     scene.characters.push_back(std::move(c));
   }
   if (scene.copies() == 0) r.fail("characters", "no copies at all: every count is 0");
@@ -292,6 +315,7 @@ CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& ch
   group.character = index;
   group.copies = c.count;
   group.actions = c.actions;
+  group.transitions = c.transitions;
   auto find = [&](const std::string& name, const std::string& at) {
     std::string names;
     for (size_t a = 0; a < character.actions.size(); ++a) {

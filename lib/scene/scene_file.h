@@ -37,6 +37,9 @@ struct SceneCharacter {
   ActionChoice actions = ActionChoice::Shared;
   std::string action;  // with Shared: the action's name; empty: the first
   std::vector<std::pair<std::string, double>> weights;  // with Weighted: by action name
+  // "transitions" and "blend_in": the group's own, over --transitions and
+  // --blend-in (a mean of 0 keeps its actions while others change).
+  std::optional<TransitionTiming> transitions;
 };
 
 struct SceneFile {

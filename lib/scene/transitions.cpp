@@ -25,19 +25,31 @@ float ActionClock::local_time(const Action& action, double t) const {
 }
 
 TransitionSchedule::TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd,
+                                       uint32_t seed)
+    : TransitionSchedule(characters, crowd, TransitionTiming{}, seed) {
+  if (!crowd.transitions.empty()) timing_ = crowd.transitions;
+  schedule_first_changes();
+}
+
+TransitionSchedule::TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd,
                                        TransitionTiming timing, uint32_t seed)
-    : characters_(characters), crowd_(&crowd), timing_(timing), seed_(seed) {
+    : characters_(characters), crowd_(&crowd), timing_(crowd.size(), timing), seed_(seed) {
   copies_.resize(crowd.size());
   next_.resize(crowd.size());
   for (size_t i = 0; i < crowd.size(); ++i) {
     CopyAction& c = copies_[i];
     c.now = {crowd.action[i], crowd.phase[i], 0.0};
     c.before = c.now;
-    // A schedule already running when the run starts: the first change comes
-    // a random part of an interval in, so fades are as common from frame 0 on.
-    const uint32_t stream = crowd.schedule_stream[i];
-    next_[i] = draw(stream, 0, 3) * interval(stream, 1);
   }
+  schedule_first_changes();
+}
+
+void TransitionSchedule::schedule_first_changes() {
+  // A schedule already running when the run starts: the first change comes
+  // a random part of an interval in, so fades are as common from frame 0 on.
+  for (size_t i = 0; i < copies_.size(); ++i)
+    next_[i] = timing_[i].mean_s > 0 ? draw(crowd_->schedule_stream[i], 0, 3) * interval(i, 1)
+                                     : std::numeric_limits<double>::infinity();
 }
 
 double TransitionSchedule::draw(uint32_t stream, uint32_t change, uint32_t what) const {
@@ -45,8 +57,10 @@ double TransitionSchedule::draw(uint32_t stream, uint32_t change, uint32_t what)
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
-double TransitionSchedule::interval(uint32_t stream, uint32_t change) const {
-  return timing_.mean_s * (0.5 + draw(stream, change, 0));
+double TransitionSchedule::interval(size_t copy, uint32_t change) const {
+  const double mean = timing_[copy].mean_s;
+  if (!(mean > 0)) return std::numeric_limits<double>::infinity();
+  return mean * (0.5 + draw(crowd_->schedule_stream[copy], change, 0));
 }
 
 void TransitionSchedule::change(size_t copy, double at) {
@@ -65,12 +79,12 @@ void TransitionSchedule::change(size_t copy, double at) {
   }
   const float duration = actions.empty() ? 0.0f : actions[next].duration();
   c.now = {next, static_cast<float>(draw(stream, n, 2)) * duration, at};
-  next_[copy] = at + interval(stream, n + 1);
+  next_[copy] = at + interval(copy, n + 1);
 }
 
 void TransitionSchedule::advance(double t) {
-  const double blend = timing_.blend_in_s;
   for (size_t i = 0; i < copies_.size(); ++i) {
+    const double blend = timing_[i].blend_in_s;
     while (t >= next_[i]) change(i, next_[i]);
     CopyAction& c = copies_[i];
     const double since = t - c.changed_at;

@@ -44,15 +44,13 @@ struct CopyAction {
   bool fading() const { return weight < 1.0f; }
 };
 
-struct TransitionTiming {
-  double mean_s = 0.0;      // > 0
-  double blend_in_s = 0.0;  // >= 0, at most half of mean_s: fades never overlap
-};
-
 class TransitionSchedule {
  public:
   // For `crowd` of `characters`, its first actions and phases as the crowd
-  // has them; times move forward from 0.
+  // has them, each copy on its group's timing (crowd.transitions; a mean of
+  // 0 keeps its action); times move forward from 0.
+  TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd, uint32_t seed);
+  // The same with one timing for every copy.
   TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd, TransitionTiming timing,
                      uint32_t seed);
 
@@ -62,17 +60,19 @@ class TransitionSchedule {
   const CopyAction& operator[](size_t copy) const { return copies_[copy]; }
   size_t size() const { return copies_.size(); }
 
-  // The interval before change `change` of stream `stream` (change 1 is the
-  // first), and the uniform draw in [0, 1) that picks what follows it.
-  double interval(uint32_t stream, uint32_t change) const;
+  // The interval before change `change` of copy `copy`'s stream (change 1 is
+  // the first): infinite when it keeps its action. And the uniform draw in
+  // [0, 1) of a stream that picks what follows a change.
+  double interval(size_t copy, uint32_t change) const;
   double draw(uint32_t stream, uint32_t change, uint32_t what) const;
 
  private:
   void change(size_t copy, double at);
+  void schedule_first_changes();
 
   std::span<const Character* const> characters_;
   const Crowd* crowd_;
-  TransitionTiming timing_;
+  std::vector<TransitionTiming> timing_;  // per copy
   uint32_t seed_;
   std::vector<CopyAction> copies_;
   std::vector<double> next_;  // per copy, when it changes next

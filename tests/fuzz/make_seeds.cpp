@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
     test::write_file(scenes / "shared.json", R"({"characters": [{"file": "character.glb", "count": 3, "actions": "shared", "action": "bend"}]})");
     test::write_file(scenes / "everything.json", R"({
   "characters": [
-    {"file": "character.glb", "count": 4, "actions": "random"},
-    {"file": "character.glb#skin=0", "count": 2, "actions": {"bend": 3}}
+    {"file": "character.glb", "count": 4, "actions": "random", "transitions": 2, "blend_in": 0.5},
+    {"file": "character.glb#skin=0", "count": 2, "actions": {"bend": 3}, "transitions": 0}
   ],
   "seed": 7,
   "layout": {"type": "grid", "spacing": "auto", "rows": 2, "jitter": 0.3, "seed": 2},

@@ -178,6 +178,16 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
        "characters[0].actions"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"actions\": {\"walk\": \"x\"}}]}",
        "characters[0].actions.walk"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": 0.01}]}",
+       "characters[0].transitions"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": \"often\"}]}",
+       "characters[0].transitions"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"blend_in\": 0.5}]}",
+       "characters[0].blend_in"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": 2, \"blend_in\": 1.5}]}",
+       "characters[0].blend_in"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": 0.3}]}",
+       "characters[0].blend_in: the default 0.25 s"},
       {"{\"characters\": [" + ok_character + "]", "truncated JSON"},
       {"{\"characters\": [" + ok_character + "], \"seed\": 1e400}", "a number too large for a double"},
       {"{\"characters\": [" + ok_character + "]]}", "broken JSON"},
@@ -191,6 +201,48 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
     EXPECT_NE(r.err.find(path.string() + ": " + cases[i].key), std::string::npos)
         << cases[i].text << "\n" << r.err;
   }
+}
+
+// Each group changes action on its own timing: its "transitions" over the
+// command line's, 0 keeping its action while others change.
+TEST(SceneFile, EachGroupFadesOnItsOwnTiming) {
+  auto dir = crowdprof::test::scratch_dir("scene_transitions");
+  const std::string glb = scenes("humanoid.glb");
+  auto scene = dir / "fading.json";
+  std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb
+                       << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, \"blend_in\": 0.2},"
+                          " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0}]}";
+  auto alone = dir / "alone.json", over = dir / "over.json", plain = dir / "plain.json";
+  // No --transitions: the first group's own still fade.
+  auto r = run_cli("bench '" + scene.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + alone.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json a = read_json(alone);
+  EXPECT_GT(a["counters"]["fades"].get<int>(), 0);
+  // About 0.2 / 0.5 of the first group's 30 copies fade in a frame, none of
+  // the second's: about half as many as when both groups change.
+  auto both = dir / "both.json", both_result = dir / "both_result.json";
+  std::ofstream(both) << "{\"characters\": [{\"file\": \"" << glb
+                      << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, \"blend_in\": 0.2},"
+                         " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, "
+                         "\"blend_in\": 0.2}]}";
+  r = run_cli("bench '" + both.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + both_result.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const int fades_alone = a["counters"]["fades"].get<int>(), fades_both = read_json(both_result)["counters"]["fades"];
+  EXPECT_LE(fades_alone, 20);
+  EXPECT_GT(fades_both, fades_alone * 3 / 2) << fades_alone << " fades with one group changing";
+  // The command line's timing reaches neither group: both state their own.
+  r = run_cli("bench '" + scene.string() + "' --camera all --frames 60 --warmup 0 -q --transitions 100 --json '" +
+              over.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json(over)["digest"], a["digest"]);
+  // Without the groups' timings, a scene of the same crowd loops its actions.
+  auto looping = dir / "looping.json";
+  std::ofstream(looping) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\"},"
+                            " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\"}]}";
+  r = run_cli("bench '" + looping.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + plain.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json(plain)["counters"]["fades"], 0);
+  EXPECT_NE(read_json(plain)["digest"], a["digest"]);
 }
 
 TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
