@@ -1,7 +1,7 @@
 # cmake --install and the .deb: the binary to bin/, the scenes to
 # share/crowdprof/scenes (scenes/CMakeLists.txt), the man pages to share/man
 # (man_pages.cmake); the shaders need no files, they are inside the binary
-# (shaders/embed.cmake). The library, its headers and a CMake package config
+# (cmake/embed_files.cmake). The library, its headers and a CMake package config
 # (find_package(crowdprof), target crowdprof::crowdprof) form the development
 # component. Tested by tests/install/.
 install(TARGETS crowdprof_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)

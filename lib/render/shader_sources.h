@@ -1,4 +1,4 @@
-// The GLSL sources in shaders/, embedded at build time (shaders/embed.cmake) so
+// The GLSL sources in shaders/, embedded at build time (cmake/embed_files.cmake) so
 // the binary needs no install directory to find them.
 #pragma once
 

@@ -10,6 +10,7 @@
 
 #include "base/errors.h"
 #include "base/switch_table.h"
+#include "reports/page_files.h"
 #include "reports/profile_table.h"
 #include "result/result_codec.h"
 #include "base/number_text.h"
@@ -87,95 +88,6 @@ void label_runs(std::vector<ReportRun>& all) {
     }
   }
 }
-
-const char* kStyle = R"(
-body{font-family:sans-serif;margin:24px auto;max-width:1000px;color:#222;padding:0 12px}
-h1{font-size:1.5em;margin-bottom:4px}h2{font-size:1.2em;margin-top:28px;border-bottom:1px solid #ccc}
-table{border-collapse:collapse;margin:8px 0}td,th{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}
-th{background:#f4f4f4}td.name,th.name{text-align:left}.sources{color:#555;font-size:.9em}
-svg{max-width:100%;height:auto;display:block;margin:8px 0}.bar{display:inline-block;height:10px;background:#4E79A7}
-.regression{color:#B00020;font-weight:bold}.ok{color:#1B7F3B;font-weight:bold}pre{background:#f7f7f7;padding:8px}
-img.screenshot{max-width:100%;border:1px solid #ccc}.swatch{display:inline-block;width:10px;height:10px;margin-right:4px}
-table.headline td,table.headline th{font-size:1.25em;padding:4px 14px}table.headline td.key{font-weight:bold}
-)";
-
-// Records script errors where a reader (and the browser test) finds them.
-const char* kErrorHook = R"(<script>
-window.addEventListener('error', function (e) {
-  var html = document.documentElement;
-  html.setAttribute('data-js-errors', (html.getAttribute('data-js-errors') || '') + e.message + '; ');
-});
-</script>
-)";
-
-// Counts what the browser drew of every chart and compares it with what the
-// chart says it holds: series, points per series (parsed by the browser from
-// the SVG), segments per bar; every point inside its picture; and every image
-// decoded. It runs once the page has loaded, images included.
-const char* kSelfCheck = R"(<script>
-window.addEventListener('load', function () {
-  var problems = [];
-  var charts = document.querySelectorAll('g.chart');
-  charts.forEach(function (chart) {
-    var id = chart.getAttribute('data-chart') || '?';
-    var box = chart.ownerSVGElement.viewBox.baseVal;
-    var inside = function (p) { return isFinite(p.x) && isFinite(p.y) && p.x >= 0 && p.y >= 0 && p.x <= box.width && p.y <= box.height; };
-    var series = chart.querySelectorAll('g.series'), bars = chart.querySelectorAll('g.bar');
-    var drawn = series.length + bars.length;
-    chart.setAttribute('data-drawn-series', drawn);
-    if (String(drawn) !== chart.getAttribute('data-series')) problems.push(id + ': ' + drawn + ' series drawn, ' + chart.getAttribute('data-series') + ' said');
-    series.forEach(function (s) {
-      var geometry = s.getAttribute('data-geometry'), n = 0, points = [];
-      if (geometry === 'line' || geometry === 'area') {
-        var shape = s.querySelector(geometry === 'line' ? 'polyline' : 'polygon');
-        for (var i = 0; shape && i < shape.points.numberOfItems; ++i) points.push(shape.points.getItem(i));
-        n = geometry === 'line' ? points.length : points.length / 2;
-      } else {
-        s.querySelectorAll('circle').forEach(function (c) { points.push({x: c.cx.baseVal.value, y: c.cy.baseVal.value}); });
-        n = points.length;
-      }
-      s.setAttribute('data-drawn-points', n);
-      var name = id + '/' + s.getAttribute('data-name');
-      if (String(n) !== s.getAttribute('data-points')) problems.push(name + ': ' + n + ' points drawn, ' + s.getAttribute('data-points') + ' said');
-      if (!points.every(inside)) problems.push(name + ': a point outside the chart');
-    });
-    bars.forEach(function (b) {
-      var n = b.querySelectorAll('rect').length;
-      b.setAttribute('data-drawn-segments', n);
-      if (String(n) !== b.getAttribute('data-segments')) problems.push(id + '/' + b.getAttribute('data-name') + ': ' + n + ' segments drawn');
-    });
-  });
-  var images = document.querySelectorAll('img');
-  images.forEach(function (img) { if (!img.complete || img.naturalWidth === 0) problems.push('an image that does not decode'); });
-  // No two labels of a chart on top of each other.
-  charts.forEach(function (chart) {
-    var boxes = [];
-    chart.querySelectorAll('text').forEach(function (t) {
-      var b = t.getBoundingClientRect();
-      if (b.width > 0 && b.height > 0) boxes.push({b: b, text: t.textContent});
-    });
-    for (var i = 0; i < boxes.length; ++i)
-      for (var j = i + 1; j < boxes.length; ++j) {
-        var a = boxes[i].b, c = boxes[j].b;
-        var w = Math.min(a.right, c.right) - Math.max(a.left, c.left), h = Math.min(a.bottom, c.bottom) - Math.max(a.top, c.top);
-        if (w > 2 && h > 2) problems.push((chart.getAttribute('data-chart') || '?') + ': labels overlap: "' + boxes[i].text + '" and "' + boxes[j].text + '"');
-      }
-  });
-  // Nothing wider than the page's column: a table or chart past it is cut off
-  // or scrolls sideways (a compare of every mode at 1280 px).
-  var column = document.body.getBoundingClientRect();
-  var right = column.right - parseFloat(getComputedStyle(document.body).paddingRight) + 1;
-  document.querySelectorAll('table, svg, img, pre, p, h1, h2').forEach(function (e) {
-    var box = e.getBoundingClientRect();
-    if (box.right > right) problems.push(e.tagName.toLowerCase() + (e.id ? '#' + e.id : e.className && e.className.baseVal === undefined && e.className ? '.' + e.className : '') + ' overflows the page by ' + Math.round(box.right - right) + ' px');
-  });
-  var expected = document.body.getAttribute('data-charts');
-  if (String(charts.length) !== expected) problems.push(charts.length + ' charts drawn, ' + expected + ' made');
-  document.body.setAttribute('data-report-check', problems.length ? 'failed: ' + problems.join('; ') :
-    'ok ' + charts.length + ' charts' + (images.length ? ', ' + images.length + ' images' : ''));
-});
-</script>
-)";
 
 // The switches a result records, in the table's order as options spell them
 // ("--culling on, --index-order optimized"): words a narrow page can wrap.
@@ -653,9 +565,10 @@ std::string html_report(const HtmlReportInput& given) {
             "frame drawn\" src=\"data:image/png;base64," + base64(input.screenshot_png) + "\"></section>\n";
 
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
-         "content=\"width=device-width, initial-scale=1\">\n<title>" + h(title) + "</title>\n" + kErrorHook +
-         "<style>" + kStyle + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
-         kSelfCheck + "</body>\n</html>\n";
+         "content=\"width=device-width, initial-scale=1\">\n<title>" + h(title) + "</title>\n<script>\n" +
+         std::string(page_file("lib/reports/page/error_hook.js")) + "</script>\n<style>\n" +
+         std::string(page_file("lib/reports/page/report.css")) + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
+         "<script>\n" + std::string(page_file("lib/reports/page/self_check.js")) + "</script>\n</body>\n</html>\n";
 }
 
 }  // namespace crowdprof
