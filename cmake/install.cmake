@@ -7,7 +7,7 @@
 install(TARGETS crowdprof_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 # The guides --help names (docs/modes.md, ...), as share/doc/crowdprof/docs/,
 # the same relative paths as in a source checkout, with README.md beside them.
-install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+install(FILES ${CMAKE_SOURCE_DIR}/README.md ${CMAKE_SOURCE_DIR}/CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs COMPONENT runtime
   FILES_MATCHING PATTERN "*.md" PATTERN "*.svg" PATTERN "*.png")
 
