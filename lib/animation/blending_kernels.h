@@ -20,8 +20,9 @@ struct BlendKernelArgs {
   LocalPose* output = nullptr;
 };
 
-// Blends joints [0, returned count): whole groups of four joints (one on
-// Highway's SCALAR target); the caller blends the rest. Per joint the same
+// Blends joints [0, returned count): whole groups of four joints (none on
+// Highway's SCALAR target, where one lane is slower than the caller's loop);
+// the caller blends the rest. Per joint the same
 // operations in the same order as the scalar loop, no fused multiply-add, so
 // the same bits on every target.
 size_t blend_joint_groups(const BlendKernelArgs& args);
