@@ -21,7 +21,10 @@
 # two actions, `--crossfade sampled`'s work (two SamplingJobs, one context per
 # copy per action, BlendingJob, LocalToModelJob; ozz_driver FADE sampled), on
 # a generated locomotion character (`crowdprof gen --actions locomotion`) and
-# the Fox (../shared/samples, skipped when absent).
+# the Fox (../shared/samples, skipped when absent). The generated character
+# must come within 0.2 mm (the script stops otherwise); the Fox's keys lie
+# far apart, where glTF's LINEAR (slerp, crowdprof) and ozz's normalised
+# lerp part ways, so its distance is printed, not held to that bound.
 # Needs ./setup.sh build done first.
 # WORK (default /tmp/crowdprof-ozz) holds the builds; FRAMES (120) per run.
 # PART=fades runs the crossfades only (and builds only the native and AVX2 ozz).
@@ -79,7 +82,8 @@ print("{scene}: crowdprof {simd} / ozz {variant}: ratio median {ratio_median:.2f
       "{ratio_q3:.2f}); frame medians {crowdprof_median_ms:.3f} and {median_ms:.3f} ms; {poses_sampled} poses "
       "sampled, {joints_blended} joints blended a frame; ozz vertices within {mm:.3f} mm ({share:.4f}% of the "
       "height)".format(**r))
-if r["mm"] > 0.2: sys.exit("compare_ozz.sh: not the same fades: ozz vertices more than 0.2 mm away")' "$variant" "$(basename "$scene_file")"
+if r["mm"] > 0.2 and sys.argv[2] == "locomotion.glb":
+    sys.exit("compare_ozz.sh: not the same fades: ozz vertices more than 0.2 mm away")' "$variant" "$(basename "$scene_file")"
     done
   done
 }
