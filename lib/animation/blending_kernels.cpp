@@ -3,6 +3,9 @@
 // simd_target.h chose.
 #include "animation/blending_kernels.h"
 
+#include <cstddef>
+#include <vector>
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "animation/blending_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -26,8 +29,12 @@ struct BlendSums {
   BlendVec translation[3], scale[3], rotation[4];
 };
 
+// The poses' arrays read as floats: x y z a vec3, x y z w a quaternion (glm's
+// order unless GLM_FORCE_QUAT_DATA_WXYZ).
+static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::quat) == 16 && offsetof(glm::quat, x) == 0 &&
+              offsetof(glm::quat, w) == 12);
 const float* floats_of(const std::vector<glm::vec3>& v) { return &v[0].x; }
-const float* floats_of(const std::vector<glm::quat>& v) { return &v[0].x; }  // x y z w (pose.cpp checks)
+const float* floats_of(const std::vector<glm::quat>& v) { return &v[0].x; }
 float* floats_of(std::vector<glm::vec3>& v) { return &v[0].x; }
 float* floats_of(std::vector<glm::quat>& v) { return &v[0].x; }
 
