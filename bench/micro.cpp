@@ -27,6 +27,7 @@
 
 #include "animation/run_job.h"
 #include "animation/binding.h"
+#include "animation/blending.h"
 #include "animation/local_pose.h"
 #include "animation/pose.h"
 #include "animation/sampling.h"
@@ -222,6 +223,29 @@ void BM_Sampling(benchmark::State& state) {
   per_joint(state, copy.c.skeleton.joint_count());
 }
 BENCHMARK(BM_Sampling);
+
+// A crossfade's blend (BlendingJob) of two sampled poses on one SIMD target:
+// the dance and the walk, 30% in.
+void BM_Blending(benchmark::State& state, std::string target) {
+  if (std::string why = force_simd_target(target); !why.empty()) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  Copy from, to;
+  to.bindings = bind_action(to.c.skeleton, to.c.actions[1]);
+  reset_cursor(to.c.actions[1], &to.cursor);
+  run_job(SamplingJob{&to.c.actions[1], 0.2f, to.bindings.targets, &to.cursor, &to.pose}, "SamplingJob");
+  LocalPose rest, out;
+  reset_to_rest(from.c.skeleton, &rest);
+  reset_to_rest(from.c.skeleton, &out);
+  const BlendLayer layers[] = {{&from.pose, 0.7f}, {&to.pose, 0.3f}};
+  for (auto _ : state) {
+    run_job(BlendingJob{layers, &rest, 0.1f, &out}, "BlendingJob");
+    benchmark::DoNotOptimize(out.rotations.data());
+  }
+  force_simd_target("");
+  per_joint(state, from.c.skeleton.joint_count());
+}
 
 void BM_LocalToModel(benchmark::State& state) {
   Copy copy;
@@ -436,6 +460,7 @@ BENCHMARK(BM_PoseAndSkin)->Unit(benchmark::kMicrosecond);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   for (const std::string& target : crowdprof::available_simd_targets()) {
+    benchmark::RegisterBenchmark(("BM_Blending/" + target).c_str(), crowdprof::BM_Blending, target);
     benchmark::RegisterBenchmark(("BM_Skinning/" + target).c_str(), crowdprof::BM_Skinning, target)
         ->DenseRange(0, 4)
         ->ArgName("influences");

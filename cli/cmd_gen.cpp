@@ -15,6 +15,7 @@ struct GenArgs {
   crowdprof::HumanoidOptions humanoid;
   bool draco = false;
   bool gltf = false;
+  std::string actions = "default";
 };
 
 int gen(const GenArgs& args) {
@@ -23,7 +24,9 @@ int gen(const GenArgs& args) {
   crowdprof::GltfWriteOptions options;
   options.binary = !(args.gltf || ext == ".gltf");
   options.draco = args.draco;
-  crowdprof::Character character = crowdprof::generate_humanoid(args.humanoid);
+  crowdprof::HumanoidOptions humanoid = args.humanoid;
+  if (args.actions == "locomotion") humanoid.actions = crowdprof::HumanoidActions::Locomotion;
+  crowdprof::Character character = crowdprof::generate_humanoid(humanoid);
   crowdprof::write_gltf(character, args.output, options);
   if (crowdprof::is_standard_output(args.output)) return crowdprof::kExitOk;  // stdout holds the file alone
   std::error_code error;  // a pipe has no size
@@ -42,7 +45,9 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<GenArgs>();
   auto* cmd = app.add_subcommand("gen", "Write the procedural humanoid (69 bones, 4,951 vertices, dance/walk/wave "
                                         "by default) as .glb or .gltf");
-  cmd->footer("Examples:\n  crowdprof gen -o big.glb --bones 300 --vertices 20000");
+  cmd->footer(
+      "Examples:\n  crowdprof gen -o big.glb --bones 300 --vertices 20000\n  crowdprof gen -o locomotion.glb --actions "
+      "locomotion");
   cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")->required();
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
   cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 2,500,000 (the most the loader takes back)")->capture_default_str();
@@ -51,6 +56,10 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
                   "Also write this many coarser tessellations of the body (1/2, 1/4, 1/10 of the vertices, at least "
                   "500) as the file's own levels of detail (MSFT_lod), 0 to 3; --mesh-lod on draws them instead of "
                   "simplifying")
+      ->capture_default_str();
+  cmd->add_option("--actions", args->actions,
+                  "default: dance, walk, wave (scenes/humanoid.glb); locomotion: idle, walk, run, for --transitions")
+      ->check(CLI::IsMember({"default", "locomotion"}))
       ->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
   cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");

@@ -17,8 +17,17 @@
 # (the library's, as the frame runs them), in blocks of 10 frames alternating
 # with ozz's, so that the host's changes of speed between processes, which
 # move the pairs' ratios, hit both alike.
+# Then crossfades (issue 53), in one process each: every copy fading between
+# two actions, `--crossfade sampled`'s work (two SamplingJobs, one context per
+# copy per action, BlendingJob, LocalToModelJob; ozz_driver FADE sampled), on
+# a generated locomotion character (`crowdprof gen --actions locomotion`) and
+# the Fox (../shared/samples, skipped when absent). The generated character
+# must come within 0.2 mm (the script stops otherwise); the Fox's keys lie
+# far apart, where glTF's LINEAR (slerp, crowdprof) and ozz's normalised
+# lerp part ways, so its distance is printed, not held to that bound.
 # Needs ./setup.sh build done first.
 # WORK (default /tmp/crowdprof-ozz) holds the builds; FRAMES (120) per run.
+# PART=fades runs the crossfades only (and builds only the native and AVX2 ozz).
 set -euo pipefail
 ozz_source=$(realpath "${1:?usage: bench/ozz/compare_ozz.sh OZZ_SOURCE [PAIRS]}")
 pairs=${2:-8}
@@ -33,7 +42,10 @@ scene="$root/scenes/humanoid.glb"
 mkdir -p "$work"
 cmake --install "$root/build" --prefix "$work/prefix" --component development > /dev/null
 declare -A flags=([native]="-march=native" [avx2]="-mavx2 -mfma" [sse4]="-msse4.2")
-for variant in native avx2 sse4; do
+part=${PART:-all}
+variants="native avx2 sse4"
+[ "$part" = fades ] && variants="native avx2"
+for variant in $variants; do
   # Configured every time (cheap), so another OZZ_SOURCE is not ignored; built
   # incrementally: only the driver (and ozz) when they changed.
   cmake -S "$root/bench/ozz" -B "$work/$variant" -DCMAKE_BUILD_TYPE=Release -DOZZ_SOURCE="$ozz_source" \
@@ -53,9 +65,38 @@ print(r["frame"]["median_ms"], c["poses_updated"], c["vertices_skinned"])' "$out
 ozz_run() { "$work/$1/ozz_driver" "$scene" 160 "$frames" 10 "$2"; }  # VARIANT RENORMALISE
 field() { python3 -c 'import json,sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"; }
 
-echo "160 copies of $(basename "$scene"), culling off, one thread, $pairs interleaved pairs, $frames frames each"
 best=$("$crowdprof" --version | sed -n 's/.*SIMD \([A-Z0-9_]*\).*/\1/p')
 [ -n "$best" ] || { echo "compare_ozz.sh: no SIMD target in \`$crowdprof --version\`" >&2; exit 1; }
+
+fade_rows() {  # crossfades, one process a row: SCENE...
+  echo "Crossfades (sampled), 160 copies each fading every frame, one thread, sampling + blending +" \
+    "local-to-model, 2 x $frames frames in blocks of 10 alternating"
+  for scene_file in "$@"; do
+    for row in "$best native" "AVX2 avx2"; do
+      read -r simd variant <<< "$row"
+      CROWDPROF_SIMD="$simd" "$work/$variant/ozz_driver" "$scene_file" 160 $((2 * frames)) 10 0 1 sampled |
+        python3 -c 'import json, sys
+r = json.load(sys.stdin)
+r.update(variant=sys.argv[1], scene=sys.argv[2], mm=1000 * r["max_delta"], share=100 * r["max_delta_of_height"])
+print("{scene}: crowdprof {simd} / ozz {variant}: ratio median {ratio_median:.2f} (quartiles {ratio_q1:.2f}-"
+      "{ratio_q3:.2f}); frame medians {crowdprof_median_ms:.3f} and {median_ms:.3f} ms; {poses_sampled} poses "
+      "sampled, {joints_blended} joints blended a frame; ozz vertices within {mm:.3f} mm ({share:.4f}% of the "
+      "height)".format(**r))
+if r["mm"] > 0.2 and sys.argv[2] == "locomotion.glb":
+    sys.exit("compare_ozz.sh: not the same fades: ozz vertices more than 0.2 mm away")' "$variant" "$(basename "$scene_file")"
+    done
+  done
+}
+fade_scenes=("$work/locomotion.glb")
+"$crowdprof" gen -o "$work/locomotion.glb" --actions locomotion > /dev/null
+fox="$root/../shared/samples/Fox/glTF-Binary/Fox.glb"
+if [ -f "$fox" ]; then fade_scenes+=("$fox"); else echo "(no Fox at $fox: its crossfade rows skipped)"; fi
+if [ "$part" = fades ]; then
+  fade_rows "${fade_scenes[@]}"
+  exit 0
+fi
+
+echo "160 copies of $(basename "$scene"), culling off, one thread, $pairs interleaved pairs, $frames frames each"
 for pair in "$best native 0" "AVX2 native 0" "AVX2 avx2 0" "SSE4 native 0" "SSE4 sse4 0" \
   "$best native 1" "AVX2 avx2 1" "SSE4 sse4 1"; do
   read -r simd variant renormalise <<< "$pair"
@@ -95,3 +136,5 @@ q1, med, q3, ours, theirs, target = (r[k] for k in ("ratio_q1", "ratio_median", 
 print(f"crowdprof {target} / ozz {variant}: ratio median {med:.2f} (quartiles {q1:.2f}-{q3:.2f}); "
       f"frame medians {ours:.3f} and {theirs:.3f} ms")' "$variant"
 done
+
+fade_rows "${fade_scenes[@]}"

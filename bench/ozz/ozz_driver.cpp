@@ -7,7 +7,8 @@
 // to ozz's offline builders, so both run on the same skeleton, keys and mesh.
 // Prints one JSON line: the median frame, the work counted as crowdprof
 // counts it, and how far ozz's skinned vertices are from crowdprof's at the
-// last frame (ozz quantises keys: not bit for bit).
+// last frame (ozz quantises keys: not bit for bit). With FADE sampled it
+// compares crossfades instead (sampling, blending, local-to-model: ozz_fades.h).
 //
 // crowdprof's kernels renormalise every blended normal (a blend of rotations
 // shortens it; only batches of 16 single-influence vertices on rigid joints
@@ -25,7 +26,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,21 +45,23 @@
 #include "skinning/skinning.h"
 #include "skinning/skinning_plan.h"
 
-#include "ozz/animation/offline/animation_builder.h"
-#include "ozz/animation/offline/raw_animation.h"
-#include "ozz/animation/offline/raw_skeleton.h"
-#include "ozz/animation/offline/skeleton_builder.h"
+#include "ozz_convert.h"
+#include "ozz_fades.h"
+#include "ozz_timing.h"
+
 #include "ozz/animation/runtime/animation.h"
 #include "ozz/animation/runtime/local_to_model_job.h"
 #include "ozz/animation/runtime/sampling_job.h"
 #include "ozz/animation/runtime/skeleton.h"
 #include "ozz/base/maths/simd_math.h"
 #include "ozz/base/maths/soa_transform.h"
-#include "ozz/geometry/runtime/skinning_job.h"
 
 namespace {
 
 using crowdprof::Character;
+using ozz_bench::fail;
+using ozz_bench::Part;
+namespace oa = ozz::animation;
 
 // Renormalises `count` normals (x y z each) in place, as crowdprof's kernels
 // do (a zero length stays zero): 4 at a time in SSE, the last ones one by one.
@@ -95,111 +97,13 @@ __attribute__((noinline)) void renormalise_normals(float* n, size_t count) {
     n[2] *= inverse;
   }
 }
-namespace oa = ozz::animation;
-
-[[noreturn]] void fail(const std::string& why) {
-  std::fprintf(stderr, "ozz_driver: %s\n", why.c_str());
-  std::exit(1);
-}
-
-// The skeleton as ozz's raw hierarchy (joint j's children in joint order).
-void add_children(const Character& c, int parent, oa::offline::RawSkeleton::Joint::Children& into) {
-  const crowdprof::Skeleton& s = c.skeleton;
-  for (size_t j = 0; j < s.joint_count(); ++j) {
-    if (s.parents[j] != parent) continue;
-    oa::offline::RawSkeleton::Joint joint;
-    joint.name = s.names[j].c_str();
-    const glm::vec3 t = s.rest_translations[j], sc = s.rest_scales[j];
-    const glm::quat r = s.rest_rotations[j];
-    joint.transform.translation = ozz::math::Float3(t.x, t.y, t.z);
-    joint.transform.rotation = ozz::math::Quaternion(r.x, r.y, r.z, r.w);
-    joint.transform.scale = ozz::math::Float3(sc.x, sc.y, sc.z);
-    add_children(c, static_cast<int>(j), joint.children);
-    into.push_back(std::move(joint));
-  }
-}
-
-// One action as ozz's raw animation, keys shifted to start at 0 (LINEAR only).
-oa::offline::RawAnimation raw_animation(const Character& c, const crowdprof::Action& action,
-                                        const std::vector<int>& ozz_of_joint, int ozz_joints) {
-  oa::offline::RawAnimation raw;
-  raw.duration = std::max(action.duration(), 1e-3f);
-  raw.tracks.resize(static_cast<size_t>(ozz_joints));
-  const crowdprof::Skeleton& s = c.skeleton;
-  // Joints no channel drives hold their rest pose, as crowdprof's do.
-  for (size_t j = 0; j < s.joint_count(); ++j) {
-    auto& track = raw.tracks[static_cast<size_t>(ozz_of_joint[j])];
-    const glm::vec3 t = s.rest_translations[j], sc = s.rest_scales[j];
-    const glm::quat r = s.rest_rotations[j];
-    track.translations.push_back({0.0f, ozz::math::Float3(t.x, t.y, t.z)});
-    track.rotations.push_back({0.0f, ozz::math::Quaternion(r.x, r.y, r.z, r.w)});
-    track.scales.push_back({0.0f, ozz::math::Float3(sc.x, sc.y, sc.z)});
-  }
-  std::vector<bool> driven(3 * s.joint_count(), false);
-  for (const crowdprof::Channel& ch : action.channels) {
-    if (ch.interpolation != crowdprof::Interpolation::Linear) fail("only LINEAR channels are compared");
-    auto& track = raw.tracks[static_cast<size_t>(ozz_of_joint[static_cast<size_t>(ch.joint)])];
-    const size_t slot = 3 * static_cast<size_t>(ch.joint) + static_cast<size_t>(ch.path);
-    if (!driven[slot]) {  // the rest key gives way to the channel's keys
-      driven[slot] = true;
-      if (ch.path == crowdprof::ChannelPath::Translation) track.translations.clear();
-      if (ch.path == crowdprof::ChannelPath::Rotation) track.rotations.clear();
-      if (ch.path == crowdprof::ChannelPath::Scale) track.scales.clear();
-    }
-    for (size_t k = 0; k < ch.key_count(); ++k) {
-      const float time = ch.times[k] - action.start;
-      const float* v = &ch.values[k * static_cast<size_t>(ch.components())];
-      if (ch.path == crowdprof::ChannelPath::Translation)
-        track.translations.push_back({time, ozz::math::Float3(v[0], v[1], v[2])});
-      else if (ch.path == crowdprof::ChannelPath::Rotation)
-        track.rotations.push_back({time, ozz::math::Quaternion(v[0], v[1], v[2], v[3])});
-      else
-        track.scales.push_back({time, ozz::math::Float3(v[0], v[1], v[2])});
-    }
-  }
-  return raw;
-}
-
-ozz::math::Float4x4 to_ozz(const glm::mat4& m) {
-  ozz::math::Float4x4 out;
-  for (int c = 0; c < 4; ++c) out.cols[c] = ozz::math::simd_float4::Load(m[c][0], m[c][1], m[c][2], m[c][3]);
-  return out;
-}
-
-// The mesh cut into parts of equal influence count (ozz's layout): per part,
-// its vertices' positions, normals, joint indices (ozz's joint order) and
-// all weights but the last.
-struct Part {
-  int influences = 1;
-  std::vector<uint32_t> vertex;  // the crowdprof vertex each one is
-  std::vector<float> positions, normals, weights;
-  std::vector<uint16_t> joints;
-};
-
-std::vector<Part> parts_of(const crowdprof::SkinnedMesh& mesh, const std::vector<int>& ozz_of_joint) {
-  std::vector<Part> parts(4);
-  for (int k = 0; k < 4; ++k) parts[static_cast<size_t>(k)].influences = k + 1;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const glm::vec4 w = mesh.weights[v];
-    const int n = std::max(1, (w.x != 0) + (w.y != 0) + (w.z != 0) + (w.w != 0));
-    Part& p = parts[static_cast<size_t>(n - 1)];
-    p.vertex.push_back(static_cast<uint32_t>(v));
-    for (int a = 0; a < 3; ++a) {
-      p.positions.push_back(mesh.positions[v][a]);
-      p.normals.push_back(mesh.normals[v][a]);
-    }
-    for (int i = 0; i < n; ++i) p.joints.push_back(static_cast<uint16_t>(ozz_of_joint[mesh.joints[v][i]]));
-    for (int i = 0; i + 1 < n; ++i) p.weights.push_back(w[i]);
-  }
-  std::erase_if(parts, [](const Part& p) { return p.vertex.empty(); });
-  return parts;
-}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: ozz_driver CHARACTER.glb [COPIES [FRAMES [WARMUP [RENORMALISE [INTERLEAVE]]]]]\n");
+    std::fprintf(stderr,
+                 "usage: ozz_driver CHARACTER.glb [COPIES [FRAMES [WARMUP [RENORMALISE [INTERLEAVE [FADE]]]]]]\n");
     return 2;
   }
   const size_t copies = argc > 2 ? std::stoul(argv[2]) : 160;
@@ -210,6 +114,11 @@ int main(int argc, char** argv) {
   // blocks alternating with ozz's, so that a host that changes speed between
   // processes changes both alike (docs/performance.md).
   const bool interleave = argc > 6 && std::stoul(argv[6]) != 0;
+  // FADE sampled: every copy crossfading, sampling, blending and local-to-model
+  // only, both sides in one process (ozz_fades.h); none (the default): the
+  // frame above.
+  const std::string fade = argc > 7 ? argv[7] : "none";
+  if (fade != "none" && fade != "sampled") fail("FADE must be none or sampled");
   if (copies == 0 || frames == 0) fail("COPIES and FRAMES must be at least 1");
   if (const char* simd = std::getenv(crowdprof::kSimdEnvironmentVariable); simd && *simd)
     if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why);
@@ -218,32 +127,19 @@ int main(int argc, char** argv) {
   crowdprof::order_vertices_for_skinning(c);
   if (c.actions.empty()) fail("the character has no action");
   const crowdprof::Skeleton& s = c.skeleton;
-  for (const glm::mat4& offset : s.parent_offsets)
-    if (offset != glm::mat4(1.0f)) fail("joints with non-joint nodes between them are not compared");
-
-  oa::offline::RawSkeleton raw_skeleton;
-  add_children(c, -1, raw_skeleton.roots);
-  ozz::unique_ptr<oa::Skeleton> skeleton = oa::offline::SkeletonBuilder()(raw_skeleton);
-  if (!skeleton) fail("ozz's SkeletonBuilder refused the skeleton");
-  // ozz orders joints its own way: match them by name.
-  std::map<std::string, int> ozz_index;
-  for (int j = 0; j < skeleton->num_joints(); ++j) ozz_index[skeleton->joint_names()[static_cast<size_t>(j)]] = j;
-  std::vector<int> ozz_of_joint(s.joint_count());
-  for (size_t j = 0; j < s.joint_count(); ++j) {
-    auto it = ozz_index.find(s.names[j]);
-    if (it == ozz_index.end()) fail("joint names are not unique");
-    ozz_of_joint[j] = it->second;
+  // The fades' vertex check compares the jobs on the keys ozz holds.
+  if (fade == "sampled") ozz_bench::round_like_ozz_storage(c);
+  const ozz_bench::OzzCharacter ozz_character = ozz_bench::make_ozz_character(c);
+  if (fade == "sampled") {
+    ozz_bench::run_sampled_fades(c, ozz_character, {copies, frames, warmup});
+    return 0;
   }
+  const oa::Skeleton* skeleton = ozz_character.skeleton.get();
+  const std::vector<ozz::math::Float4x4>& inverse_binds = ozz_character.inverse_binds;
+  const std::vector<Part>& parts = ozz_character.parts;
   const crowdprof::Action& action = c.actions.front();  // --actions shared plays the first
-  ozz::unique_ptr<oa::Animation> animation =
-      oa::offline::AnimationBuilder()(raw_animation(c, action, ozz_of_joint, skeleton->num_joints()));
-  if (!animation) fail("ozz's AnimationBuilder refused the action");
-
+  const ozz::unique_ptr<oa::Animation> animation = ozz_bench::make_ozz_animation(c, action, ozz_character);
   const int joints = skeleton->num_joints();
-  std::vector<ozz::math::Float4x4> inverse_binds(static_cast<size_t>(joints));
-  for (size_t j = 0; j < s.joint_count(); ++j)
-    inverse_binds[static_cast<size_t>(ozz_of_joint[j])] = to_ozz(s.inverse_binds[j]);
-  const std::vector<Part> parts = parts_of(c.mesh, ozz_of_joint);
 
   // Per copy, as crowdprof keeps it: a sampling context, local and model
   // transforms, skinning matrices and its own output.
@@ -309,10 +205,6 @@ int main(int argc, char** argv) {
                 std::span(our_positions.data() + i * stride, n), std::span(our_normals.data() + i * stride, n),
                 streaming);
   };
-  auto ms_since = [](std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
-
   const double fps = 60.0, duration = action.duration();
   auto ozz_frame = [&](double t) {
     for (CopyState& cs : state) {
@@ -323,32 +215,14 @@ int main(int argc, char** argv) {
       sampling.output = ozz::make_span(cs.locals);
       if (!sampling.Run()) fail("SamplingJob");
       oa::LocalToModelJob ltm;
-      ltm.skeleton = skeleton.get();
+      ltm.skeleton = skeleton;
       ltm.input = ozz::make_span(cs.locals);
       ltm.output = ozz::make_span(cs.models);
       if (!ltm.Run()) fail("LocalToModelJob");
       for (size_t j = 0; j < cs.models.size(); ++j) cs.skinning[j] = cs.models[j] * inverse_binds[j];
       for (size_t p = 0; p < parts.size(); ++p) {
         const Part& part = parts[p];
-        ozz::geometry::SkinningJob skin;
-        skin.vertex_count = static_cast<int>(part.vertex.size());
-        skin.influences_count = part.influences;
-        skin.joint_matrices = ozz::make_span(cs.skinning);
-        skin.joint_indices = ozz::make_span(part.joints);
-        skin.joint_indices_stride = sizeof(uint16_t) * static_cast<size_t>(part.influences);
-        if (part.influences > 1) {
-          skin.joint_weights = ozz::make_span(part.weights);
-          skin.joint_weights_stride = sizeof(float) * static_cast<size_t>(part.influences - 1);
-        }
-        skin.in_positions = ozz::make_span(part.positions);
-        skin.in_positions_stride = 3 * sizeof(float);
-        skin.in_normals = ozz::make_span(part.normals);
-        skin.in_normals_stride = 3 * sizeof(float);
-        skin.out_positions = ozz::make_span(cs.positions[p]);
-        skin.out_positions_stride = 3 * sizeof(float);
-        skin.out_normals = ozz::make_span(cs.normals[p]);
-        skin.out_normals_stride = 3 * sizeof(float);
-        if (!skin.Run()) fail("SkinningJob");
+        ozz_bench::skin_part_with_ozz(part, cs.skinning, cs.positions[p].data(), cs.normals[p].data());
         if (renormalise && part.influences > 1) renormalise_normals(cs.normals[p].data(), part.vertex.size());
       }
     }
@@ -360,45 +234,18 @@ int main(int argc, char** argv) {
     for (size_t f = 0; f < warmup + frames; ++f) {
       const auto start = std::chrono::steady_clock::now();
       ozz_frame(time_of(f));
-      if (f >= warmup) frame_ms.push_back(ms_since(start));
+      if (f >= warmup) frame_ms.push_back(ozz_bench::ms_since(start));
     }
   } else {
-    // Blocks of 10 frames, ozz's then crowdprof's over the same frame times,
-    // which goes first alternating: one block's ratio is the two sums'.
-    // Alternating every frame cost crowdprof's side about 1.2x (ratio 0.49
-    // against 0.36-0.41 in blocks of 10 or 40): the switch, not the work.
-    constexpr size_t kBlock = 10;
-    for (size_t f = 0; f < warmup; ++f) {
-      ozz_frame(time_of(f));
-      crowdprof_frame(action.start + static_cast<float>(time_of(f)));
-    }
-    for (size_t first = warmup, block = 0; first < warmup + frames; first += kBlock, ++block) {
-      const size_t end = std::min(first + kBlock, warmup + frames);
-      double sums[2] = {0, 0};  // ozz, crowdprof
-      for (int side : {static_cast<int>(block % 2), static_cast<int>(1 - block % 2)})
-        for (size_t f = first; f < end; ++f) {
-          const auto start = std::chrono::steady_clock::now();
-          if (side == 0)
-            ozz_frame(time_of(f));
-          else
-            crowdprof_frame(action.start + static_cast<float>(time_of(f)));
-          const double ms = ms_since(start);
-          sums[side] += ms;
-          (side == 0 ? frame_ms : crowdprof_ms).push_back(ms);
-        }
-      if (sums[0] > 0) ratios.push_back(sums[1] / sums[0]);
-    }
+    ozz_bench::InterleavedTimes times = ozz_bench::time_interleaved(
+        warmup, frames, [&](size_t f) { ozz_frame(time_of(f)); },
+        [&](size_t f) { crowdprof_frame(action.start + static_cast<float>(time_of(f))); });
+    frame_ms = std::move(times.ozz_ms);
+    crowdprof_ms = std::move(times.crowdprof_ms);
+    ratios = std::move(times.ratios);
   }
   const float last_time = action.start + static_cast<float>(time_of(warmup + frames - 1));
-  // Interpolated between order statistics, as crowdprof's medians are.
-  auto quantile = [](std::vector<double> v, size_t num, size_t den) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const double at = static_cast<double>((v.size() - 1) * num) / static_cast<double>(den);
-    const size_t below = static_cast<size_t>(at);
-    const double above = below + 1 < v.size() ? v[below + 1] : v[below];
-    return v[below] + (above - v[below]) * (at - static_cast<double>(below));
-  };
+  using ozz_bench::quantile;
   const double median = quantile(frame_ms, 1, 2);
 
   // The same copy by crowdprof's jobs at the last frame's time: how far ozz's vertices are.

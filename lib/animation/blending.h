@@ -33,6 +33,12 @@ struct BlendLayer {
 // weight 1/4 is 21.6 degrees against slerp's 22.5, less apart for closer ones,
 // and a crossfade's poses are close (the same skeleton, the same moment of
 // motion).
+//
+// Four joints at a time in SIMD (blending_kernels.h, on the target --simd
+// chooses), the last joint count % 4 one by one; the same operations in the
+// same order either way and no fused multiply-add, so every target gives the
+// same bits: a digest with transitions does not depend on the blend's target.
+// Weights 0 and 1 are not special cases: 0 skips the layer, 1 divides by 1.
 struct BlendingJob {
   std::span<const BlendLayer> layers;
   const LocalPose* rest = nullptr;  // reset_to_rest's pose of the same skeleton

@@ -294,7 +294,7 @@ Character generate_humanoid(const HumanoidOptions& options) {
     character.file_lods.push_back(humanoid::build_mesh(rig, vertices));
     previous = vertices;
   }
-  character.actions = humanoid::build_actions(rig, character.skeleton, options.seed);
+  character.actions = humanoid::build_actions(rig, character.skeleton, options.seed, options.actions);
   return character;
 }
 

@@ -9,6 +9,11 @@
 
 namespace crowdprof {
 
+// Which looping actions the humanoid gets: the thesis's stand-ins (dance,
+// walk, wave: scenes/humanoid.glb), or a game crowd's locomotion (idle, walk,
+// run: what transitions fade between, issue 53). Walk is the same in both.
+enum class HumanoidActions : uint8_t { Default, Locomotion };
+
 struct HumanoidOptions {
   int bones = 69;       // exact joint count, kHumanoidMinBones..kHumanoidMaxBones
   int vertices = 4951;  // exact vertex count, kHumanoidMinVertices..kHumanoidMaxVertices
@@ -18,6 +23,7 @@ struct HumanoidOptions {
   // each fewer than the one before), as Character::file_lods: what a glTF
   // file's own levels (MSFT_lod) look like when gltf_writer writes them.
   int lod_levels = 0;
+  HumanoidActions actions = HumanoidActions::Default;
 };
 
 inline constexpr int kHumanoidMinBones = 20;  // hips, spine, neck, head, limbs without fingers
@@ -30,7 +36,8 @@ inline constexpr int kHumanoidMaxVertices = 2'500'000;
 // Builds the character: exactly `bones` joints in parent-before-child order and
 // exactly `vertices` vertices in one primitive, every vertex on a triangle, with
 // up to 4 influences sorted largest first and summing to 1. Three looping
-// actions, "dance", "walk" and "wave", key a rotation for every joint (and the
+// actions, "dance", "walk" and "wave" (or "idle", "walk" and "run" with
+// HumanoidActions::Locomotion), key a rotation for every joint (and the
 // root's translation) at 30 fps with LINEAR interpolation; each moves every joint.
 //
 // 69 bones: hips, spine_01-04, neck_01-02, head, jaw and per side a clavicle,

@@ -136,6 +136,57 @@ void wave(const Actor& r, double p, Pose& pose) {
   r.fingers(pose, 8 * kDeg + 6 * kDeg * wag, 5 * kDeg);
 }
 
+// Locomotion's rest between moves: standing, arms down, breathing, the weight
+// drifting from foot to foot.
+void idle(const Actor& r, double p, Pose& pose) {
+  pose.root_offset = {0.02 * std::sin(p) * r.amp, -0.005 * rise(2 * p), 0.0};
+  r.bend(pose, Part::Hips, 0, {0, 2 * kDeg * std::sin(p), 2 * kDeg * std::sin(p)}, true);
+  r.bend(pose, Part::Spine, 0, {2 * kDeg * rise(2 * p), -2 * kDeg * std::sin(p), -2 * kDeg * std::sin(p)}, true);
+  r.bend(pose, Part::Neck, 0, {-kDeg * rise(2 * p), 4 * kDeg * std::sin(p + 1.0), 0}, true);
+  r.bend(pose, Part::Head, 0, {2 * kDeg * std::sin(2 * p), 3 * kDeg * std::sin(p + 1.0), 0}, true);
+  r.bend(pose, Part::Jaw, 0, {kDeg * rise(2 * p), 0, 0}, true);
+  for (int s : {1, -1}) {
+    r.bend(pose, Part::Clavicle, s, {0, 0, s * 2 * kDeg * rise(2 * p)}, true);
+    r.bend(pose, Part::UpperArm, s, {3 * kDeg * std::sin(p), 0, -s * 80 * kDeg}, false);
+    r.bend(pose, Part::Forearm, s, {0, -s * (10 + 3 * rise(2 * p)) * kDeg, 0}, false);
+    r.bend(pose, Part::Hand, s, {0, -s * 8 * kDeg, 0}, true);
+    r.bend(pose, Part::Metacarpal, s, {0, 0, -s * kDeg * rise(2 * p)}, true);
+    r.bend(pose, Part::Thigh, s, {-2 * kDeg * rise(p + s), 0, -2 * kDeg * std::sin(p)}, false);
+    r.bend(pose, Part::Shin, s, {4 * kDeg * rise(p + s), 0, 0}, true);
+    r.bend(pose, Part::Foot, s, {-2 * kDeg * rise(p + s), 0, 2 * kDeg * std::sin(p)}, true);
+    r.bend(pose, Part::Toe, s, {2 * kDeg * rise(2 * p), 0, 0}, true);
+  }
+  r.fingers(pose, 15 * kDeg + 3 * kDeg * std::sin(p), 2 * kDeg);
+}
+
+// Walk's gait, longer and quicker: leaning forward, elbows bent, the knee
+// folding high on the swing, the body bouncing twice a loop.
+void run(const Actor& r, double p, Pose& pose) {
+  pose.root_offset = {0.02 * std::sin(p), 0.05 * std::cos(2 * p) - 0.06, 0.0};
+  r.bend(pose, Part::Hips, 0, {0, 10 * kDeg * std::sin(p), 4 * kDeg * std::sin(p)}, true);
+  r.bend(pose, Part::Spine, 0, {12 * kDeg, -14 * kDeg * std::sin(p), -4 * kDeg * std::sin(p)}, true);
+  r.bend(pose, Part::Neck, 0, {-8 * kDeg + -3 * kDeg * std::cos(2 * p), 4 * kDeg * std::sin(p), 0}, true);
+  r.bend(pose, Part::Head, 0, {-4 * kDeg, 3 * kDeg * std::sin(p), -2 * kDeg * std::sin(p)}, true);
+  r.bend(pose, Part::Jaw, 0, {4 * kDeg * rise(2 * p), 0, 0}, true);
+  for (int s : {1, -1}) {
+    double swing = s * std::sin(p);  // > 0: this leg forward, this arm back
+    r.bend(pose, Part::Clavicle, s, {0, s * 6 * kDeg * swing, -s * 6 * kDeg}, true);
+    r.bend(pose, Part::UpperArm, s, {45 * kDeg * swing, 0, -s * 70 * kDeg}, false);
+    r.bend(pose, Part::UpperArm, s, {s * 10 * kDeg * swing, 0, 0}, true);
+    r.bend(pose, Part::Forearm, s, {0, -s * (80 + 15 * rise(p + s * kPi / 2)) * kDeg, 0}, false);
+    r.bend(pose, Part::Forearm, s, {s * 8 * kDeg * swing, 0, 0}, true);
+    r.bend(pose, Part::Hand, s, {0, -s * 10 * kDeg, -s * 10 * kDeg * swing}, true);
+    r.bend(pose, Part::Metacarpal, s, {0, 0, -s * 3 * kDeg * swing}, true);
+    r.bend(pose, Part::Thigh, s, {(-10 - 45 * swing) * kDeg, 0, 0}, false);
+    r.bend(pose, Part::Thigh, s, {0, -s * 6 * kDeg * swing, 0}, true);
+    double knee = 15 + 95 * std::pow(rise(p + s * kPi / 2 + 0.4 * kPi), 2);
+    r.bend(pose, Part::Shin, s, {knee * kDeg, 0, 0}, true);
+    r.bend(pose, Part::Foot, s, {-20 * kDeg * std::sin(p + s * kPi / 2), 0, 0}, true);
+    r.bend(pose, Part::Toe, s, {25 * kDeg * rise(p + s * kPi), 0, 0}, true);
+  }
+  r.fingers(pose, 50 * kDeg, 1 * kDeg);  // loose fists
+}
+
 glm::dquat turn(glm::dvec3 a) {  // about Z first, then X, then Y
   return glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) * glm::angleAxis(a.x, glm::dvec3(1, 0, 0)) *
          glm::angleAxis(a.z, glm::dvec3(0, 0, 1));
@@ -202,7 +253,10 @@ Action sample(const std::string& name, double duration, const Rig& rig, const Sk
 
 }  // namespace
 
-std::vector<Action> build_actions(const Rig& rig, const Skeleton& skeleton, uint32_t seed) {
+std::vector<Action> build_actions(const Rig& rig, const Skeleton& skeleton, uint32_t seed, HumanoidActions set) {
+  if (set == HumanoidActions::Locomotion)
+    return {sample("idle", 2.0, rig, skeleton, seed, idle), sample("walk", 1.0, rig, skeleton, seed, walk),
+            sample("run", 0.8, rig, skeleton, seed, run)};
   return {sample("dance", 2.0, rig, skeleton, seed, dance), sample("walk", 1.0, rig, skeleton, seed, walk),
           sample("wave", 1.5, rig, skeleton, seed, wave)};
 }

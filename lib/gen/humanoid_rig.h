@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "asset/character.h"
+#include "gen/humanoid.h"
 
 namespace crowdprof::humanoid {
 
@@ -81,7 +82,7 @@ class Random {
 SkinnedMesh build_mesh(const Rig& rig, int vertices);
 
 // The looping actions, for the skeleton made from the rig (same joint order).
-std::vector<Action> build_actions(const Rig& rig, const Skeleton& skeleton, uint32_t seed);
+std::vector<Action> build_actions(const Rig& rig, const Skeleton& skeleton, uint32_t seed, HumanoidActions set);
 
 inline constexpr double kPi = 3.141592653589793;
 

@@ -1,4 +1,5 @@
-// Which SIMD target the skinning kernels run on. They are compiled for every
+// Which SIMD target the skinning kernels and the blend job (animation/
+// blending_kernels.h) run on. They are compiled for every
 // x86-64 target in the Highway's HWY_TARGETS (with Debian 12's Highway 1.0.3:
 // SCALAR, the baseline x86-64 with SSE2, then SSSE3, SSE4, AVX2 and AVX3 =
 // AVX-512) and the best one the CPU supports is used, unless a lower one is

@@ -22,6 +22,20 @@ TEST(GenCli, WritesWhatItSays) {
   EXPECT_EQ(c.mesh.vertex_count(), 800u);
 }
 
+TEST(GenCli, LocomotionWritesIdleWalkAndRun) {
+  auto dir = test::scratch_dir("gen_cli_locomotion");
+  const std::string file = (dir / "locomotion.glb").string();
+  test::CliResult r = test::run_cli("gen -o '" + file + "' --actions locomotion");
+  ASSERT_EQ(r.status, 0) << r.err;
+  Character c = load_character(file);
+  ASSERT_EQ(c.actions.size(), 3u);
+  EXPECT_EQ(c.actions[0].name, "idle");
+  EXPECT_EQ(c.actions[1].name, "walk");
+  EXPECT_EQ(c.actions[2].name, "run");
+  EXPECT_EQ(c.skeleton.joint_count(), 69u);
+  EXPECT_EQ(test::run_cli("gen -o '" + file + "' --actions dance").status, 2) << "unknown set";
+}
+
 TEST(GenCli, FormatFollowsTheExtension) {
   auto dir = test::scratch_dir("gen_cli_format");
   auto first_byte = [](const std::filesystem::path& p) {

@@ -306,3 +306,48 @@ TEST(Humanoid, SameOptionsSameCharacter) {
   EXPECT_FALSE(same(generate_humanoid(), other)) << "the seed must change something";
   expect_valid(other, 69, 4951);
 }
+
+TEST(Humanoid, LocomotionIdlesWalksAndRunsOnTheSameBody) {
+  HumanoidOptions options;
+  options.actions = HumanoidActions::Locomotion;
+  const Character c = generate_humanoid(options), thesis = generate_humanoid();
+  ASSERT_EQ(c.actions.size(), 3u);
+  EXPECT_EQ(c.actions[0].name, "idle");
+  EXPECT_EQ(c.actions[1].name, "walk");
+  EXPECT_EQ(c.actions[2].name, "run");
+  EXPECT_EQ(c.skeleton.names, thesis.skeleton.names);
+  EXPECT_EQ(c.mesh.positions, thesis.mesh.positions) << "only the actions differ";
+  // The walk is the thesis character's walk, key for key.
+  const Action& walk = action(c, "walk");
+  const Action& thesis_walk = action(thesis, "walk");
+  ASSERT_EQ(walk.channels.size(), thesis_walk.channels.size());
+  for (size_t k = 0; k < walk.channels.size(); ++k) EXPECT_EQ(walk.channels[k].values, thesis_walk.channels[k].values);
+  const Skeleton& s = c.skeleton;
+  const int foot_l = joint(s, "foot_l"), foot_r = joint(s, "foot_r"), hips = joint(s, "hips");
+  const int hand_l = joint(s, "hand_l");
+  // Widest stride (feet apart along Z) and lowest hips over each loop.
+  auto stride = [&](const Action& a) {
+    float widest = 0.0f;
+    for (size_t k = 0; k < a.channels[0].key_count(); ++k) {
+      std::vector<glm::mat4> p = pose(c, &a, k);
+      widest = std::max(widest, std::fabs(where(p, foot_l).z - where(p, foot_r).z));
+    }
+    return widest;
+  };
+  const Action& idle = action(c, "idle");
+  const Action& run = action(c, "run");
+  EXPECT_LT(stride(idle), 0.1f) << "idle stands";
+  EXPECT_GT(stride(walk), 0.25f);
+  EXPECT_GT(stride(run), 1.3f * stride(walk)) << "a run strides further than a walk";
+  EXPECT_LT(run.duration(), walk.duration()) << "and quicker";
+  for (size_t k = 0; k < idle.channels[0].key_count(); ++k) {
+    std::vector<glm::mat4> p = pose(c, &idle, k);
+    EXPECT_LT(where(p, hand_l).y, where(p, hips).y + 0.2f) << "idle's arms hang, key " << k;
+  }
+  // Loops close and every joint turns in every action, as the thesis's actions.
+  for (const Action& a : c.actions)
+    for (const Channel& ch : a.channels) {
+      const size_t n = size_t(ch.components()), last = (ch.key_count() - 1) * n;
+      EXPECT_EQ(0, std::memcmp(&ch.values[0], &ch.values[last], n * sizeof(float))) << a.name;
+    }
+}
