@@ -82,10 +82,10 @@ struct SceneReader {
   }
 };
 
-// "generate": {"bones", "vertices", "seed", "lods", "draco"}, each optional,
-// with gen's defaults and ranges.
+// "generate": {"bones", "vertices", "seed", "lods", "actions", "draco"}, each
+// optional, with gen's defaults and ranges.
 GeneratedCharacter generated_character(const SceneReader& r, const json& value, const std::string& key) {
-  r.only_keys(value, key, {"bones", "vertices", "seed", "lods", "draco"});
+  r.only_keys(value, key, {"bones", "vertices", "seed", "lods", "actions", "draco"});
   GeneratedCharacter g;
   HumanoidOptions& h = g.humanoid;
   if (value.contains("bones"))
@@ -95,6 +95,11 @@ GeneratedCharacter generated_character(const SceneReader& r, const json& value, 
         static_cast<int>(r.whole(value["vertices"], key + ".vertices", kHumanoidMinVertices, kHumanoidMaxVertices));
   if (value.contains("seed")) h.seed = static_cast<uint32_t>(r.whole(value["seed"], key + ".seed", 0, 0xffffffffLL));
   if (value.contains("lods")) h.lod_levels = static_cast<int>(r.whole(value["lods"], key + ".lods", 0, 3));
+  if (value.contains("actions")) {
+    const std::string actions = r.text(value["actions"], key + ".actions");
+    if (actions == "locomotion") h.actions = HumanoidActions::Locomotion;
+    else if (actions != "default") r.fail(key + ".actions", "'" + actions + "': expected default or locomotion");
+  }
   if (value.contains("draco")) {
     if (!value["draco"].is_boolean()) r.fail(key + ".draco", "expected true or false, got " + SceneReader::type_of(value["draco"]));
     g.draco = value["draco"].get<bool>();
@@ -112,6 +117,7 @@ std::string gen_command(const GeneratedCharacter& g) {
   if (h.vertices != defaults.vertices) out += " --vertices " + std::to_string(h.vertices);
   if (h.seed != defaults.seed) out += " --seed " + std::to_string(h.seed);
   if (h.lod_levels != defaults.lod_levels) out += " --lods " + std::to_string(h.lod_levels);
+  if (h.actions == HumanoidActions::Locomotion) out += " --actions locomotion";
   if (g.draco) out += " --draco";
   return out;
 }

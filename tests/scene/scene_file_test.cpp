@@ -155,6 +155,7 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
       {"{\"characters\": [{\"generate\": {\"draco\": \"yes\"}, \"count\": 1}]}", "characters[0].generate.draco"},
       {"{\"characters\": [{\"generate\": {\"lods\": 4}, \"count\": 1}]}", "characters[0].generate.lods"},
       {"{\"characters\": [{\"generate\": {\"size\": 2}, \"count\": 1}]}", "characters[0].generate.size"},
+      {"{\"characters\": [{\"generate\": {\"actions\": \"dance\"}, \"count\": 1}]}", "characters[0].generate.actions"},
       {"{\"characters\": [{\"generate\": [], \"count\": 1}]}", "characters[0].generate"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 0}]}", "characters"},
       {"{\"characters\": []}", "characters"},
@@ -283,11 +284,11 @@ TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
 TEST(SceneFile, AGeneratedCharacterIsTheFileGenWouldWrite) {
   auto dir = crowdprof::test::scratch_dir("scene_generate");
   const std::string glb = (dir / "h.glb").string();
-  ASSERT_EQ(run_cli("gen -o '" + glb + "' --bones 30 --vertices 800 --seed 4 --draco").status, 0);
+  ASSERT_EQ(run_cli("gen -o '" + glb + "' --bones 30 --vertices 800 --seed 4 --actions locomotion --draco").status, 0);
   auto from_file = dir / "file.json", generated = dir / "generated.json";
   std::ofstream(from_file) << "{\"characters\": [{\"file\": \"h.glb\", \"count\": 6, \"actions\": \"random\"}]}";
   std::ofstream(generated) << "{\"characters\": [{\"generate\": {\"bones\": 30, \"vertices\": 800, \"seed\": 4, "
-                              "\"draco\": true}, \"count\": 6, \"actions\": \"random\"}]}";
+                              "\"actions\": \"locomotion\", \"draco\": true}, \"count\": 6, \"actions\": \"random\"}]}";
   auto a = dir / "a.json", b = dir / "b.json";
   auto r = run_cli("bench '" + from_file.string() + "' --frames 2 --warmup 0 -q --json '" + a.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -297,11 +298,12 @@ TEST(SceneFile, AGeneratedCharacterIsTheFileGenWouldWrite) {
   EXPECT_EQ(ja["digest"], jb["digest"]);
   EXPECT_EQ(ja["counters"], jb["counters"]);
   EXPECT_EQ(ja["crowd"][0]["asset_hash"], jb["crowd"][0]["asset_hash"]);
-  EXPECT_EQ(jb["crowd"][0]["file"], "gen --bones 30 --vertices 800 --seed 4 --draco");
+  EXPECT_EQ(jb["crowd"][0]["file"], "gen --bones 30 --vertices 800 --seed 4 --actions locomotion --draco");
   // info describes it as it describes the file.
   auto info = run_cli("info '" + generated.string() + "'");
   ASSERT_EQ(info.status, 0) << info.err;
-  EXPECT_NE(info.out.find("characters[0]: gen --bones 30 --vertices 800 --seed 4 --draco, 6 copies"), std::string::npos)
+  EXPECT_NE(info.out.find("characters[0]: gen --bones 30 --vertices 800 --seed 4 --actions locomotion --draco, 6 copies"),
+            std::string::npos)
       << info.out;
   EXPECT_NE(info.out.find("joints:      30 "), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("(Draco decoded)"), std::string::npos) << info.out;
