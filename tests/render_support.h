@@ -68,6 +68,9 @@ struct Shot {
   bool mesh_lod = false;
   MeshLodThresholds mesh_lod_at;
   IndexOrder index_order = IndexOrder::Optimized;
+  double transitions_s = 0.0;  // > 0: copies change action and fade (issue 53)
+  double blend_in_s = 0.25;
+  Crossfade crossfade = Crossfade::Sampled;
 };
 
 // Runs frames 0..shot.frame of a bench of `characters` (one group each, their
@@ -88,6 +91,8 @@ inline Frame render(GlContext& context, std::span<const Character* const> charac
   config.mode.mesh_lod = shot.mesh_lod;
   config.mode.mesh_lod_at = shot.mesh_lod_at;
   config.mode.index_order = shot.index_order;
+  config.mode.transitions_s = shot.transitions_s;
+  if (shot.transitions_s > 0) config.mode.blend_in_s = shot.blend_in_s, config.mode.crossfade = shot.crossfade;
   config.mode_name = shot.mode;
   config.threads = 2;
   config.crowd.copies = shot.copies;

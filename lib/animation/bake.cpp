@@ -64,6 +64,18 @@ bool BakedPaletteJob::Run() const {
   return true;
 }
 
+bool BakedFadeJob::Validate() const {
+  return now.Validate() && from.Validate() && now.joints == from.joints && now.output.data() != from.output.data() &&
+         from_weight >= 0.0f && from_weight <= 1.0f;
+}
+
+bool BakedFadeJob::Run() const {
+  if (!Validate() || !now.Run() || !from.Run()) return false;
+  for (size_t j = 0; j < now.joints; ++j)
+    now.output[j] = now.output[j] * (1.0f - from_weight) + from.output[j] * from_weight;
+  return true;
+}
+
 }  // namespace crowdprof
 
 namespace crowdprof {

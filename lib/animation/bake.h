@@ -66,6 +66,22 @@ struct BakedPaletteJob {
   [[nodiscard]] bool Run() const;
 };
 
+// What baked.vert computes for a copy fading from one action into another
+// (issue 53): each action's palette as BakedPaletteJob makes it, mixed matrix
+// by matrix, `from_weight` of the action left. Mixing the matrices puts each
+// vertex where mixing the two skinned vertices would (skinning is linear in
+// them); it differs from the exact fade, which mixes the local poses.
+struct BakedFadeJob {
+  BakedPaletteJob now;   // its output is the job's
+  BakedPaletteJob from;  // its output: scratch of one matrix per joint
+  float from_weight = 0.0f;
+
+  // Both jobs valid over the same joints, distinct outputs, weight in [0, 1].
+  bool Validate() const;
+  // False (and no output) when !Validate(). Allocates nothing.
+  [[nodiscard]] bool Run() const;
+};
+
 }  // namespace crowdprof
 
 namespace crowdprof {

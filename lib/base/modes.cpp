@@ -118,9 +118,9 @@ SettingText conflicts(const ModeSwitches& s) {
   if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s)
     return "{blend_in} is at most half of {transitions}: a copy's fades must not overlap (changes come after at "
            "least half the mean)";
-  if (s.transitions_s > 0 && s.skinning == SkinningSite::Baked)
-    return "{transitions} fade between actions on the CPU's poses; skinning baked does not fade yet: use "
-           "{skinning} gpu, compute or animations";
+  if (s.transitions_s > 0 && s.frustum == FrustumTest::Gpu)
+    return "{frustum} gpu times each copy in its cull pass from a clock fixed at load, which knows no changes of "
+           "action: {transitions} need {frustum} cpu (skinning baked fades there)";
   return {};
 }
 

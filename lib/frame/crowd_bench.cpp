@@ -45,10 +45,10 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   CrowdOptions crowd = config.crowd;
   crowd.transitions = {mode.transitions_s, mode.blend_in_s};
   crowd_ = make_crowd(characters_, crowd);
-  if (!crowd_.transitions.empty() && mode.skinning == SkinningSite::Baked)
+  if (!crowd_.transitions.empty() && mode.frustum == FrustumTest::Gpu)
     throw SettingsUsageError(
-        "the scene's groups change action (transitions), which fade on the CPU's poses; skinning baked does not "
-        "fade yet: use {skinning} gpu, compute or animations");
+        "the scene's groups change action (transitions), and {frustum} gpu's cull pass times every copy from a "
+        "clock fixed at load: they need {frustum} cpu (skinning baked fades there)");
   camera_ = make_camera(config.camera, crowd_.crowd_box, config.aspect, config.lens);
   frustum_ = frustum_of(camera_.view_projection());
   // The immutable data first, then the arrays each copy writes, then the jobs.
@@ -67,6 +67,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   if (mode.skinning == SkinningSite::Baked) {
     bake_summary_ = bake_characters(characters_, config.bake_rate_hz, prepared_);
     baked_instances_.resize(crowd_.size());
+    if (transitions_) baked_fades_.resize(crowd_.size());
   }
   copies_of_character_.assign(characters_.size(), 0);
   for (uint16_t k : crowd_.kind) ++copies_of_character_[k];
@@ -86,6 +87,7 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   view_.visible = store_->visible;
   view_.shown = planner_->shown();
   view_.baked = baked_instances_;
+  view_.baked_fades = baked_fades_;
   view_.world_boxes = crowd_.world_boxes;
   view_.baked_clocks = baked_clocks_;
   view_.mesh_level = mesh_level_;
@@ -133,13 +135,22 @@ uint64_t CrowdBench::triangles_of(size_t kind, size_t level) const {
   return level == 0 ? characters_[kind]->mesh.triangle_count() : p.mesh_lods[level - 1].mesh.triangle_count();
 }
 
-BakedInstance CrowdBench::baked_instance(size_t copy, float time) const {
-  const BakedClock clock = baked_clock(copy);
-  BakedInstance instance{clock.first_sample, clock.intervals, 0.0f};
+BakedInstance CrowdBench::baked_instance(size_t copy, size_t action, float time) const {
+  const PreparedCharacter& p = prepared_[crowd_.kind[copy]];
+  BakedInstance instance;
+  if (!p.baked.joints) return instance;
   const Character& character = character_of(copy);
-  if (prepared_[crowd_.kind[copy]].baked.joints && !character.actions.empty())
-    instance.position = baked_position(character.actions[crowd_.action[copy]], clock.intervals, time);
+  const size_t a = character.actions.empty() ? 0 : action;
+  instance.first_sample = static_cast<uint32_t>(p.baked.first_sample[a]);
+  instance.intervals = static_cast<uint32_t>(p.baked.intervals[a]);
+  if (!character.actions.empty()) instance.position = baked_position(character.actions[a], instance.intervals, time);
   return instance;
+}
+
+BakedFade CrowdBench::baked_fade(size_t copy) const {
+  if (!transitions_ || !(store_->weights[copy] < 1.0f)) return {};
+  const BakedInstance from = baked_instance(copy, store_->from_actions[copy], store_->from_times[copy]);
+  return {from.first_sample, from.intervals, from.position, 1.0f - store_->weights[copy]};
 }
 
 BakedClock CrowdBench::baked_clock(size_t copy) const {
@@ -160,8 +171,11 @@ BakedClock CrowdBench::baked_clock(size_t copy) const {
 }
 
 void CrowdBench::place_baked_instances() {
-  for (size_t i = 0; i < crowd_.size(); ++i)
-    if (store_->visible[i]) baked_instances_[i] = baked_instance(i, store_->times[i]);
+  for (size_t i = 0; i < crowd_.size(); ++i) {
+    if (!store_->visible[i]) continue;
+    baked_instances_[i] = baked_instance(i, action_now(i), store_->times[i]);
+    if (transitions_) baked_fades_[i] = baked_fade(i);
+  }
 }
 
 namespace {

@@ -197,8 +197,14 @@ class CrowdBench {
   void update_scenegraph(Counters& counters);
   // Rasterizer, mode baked: where each copy on screen reads its baked table.
   void place_baked_instances();
-  // Copy `copy`'s place among its baked samples at action time `time`.
-  BakedInstance baked_instance(size_t copy, float time) const;
+  // Copy `copy`'s place among the baked samples of its character's action
+  // `action` at that action's time `time`.
+  BakedInstance baked_instance(size_t copy, size_t action, float time) const;
+  // With transitions: the action copy `copy` fades from as its baked record
+  // sends it, from the Logic stage's arrays (weight 0: not fading).
+  BakedFade baked_fade(size_t copy) const;
+  // The action copy `copy` plays this frame: its crowd's, or the schedule's.
+  size_t action_now(size_t copy) const { return transitions_ ? store_->actions[copy] : crowd_.action[copy]; }
   // The action time copy `copy` shows `seconds` into the run, on the clock of
   // the action it starts with (with transitions, until its first change).
   float copy_time(size_t copy, double seconds) const;
@@ -240,6 +246,7 @@ class CrowdBench {
   std::unique_ptr<PoseUpdater> poser_;
   std::vector<CharacterView> character_views_;
   std::vector<BakedInstance> baked_instances_;  // per copy, mode baked
+  std::vector<BakedFade> baked_fades_;          // per copy, mode baked with transitions
   std::vector<BakedClock> baked_clocks_;        // per copy, mode baked with frustum gpu
   std::vector<uint64_t> copies_of_character_;   // per character
   std::vector<uint64_t> gpu_visible_;           // per character and level, frustum gpu: the cull pass's count

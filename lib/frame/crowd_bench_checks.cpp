@@ -88,6 +88,11 @@ size_t checked_copies(std::span<const Character* const> characters, size_t limit
   return std::max<size_t>(1, std::min(limit, vertex_budget / largest));
 }
 
+// The samples of a baked action whose sample 0 is `first_sample`.
+std::span<const SkinMatrix> baked_samples_of(const BakedCharacter& baked, uint32_t first_sample, uint32_t intervals) {
+  return std::span(baked.matrices).subspan(size_t{first_sample} * baked.joints, (size_t{intervals} + 1) * baked.joints);
+}
+
 // One copy's share of the drawn error.
 struct CopyError {
   bool checked = false, deviating = false;
@@ -97,7 +102,7 @@ struct CopyError {
 
 struct ErrorScratch {
   ExactPalette reference;
-  std::vector<SkinMatrix> drawn;
+  std::vector<SkinMatrix> drawn, from;
   std::vector<glm::vec3> drawn_positions, exact_positions, normals;
 };
 
@@ -133,12 +138,21 @@ DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t ma
       // The palette drawn: the baked blend the shader makes, or the pose storage's.
       std::span<const SkinMatrix> drawn = skinning_matrices(i);
       if (kind.site == SkinningSite::Baked) {
-        const BakedInstance instance = baked_instance(i, time);
+        const BakedInstance instance = baked_instance(i, action_now(i), time);
         s.drawn.resize(kind.joints);
-        const auto first = static_cast<size_t>(instance.first_sample) * kind.joints;
-        run_job(BakedPaletteJob{std::span(kind.baked.matrices).subspan(first, (instance.intervals + 1) * kind.joints),
-                                kind.joints, instance.position, s.drawn},
-                "BakedPaletteJob");
+        const BakedPaletteJob now{baked_samples_of(kind.baked, instance.first_sample, instance.intervals), kind.joints,
+                                  instance.position, s.drawn};
+        // A fading copy: as the shader mixes its record with the action it leaves.
+        if (const BakedFade fade = baked_fade(i); fade.fading()) {
+          s.from.resize(kind.joints);
+          run_job(BakedFadeJob{now,
+                               {baked_samples_of(kind.baked, fade.first_sample, fade.intervals), kind.joints,
+                                fade.position, s.from},
+                               fade.weight},
+                  "BakedFadeJob");
+        } else {
+          run_job(now, "BakedPaletteJob");
+        }
         drawn = s.drawn;
       }
       const size_t level = level_of(i);
@@ -270,8 +284,12 @@ std::string CrowdBench::digest() const {
     if (prepared_[crowd_.kind[i]].site == SkinningSite::Baked) {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
       BakedInstance instance =
-          baked_instance(i, gpu_visible_.empty() ? store_->times[i] : copy_time(i, last_seconds));
+          baked_instance(i, action_now(i), gpu_visible_.empty() ? store_->times[i] : copy_time(i, last_seconds));
       fnv1a(hash, &instance, sizeof instance);
+      if (transitions_) {
+        const BakedFade fade = baked_fade(i);
+        fnv1a(hash, &fade, sizeof fade);
+      }
     } else if (!gpu_skinned_copy(i) && packed_vertices()) {
       fnv1a(hash, packed_positions(i).data(), packed_positions(i).size_bytes());
       fnv1a(hash, packed_normals(i).data(), packed_normals(i).size_bytes());

@@ -35,6 +35,17 @@ struct BakedInstance {
   float position = 0.0f;
 };
 
+// With transitions, the action a baked copy fades from (issue 53): where it
+// reads that action's samples (its time advancing with crossfade sampled,
+// held at the change with frozen) and that action's weight, 0 when the copy is
+// not fading (then the rest is not sent).
+struct BakedFade {
+  uint32_t first_sample = 0, intervals = 1;
+  float position = 0.0f;
+  float weight = 0.0f;  // of the action left: 1 - the fade's
+  bool fading() const { return weight > 0.0f; }
+};
+
 // What a copy's baked record is made from when the GPU makes it (frustum gpu):
 // fixed at load, the time coming from FrameView::seconds. Its action's sample
 // 0 in the table and interval count, its phase, and its action's start, end
@@ -58,6 +69,7 @@ struct FrameView {
   std::span<const uint8_t> visible;        // inside the frustum this frame
   std::span<const uint32_t> shown;         // the pose storage it draws (sharing), empty: its own
   std::span<const BakedInstance> baked;    // mode baked: this frame's, for copies on screen
+  std::span<const BakedFade> baked_fades;  // mode baked with transitions: as baked; empty without
   std::span<const Aabb> world_boxes;       // what frustum gpu tests (the CPU's test reads the same)
   std::span<const BakedClock> baked_clocks;  // mode baked with frustum gpu: fixed at load
   std::span<const uint8_t> mesh_level;     // mesh LOD: the level each copy draws; empty: all level 0

@@ -97,6 +97,10 @@ void add_instance_attributes() {
   glVertexAttribIFormat(kInstanceAttribute, 4, GL_UNSIGNED_INT, 0);
   glVertexAttribBinding(kInstanceAttribute, kInstanceStream);
   glVertexBindingDivisor(kInstanceStream, 1);
+  // A fading baked copy's second slot (GpuFade), from the same stream at
+  // twice the stride; enabled only around those draws (draw_instance_runs).
+  glVertexAttribIFormat(kFadeAttribute, 4, GL_UNSIGNED_INT, sizeof(GpuInstance));
+  glVertexAttribBinding(kFadeAttribute, kInstanceStream);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "render/gpu_frame_buffers.h"
 
 #include <algorithm>
+#include <bit>
 #include <string>
 
 #include "render/gl_errors.h"
@@ -123,6 +124,15 @@ void GpuFrameBuffers::add_record(size_t kind, const GpuInstance& record) {
   instances_[index].copy = static_cast<uint32_t>(record.copy % placement_page_copies_);
   page_of_[index] = 0;
   placement_page_of_[index] = static_cast<uint32_t>(record.copy / placement_page_copies_);
+}
+
+void GpuFrameBuffers::add_fading_record(size_t kind, const GpuInstance& record, const GpuFade& fade) {
+  add_record(kind, record);
+  // The fade's slot, on the record's pages: a page's run never splits the two.
+  const uint32_t index = runs_[kind].first + filled_[kind]++;
+  instances_[index] = std::bit_cast<GpuInstance>(fade);
+  page_of_[index] = page_of_[index - 1];
+  placement_page_of_[index] = placement_page_of_[index - 1];
 }
 
 InstanceRun GpuFrameBuffers::page_run(size_t kind, uint32_t from) const {

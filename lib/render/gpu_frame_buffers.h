@@ -55,12 +55,28 @@ struct GpuInstance {
 };
 static_assert(sizeof(GpuInstance) == 16, "one uvec4 attribute");
 
+// The second half of a fading baked copy's record (issue 53; baked.vert's
+// fade_data): the action it leaves, where that one's samples start in the
+// table, its interval count and the copy's position among them, and the
+// weight the shader gives it. A fading copy sends 32 bytes, a GpuInstance and
+// this; the others 16.
+struct GpuFade {
+  uint32_t palette_base = 0;
+  uint32_t intervals = 1;
+  float position = 0.0f;
+  float weight = 0.0f;
+};
+static_assert(sizeof(GpuFade) == sizeof(GpuInstance), "the record's second slot");
+
 // The palettes' binding point, as shaders/instances.glsl names it.
 inline constexpr GLuint kPaletteBinding = 0;
 // The vertex buffer binding an instanced draw reads the records from, and
 // the attribute location they arrive at.
 inline constexpr GLuint kInstanceStream = 4;
 inline constexpr GLuint kInstanceAttribute = 4;
+// Where a two-slot record's second slot arrives (GpuFade), from the same
+// stream; enabled only for the draws of two-slot records.
+inline constexpr GLuint kFadeAttribute = 5;
 
 // Bytes one frame sent: palette rows and instance records apart.
 struct SentBytes {
@@ -105,6 +121,10 @@ class GpuFrameBuffers {
   // source: its palette_base and source words as given, its copy counted from
   // 0 and stored from its page's first); on palette page 0.
   void add_record(size_t kind, const GpuInstance& record);
+  // As add_record, with `fade` in the slot after the record: a run of such
+  // records counts two slots each (begin's counts too) and is drawn with
+  // RecordSlots 2 (draw_instance_runs).
+  void add_fading_record(size_t kind, const GpuInstance& record, const GpuFade& fade);
   // The records and rows added since begin().
   InstanceRun run(size_t kind) const { return runs_[kind]; }
   // Counted from the start of the record's page.

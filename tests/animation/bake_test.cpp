@@ -77,6 +77,34 @@ TEST(Bake, SamplesAreTheExactPosesAtTheirTimes) {
   EXPECT_EQ(mid, baked.matrices[2]);
 }
 
+// A fade mixes two baked palettes matrix by matrix (what baked.vert does):
+// weight 0 is the action now, 1 the action left, between them the mean.
+TEST(Bake, AFadeMixesTwoBakedPalettesByItsWeight) {
+  Character c = turning_joint();
+  std::vector<ActionBindings> bindings = {bind_action(c.skeleton, c.actions[0])};
+  BakedCharacter baked;
+  ASSERT_TRUE(bake_character(c, targets_of(bindings), 2.0f, &baked));
+  SkinMatrix now, from;
+  auto fade = [&](float now_at, float from_at, float weight) {
+    return BakedFadeJob{{baked.matrices, 1, now_at, std::span(&now, 1)},
+                        {baked.matrices, 1, from_at, std::span(&from, 1)},
+                        weight};
+  };
+  ASSERT_TRUE(fade(0.0f, 2.0f, 0.0f).Run());
+  EXPECT_EQ(now, baked.matrices[0]);
+  ASSERT_TRUE(fade(0.0f, 2.0f, 1.0f).Run());
+  EXPECT_EQ(now, baked.matrices[2]);
+  ASSERT_TRUE(fade(0.0f, 2.0f, 0.25f).Run());
+  const SkinMatrix expected = baked.matrices[0] * 0.75f + baked.matrices[2] * 0.25f;
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) EXPECT_NEAR(now[col][row], expected[col][row], 1e-6) << col << " " << row;
+  EXPECT_FALSE(fade(0.0f, 2.0f, 1.5f).Validate());
+  EXPECT_FALSE(fade(0.0f, 2.0f, NAN).Validate());
+  BakedFadeJob same_output = fade(0.0f, 2.0f, 0.5f);
+  same_output.from.output = same_output.now.output;
+  EXPECT_FALSE(same_output.Validate()) << "the action left needs its own scratch";
+}
+
 TEST(Bake, JobsRefuseWhatTheyCannotFill) {
   Character c = turning_joint();
   std::vector<ActionBindings> bindings = {bind_action(c.skeleton, c.actions[0])};

@@ -12,8 +12,13 @@ namespace crowdprof {
 
 namespace {
 
-std::vector<ShaderStage> baked_stages(PlacementBlock block, const GlFeatures& gl) {
-  return lit_stages("shaders/baked.vert", copy_colours_define() + GpuPlacements::shader_source(block, gl),
+// `fading`: the variant that also reads a record's second slot (GpuFade) and
+// mixes in the action left; the other copies draw with the plain one, as
+// without transitions.
+std::vector<ShaderStage> baked_stages(PlacementBlock block, const GlFeatures& gl, bool fading = false) {
+  return lit_stages("shaders/baked.vert",
+                    std::string(fading ? "#define FADING\n" : "") + copy_colours_define() +
+                        GpuPlacements::shader_source(block, gl),
                     "#define INSTANCED\n");
 }
 
@@ -55,8 +60,14 @@ void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   const size_t copies = view.copies();
   bytes += std::max<size_t>(copies, 1) * sizeof(GpuPlacement);  // the placements, sent at the first frame
   if (view.mode.frustum != FrustumTest::Gpu) {
-    // A record per copy on screen, sent each frame.
-    buffers_.reserve(copies, 0, 0, true, gl_);
+    // A record per copy on screen, sent each frame; with transitions two
+    // slots for a fading copy (every copy at most).
+    const bool fades = view.mode.transitions_s > 0;
+    if (fades && !fading_program_.id()) {
+      fading_program_ = GlProgram(baked_stages(PlacementBlock::Uniform, gl_, true));
+      fading_joint_count_ = fading_program_.uniform("joint_count");
+    }
+    buffers_.reserve(fades ? 2 * copies : copies, 0, 0, true, gl_);
     gpu_bytes_ = bytes + buffers_.gpu_bytes();
     return;
   }
@@ -117,20 +128,33 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
       throw GlError("baked skinning asked of a renderer not prepared for it");
   // This frame's records, one run per character and mesh level (one instanced
   // draw each), in copy order within a run: counted, then added.
+  // With transitions, the fading copies' two-slot records follow in runs of
+  // their own (groups from `groups` on), drawn by the fading program.
   auto drawn = [&](size_t i) { return view.visible[i] && view.site_of(i) == SkinningSite::Baked; };
-  drawn_.assign(meshes.size() * kMeshLevels, 0);
+  auto fading = [&](size_t i) { return !view.baked_fades.empty() && view.baked_fades[i].fading(); };
+  const size_t groups = meshes.size() * kMeshLevels;
+  drawn_.assign(view.baked_fades.empty() ? groups : 2 * groups, 0);
   for (size_t i = 0; i < view.copies(); ++i)
-    if (drawn(i)) ++drawn_[draw_group(view, i)];
+    if (drawn(i)) drawn_[draw_group(view, i) + (fading(i) ? groups : 0)] += fading(i) ? 2 : 1;
   buffers_.begin(drawn_);
+  fading_records_ = 0;
   for (size_t i = 0; i < view.copies(); ++i) {
     if (!drawn(i)) continue;
     const BakedInstance& b = view.baked[i];
+    const size_t joints = meshes[view.kind[i]].joints;
     GpuInstance record;
     record.copy = static_cast<uint32_t>(i);
-    record.palette_base = static_cast<uint32_t>(3 * b.first_sample * meshes[view.kind[i]].joints);
+    record.palette_base = static_cast<uint32_t>(3 * b.first_sample * joints);
     record.source[0] = b.intervals;
     record.source[1] = std::bit_cast<uint32_t>(b.position);
-    buffers_.add_record(draw_group(view, i), record);
+    if (!fading(i)) {
+      buffers_.add_record(draw_group(view, i), record);
+      continue;
+    }
+    const BakedFade& f = view.baked_fades[i];
+    buffers_.add_fading_record(draw_group(view, i) + groups, record,
+                               {static_cast<uint32_t>(3 * f.first_sample * joints), f.intervals, f.position, f.weight});
+    ++fading_records_;
   }
   count_record_bytes(counters, buffers_.upload(true).records);
 }
@@ -144,11 +168,21 @@ void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, c
   glUseProgram(program.id());
   set_frame_uniforms(program, pass);
   set_copy_colours(program);
-  auto bind_table = [&](size_t k) {
+  auto bind_table = [&](size_t k, GLint joints_at) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPaletteBinding, tables_[k]);
-    glUniform1ui(joint_count, static_cast<GLuint>(meshes[k].joints));
+    glUniform1ui(joints_at, static_cast<GLuint>(meshes[k].joints));
   };
-  if (!gpu_cull) return draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order, bind_table, counters);
+  if (!gpu_cull) {
+    draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order,
+                       [&](size_t k) { bind_table(k, joint_count); }, counters);
+    if (fading_records_ == 0) return;
+    glUseProgram(fading_program_.id());
+    set_frame_uniforms(fading_program_, pass);
+    set_copy_colours(fading_program_);
+    return draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order,
+                              [&](size_t k) { bind_table(k, fading_joint_count_); }, counters,
+                              {meshes.size() * kMeshLevels, 2});
+  }
   // The cull pass's copies fit one storage block (prepare), and their placements, smaller, too.
   static_assert(sizeof(GpuPlacement) <= GpuCull::kBytesPerCopy);
   if (storage)
@@ -157,7 +191,7 @@ void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, c
     placements_.bind_page(0);
   for (size_t k = 0; k < meshes.size(); ++k) {
     if (k >= tables_.size() || !tables_[k]) continue;
-    bind_table(k);
+    bind_table(k, joint_count);
     gpu_cull->draw(k, meshes[k], buffers_.instance_buffer(), counters);
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);  // no later draw reads commands by accident

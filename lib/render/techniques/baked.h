@@ -4,8 +4,10 @@
 // one 16-byte record per copy on screen (the copy, which samples, how far
 // between them; its placement was sent once, gpu_placements.h) and draws each
 // character and mesh level with one instanced draw; the vertex shader blends
-// the two samples. With frustum gpu the same records are made on the GPU
-// (gpu_cull.h) and nothing per copy is sent.
+// the two samples. With transitions a fading copy sends 32 bytes, its record
+// and the action it leaves (GpuFade), and the shader mixes the two. With
+// frustum gpu the same records are made on the GPU (gpu_cull.h) and nothing
+// per copy is sent (no transitions there: modes.cpp).
 #pragma once
 
 #include <cstdint>
@@ -49,6 +51,11 @@ class BakedSkinning final : public Technique {
   // its indirect draws cannot change pages).
   GlProgram program_, cull_program_;
   GLint joint_count_ = -1, cull_joint_count_ = -1;
+  // With transitions: the program that draws the fading copies' two-slot
+  // records (baked.vert's FADING), and how many this frame sent.
+  GlProgram fading_program_;
+  GLint fading_joint_count_ = -1;
+  size_t fading_records_ = 0;
   bool cull_reads_storage(const FrameView& view) const;
   std::vector<GLuint> tables_;  // per character: every sample's 3x4 rows, 48 bytes a joint (0: not baked)
   GpuFrameBuffers buffers_;     // the records, without palettes

@@ -33,30 +33,33 @@ void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, const
 
 void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
                         IndexOrder order,
-                        const std::function<void(size_t)>& bind_character, Counters& counters) {
+                        const std::function<void(size_t)>& bind_character, Counters& counters, RecordRuns runs) {
+  const GLsizei stride = static_cast<GLsizei>(runs.slots * sizeof(GpuInstance));
   size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
-    const InstanceRun run = buffers.run(group);
+    const InstanceRun run = buffers.run(runs.first_group + group);
     if (run.count == 0) continue;
     const size_t k = group / kMeshLevels;
     if (k != bound) bind_character(bound = k);
     // A character's copies at one mesh level (draw_group): level 0 without mesh LOD.
     const MeshLevelDraw level = meshes[k].draw_of(group % kMeshLevels, true, order);
     glBindVertexArray(level.instanced_vao);
+    if (runs.slots > 1) glEnableVertexAttribArray(kFadeAttribute);
     // One instanced draw per page the group's palettes and placements take
     // (one, below the storage-block limit).
     for (uint32_t from = run.first; from < run.first + run.count;) {
-      const InstanceRun part = buffers.page_run(group, from);
+      const InstanceRun part = buffers.page_run(runs.first_group + group, from);
       buffers.bind_page(buffers.page_of(from));
       placements.bind_page(buffers.placement_page_of(from));
       glBindVertexBuffer(kInstanceStream, buffers.instance_buffer(),
-                         static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)),
-                         sizeof(GpuInstance));
+                         static_cast<GLintptr>(part.first) * static_cast<GLintptr>(sizeof(GpuInstance)), stride);
       glDrawElementsInstancedBaseVertex(GL_TRIANGLES, level.index_count, GL_UNSIGNED_INT, level.first_index,
-                                        static_cast<GLsizei>(part.count), level.base_vertex);
+                                        static_cast<GLsizei>(part.count / runs.slots), level.base_vertex);
       from += part.count;
       ++counters.draw_calls;
     }
+    // The VAO's other draws read one slot a record.
+    if (runs.slots > 1) glDisableVertexAttribArray(kFadeAttribute);
   }
 }
 

@@ -18,6 +18,15 @@
 
 namespace crowdprof {
 
+// Which of a frame's runs draw_instance_runs draws: the draw groups from
+// `first_group` on, one per character and mesh level, whose records take
+// `slots` 16-byte slots each (2: fading baked copies', each GpuInstance
+// followed by its GpuFade, read at kFadeAttribute).
+struct RecordRuns {
+  size_t first_group = 0;
+  uint32_t slots = 1;
+};
+
 // The instanced path that instanced and baked share: one instanced draw per
 // draw group (character and mesh level: draw_group) and palette page of the
 // runs begin() reserved in `buffers`, each instance reading its record as
@@ -27,7 +36,8 @@ namespace crowdprof {
 // (baked: its table and joint count), before its first draw.
 void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
                         IndexOrder order,
-                        const std::function<void(size_t)>& bind_character, Counters& counters);
+                        const std::function<void(size_t)>& bind_character, Counters& counters,
+                        RecordRuns runs = {});
 
 // kCopyColours into `program`'s uniform `colours`, which a record's colour
 // indexes; its shader is compiled with copy_colours_define() (COLOURS, their
