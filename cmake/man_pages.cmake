@@ -31,7 +31,7 @@ file(WRITE ${man_dir}/extra-sections.h2m "[FILES]
 .TP
 \\fIshare/crowdprof/scenes/\\fR under the install prefix (\\fI/usr\\fR for the .deb packages, \\fI/usr/local\\fR for \\fBcmake --install\\fR by default)
 The default scenes: \\fIthesis.json\\fR (the thesis's 160 dancing copies, what the examples bench),
-\\fImixed.json\\fR (three characters) and \\fIhumanoid.glb\\fR. The examples' \\fIscenes/\\fR paths are relative to
+\\fImixed.json\\fR (three characters), \\fIlocomotion.json\\fR (a crowd that changes action) and \\fIhumanoid.glb\\fR. The examples' \\fIscenes/\\fR paths are relative to
 a source checkout; installed, a relative path not found in the current folder is taken from \\fIshare/crowdprof\\fR,
 so the examples run from any folder.
 .TP

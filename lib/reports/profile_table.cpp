@@ -174,7 +174,7 @@ std::string format_profile(const Result& report) {
   if (std::optional<AnimationSplit> split = animation_split(report)) {
     out << "Animations by stage:";
     for (size_t st = 0; st < kAnimationStageCount; ++st)
-      out << (st ? " |" : "") << " " << kAnimationStageLabels[st] << " " << fixed(split->median_ms[st], 2);
+      out << (st ? " |" : "") << " " << kAnimationStageLabels[st] << " " << fixed(split->median_ms[st], 3);
     out << " ms of thread time (medians";
     if (split->threads > 1) out << ", " << split->threads << " threads";
     out << "; " << fixed(100.0 * split->coverage, 0) << "% of Animations'"
@@ -191,7 +191,8 @@ std::string format_profile(const Result& report) {
       << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
       << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
       << " lookups";
-  if (run.switches.transitions_s > 0)
+  // Transitions from the switch, or from a scene file's groups (seen in their counters).
+  if (run.switches.transitions_s > 0 || k.fades > 0 || k.actions_sampled != k.poses_updated)
     out << ", " << k.actions_sampled << " actions sampled, " << k.fades << " fades, " << k.joints_blended
         << " joints blended";
   out << " per frame\n";
