@@ -56,6 +56,8 @@ constexpr Interleave3Tables kInterleave3{};
 // (`out` then 64-byte aligned), which write whole cache lines to memory without
 // reading them first (see SkinKernelArgs::stream). Narrower vectors stream
 // through StageLines.
+// An if-else chain across #if blocks, which clang-format would indent as one statement.
+// clang-format off
 template <bool kStream, class D, class V = hn::Vec<D>>
 HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
@@ -94,6 +96,7 @@ HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
     hn::StoreInterleaved3(x, y, z, d, out);
   }
 }
+// clang-format on
 
 // Narrower vectors than a batch each write part of a cache line (an AVX2 group
 // of 8 vertices, 96 bytes, ends mid-line): streamed straight, a line's parts
