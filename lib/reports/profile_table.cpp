@@ -199,6 +199,9 @@ std::string format_profile(const Result& report) {
   if (run.backend != "none" || k.copies_fallback > 0) {
     out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
         << " bytes uploaded per frame";
+    // GPU skinning's share of them (issue 52): palettes and per-copy records.
+    if (k.palette_bytes_uploaded > 0 || k.record_bytes_uploaded > 0)
+      out << " (palettes " << k.palette_bytes_uploaded << ", records " << k.record_bytes_uploaded << ")";
     if (k.gpu_palette_bytes > 0) out << " | " << k.gpu_palette_bytes << " bytes of palettes on the GPU";
     if (k.copies_fallback > 0)
       out << " | " << k.copies_fallback << " copies skinned on the CPU: over the GPU's bone limit";

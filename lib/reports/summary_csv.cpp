@@ -24,7 +24,8 @@ std::string csv_field(const std::string& text) {
 std::string summary_csv_header() {
   return "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,cpu_median_ms,"
          "cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes,index_order,colour_invocations_per_vertex,"
-         "prepass_invocations_per_vertex,shadows_invocations_per_vertex";
+         "prepass_invocations_per_vertex,shadows_invocations_per_vertex,palette_bytes_per_copy_on_screen,"
+         "record_bytes_per_copy_on_screen";
 }
 
 void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out) {
@@ -47,6 +48,10 @@ void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out
                                : std::numeric_limits<double>::quiet_NaN();
       out << "," << (std::isfinite(reuse) ? fixed(reuse, 4) : std::string());
     }
+    // GPU skinning's uploads a copy on screen: empty in results from before the split.
+    for (const std::optional<double>& bytes :
+         {report->palette_bytes_per_copy_on_screen, report->record_bytes_per_copy_on_screen})
+      out << "," << (bytes ? fixed(*bytes, 1) : std::string());
     out << "\n";
   }
 }

@@ -59,7 +59,8 @@ TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
   std::getline(in, row);
   EXPECT_EQ(header, "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,"
                     "cpu_median_ms,cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes,index_order,"
-                    "colour_invocations_per_vertex,prepass_invocations_per_vertex,shadows_invocations_per_vertex");
+                    "colour_invocations_per_vertex,prepass_invocations_per_vertex,shadows_invocations_per_vertex,"
+                    "palette_bytes_per_copy_on_screen,record_bytes_per_copy_on_screen");
   EXPECT_EQ(row.rfind("threaded,2,", 0), 0u) << row;
   EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ',')) << row;
   EXPECT_FALSE(std::getline(in, extra)) << "one row for one run";
