@@ -66,9 +66,8 @@ void group_outputs(CLI::App& cmd);
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 
-// The files a bench reads: the character file, or a scene file and every
-// character it names (InputError when the scene file is malformed).
-std::vector<crowdprof::NamedPath> bench_input_files(const std::string& file);
+// --csv, --json, --trace, --screenshot and --html as the command line gave them.
+crowdprof::RunOutputs bench_outputs(const BenchCliOptions& options);
 
 // UsageError, before any work, when --csv, --json, --trace, --screenshot or --html (and
 // the command's `outputs`) cannot be written, when one of them is the character

@@ -8,14 +8,15 @@
 #include "asset/gltf_loader.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
+#include "base/output_file.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 #include "frame/interrupt.h"
 #include "gate/regression.h"
-#include "result/result_codec.h"
 #include "reports/gbench_json.h"
 #include "reports/summary_csv.h"
-#include "frame/run_bench.h"
+#include "measuring/instruction_counter.h"
 #include "measuring/trace.h"
 #include "render/gl_errors.h"
 #include "render/png.h"
@@ -124,10 +125,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--gbench-json", outputs->gbench_json,
                   "Write the run as Google Benchmark's JSON (each frame a repetition; mean, median, stddev), for "
                   "compare.py, github-action-benchmark or Bencher");
-  cmd->add_flag("--count-instructions", outputs->count_instructions,
-                "Count each measured frame's instructions on one thread: perf_event's hardware counter, or "
-                "callgrind's under valgrind --tool=callgrind --collect-atstart=no (check --metric instructions runs "
-                "that); recorded in --json as \"instructions\"");
+  cmd->add_flag("--count-instructions", outputs->count_instructions, kCountInstructionsHelp);
   cmd->add_flag("--calibrate", outputs->calibrate,
                 "After every frame, time a fixed calibration probe (a skinning kernel of fixed size on the same "
                 "threads) and record each frame over it: the metric check --metric calibrated compares, which a "

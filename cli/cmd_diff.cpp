@@ -7,11 +7,11 @@
 
 #include "base/errors.h"
 #include "cli/commands.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
 #include "base/output_file.h"
-#include "gate/diff.h"
+#include "frame/run_bench.h"
 #include "result/result_codec.h"
+#include "gate/diff.h"
 
 namespace {
 

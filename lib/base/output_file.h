@@ -4,6 +4,9 @@
 // errors are UsageErrors (exit 2, docs/errors.md).
 #pragma once
 
+#include <functional>
+#include <initializer_list>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +34,14 @@ void write_file(const std::string& path, const std::string& what, std::string_vi
 // True when writing `path` writes standard output ("-", /dev/stdout, a link
 // to it): a command then prints nothing else there, so the file stays whole.
 bool is_standard_output(const std::string& path);
+
+// Whether a command prints its text on stdout: not with --quiet, nor when one
+// of its output files is stdout ("--csv -", /dev/stdout), which then holds
+// that file alone.
+bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
+
+// Writes `path` with `body` (write_file); UsageError naming the file when it cannot.
+void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
 
 // A file the command reads or writes, named as its option is: {"--json", path}.
 struct NamedPath {

@@ -42,6 +42,9 @@ struct CheckPlan {
   size_t runs = kCheckRuns;  // each a process of its own
   double spread_s = 0;       // the runs start this many seconds apart in all
   bool update_baseline = false;
+  // The runs are counted, not timed (kInstructionsMetric): the one metric
+  // whose runs are other processes, judged without a test of significance.
+  bool counted() const { return !gate.metrics.empty() && gate.metrics.front() == kInstructionsMetric; }
 };
 
 // The plan, every value checked: SettingError naming the setting (tolerance,
