@@ -3,15 +3,12 @@
 #include <cmath>
 #include <optional>
 #include <iostream>
-#include <tuple>
 #include <thread>
 
 #include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "cli/installed_data.h"
 #include "base/output_file.h"
-#include "render/gl_context.h"
-#include "render/gl_features.h"
 #include "base/switch_table.h"
 #include "scene/camera.h"
 

@@ -25,6 +25,10 @@ struct CheckRequest {
   bool update_baseline = false;
   bool timings_only = false;
   bool has_result = false;  // --result: read, not run
+  bool ab = false;          // --against: an A/B of two builds, not a stored baseline
+  // The files of timed runs the command line asked for (--csv, --html, --svg,
+  // --trace, --screenshot), which counted runs do not write.
+  std::vector<std::string> timed_outputs;
 };
 
 // A baseline is held against every later check, so its luck counts many
@@ -49,7 +53,7 @@ struct CheckPlan {
 
 // The plan, every value checked: SettingError naming the setting (tolerance,
 // floor, alpha, runs, spread, metric) or UsageError for options that cannot go
-// together.
+// together (the counted metric with timed files or an A/B among them).
 CheckPlan plan_check(const CheckRequest& request);
 
 // The metrics a stored-baseline check compares, once both results are known,

@@ -165,7 +165,7 @@ std::string crowdprof_line(const std::string& text) {
 // hardware counter where the host exposes one, else under callgrind (which
 // must start the process, so never a fork). A run's count is the instructions
 // of its measured frames over their number.
-std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& plan) {
+std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& plan, const std::optional<Result>&) {
   std::string perf_problem = perf_event_problem();
   const bool callgrind = !perf_problem.empty();
   if (callgrind && !on_path("valgrind"))
@@ -305,14 +305,17 @@ std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, cons
   return std::nullopt;
 }
 
+using MakeRuns = std::optional<Result> (*)(const CheckState&, const CheckPlan&, const std::optional<Result>&);
+
 // The runs: the spec resolves as defaults, scene file, baseline, command line;
-// then the runs are counted or timed.
-std::optional<Result> measure(CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline) {
+// then `runs` makes them.
+std::optional<Result> measure(CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline,
+                              MakeRuns runs) {
   if (baseline) resolve_with_baseline(s, *baseline);
   else s.spec = resolve_run_spec(run_layers(s.r.command_line, nullptr, &s.r.defaults));
   if (s.spec.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
   require_safe_outputs(s.r, s.spec.file);  // the scene file may have come from the baseline
-  return plan.counted() ? count_instructions(s, plan) : time_runs(s, plan, baseline);
+  return runs(s, plan, baseline);
 }
 
 // What an instruction count was made with: counts compare only within one.
@@ -324,7 +327,7 @@ std::string instruction_origin(const InstructionRecord& i) {
 
 // The counts against the tolerance (no test of significance: the count does
 // not vary with the machine), then the work.
-void judge_count(const CheckRun& r, CheckOutcome& outcome) {
+void judge_count(const CheckRun& r, CheckOutcome& outcome, const std::function<std::optional<Result>()>&) {
   const Result& baseline = *outcome.baseline;
   const Result& current = outcome.current;
   if (!baseline.instructions || !baseline.instructions->per_frame)
@@ -405,6 +408,19 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome,
   }
   outcome.result = std::move(result);
   outcome.kind = CheckOutcome::Kind::Gated;
+}
+
+// How a stored-baseline check's runs are made and judged: timed (forked,
+// spread, confirmed) or counted (--metric instructions: spawned, against the
+// tolerance alone). The one place the two part.
+struct CheckWay {
+  MakeRuns runs;
+  void (*judge)(const CheckRun&, CheckOutcome&, const std::function<std::optional<Result>()>&);
+};
+
+CheckWay way_of(const CheckPlan& plan) {
+  if (plan.counted()) return {count_instructions, judge_count};
+  return {time_runs, judge_timings};
 }
 
 // ---- check --against BASE: an A/B of two builds at the same moment
@@ -506,8 +522,6 @@ AbOptions ab_gate_of(const CheckRun& r, const CheckPlan& plan) {
                              "--confirm-spread", "--svg", "--csv", "--trace", "--screenshot"})
     if (r.was_given(option))
       throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
-  if (plan.counted())
-    throw UsageError("--metric instructions is for a stored baseline: an A/B times both builds side by side");
   if (r.metric_given &&
       std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), "calibrated") != plan.gate.metrics.end())
     throw UsageError("--metric calibrated is for a stored baseline: an A/B pairs both builds in time, which is what "
@@ -666,13 +680,11 @@ json AbRun::document() const {
 }
 
 CheckOutcome run_check(const CheckRun& r) {
-  CheckPlan plan = plan_check(r.plan);
-  // A counted run is not a timed one: no frame times worth a file.
-  if (plan.counted())
-    for (const char* option : {"--csv", "--html", "--svg", "--trace", "--screenshot"})
-      if (r.was_given(option))
-        throw UsageError(std::string(option) + " is not written by --metric instructions (its runs are counted, "
-                                               "not timed); --json, --junit and --markdown are");
+  CheckRequest asked = r.plan;
+  asked.ab = !r.against.empty();
+  for (const char* option : {"--csv", "--html", "--svg", "--trace", "--screenshot"})
+    if (r.was_given(option)) asked.timed_outputs.push_back(option);
+  CheckPlan plan = plan_check(asked);
   if (!r.against.empty()) return run_ab(r, plan);
   if (r.baseline.empty())
     throw UsageError("check needs --baseline FILE (a stored result) or --against BINARY (an A/B of two builds)");
@@ -691,23 +703,20 @@ CheckOutcome run_check(const CheckRun& r) {
   state.calibrate = r.plan.update_baseline
                         ? std::find(metrics.begin(), metrics.end(), "calibrated") != metrics.end()
                         : outcome.baseline && !outcome.baseline->samples.probe_ms.empty();
+  const CheckWay way = way_of(plan);
   std::optional<Result> current =
-      r.result.empty() ? measure(state, plan, outcome.baseline) : read_result(r.result);
+      r.result.empty() ? measure(state, plan, outcome.baseline, way.runs) : read_result(r.result);
   if (!current) return outcome;
   outcome.current = std::move(*current);
   if (r.plan.update_baseline) {
     outcome.kind = CheckOutcome::Kind::BaselineWritten;
     return outcome;
   }
-  if (plan.counted()) {
-    judge_count(r, outcome);
-    return outcome;
-  }
   std::function<std::optional<Result>()> remeasure;
   CheckPlan confirming = plan;
   confirming.spread_s = std::max(plan.spread_s, r.confirm_spread);
-  if (r.result.empty()) remeasure = [&] { return measure(state, confirming, outcome.baseline); };
-  judge_timings(r, outcome, remeasure);
+  if (r.result.empty()) remeasure = [&] { return measure(state, confirming, outcome.baseline, way.runs); };
+  way.judge(r, outcome, remeasure);
   return outcome;
 }
 
