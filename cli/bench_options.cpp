@@ -1,5 +1,6 @@
 #include "cli/bench_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <iostream>
@@ -85,9 +86,38 @@ crowdprof::RunOutputs bench_outputs(const BenchCliOptions& o) {
   return {o.csv, o.json, o.trace, o.screenshot, o.html};
 }
 
-void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::NamedPath> inputs,
-                              std::vector<crowdprof::NamedPath> outputs) {
-  crowdprof::require_writable_outputs(o.spec.file, bench_outputs(o), std::move(inputs), outputs);
+void require_writable_outputs(const BenchCliOptions& o, const std::vector<crowdprof::NamedPath>& inputs) {
+  std::vector<crowdprof::NamedPath> all = crowdprof::bench_input_files(o.spec.file);
+  all.insert(all.end(), inputs.begin(), inputs.end());
+  o.outputs.files().require_usable(all);
+}
+
+namespace {
+struct OutputKind {
+  const char* option;
+  const char* what;  // in messages: "cannot write SVG file ..."
+};
+// By OutputOption.
+constexpr OutputKind kOutputKinds[] = {{"--csv", "CSV"},          {"--json", "JSON"},       {"--trace", "trace"},
+                                       {"--screenshot", "PNG"},   {"--html", "HTML"},       {"--svg", "SVG"},
+                                       {"--summary-csv", "CSV"},  {"--gbench-json", "JSON"}, {"--junit", "JUnit XML"},
+                                       {"--markdown", "Markdown"}};
+}  // namespace
+
+CLI::Option* DeclaredOutputs::declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help) {
+  declared_.emplace_back(output, &path);
+  return cmd.add_option(kOutputKinds[static_cast<size_t>(output)].option, path, help);
+}
+
+crowdprof::OutputFiles DeclaredOutputs::files() const {
+  auto declared = declared_;
+  std::stable_sort(declared.begin(), declared.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  crowdprof::OutputFiles files;
+  for (const auto& [output, path] : declared) {
+    const OutputKind& kind = kOutputKinds[static_cast<size_t>(output)];
+    files.add(kind.option, kind.what, *path);
+  }
+  return files;
 }
 
 crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::BenchScene& scene,

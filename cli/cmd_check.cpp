@@ -73,6 +73,7 @@ CheckRun request_of(const CheckCliOptions& o) {
   r.defaults = o.bench.defaults;
   r.quiet = o.bench.quiet;
   r.outputs = bench_outputs(o.bench);
+  r.files = o.bench.outputs.files();
   r.svg = o.svg;
   r.junit = o.junit;
   r.markdown = o.markdown;
@@ -133,10 +134,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--groups", options->groups,
                   "With --against: ABBA groups of four processes (two of each build)")
       ->capture_default_str();
-  cmd->add_option("--junit", options->junit,
+  options->bench.outputs.declare(*cmd, OutputOption::Junit, options->junit,
                   "Write the verdict as JUnit XML: a test case per metric and one for the work, the verdict as a "
                   "failure's message");
-  cmd->add_option("--markdown", options->markdown,
+  options->bench.outputs.declare(*cmd, OutputOption::Markdown, options->markdown,
                   "Write the verdict as a Markdown table (a CI job summary or a pull-request comment)");
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");
   cmd->add_option("--metric", options->metrics,
@@ -181,10 +182,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
                 "(tests/scripts/measure_gate.sh); counters and digest are not compared");
   cmd->add_flag("--update-baseline", options->update, "Write the result as the new baseline instead of comparing");
-  cmd->add_option("--csv", options->bench.csv, "Write the run's frames to this CSV file");
-  cmd->add_option("--json", options->bench.json, "Write the run's result (as bench --json) to this file");
-  cmd->add_option("--svg", options->svg, "Write a chart of the metric per frame, baseline against current");
-  cmd->add_option("--html", options->bench.html,
+  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv, "Write the run's frames to this CSV file");
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write the run's result (as bench --json) to this file");
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write a chart of the metric per frame, baseline against current");
+  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
                   "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
   group_outputs(*cmd);
   group_options(*cmd, kGateGroup,

@@ -82,12 +82,7 @@ int compare(CompareCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}, {"--summary-csv", o.summary_csv},
-                                         {"--gbench-json", o.gbench_json}});
-  if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
-  if (!o.gbench_json.empty()) require_writable(o.gbench_json, "JSON");
-  if (!o.svg.empty()) require_writable(o.svg, "SVG");
-  if (!o.trace.empty()) require_writable(o.trace, "trace");
+  require_writable_outputs(o.bench);
   BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
   for (const std::string& name : names) configs.push_back(config_for(o.bench.spec, name, scene));
@@ -137,8 +132,7 @@ int compare(CompareCliOptions& o) {
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
-  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.bench.html, o.svg, o.trace, o.summary_csv,
-                                       o.gbench_json}))
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet))
     std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
@@ -196,18 +190,18 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                   "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160, or drawn this many times a "
                   "frame, e.g. passes=1,2,4,6 (see --passes): rows in the table and JSON, a chart in the SVG and "
                   "HTML");
-  cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
-  cmd->add_option("--summary-csv", options->summary_csv,
+  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
+  options->bench.outputs.declare(*cmd, OutputOption::SummaryCsv, options->summary_csv,
                   "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
                   "of its CPU time");
-  cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
-  cmd->add_option("--gbench-json", options->gbench_json,
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
+  options->bench.outputs.declare(*cmd, OutputOption::GbenchJson, options->gbench_json,
                   "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
                   "github-action-benchmark or Bencher");
-  cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
-  cmd->add_option("--html", options->bench.html,
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
+  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
                   "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
-  cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
+  options->bench.outputs.declare(*cmd, OutputOption::Trace, options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
   group_outputs(*cmd);
   group_options(*cmd, "Comparison", {"--modes", "--block", "--sweep"});
   cmd->callback([&run, options] { run = [options] { return compare(*options); }; });

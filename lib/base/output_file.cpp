@@ -283,4 +283,23 @@ void write_text(const std::string& path, const std::string& what, const std::fun
   write_file(path, what, text.view());
 }
 
+void OutputFiles::add(std::string option, std::string what, std::string path) {
+  files_.push_back({std::move(option), std::move(what), std::move(path)});
+}
+
+void OutputFiles::require_usable(const std::vector<NamedPath>& inputs) const {
+  std::vector<NamedPath> outputs;
+  for (const OutputFile& file : files_) outputs.push_back({file.option, file.path});
+  require_distinct_outputs(inputs, outputs);
+  for (const OutputFile& file : files_)
+    if (!file.path.empty()) require_writable(file.path, file.what);
+}
+
+bool OutputFiles::prints_on_stdout(bool quiet) const {
+  if (quiet) return false;
+  for (const OutputFile& file : files_)
+    if (is_standard_output(file.path)) return false;
+  return true;
+}
+
 }  // namespace crowdprof

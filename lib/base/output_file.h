@@ -56,4 +56,30 @@ struct NamedPath {
 // it". Empty paths are ignored; "FILE#skin=N" inputs are compared as FILE.
 void require_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
+// One file a command writes: the option that names it, what it holds (in
+// messages: "cannot write SVG file ..."), and its path (empty: not asked for).
+struct OutputFile {
+  std::string option;
+  std::string what;
+  std::string path;
+};
+
+// A command's output files, each declared once (hyperfine's ExportManager):
+// checked together before any work, and asked whether stdout stays free.
+class OutputFiles {
+ public:
+  void add(std::string option, std::string what, std::string path);
+  // UsageError, before any work: an output that is one of `inputs` or two that
+  // share a path (require_distinct_outputs), then one that cannot be written
+  // (require_writable), in the order added.
+  void require_usable(const std::vector<NamedPath>& inputs) const;
+  // Whether the command prints its text on stdout: not `quiet`, and none of
+  // the files is stdout (which then holds that file alone).
+  bool prints_on_stdout(bool quiet) const;
+  const std::vector<OutputFile>& files() const { return files_; }
+
+ private:
+  std::vector<OutputFile> files_;
+};
+
 }  // namespace crowdprof

@@ -157,21 +157,4 @@ std::vector<NamedPath> bench_input_files(const std::string& file) {
   return inputs;
 }
 
-void require_writable_outputs(const std::string& file, const RunOutputs& outputs, std::vector<NamedPath> inputs,
-                              const std::vector<NamedPath>& others) {
-  std::vector<NamedPath> files = bench_input_files(file);
-  inputs.insert(inputs.begin(), files.begin(), files.end());
-  std::vector<std::pair<NamedPath, const char*>> mine = {{{"--csv", outputs.csv}, "CSV"},
-                                                         {{"--json", outputs.json}, "JSON"},
-                                                         {{"--trace", outputs.trace}, "trace"},
-                                                         {{"--screenshot", outputs.screenshot}, "PNG"},
-                                                         {{"--html", outputs.html}, "HTML"}};
-  std::vector<NamedPath> all;
-  for (const auto& [path, what] : mine) all.push_back(path);
-  all.insert(all.end(), others.begin(), others.end());
-  require_distinct_outputs(inputs, all);
-  for (const auto& [path, what] : mine)
-    if (!path.path.empty()) require_writable(path.path, what);
-}
-
 }  // namespace crowdprof

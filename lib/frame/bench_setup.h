@@ -72,11 +72,4 @@ struct RunOutputs {
 // character it names (InputError when the scene file is malformed).
 std::vector<NamedPath> bench_input_files(const std::string& file);
 
-// UsageError, before any work, when one of `outputs` (and the command's
-// `others`) cannot be written, when one of them is the character file `file` or
-// a character of the scene (or one of the command's `inputs`), or when two of
-// them share a path.
-void require_writable_outputs(const std::string& file, const RunOutputs& outputs, std::vector<NamedPath> inputs = {},
-                              const std::vector<NamedPath>& others = {});
-
 }  // namespace crowdprof

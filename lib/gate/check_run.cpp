@@ -122,15 +122,12 @@ void require_safe_outputs(const CheckRun& r, const std::string& file) {
   const bool update = r.plan.update_baseline;
   if (!update && same_path(r.outputs.json, r.baseline))
     throw UsageError("--json " + r.outputs.json + " is the baseline; to replace it, use --update-baseline");
-  std::vector<NamedPath> inputs = {{"--result file", r.result}};
+  std::vector<NamedPath> inputs = bench_input_files(file);
+  inputs.push_back({"--result file", r.result});
   if (!update) inputs.push_back({"baseline", r.baseline});
-  std::vector<NamedPath> others = {{"--svg", r.svg}, {"--junit", r.junit}, {"--markdown", r.markdown}};
-  if (update) others.push_back({"--baseline", r.baseline});
-  require_writable_outputs(file, r.outputs, inputs, others);
-  if (!r.svg.empty()) require_writable(r.svg, "SVG");
-  if (!r.junit.empty()) require_writable(r.junit, "JUnit XML");
-  if (!r.markdown.empty()) require_writable(r.markdown, "Markdown");
-  if (update) require_writable(r.baseline, "baseline");
+  OutputFiles files = r.files;
+  if (update) files.add("--baseline", "baseline", r.baseline);
+  files.require_usable(inputs);
 }
 
 // A bad baseline is found before a long run, not after it. One being replaced
@@ -532,10 +529,9 @@ AbOptions ab_gate_of(const CheckRun& r, const CheckPlan& plan) {
   // Under 6 groups no paired test reaches p < 0.05 (the smallest two-sided p is 2/2^groups).
   if (r.groups < 6 || r.groups > 100)
     throw SettingError("groups", std::to_string(r.groups), "expected 6 to 100 (fewer can never be significant)");
-  require_writable_outputs(spec.file, r.outputs, {{"--against binary", r.against}},  // --json and --html among them
-                           {{"--junit", r.junit}, {"--markdown", r.markdown}});
-  if (!r.junit.empty()) require_writable(r.junit, "JUnit XML");
-  if (!r.markdown.empty()) require_writable(r.markdown, "Markdown");
+  std::vector<NamedPath> inputs = bench_input_files(spec.file);
+  inputs.push_back({"--against binary", r.against});
+  r.files.require_usable(inputs);
   AbOptions gate;
   gate.metrics = r.metric_given ? plan.gate.metrics : std::vector<std::string>{"frame_ms"};
   gate.tolerance = r.plan.tolerance_given ? plan.gate.tolerance : kAbTolerance;

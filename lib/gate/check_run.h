@@ -44,6 +44,7 @@ struct CheckRun {
   bool quiet = false;
   RunOutputs outputs;  // --csv, --json, --trace, --screenshot, --html
   std::string svg, junit, markdown;
+  OutputFiles files;  // every output the command declared, as given: checked before any run
   // The options given, as spelled ("--csv"): some cannot go with an A/B or a
   // counted metric.
   std::set<std::string> given;

@@ -56,6 +56,8 @@ int report_baseline(const CheckRun& r, const CheckOutcome& o, std::ostream& out)
     add_result(input, current, r.baseline);
     write_html_report(r.outputs.html, input);
   }
+  // --junit and --markdown hold a verdict, which recording a baseline has not:
+  // they are not written, and do not take stdout.
   if (prints_on_stdout(r.quiet, {r.outputs.csv, r.outputs.json, r.svg, r.outputs.html}))
     out << "baseline written: " << r.baseline << " (" << current.run.mode << ", " << current.run.characters
         << " characters, frame median " << summarize(current.samples.frame_ms).median << " ms"
@@ -88,7 +90,7 @@ int report_count(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   table.title = "instructions per measured frame, " + count.origin + ": stored baseline " + r.baseline;
   if (!r.outputs.json.empty()) write_result_file(r.outputs.json, "JSON", o.current);
   write_verdict_files(r, table, "crowdprof check");
-  if (prints_on_stdout(r.quiet, {r.outputs.json, r.junit, r.markdown})) {
+  if (r.files.prints_on_stdout(r.quiet)) {
     out << "instructions per frame: " << fixed(count.base, 0) << " -> " << fixed(count.current, 0) << " ("
         << percent(count.change) << "; tolerance " << percent(tolerance).substr(1) << "), "
         << (count.slower ? "SLOWER" : row.verdict) << "; counted by " << count.origin << "\n";
@@ -121,7 +123,7 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
     table.title = "stored baseline " + r.baseline + " against " + current_name;
     write_verdict_files(r, table, "crowdprof check");
   }
-  if (prints_on_stdout(r.quiet, {r.outputs.csv, r.outputs.json, r.svg, r.outputs.html, r.junit, r.markdown}))
+  if (r.files.prints_on_stdout(r.quiet))
     out << format_check(o.result, options);
   return o.result.regressed() ? kExitRegression : kExitOk;
 }
@@ -146,7 +148,7 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
     input.runs[1].label = "current";
     write_html_report(r.outputs.html, input);
   }
-  if (prints_on_stdout(r.quiet, {r.outputs.json, r.junit, r.markdown, r.outputs.html})) out << verdict_text(table);
+  if (r.files.prints_on_stdout(r.quiet)) out << verdict_text(table);
   return ab.result.regressed() ? kExitRegression : kExitOk;
 }
 
