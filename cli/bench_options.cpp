@@ -1,17 +1,15 @@
 #include "cli/bench_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <iostream>
-#include <tuple>
 #include <thread>
 
 #include "base/errors.h"
 #include "asset/gltf_loader.h"
 #include "cli/installed_data.h"
 #include "base/output_file.h"
-#include "render/gl_context.h"
-#include "render/gl_features.h"
 #include "base/switch_table.h"
 #include "scene/camera.h"
 
@@ -84,41 +82,49 @@ void resolve_bench_spec(BenchCliOptions& o, const crowdprof::SpecLayer* baseline
   o.spec = crowdprof::resolve_run_spec(crowdprof::run_layers(command_line_layer(o), baseline, &o.defaults));
 }
 
-std::vector<crowdprof::NamedPath> bench_input_files(const std::string& file) {
-  if (!crowdprof::is_scene_file(file)) return {{"character file", file}};
-  // The characters a scene names are inputs too: an output on one of them
-  // would overwrite a user's character (the scene is read again by the run).
-  std::vector<crowdprof::NamedPath> inputs = {{"scene file", file}};
-  for (const crowdprof::SceneCharacter& character : crowdprof::load_scene_file(file).characters)
-    inputs.push_back({"character file of the scene", character.path});
-  return inputs;
+crowdprof::RunOutputs bench_outputs(const BenchCliOptions& o) {
+  return {o.csv, o.json, o.trace, o.screenshot, o.html};
 }
 
-void require_writable_outputs(const BenchCliOptions& o, std::vector<crowdprof::NamedPath> inputs,
-                              std::vector<crowdprof::NamedPath> outputs) {
-  std::vector<crowdprof::NamedPath> files = bench_input_files(o.spec.file);
-  inputs.insert(inputs.begin(), files.begin(), files.end());
-  std::vector<std::pair<crowdprof::NamedPath, const char*>> mine = {
-      {{"--csv", o.csv}, "CSV"}, {{"--json", o.json}, "JSON"}, {{"--trace", o.trace}, "trace"},
-      {{"--screenshot", o.screenshot}, "PNG"}, {{"--html", o.html}, "HTML"}};
-  std::vector<crowdprof::NamedPath> all;
-  for (const auto& [path, what] : mine) all.push_back(path);
-  all.insert(all.end(), outputs.begin(), outputs.end());
-  crowdprof::require_distinct_outputs(inputs, all);
-  for (const auto& [path, what] : mine)
-    if (!path.path.empty()) crowdprof::require_writable(path.path, what);
+void require_writable_outputs(const BenchCliOptions& o, const std::vector<crowdprof::NamedPath>& inputs) {
+  std::vector<crowdprof::NamedPath> all = crowdprof::bench_input_files(o.spec.file);
+  all.insert(all.end(), inputs.begin(), inputs.end());
+  o.outputs.files().require_usable(all);
+}
+
+namespace {
+struct OutputKind {
+  const char* option;
+  const char* what;  // in messages: "cannot write SVG file ..."
+};
+// By OutputOption.
+constexpr OutputKind kOutputKinds[] = {{"--csv", "CSV"},          {"--json", "JSON"},       {"--trace", "trace"},
+                                       {"--screenshot", "PNG"},   {"--html", "HTML"},       {"--svg", "SVG"},
+                                       {"--summary-csv", "CSV"},  {"--gbench-json", "JSON"}, {"--junit", "JUnit XML"},
+                                       {"--markdown", "Markdown"}};
+}  // namespace
+
+CLI::Option* DeclaredOutputs::declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help) {
+  declared_.emplace_back(output, &path);
+  return cmd.add_option(kOutputKinds[static_cast<size_t>(output)].option, path, help);
+}
+
+crowdprof::OutputFiles DeclaredOutputs::files() const {
+  auto declared = declared_;
+  std::stable_sort(declared.begin(), declared.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  crowdprof::OutputFiles files;
+  for (const auto& [output, path] : declared) {
+    const OutputKind& kind = kOutputKinds[static_cast<size_t>(output)];
+    files.add(kind.option, kind.what, *path);
+  }
+  return files;
 }
 
 crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const crowdprof::BenchScene& scene,
                                                crowdprof::BenchConfig& config) {
   using namespace crowdprof;
-  RendererConfig renderer;
-  std::tie(renderer.width, renderer.height) = resolution_size(o.spec.resolution);
-  renderer.hide_features = gl_hide_from_environment();
   SettingText warning;
-  BenchRendering rendering =
-      open_rendering(*parse_backend(o.spec.backend), scene.characters, config.crowd.copies, renderer, &warning);
+  BenchRendering rendering = open_bench_rendering(o.spec, scene, config, &warning);
   if (!warning.empty()) std::cerr << "crowdprof: warning: " << as_options(warning) << "\n";
-  config.renderer = rendering.renderer.get();
   return rendering;
 }

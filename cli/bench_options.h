@@ -20,6 +20,25 @@
 
 #include <memory>
 
+// The output options, each declared once: its option and what its file holds
+// come from one table (cli/bench_options.cpp), the help from the command that
+// opts into it. The table's order is the order the files are checked in.
+enum class OutputOption { Csv, Json, Trace, Screenshot, Html, Svg, SummaryCsv, GbenchJson, Junit, Markdown };
+
+// The outputs a command opts into (hyperfine's ExportManager): declared on the
+// command once each, then, as the command line gave them, the files that are
+// checked before any work and that say whether stdout stays free
+// (crowdprof::OutputFiles).
+class DeclaredOutputs {
+ public:
+  // Declares `output` on `cmd` with the command's `help`, its path in `path`.
+  CLI::Option* declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help);
+  crowdprof::OutputFiles files() const;
+
+ private:
+  std::vector<std::pair<OutputOption, const std::string*>> declared_;
+};
+
 // The options `bench` shares with compare, check, capacity and render: every
 // setting and switch of a run (frame/run_spec.h, base/switch_table.h) as the
 // command line gave it, then the run they resolve to.
@@ -35,6 +54,7 @@ struct BenchCliOptions {
   std::string csv, json, trace;
   std::string screenshot;  // bench: the last frame as a PNG
   std::string html;        // the HTML report of the run (docs/report.md)
+  DeclaredOutputs outputs;  // the command's output options, bench's and its own
   CLI::App* command = nullptr;  // the command the options were parsed by
 };
 
@@ -66,15 +86,13 @@ void group_outputs(CLI::App& cmd);
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
 
-// The files a bench reads: the character file, or a scene file and every
-// character it names (InputError when the scene file is malformed).
-std::vector<crowdprof::NamedPath> bench_input_files(const std::string& file);
+// --csv, --json, --trace, --screenshot and --html as the command line gave them.
+crowdprof::RunOutputs bench_outputs(const BenchCliOptions& options);
 
-// UsageError, before any work, when --csv, --json, --trace, --screenshot or --html (and
-// the command's `outputs`) cannot be written, when one of them is the character
-// file or a character of the scene (or one of the command's `inputs`), or when two of them share a path.
-void require_writable_outputs(const BenchCliOptions& options, std::vector<crowdprof::NamedPath> inputs = {},
-                              std::vector<crowdprof::NamedPath> outputs = {});
+// UsageError, before any work, when one of the command's declared outputs
+// cannot be written, is the character file or a character of the scene (or one
+// of the command's `inputs`), or when two of them share a path.
+void require_writable_outputs(const BenchCliOptions& options, const std::vector<crowdprof::NamedPath>& inputs = {});
 
 // Opens --backend at --resolution for the config's crowd and points
 // config.renderer at its renderer (left null for none). When auto finds no GL,

@@ -8,14 +8,15 @@
 #include "asset/gltf_loader.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
+#include "base/output_file.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 #include "frame/interrupt.h"
 #include "gate/regression.h"
-#include "result/result_codec.h"
 #include "reports/gbench_json.h"
 #include "reports/summary_csv.h"
-#include "frame/run_bench.h"
+#include "measuring/instruction_counter.h"
 #include "measuring/trace.h"
 #include "render/gl_errors.h"
 #include "render/png.h"
@@ -37,9 +38,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   resolve_bench_spec(options);
   const RunSpec& spec = options.spec;
   validate_run_spec(spec);
-  require_writable_outputs(options, {}, {{"--summary-csv", summary_csv}, {"--gbench-json", gbench_json}});
-  if (!summary_csv.empty()) require_writable(summary_csv, "CSV");
-  if (!gbench_json.empty()) require_writable(gbench_json, "JSON");
+  require_writable_outputs(options);
   BenchScene scene = load_bench_scene(spec);
   BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
@@ -77,9 +76,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   Result report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
-  if (prints_on_stdout(options.quiet,
-                       {options.csv, options.json, options.trace, options.screenshot, options.html, summary_csv,
-                        gbench_json}))
+  if (options.outputs.files().prints_on_stdout(options.quiet))
     std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
   if (!summary_csv.empty())
@@ -120,27 +117,24 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                                           "play actions and print where each frame's time goes (BGE-style profile)");
   cmd->footer("Examples:\n  crowdprof bench scenes/thesis.json --mode culled --json result.json");
   add_bench_options(*cmd, *options);
-  cmd->add_option("--csv", options->csv, "Write one row per measured frame to this CSV file");
-  cmd->add_option("--gbench-json", outputs->gbench_json,
+  options->outputs.declare(*cmd, OutputOption::Csv, options->csv, "Write one row per measured frame to this CSV file");
+  options->outputs.declare(*cmd, OutputOption::GbenchJson, outputs->gbench_json,
                   "Write the run as Google Benchmark's JSON (each frame a repetition; mean, median, stddev), for "
                   "compare.py, github-action-benchmark or Bencher");
-  cmd->add_flag("--count-instructions", outputs->count_instructions,
-                "Count each measured frame's instructions on one thread: perf_event's hardware counter, or "
-                "callgrind's under valgrind --tool=callgrind --collect-atstart=no (check --metric instructions runs "
-                "that); recorded in --json as \"instructions\"");
+  cmd->add_flag("--count-instructions", outputs->count_instructions, kCountInstructionsHelp);
   cmd->add_flag("--calibrate", outputs->calibrate,
                 "After every frame, time a fixed calibration probe (a skinning kernel of fixed size on the same "
                 "threads) and record each frame over it: the metric check --metric calibrated compares, which a "
                 "change of the machine's speed moves less than the frame; in --json as samples.probe_ms and "
                 "samples.calibrated");
-  cmd->add_option("--summary-csv", outputs->summary_csv,
+  options->outputs.declare(*cmd, OutputOption::SummaryCsv, outputs->summary_csv,
                   "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
-  cmd->add_option("--json", options->json, "Write the run's summary (and per-frame samples) to this JSON file");
-  cmd->add_option("--trace", options->trace,
+  options->outputs.declare(*cmd, OutputOption::Json, options->json, "Write the run's summary (and per-frame samples) to this JSON file");
+  options->outputs.declare(*cmd, OutputOption::Trace, options->trace,
                   "Write a Chrome trace-event JSON (Perfetto, chrome://tracing): a span per stage per frame, and per "
                   "task on each worker thread");
-  cmd->add_option("--screenshot", options->screenshot, "Write the last frame as a PNG (needs a GL backend)");
-  cmd->add_option("--html", options->html,
+  options->outputs.declare(*cmd, OutputOption::Screenshot, options->screenshot, "Write the last frame as a PNG (needs a GL backend)");
+  options->outputs.declare(*cmd, OutputOption::Html, options->html,
                   "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
                   "opens in any browser");
   group_outputs(*cmd);

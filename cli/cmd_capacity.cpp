@@ -10,16 +10,15 @@
 #include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "cli/compare_modes.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
+#include "base/output_file.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 #include "frame/capacity.h"
 #include "reports/capacity_report.h"
 #include "frame/compare.h"
 #include "frame/interrupt.h"
-#include "frame/run_bench.h"
-#include "base/output_file.h"
 #include "gate/regression.h"
-#include "result/result_codec.h"
 #include "reports/summary_csv.h"
 
 using namespace crowdprof;
@@ -74,9 +73,7 @@ int capacity(CapacityCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--summary-csv", o.summary_csv}});
-  if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
-  if (!o.svg.empty()) require_writable(o.svg, "SVG");
+  require_writable_outputs(o.bench);
   BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
   for (const std::string& name : names) configs.push_back(config_for(o.bench.spec, name, scene));
@@ -126,7 +123,7 @@ int capacity(CapacityCliOptions& o) {
   result.frames = o.bench.spec.frames;
   result.warmup = o.bench.spec.warmup;
 
-  if (prints_on_stdout(o.bench.quiet, {o.bench.json, o.bench.html, o.svg, o.summary_csv}))
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet))
     std::cout << format_capacity(result);
   if (!o.summary_csv.empty())
     write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
@@ -193,12 +190,12 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
                   "character)")
       ->capture_default_str();
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
-  cmd->add_option("--summary-csv", options->summary_csv,
+  options->bench.outputs.declare(*cmd, OutputOption::SummaryCsv, options->summary_csv,
                   "Write one row per mode at its capacity (the largest crowd that fit) to this CSV file: median, p95, "
                   "p99 and fps of the frame and of its CPU time");
-  cmd->add_option("--json", options->bench.json, "Write every size tried per mode, with its median and percentiles");
-  cmd->add_option("--svg", options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
-  cmd->add_option("--html", options->bench.html,
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write every size tried per mode, with its median and percentiles");
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
+  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
                   "Write an HTML report: each mode's run at its capacity, and the median frame against the crowd size");
   group_outputs(*cmd);
   group_options(*cmd, "Search", {"--budget", "--modes", "--metric", "--start", "--max-characters", "--precision", "--block"});

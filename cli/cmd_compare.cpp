@@ -14,13 +14,13 @@
 #include "cli/commands.h"
 #include "base/switch_table.h"
 #include "cli/compare_modes.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 #include "frame/compare.h"
 #include "frame/interrupt.h"
 #include "reports/compare_report.h"
 #include "gate/regression.h"
-#include "result/result_codec.h"
 #include "reports/gbench_json.h"
 #include "reports/summary_csv.h"
 #include "measuring/trace.h"
@@ -37,72 +37,7 @@ struct CompareCliOptions {
   std::string svg, trace, summary_csv, gbench_json;
 };
 
-struct Sweep {
-  SweepAxis axis = SweepAxis::Characters;
-  std::vector<size_t> points;  // ascending
-};
-
-// "n=10,20,40" or "10,20,40" (crowd sizes), "passes=1,2,4".
-Sweep parse_sweep(const std::string& text) {
-  Sweep sweep;
-  std::string list = text;
-  if (text.rfind("n=", 0) == 0) {
-    list = text.substr(2);
-  } else if (text.rfind("passes=", 0) == 0) {
-    sweep.axis = SweepAxis::Passes;
-    list = text.substr(7);
-  }
-  const bool passes = sweep.axis == SweepAxis::Passes;
-  const char* expected = passes ? "expected passes such as passes=1,2,4,6" : "expected crowd sizes such as n=10,20,40,80,160, or passes=1,2,4,6";
-  std::stringstream in(list);
-  std::string item;
-  auto bad = [&](const std::string& why) { return UsageError("--sweep '" + text + "': " + why); };
-  while (std::getline(in, item, ',')) {
-    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos) throw bad(expected);
-    size_t n = std::stoul(item);
-    if (passes && (n < 1 || n > kMaxPasses)) throw bad("each count of passes must be 1 to " + std::to_string(kMaxPasses));
-    if (!passes && (n < 1 || n > 10'000'000)) throw bad("each size must be 1 to 10,000,000");
-    if (std::find(sweep.points.begin(), sweep.points.end(), n) == sweep.points.end()) sweep.points.push_back(n);
-  }
-  if (sweep.points.empty()) throw bad(expected);
-  std::sort(sweep.points.begin(), sweep.points.end());
-  return sweep;
-}
-
 }  // namespace
-
-std::string apply_mode_spec(const std::string& spec, RunSpec& run) {
-  std::string preset = spec.substr(0, spec.find('+'));
-  if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
-  size_t at = preset.size();
-  while (at < spec.size()) {
-    size_t next = spec.find('+', at + 1);
-    std::string item = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
-    size_t equals = item.find('=');
-    std::string key = item.substr(0, equals);
-    for (char& c : key)
-      if (c == '-') c = '_';  // share-quantum as the option spells it, share_quantum as results do
-    if (!find_switch(key) || equals == std::string::npos || equals + 1 == item.size())
-      throw UsageError("--modes '" + spec + "': '" + item + "': expected SWITCH=VALUE with a switch of " +
-                       switch_names());
-    std::string value = item.substr(equals + 1);
-    ModeSwitches scratch;
-    if (std::string problem = find_switch(key)->set(scratch, value); !problem.empty())
-      throw UsageError("--modes '" + spec + "': " + key + " '" + value + "': " + problem);
-    run.switches[key] = value;
-    at = next == std::string::npos ? spec.size() : next;
-  }
-  return preset;
-}
-
-BenchConfig config_for(const RunSpec& shared, const std::string& mode, const BenchScene& scene) {
-  RunSpec spec = shared;
-  spec.mode = apply_mode_spec(mode, spec);
-  if (!spec.mode_switches().parallel) spec.threads = 0;
-  BenchConfig config = make_bench_config(spec, scene);
-  if (mode.find('+') != std::string::npos) config.mode_name = mode;  // as the user named it
-  return config;
-}
 
 ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named,
                      bool note) {
@@ -138,23 +73,6 @@ std::vector<Result> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t b
   return reports;
 }
 
-std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
-  std::vector<std::string> names = asked;
-  if (names.empty())
-    for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
-  for (size_t i = 0; i < names.size(); ++i) {
-    RunSpec scratch;
-    apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
-    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
-      throw UsageError("--modes: " + names[i] + " is listed twice");
-  }
-  return names;
-}
-
-void check_block(long long block) {
-  if (block < 1 || block > 1'000'000) throw UsageError("--block " + std::to_string(block) + ": expected 1 to 1000000");
-}
-
 namespace {
 
 int compare(CompareCliOptions& o) {
@@ -164,12 +82,7 @@ int compare(CompareCliOptions& o) {
   std::vector<std::string> names = modes_to_run(o.modes);
 
   resolve_bench_spec(o.bench);
-  require_writable_outputs(o.bench, {}, {{"--svg", o.svg}, {"--trace", o.trace}, {"--summary-csv", o.summary_csv},
-                                         {"--gbench-json", o.gbench_json}});
-  if (!o.summary_csv.empty()) require_writable(o.summary_csv, "CSV");
-  if (!o.gbench_json.empty()) require_writable(o.gbench_json, "JSON");
-  if (!o.svg.empty()) require_writable(o.svg, "SVG");
-  if (!o.trace.empty()) require_writable(o.trace, "trace");
+  require_writable_outputs(o.bench);
   BenchScene scene = load_bench_scene(o.bench.spec);
   std::vector<BenchConfig> configs;
   for (const std::string& name : names) configs.push_back(config_for(o.bench.spec, name, scene));
@@ -219,8 +132,7 @@ int compare(CompareCliOptions& o) {
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
-  if (prints_on_stdout(o.bench.quiet, {o.bench.csv, o.bench.json, o.bench.html, o.svg, o.trace, o.summary_csv,
-                                       o.gbench_json}))
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet))
     std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
@@ -278,18 +190,18 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                   "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160, or drawn this many times a "
                   "frame, e.g. passes=1,2,4,6 (see --passes): rows in the table and JSON, a chart in the SVG and "
                   "HTML");
-  cmd->add_option("--csv", options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
-  cmd->add_option("--summary-csv", options->summary_csv,
+  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
+  options->bench.outputs.declare(*cmd, OutputOption::SummaryCsv, options->summary_csv,
                   "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
                   "of its CPU time");
-  cmd->add_option("--json", options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
-  cmd->add_option("--gbench-json", options->gbench_json,
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
+  options->bench.outputs.declare(*cmd, OutputOption::GbenchJson, options->gbench_json,
                   "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
                   "github-action-benchmark or Bencher");
-  cmd->add_option("--svg", options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
-  cmd->add_option("--html", options->bench.html,
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
+  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
                   "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
-  cmd->add_option("--trace", options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
+  options->bench.outputs.declare(*cmd, OutputOption::Trace, options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
   group_outputs(*cmd);
   group_options(*cmd, "Comparison", {"--modes", "--block", "--sweep"});
   cmd->callback([&run, options] { run = [options] { return compare(*options); }; });

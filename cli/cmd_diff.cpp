@@ -6,12 +6,13 @@
 #include <memory>
 
 #include "base/errors.h"
+#include "cli/bench_options.h"
 #include "cli/commands.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
 #include "base/output_file.h"
-#include "gate/diff.h"
+#include "frame/run_bench.h"
 #include "result/result_codec.h"
+#include "gate/diff.h"
 
 namespace {
 
@@ -24,6 +25,7 @@ struct DiffCliOptions {
   double alpha = 0.05;
   std::string json, html;
   bool quiet = false;
+  DeclaredOutputs outputs;
 };
 
 int diff(const DiffCliOptions& o) {
@@ -32,13 +34,11 @@ int diff(const DiffCliOptions& o) {
   options.floor = parse_floor(o.floor);
   if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
   options.alpha = o.alpha;
-  require_distinct_outputs({{"file A", o.a}, {"file B", o.b}}, {{"--json", o.json}, {"--html", o.html}});
-  if (!o.json.empty()) require_writable(o.json, "JSON");
-  if (!o.html.empty()) require_writable(o.html, "HTML");
+  o.outputs.files().require_usable({{"file A", o.a}, {"file B", o.b}});
   std::vector<Result> a = bench_results_in(read_json_file(o.a), o.a);
   std::vector<Result> b = bench_results_in(read_json_file(o.b), o.b);
   Diff result = diff_results(a, o.a, b, o.b, options);
-  if (prints_on_stdout(o.quiet, {o.json, o.html})) std::cout << format_diff(result, options);
+  if (o.outputs.files().prints_on_stdout(o.quiet)) std::cout << format_diff(result, options);
   if (!o.json.empty())
     write_text(o.json, "JSON", [&](std::ostream& out) { out << diff_to_json(result, options).dump(2) << "\n"; });
   if (!o.html.empty()) {
@@ -74,8 +74,8 @@ void add_diff_command(CLI::App& app, std::function<int()>& run) {
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test, before Holm's correction")
       ->capture_default_str();
-  cmd->add_option("--json", options->json, "Also write the comparison as JSON to this file");
-  cmd->add_option("--html", options->html, "Also write an HTML report of A and B side by side (docs/report.md)");
+  options->outputs.declare(*cmd, OutputOption::Json, options->json, "Also write the comparison as JSON to this file");
+  options->outputs.declare(*cmd, OutputOption::Html, options->html, "Also write an HTML report of A and B side by side (docs/report.md)");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)");
   cmd->callback([&run, options] { run = [options] { return diff(*options); }; });
 }

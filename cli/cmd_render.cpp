@@ -5,11 +5,11 @@
 
 #include "base/errors.h"
 #include "asset/gltf_loader.h"
-#include "cli/output.h"
 #include "base/output_file.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
-#include "frame/run_bench.h"
 #include "render/gl_errors.h"
 #include "render/png.h"
 

@@ -6,9 +6,10 @@
 
 #include "base/errors.h"
 #include "cli/commands.h"
-#include "cli/html_output.h"
-#include "cli/output.h"
+#include "reports/html_report.h"
 #include "base/output_file.h"
+#include "frame/run_bench.h"
+#include "result/result_codec.h"
 
 namespace {
 

@@ -7,26 +7,10 @@
 #include <vector>
 
 #include "cli/bench_options.h"
+#include "frame/compare.h"
 #include "frame/crowd_bench.h"
 #include "reports/profile_table.h"
 #include "render/bench_rendering.h"
-
-// A mode as --modes names it: a preset, then any switches set away from it,
-// PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
-// Applies the switches to `run` and returns the preset's name; UsageError
-// for an unknown preset or switch.
-std::string apply_mode_spec(const std::string& spec, crowdprof::RunSpec& run);
-
-// --modes checked (UsageError for a bad or repeated mode); empty: every preset.
-std::vector<std::string> modes_to_run(const std::vector<std::string>& asked);
-
-// UsageError unless --block is 1 to 1,000,000.
-void check_block(long long block);
-
-// The config of one mode: the shared options, with --threads applying only to
-// the modes that run in parallel.
-crowdprof::BenchConfig config_for(const crowdprof::RunSpec& shared, const std::string& mode,
-                                  const crowdprof::BenchScene& scene);
 
 struct ModeRun {
   std::vector<crowdprof::BenchConfig> configs;

@@ -11,9 +11,8 @@
 #include <vector>
 
 #include "base/errors.h"
-#include "cli/child_run.h"
-#include "cli/commands.h"
 #include "cli/usage_errors.h"
+#include "cli/commands.h"
 #include "measuring/environment.h"
 #include "skinning/output_stores.h"
 #include "skinning/simd_target.h"

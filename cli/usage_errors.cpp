@@ -1,7 +1,13 @@
 #include "cli/usage_errors.h"
 
 #include <algorithm>
+#include <iostream>
 #include <map>
+#include <new>
+
+#include "base/errors.h"
+#include "cli/bench_options.h"
+#include "gate/processes.h"
 
 namespace {
 
@@ -180,3 +186,48 @@ std::string describe_parse_error(CLI::App& app, const CLI::ParseError& error) {
   }
   return prefix + line + help_hint(&command);
 }
+
+namespace crowdprof {
+
+namespace {
+std::string current_command;
+}  // namespace
+
+void set_current_command(const std::string& command) { current_command = command; }
+
+namespace {
+// An error's text with the settings it names spelled as the options the user typed.
+std::string as_typed(const std::exception& e) {
+  if (const auto* names = dynamic_cast<const NamesSettings*>(&e))
+    return names->spelled([](std::string_view setting) { return option_name(std::string(setting)); });
+  return e.what();
+}
+}  // namespace
+
+int report_current_exception() {
+  try {
+    throw;
+  } catch (const ChildFailed& e) {
+    return e.status;  // the child said why
+  } catch (const InputError& e) {
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
+    return kExitBadInput;
+  } catch (const SettingError& e) {
+    // lib/ names the setting; the user typed its option.
+    std::cerr << "crowdprof: " << (current_command.empty() ? "" : current_command + ": ") << option_name(e.name)
+              << " '" << e.value << "': " << e.why
+              << (current_command.empty() ? "" : " (see crowdprof " + current_command + " --help)") << "\n";
+    return kExitUsage;
+  } catch (const UsageError& e) {
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
+    return kExitUsage;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "crowdprof: out of memory\n";
+    return kExitRuntime;
+  } catch (const std::exception& e) {
+    std::cerr << "crowdprof: " << as_typed(e) << "\n";
+    return kExitRuntime;
+  }
+}
+
+}  // namespace crowdprof

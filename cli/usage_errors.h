@@ -25,3 +25,17 @@ std::string command_word(const CLI::App& app, const std::vector<std::string>& ar
 // command's own --help: e.g. "bench: unknown option --frame; did you mean
 // --frames? (see crowdprof bench --help)".
 std::string describe_parse_error(CLI::App& app, const CLI::ParseError& error);
+
+namespace crowdprof {
+
+// Prints one line on stderr for the exception being handled ("crowdprof: ...")
+// and returns its exit status (base/errors.h: 2 usage, 3 bad input, 4 failed
+// run); a measured run's failure (gate/processes.h) was reported by the run.
+// Call only inside a catch block.
+int report_current_exception();
+
+// The command being run ("bench"), so that a bad option value is reported as
+// "bench: --fps 'x': ... (see crowdprof bench --help)".
+void set_current_command(const std::string& command);
+
+}  // namespace crowdprof

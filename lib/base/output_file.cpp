@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "base/errors.h"
 #include "base/input_file.h"
@@ -267,6 +268,38 @@ void require_distinct_outputs(const std::vector<NamedPath>& inputs, const std::v
         throw UsageError(outputs[p].option + " and " + out.option + " both write " + out.path +
                          "; give each output its own path");
   }
+}
+
+bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs) {
+  if (quiet) return false;
+  for (const std::string& path : outputs)
+    if (is_standard_output(path)) return false;
+  return true;
+}
+
+void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body) {
+  std::ostringstream text;
+  body(text);
+  write_file(path, what, text.view());
+}
+
+void OutputFiles::add(std::string option, std::string what, std::string path) {
+  files_.push_back({std::move(option), std::move(what), std::move(path)});
+}
+
+void OutputFiles::require_usable(const std::vector<NamedPath>& inputs) const {
+  std::vector<NamedPath> outputs;
+  for (const OutputFile& file : files_) outputs.push_back({file.option, file.path});
+  require_distinct_outputs(inputs, outputs);
+  for (const OutputFile& file : files_)
+    if (!file.path.empty()) require_writable(file.path, file.what);
+}
+
+bool OutputFiles::prints_on_stdout(bool quiet) const {
+  if (quiet) return false;
+  for (const OutputFile& file : files_)
+    if (is_standard_output(file.path)) return false;
+  return true;
 }
 
 }  // namespace crowdprof

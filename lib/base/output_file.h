@@ -4,6 +4,9 @@
 // errors are UsageErrors (exit 2, docs/errors.md).
 #pragma once
 
+#include <functional>
+#include <initializer_list>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +35,14 @@ void write_file(const std::string& path, const std::string& what, std::string_vi
 // to it): a command then prints nothing else there, so the file stays whole.
 bool is_standard_output(const std::string& path);
 
+// Whether a command prints its text on stdout: not with --quiet, nor when one
+// of its output files is stdout ("--csv -", /dev/stdout), which then holds
+// that file alone.
+bool prints_on_stdout(bool quiet, std::initializer_list<std::string> outputs);
+
+// Writes `path` with `body` (write_file); UsageError naming the file when it cannot.
+void write_text(const std::string& path, const std::string& what, const std::function<void(std::ostream&)>& body);
+
 // A file the command reads or writes, named as its option is: {"--json", path}.
 struct NamedPath {
   std::string option;
@@ -44,5 +55,31 @@ struct NamedPath {
 // path (also "-" and /dev/stdout): "--json X.glb is the input file; refusing to overwrite
 // it". Empty paths are ignored; "FILE#skin=N" inputs are compared as FILE.
 void require_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+// One file a command writes: the option that names it, what it holds (in
+// messages: "cannot write SVG file ..."), and its path (empty: not asked for).
+struct OutputFile {
+  std::string option;
+  std::string what;
+  std::string path;
+};
+
+// A command's output files, each declared once (hyperfine's ExportManager):
+// checked together before any work, and asked whether stdout stays free.
+class OutputFiles {
+ public:
+  void add(std::string option, std::string what, std::string path);
+  // UsageError, before any work: an output that is one of `inputs` or two that
+  // share a path (require_distinct_outputs), then one that cannot be written
+  // (require_writable), in the order added.
+  void require_usable(const std::vector<NamedPath>& inputs) const;
+  // Whether the command prints its text on stdout: not `quiet`, and none of
+  // the files is stdout (which then holds that file alone).
+  bool prints_on_stdout(bool quiet) const;
+  const std::vector<OutputFile>& files() const { return files_; }
+
+ private:
+  std::vector<OutputFile> files_;
+};
 
 }  // namespace crowdprof

@@ -147,4 +147,14 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
   return config;
 }
 
+std::vector<NamedPath> bench_input_files(const std::string& file) {
+  if (!is_scene_file(file)) return {{"character file", file}};
+  // The characters a scene names are inputs too: an output on one of them
+  // would overwrite a user's character (the scene is read again by the run).
+  std::vector<NamedPath> inputs = {{"scene file", file}};
+  for (const SceneCharacter& character : load_scene_file(file).characters)
+    inputs.push_back({"character file of the scene", character.path});
+  return inputs;
+}
+
 }  // namespace crowdprof

@@ -12,6 +12,7 @@
 #include "asset/gltf_loader.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_spec.h"
+#include "base/output_file.h"
 #include "scene/scene_file.h"
 
 namespace crowdprof {
@@ -58,5 +59,17 @@ std::pair<int, int> resolution_size(const std::string& resolution);
 // mode that runs on one) or UsageError (a character without actions, unless
 // spec.allow_static).
 BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& scene);
+
+// The files a run writes, as the commands that run benches name them (--csv,
+// --json, --trace, --screenshot, --html); empty when not asked for.
+struct RunOutputs {
+  std::string csv, json, trace;
+  std::string screenshot;  // bench: the last frame as a PNG
+  std::string html;        // the HTML report of the run (docs/report.md)
+};
+
+// The files a bench reads: the character file, or a scene file and every
+// character it names (InputError when the scene file is malformed).
+std::vector<NamedPath> bench_input_files(const std::string& file);
 
 }  // namespace crowdprof

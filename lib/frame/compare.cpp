@@ -1,8 +1,11 @@
 #include "frame/compare.h"
 
 #include <algorithm>
+#include <sstream>
 
 #include "base/errors.h"
+#include "base/switch_table.h"
+#include "frame/bench_setup.h"
 
 namespace crowdprof {
 
@@ -63,6 +66,82 @@ std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const 
     if (b > 0) reports[b].culling_audit = reports[0].culling_audit;
   }
   return reports;
+}
+
+Sweep parse_sweep(const std::string& text) {
+  Sweep sweep;
+  std::string list = text;
+  if (text.rfind("n=", 0) == 0) {
+    list = text.substr(2);
+  } else if (text.rfind("passes=", 0) == 0) {
+    sweep.axis = SweepAxis::Passes;
+    list = text.substr(7);
+  }
+  const bool passes = sweep.axis == SweepAxis::Passes;
+  const char* expected = passes ? "expected passes such as passes=1,2,4,6" : "expected crowd sizes such as n=10,20,40,80,160, or passes=1,2,4,6";
+  std::stringstream in(list);
+  std::string item;
+  auto bad = [&](const std::string& why) { return UsageError("--sweep '" + text + "': " + why); };
+  while (std::getline(in, item, ',')) {
+    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos) throw bad(expected);
+    size_t n = std::stoul(item);
+    if (passes && (n < 1 || n > kMaxPasses)) throw bad("each count of passes must be 1 to " + std::to_string(kMaxPasses));
+    if (!passes && (n < 1 || n > 10'000'000)) throw bad("each size must be 1 to 10,000,000");
+    if (std::find(sweep.points.begin(), sweep.points.end(), n) == sweep.points.end()) sweep.points.push_back(n);
+  }
+  if (sweep.points.empty()) throw bad(expected);
+  std::sort(sweep.points.begin(), sweep.points.end());
+  return sweep;
+}
+
+std::string apply_mode_spec(const std::string& spec, RunSpec& run) {
+  std::string preset = spec.substr(0, spec.find('+'));
+  if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
+  size_t at = preset.size();
+  while (at < spec.size()) {
+    size_t next = spec.find('+', at + 1);
+    std::string item = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    size_t equals = item.find('=');
+    std::string key = item.substr(0, equals);
+    for (char& c : key)
+      if (c == '-') c = '_';  // share-quantum as the option spells it, share_quantum as results do
+    if (!find_switch(key) || equals == std::string::npos || equals + 1 == item.size())
+      throw UsageError("--modes '" + spec + "': '" + item + "': expected SWITCH=VALUE with a switch of " +
+                       switch_names());
+    std::string value = item.substr(equals + 1);
+    ModeSwitches scratch;
+    if (std::string problem = find_switch(key)->set(scratch, value); !problem.empty())
+      throw UsageError("--modes '" + spec + "': " + key + " '" + value + "': " + problem);
+    run.switches[key] = value;
+    at = next == std::string::npos ? spec.size() : next;
+  }
+  return preset;
+}
+
+BenchConfig config_for(const RunSpec& shared, const std::string& mode, const BenchScene& scene) {
+  RunSpec spec = shared;
+  spec.mode = apply_mode_spec(mode, spec);
+  if (!spec.mode_switches().parallel) spec.threads = 0;
+  BenchConfig config = make_bench_config(spec, scene);
+  if (mode.find('+') != std::string::npos) config.mode_name = mode;  // as the user named it
+  return config;
+}
+
+std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
+  std::vector<std::string> names = asked;
+  if (names.empty())
+    for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
+  for (size_t i = 0; i < names.size(); ++i) {
+    RunSpec scratch;
+    apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
+      throw UsageError("--modes: " + names[i] + " is listed twice");
+  }
+  return names;
+}
+
+void check_block(long long block) {
+  if (block < 1 || block > 1'000'000) throw UsageError("--block " + std::to_string(block) + ": expected 1 to 1000000");
 }
 
 }  // namespace crowdprof

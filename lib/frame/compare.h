@@ -11,7 +11,9 @@
 #include "asset/character.h"
 #include "frame/crowd_bench.h"
 #include "frame/run_bench.h"
+#include "frame/bench_setup.h"
 #include "result/result.h"
+#include "result/sweep_axis.h"
 
 namespace crowdprof {
 
@@ -26,5 +28,31 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
 // One report per bench, in order, as run_bench would give.
 std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
                                        const RunOptions& options, size_t block);
+
+// A mode as --modes names it: a preset, then any switches set away from it,
+// PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).
+// Applies the switches to `run` and returns the preset's name; UsageError
+// for an unknown preset or switch.
+std::string apply_mode_spec(const std::string& spec, RunSpec& run);
+
+// --modes checked (UsageError for a bad or repeated mode); empty: every preset.
+std::vector<std::string> modes_to_run(const std::vector<std::string>& asked);
+
+// UsageError unless --block is 1 to 1,000,000.
+void check_block(long long block);
+
+// The config of one mode: the shared options, with --threads applying only to
+// the modes that run in parallel.
+BenchConfig config_for(const RunSpec& shared, const std::string& mode, const BenchScene& scene);
+
+// compare --sweep: the crowd sizes or counts of passes every mode runs at too.
+struct Sweep {
+  SweepAxis axis = SweepAxis::Characters;
+  std::vector<size_t> points;  // ascending
+};
+
+// "n=10,20,40" or "10,20,40" (crowd sizes), "passes=1,2,4"; UsageError naming
+// --sweep for anything else.
+Sweep parse_sweep(const std::string& text);
 
 }  // namespace crowdprof

@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <unistd.h>
 #include <sstream>
 
 #include "base/errors.h"
@@ -222,6 +224,30 @@ void finish_run(const CrowdBench& bench, Result& result, bool audit_culling) {
   record_drawn_error(bench, result);
   if (audit_culling) record_culling_audit(bench, result);
   record_samples(result);
+}
+
+std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what) {
+  if (quiet || !isatty(STDERR_FILENO)) return {};
+  auto start = std::chrono::steady_clock::now();
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(start);
+  auto shown = std::make_shared<bool>(false);
+  return [start, last, shown, what](size_t done, size_t total) {
+    auto now = std::chrono::steady_clock::now();
+    if (done >= total) {  // the end: erase the line, if one was shown
+      if (*shown) std::fprintf(stderr, "\r\033[K");
+      *shown = false;
+      std::fflush(stderr);
+      return;
+    }
+    if (now - start < std::chrono::seconds(1)) return;  // a short run shows nothing
+    if (*shown && now - *last < std::chrono::milliseconds(100)) return;
+    *last = now;
+    *shown = true;
+    double elapsed = std::chrono::duration<double>(now - start).count();
+    double left = done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    std::fprintf(stderr, "\rcrowdprof: %s %zu/%zu frames, %.0f s left\033[K", what.c_str(), done, total, left);
+    std::fflush(stderr);
+  };
 }
 
 }  // namespace crowdprof

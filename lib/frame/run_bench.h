@@ -71,4 +71,10 @@ void finish_run(const CrowdBench& bench, Result& result, bool audit_culling);
 // records of their frames: frame f is frames[f - warmup], when measured.
 void place_gpu_times(const CrowdBench& bench, size_t warmup, std::vector<FrameRecord>& frames);
 
+// Progress on stderr once a run has taken a second, only when a person watches
+// (stderr is a terminal) and not quiet; an empty function otherwise. One line,
+// redrawn in place: "crowdprof: <what> 120/1130 frames, 4 s left", where `what`
+// names the mode and sweep point; erased when the run ends.
+std::function<void(size_t, size_t)> terminal_progress(bool quiet, const std::string& what = "frame");
+
 }  // namespace crowdprof

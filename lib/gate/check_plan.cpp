@@ -27,6 +27,11 @@ CheckPlan plan_check(const CheckRequest& r) {
     if (r.metrics.size() > 1)
       throw SettingError("metric", kInstructionsMetric,
                          "instructions is a metric of its own: its runs are counted, not timed");
+    // A counted run is not a timed one: no frame times worth a file.
+    for (const std::string& option : r.timed_outputs)
+      throw UsageError(option + " is not written by --metric instructions (its runs are counted, not timed); --json, "
+                                "--junit and --markdown are");
+    if (r.ab) throw UsageError("--metric instructions is for a stored baseline: an A/B times both builds side by side");
     if (!r.tolerance_given) plan.gate.tolerance = kInstructionTolerance;
     plan.gate.metrics = {kInstructionsMetric};
     return plan;

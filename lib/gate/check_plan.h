@@ -25,6 +25,10 @@ struct CheckRequest {
   bool update_baseline = false;
   bool timings_only = false;
   bool has_result = false;  // --result: read, not run
+  bool ab = false;          // --against: an A/B of two builds, not a stored baseline
+  // The files of timed runs the command line asked for (--csv, --html, --svg,
+  // --trace, --screenshot), which counted runs do not write.
+  std::vector<std::string> timed_outputs;
 };
 
 // A baseline is held against every later check, so its luck counts many
@@ -42,11 +46,14 @@ struct CheckPlan {
   size_t runs = kCheckRuns;  // each a process of its own
   double spread_s = 0;       // the runs start this many seconds apart in all
   bool update_baseline = false;
+  // The runs are counted, not timed (kInstructionsMetric): the one metric
+  // whose runs are other processes, judged without a test of significance.
+  bool counted() const { return !gate.metrics.empty() && gate.metrics.front() == kInstructionsMetric; }
 };
 
 // The plan, every value checked: SettingError naming the setting (tolerance,
 // floor, alpha, runs, spread, metric) or UsageError for options that cannot go
-// together.
+// together (the counted metric with timed files or an A/B among them).
 CheckPlan plan_check(const CheckRequest& request);
 
 // The metrics a stored-baseline check compares, once both results are known,

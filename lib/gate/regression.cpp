@@ -112,7 +112,7 @@ void adjust_holm(std::vector<MetricCheck>& metrics, const CheckOptions& options)
 CheckResult check_results(const Result& baseline, const Result& current, const CheckOptions& options) {
   CheckResult result;
   // Runs are the unit when both results pool enough of them: processes differ
-  // more than frames of one process do (child_run.h).
+  // more than frames of one process do (gate/processes.h).
   std::vector<double> base_frame = run_medians(baseline, "frame_ms", kMannWhitneyMinSamples);
   double floor = floor_ms(options.floor, summarize(base_frame.empty() ? samples_of(baseline, "frame_ms") : base_frame).median);
   for (const std::string& key : options.metrics) {

@@ -15,6 +15,12 @@
 
 namespace crowdprof {
 
+// What bench --count-instructions does, as its --help says it.
+inline constexpr const char* kCountInstructionsHelp =
+    "Count each measured frame's instructions on one thread: perf_event's hardware counter, or "
+    "callgrind's under valgrind --tool=callgrind --collect-atstart=no (check --metric instructions runs "
+    "that); recorded in --json as \"instructions\"";
+
 enum class InstructionSource { None, PerfEvent, Callgrind };
 
 // "perf_event", "callgrind", "none".

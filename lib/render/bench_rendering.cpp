@@ -1,5 +1,9 @@
 #include "render/bench_rendering.h"
 
+#include <tuple>
+
+#include "render/gl_features.h"
+
 namespace crowdprof {
 
 std::string BenchRendering::backend_name() const {
@@ -26,6 +30,17 @@ BenchRendering open_rendering(BackendChoice choice, const Character& character, 
                               const RendererConfig& config, SettingText* warning) {
   const Character* one[] = {&character};
   return open_rendering(choice, one, copies, config, warning);
+}
+
+BenchRendering open_bench_rendering(const RunSpec& spec, const BenchScene& scene, BenchConfig& config,
+                                    SettingText* warning) {
+  RendererConfig renderer;
+  std::tie(renderer.width, renderer.height) = resolution_size(spec.resolution);
+  renderer.hide_features = gl_hide_from_environment();
+  BenchRendering rendering =
+      open_rendering(*parse_backend(spec.backend), scene.characters, config.crowd.copies, renderer, warning);
+  config.renderer = rendering.renderer.get();
+  return rendering;
 }
 
 }  // namespace crowdprof

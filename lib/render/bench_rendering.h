@@ -7,6 +7,8 @@
 #include <string>
 
 #include "asset/character.h"
+#include "frame/bench_setup.h"
+#include "frame/run_spec.h"
 #include "render/crowd_renderer.h"
 #include "render/gl_context.h"
 
@@ -29,5 +31,11 @@ BenchRendering open_rendering(BackendChoice choice, std::span<const Character* c
                               const RendererConfig& config, SettingText* warning);
 BenchRendering open_rendering(BackendChoice choice, const Character& character, size_t copies,
                               const RendererConfig& config, SettingText* warning);
+
+// Opens the spec's backend at its resolution for the config's crowd and points
+// config.renderer at its renderer (left null for none). When auto finds no GL,
+// `warning` says so and the run goes on without.
+BenchRendering open_bench_rendering(const RunSpec& spec, const BenchScene& scene, BenchConfig& config,
+                                    SettingText* warning);
 
 }  // namespace crowdprof

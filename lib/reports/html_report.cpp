@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include "base/errors.h"
+#include "base/output_file.h"
 #include "base/switch_table.h"
 #include "reports/page_files.h"
 #include "reports/profile_table.h"
@@ -569,6 +572,18 @@ std::string html_report(const HtmlReportInput& given) {
          std::string(page_file("lib/reports/page/error_hook.js")) + "</script>\n<style>\n" +
          std::string(page_file("lib/reports/page/report.css")) + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
          "<script>\n" + std::string(page_file("lib/reports/page/self_check.js")) + "</script>\n</body>\n</html>\n";
+}
+
+void write_html_report(const std::string& path, const HtmlReportInput& input) {
+  write_file(path, "HTML", html_report(input));
+}
+
+std::string read_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot be read");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  require_png(bytes, path);
+  return bytes;
 }
 
 }  // namespace crowdprof

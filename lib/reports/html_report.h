@@ -55,4 +55,11 @@ void require_png(const std::string& bytes, const std::string& path);
 // error into <html data-js-errors>.
 std::string html_report(const HtmlReportInput& input);
 
+// Writes the report to `path` (UsageError naming it when it cannot).
+void write_html_report(const std::string& path, const HtmlReportInput& input);
+
+// The bytes of a PNG to show in a report; InputError naming `path` when it is
+// missing or not a PNG.
+std::string read_png(const std::string& path);
+
 }  // namespace crowdprof

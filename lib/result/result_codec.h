@@ -69,4 +69,8 @@ nlohmann::json with_paths_relative_to(nlohmann::json doc, const std::string& res
 // unless only the result's folder has it.
 std::string recorded_scene_file(const Result& result, const std::string& result_path);
 
+// Writes a result as bench --json does, its scene file stored relative to
+// `path` (with_paths_relative_to), through write_text (base/output_file.h).
+void write_result_file(const std::string& path, const std::string& what, const Result& result);
+
 }  // namespace crowdprof

@@ -6,6 +6,7 @@
 
 #include "base/errors.h"
 #include "base/input_file.h"
+#include "base/output_file.h"
 #include "result/result_codec.h"
 
 namespace crowdprof {
@@ -105,4 +106,8 @@ std::string recorded_scene_file(const Result& result, const std::string& result_
   if (!fs::exists(file, error) && fs::exists(beside, error)) return beside.string() + skin;
   return file + skin;
 }
+void write_result_file(const std::string& path, const std::string& what, const Result& result) {
+  write_text(path, what, [&](std::ostream& out) { out << with_paths_relative_to(result_to_json(result), path).dump(2) << "\n"; });
+}
+
 }  // namespace crowdprof

@@ -15,7 +15,7 @@ scene=$source_dir/scenes/humanoid.glb
 
 # valgrind stops at RDTSCP on CPUs without it: libhwy's static initialiser,
 # which runs one, must call the binary's own TimerResolution instead
-# (cli/valgrind_safe_start.cpp), or nothing here can count on such a host.
+# (lib/measuring/valgrind_safe_start.cpp), or nothing here can count on such a host.
 bindings=$(LD_DEBUG=bindings "$crowdprof" --version 2>&1 >/dev/null)
 grep -q "libhwy.* to .*crowdprof \[0\]: normal symbol \`_ZN3hwy8platform15TimerResolutionEv'" <<<"$bindings" ||
   fail "libhwy's TimerResolution is not bound to the binary's own: valgrind would stop at RDTSCP where the CPU lacks it"

@@ -3,7 +3,7 @@
 // (1.0.3) measures its timer's resolution in a static initialiser, with
 // RDTSCP, before main: valgrind 3.19 then stops with SIGILL (exit 132), so
 // `check --metric instructions` and `./setup.sh valgrind` could not start.
-// This binary defines that one function and exports it (cli/CMakeLists.txt),
+// The binary links this file and exports the function (lib/CMakeLists.txt),
 // so the dynamic linker binds libhwy's call here, as it would to a preloaded
 // library. Only Highway's nanobenchmark reads the value, and crowdprof never
 // runs it: its skinning dispatch does not time anything. The same binary then

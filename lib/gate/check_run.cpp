@@ -1,0 +1,719 @@
+#include "gate/check_run.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "base/errors.h"
+#include "base/number_text.h"
+#include "base/output_file.h"
+#include "base/switch_table.h"
+#include "frame/interrupt.h"
+#include "frame/run_bench.h"
+#include "gate/processes.h"
+#include "measuring/environment.h"
+#include "measuring/instruction_counter.h"
+#include "render/bench_rendering.h"
+#include "result/pooled_runs.h"
+#include "result/result_codec.h"
+#include "result/run_match.h"
+
+namespace crowdprof {
+
+namespace {
+
+using nlohmann::json;
+
+// What a stored-baseline check learns as it goes: the run spec, resolved from
+// the command line over the baseline's recorded run.
+struct CheckState {
+  const CheckRun& r;
+  RunSpec spec;
+  bool calibrate = false;  // time the calibration probe after each frame
+  bool action_from_baseline = false;
+  bool file_from_baseline = false;  // the scene file is the one the baseline recorded
+};
+
+bool same_path(const std::string& a, const std::string& b) {
+  std::error_code error;
+  return !a.empty() && (a == b || std::filesystem::equivalent(a, b, error));
+}
+
+// Re-running a baseline: its recorded run is a layer between the scene file
+// and the command line (frame/run_spec.h), so options left out take the
+// baseline's values and options given override them. A value no run could
+// have recorded is the baseline's fault, not the command line's: InputError.
+void resolve_with_baseline(CheckState& s, const Result& baseline) {
+  const SpecLayer& command_line = s.r.command_line;
+  SpecLayer recorded = recorded_layer(baseline, s.r.baseline, recorded_scene_file(baseline, s.r.baseline));
+  s.file_from_baseline = !command_line.has("file");
+  s.action_from_baseline = recorded.has("action") && !command_line.has("action") && !command_line.has("actions");
+  std::vector<SpecLayer> layers;
+  try {
+    layers = run_layers(command_line, &recorded, &s.r.defaults);
+  } catch (const InputError& e) {
+    if (!s.file_from_baseline) throw;
+    throw InputError(s.r.baseline, std::string("its scene file: ") + e.what() +
+                                       " (the path the baseline recorded, resolved from the baseline's folder)");
+  }
+  s.spec = resolve_run_spec(layers);
+  validate_run_spec(s.spec);
+}
+
+// The baseline named an action this character does not have: the baseline
+// is of another character, which is a bad baseline rather than a bad option.
+void require_recorded_action(const CheckState& s, const Character& character) {
+  if (!s.action_from_baseline) return;
+  std::string names;
+  for (const Action& action : character.actions) {
+    if (action.name == s.spec.action) return;
+    names += (names.empty() ? "" : ", ") + action.name;
+  }
+  throw InputError(s.r.baseline, "the baseline is of another run: its action '" + s.spec.action +
+                                     "' is not one of " + s.spec.file + "'s (" + names + ")");
+}
+
+std::string spelled(const CheckRun& r, const SettingText& text) {
+  return text.str([&](std::string_view setting) {
+    return r.option_name ? r.option_name(setting) : option_spelling(std::string(setting));
+  });
+}
+
+Result run_bench_report(const CheckState& s, const std::string& progress_label) {
+  BenchScene scene;
+  try {
+    scene = load_bench_scene(s.spec);
+  } catch (const InputError& e) {
+    if (!s.file_from_baseline) throw;
+    throw InputError(s.r.baseline, std::string("its scene file: ") + e.what() +
+                                       " (the path the baseline recorded, resolved from the baseline's folder)");
+  }
+  require_recorded_action(s, scene.first());
+  BenchConfig config = make_bench_config(s.spec, scene);
+  check_fits_in_memory(scene.characters, config);
+  SettingText warning;
+  BenchRendering rendering = open_bench_rendering(s.spec, scene, config, &warning);
+  if (!warning.empty()) std::cerr << "crowdprof: warning: " << spelled(s.r, warning) << "\n";
+  CrowdBench bench(scene.characters, config);
+  RunOptions run;
+  run.frames = s.spec.frames;
+  run.warmup = s.spec.warmup;
+  run.progress = terminal_progress(s.r.quiet, progress_label + ", mode " + config.mode_name + ",");
+  install_interrupt_handlers();
+  run.stop = &interrupt_requested();
+  run.calibrate = s.calibrate;
+  Result report = run_bench(bench, s.spec.file, run);
+  report.run.backend = rendering.backend_name();
+  report.run.renderer = rendering.renderer_name();
+  return report;
+}
+
+// Outputs are checked before a run that would be lost, and a comparison never
+// overwrites what it compares against.
+void require_safe_outputs(const CheckRun& r, const std::string& file) {
+  const bool update = r.plan.update_baseline;
+  if (!update && same_path(r.outputs.json, r.baseline))
+    throw UsageError("--json " + r.outputs.json + " is the baseline; to replace it, use --update-baseline");
+  std::vector<NamedPath> inputs = bench_input_files(file);
+  inputs.push_back({"--result file", r.result});
+  if (!update) inputs.push_back({"baseline", r.baseline});
+  OutputFiles files = r.files;
+  if (update) files.add("--baseline", "baseline", r.baseline);
+  files.require_usable(inputs);
+}
+
+// A bad baseline is found before a long run, not after it. One being replaced
+// only lends its options, if it can.
+std::optional<Result> read_baseline(const CheckRun& r) {
+  if (!r.plan.update_baseline) {
+    std::error_code error;
+    if (!std::filesystem::exists(r.baseline, error))
+      throw InputError(r.baseline, "no such file (record a baseline first with --update-baseline)");
+    return read_result(r.baseline);
+  }
+  std::error_code error;
+  if (r.result.empty() && std::filesystem::exists(r.baseline, error)) {
+    try {
+      return read_result(r.baseline);
+    } catch (const InputError& e) {
+      std::cerr << "crowdprof: note: replacing a baseline that cannot be read (" << e.what() << ")\n";
+    }
+  }
+  return std::nullopt;
+}
+
+// crowdprof's own line among a run's stderr (valgrind's banner comes first).
+std::string crowdprof_line(const std::string& text) {
+  size_t at = text.rfind("crowdprof: ");
+  if (at != std::string::npos && (at == 0 || text[at - 1] == '\n')) return first_line(text.substr(at));
+  return first_line(text);
+}
+
+// A counted run (--metric instructions): this binary's bench in a process of
+// its own, on one thread (waiting is never counted), counted by the CPU's
+// hardware counter where the host exposes one, else under callgrind (which
+// must start the process, so never a fork). A run's count is the instructions
+// of its measured frames over their number.
+std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& plan, const std::optional<Result>&) {
+  std::string perf_problem = perf_event_problem();
+  const bool callgrind = !perf_problem.empty();
+  if (callgrind && !on_path("valgrind"))
+    throw std::runtime_error("--metric instructions: nothing counts instructions here: no hardware counter (" +
+                             perf_problem + ") and no valgrind (apt-get install valgrind)");
+  RunSpec spec = s.spec;
+  spec.threads = 1;
+  ScratchFolder scratch;
+  const std::string result_path = scratch.file("run.json"), callgrind_path = scratch.file("callgrind.out");
+  std::vector<std::string> bench_args = {"bench"};
+  for (std::string& arg : run_spec_arguments(spec)) bench_args.push_back(std::move(arg));
+  bench_args.insert(bench_args.end(), {"--count-instructions", "-q", "--json", result_path});
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  std::string program = self;
+  std::vector<std::string> args = bench_args;
+  if (callgrind) {
+    program = "valgrind";
+    args = {"--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + callgrind_path, self};
+    args.insert(args.end(), bench_args.begin(), bench_args.end());
+  }
+  install_interrupt_handlers();
+  std::vector<Result> runs;
+  std::vector<double> counts;
+  for (size_t i = 1; i <= plan.runs; ++i) {
+    if (!s.r.quiet && ::isatty(STDERR_FILENO))
+      std::cerr << "\rcrowdprof: check: counting instructions" << (callgrind ? " under callgrind" : "") << ", run "
+                << i << " of " << plan.runs << std::flush;
+    Finished finished = run_program(program, args, scratch.file("run.err"));
+    if (interrupt_requested().load()) {
+      std::cerr << "\ncrowdprof: interrupted: instructions are not compared from a cut run\n";
+      return std::nullopt;
+    }
+    if (finished.status != 0)
+      throw std::runtime_error("--metric instructions: the counted run failed (exit " +
+                               std::to_string(finished.status) + "): " + crowdprof_line(finished.error_text));
+    Result run = read_result(result_path);
+    // The run wrote its scene file relative to the scratch folder; as an
+    // in-process run records it, it is the spec's (relative to here).
+    run.run.file = spec.file;
+    run.file_from_result = false;
+    InstructionRecord& instructions = run.instructions ? *run.instructions : run.instructions.emplace();
+    if (callgrind) {
+      std::string problem;
+      uint64_t total = callgrind_totals(callgrind_path, problem);
+      if (!problem.empty()) throw std::runtime_error("--metric instructions: " + problem);
+      // The frames toggle collection through valgrind's header, found at build time.
+      if (total == 0)
+        throw std::runtime_error("--metric instructions: callgrind counted nothing: this crowdprof was built without "
+                                 "valgrind's callgrind.h (apt-get install valgrind, then build again)");
+      instructions.source = "callgrind";
+      instructions.per_frame = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
+    } else if (!instructions.per_frame) {
+      throw std::runtime_error("--metric instructions: the run counted none (" +
+                               (instructions.problem.empty() ? std::string("no count") : instructions.problem) + ")");
+    }
+    counts.push_back(*instructions.per_frame);
+    runs.push_back(std::move(run));
+  }
+  if (!s.r.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
+  // The run whose count is the median, with every run's count beside it.
+  std::vector<size_t> order(runs.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return counts[a] < counts[b]; });
+  Result median = runs[order[(order.size() - 1) / 2]];
+  median.instructions->runs = counts;
+  return median;
+}
+
+// Timed runs: plan.runs runs, each a process of its own (gate/processes.h):
+// the CPU time of one unchanged scene moves about three times more between
+// processes than within one, so a baseline and a check each sample several
+// processes, and the gate compares their medians. The CSV is of the last run.
+// A ^C writes the frames measured so far as a partial result (--json) and
+// returns nullopt.
+std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline) {
+  const CheckRun& r = s.r;
+  std::vector<Result> runs;
+  json partial;  // a cut run's document: written as it is, never read back
+  install_interrupt_handlers();  // here, to forward a ^C to the run in progress
+  auto start = std::chrono::steady_clock::now();
+  for (size_t i = 1; i <= plan.runs && partial.is_null(); ++i) {
+    // Run i starts (i - 1) / (runs - 1) of the way through the spread.
+    if (i > 1 && plan.spread_s > 0) {
+      auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
+                             plan.spread_s * static_cast<double>(i - 1) / static_cast<double>(plan.runs - 1)));
+      while (std::chrono::steady_clock::now() < due && !interrupt_requested().load())
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (interrupt_requested().load()) break;
+    std::string label =
+        plan.runs > 1 ? "check, run " + std::to_string(i) + " of " + std::to_string(plan.runs) : "check";
+    auto run_started = i == 1 ? start : std::chrono::steady_clock::now();
+    json doc = run_in_child_process(
+        [&] {
+          Result report = run_bench_report(s, label);
+          if (r.each_run) r.each_run(report);
+          Result result = report;
+          result.pid = static_cast<int64_t>(::getpid());
+          return result_to_json(result);
+        },
+        r.report_exception);
+    if (is_partial_result(doc)) {
+      partial = std::move(doc);
+    } else {
+      Result run = result_from_json(doc, "the run");
+      run.started_s = std::chrono::duration<double>(run_started - start).count();
+      // Another run than the baseline's is found after one run, not after all.
+      if (runs.empty() && baseline && !r.plan.update_baseline && !r.plan.timings_only)
+        require_same_run(*baseline, run, r.baseline);
+      runs.push_back(std::move(run));
+    }
+  }
+  if (partial.is_null() && !interrupt_requested().load()) {
+    // The median run by the gate's first metric; by CPU time (else the frame)
+    // when the runs were not calibrated, as the gate then falls back to it.
+    std::string key = plan.gate.metrics.front();
+    if (!metric_samples(runs.front(), key)) key = metric_samples(runs.front(), "cpu_ms") ? "cpu_ms" : "frame_ms";
+    return pooled_runs(std::move(runs), key);
+  }
+  // The frames measured so far: the cut run's, or the last whole one's.
+  if (partial.is_null() && !runs.empty()) {
+    Result last = std::move(runs.back());
+    last.pid.reset();
+    last.partial = true;
+    last.frames_planned = last.frames();
+    partial = result_to_json(last);
+  }
+  if (partial.is_object()) {
+    partial = as_partial_result(std::move(partial));
+    if (!r.outputs.json.empty())
+      write_text(r.outputs.json, "JSON", [&](std::ostream& out) { out << partial.dump(2) << "\n"; });
+  }
+  std::cerr << "crowdprof: interrupted: "
+            << (r.plan.update_baseline ? "the baseline is not updated from a partial run"
+                                       : "a partial run is not compared")
+            << "\n";
+  return std::nullopt;
+}
+
+using MakeRuns = std::optional<Result> (*)(const CheckState&, const CheckPlan&, const std::optional<Result>&);
+
+// The runs: the spec resolves as defaults, scene file, baseline, command line;
+// then `runs` makes them.
+std::optional<Result> measure(CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline,
+                              MakeRuns runs) {
+  if (baseline) resolve_with_baseline(s, *baseline);
+  else s.spec = resolve_run_spec(run_layers(s.r.command_line, nullptr, &s.r.defaults));
+  if (s.spec.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
+  require_safe_outputs(s.r, s.spec.file);  // the scene file may have come from the baseline
+  return runs(s, plan, baseline);
+}
+
+// What an instruction count was made with: counts compare only within one.
+std::string instruction_origin(const InstructionRecord& i) {
+  auto known = [](const std::string& text) { return text.empty() ? std::string("?") : text; };
+  return known(i.source) + " (SIMD " + known(i.simd) + ", " + known(i.compiler) + ", " + std::to_string(i.threads) +
+         " thread)";
+}
+
+// The counts against the tolerance (no test of significance: the count does
+// not vary with the machine), then the work.
+void judge_count(const CheckRun& r, CheckOutcome& outcome, const std::function<std::optional<Result>()>&) {
+  const Result& baseline = *outcome.baseline;
+  const Result& current = outcome.current;
+  if (!baseline.instructions || !baseline.instructions->per_frame)
+    throw InputError(r.baseline, "has no instruction count: record one with --metric instructions --update-baseline");
+  if (!current.instructions || !current.instructions->per_frame)
+    throw InputError(r.result.empty() ? std::string("the run") : r.result,
+                     "has no instruction count (a result of check --metric instructions, or bench --count-instructions "
+                     "where hardware counters exist)");
+  const std::string base_origin = instruction_origin(*baseline.instructions);
+  CountCheck& count = outcome.count;
+  count.origin = instruction_origin(*current.instructions);
+  if (base_origin != count.origin)
+    throw InputError(r.baseline, "its instructions were counted by " + base_origin + ", this run's by " +
+                                     count.origin +
+                                     ": counts compare only from the same source, SIMD target and compiler (record "
+                                     "the baseline again here)");
+  if (!r.plan.timings_only) require_same_run(baseline, current, r.baseline);
+  CheckOptions work = outcome.plan.gate;
+  work.metrics = {"frame_ms"};  // for the counters and the digest; the frame itself is not judged
+  outcome.result = check_results(baseline, current, work);
+  count.base = *baseline.instructions->per_frame;
+  count.current = *current.instructions->per_frame;
+  count.change = count.base > 0 ? count.current / count.base - 1 : 0;
+  count.slower = count.change > outcome.plan.gate.tolerance;
+  count.faster = count.change < -outcome.plan.gate.tolerance;
+  outcome.kind = CheckOutcome::Kind::Counted;
+}
+
+// Slower beyond the gate, but the same work: what a confirmation may clear.
+bool only_timings_regressed(const CheckResult& result) {
+  return result.regressed() && result.counters.empty() && result.counters_missing.empty() && !result.digest_differs();
+}
+
+std::string slower_metrics(const CheckResult& result) {
+  std::string names;
+  for (const MetricCheck& m : result.metrics)
+    if (m.regressed) names += (names.empty() ? "" : ", ") + m.metric + " " + percent(m.change);
+  return names;
+}
+
+// The timed gate. `remeasure` runs the check's runs again (empty when the
+// result was read from a file): a timed failure with the work unchanged must
+// repeat r.confirm times.
+void judge_timings(const CheckRun& r, CheckOutcome& outcome,
+                   const std::function<std::optional<Result>()>& remeasure) {
+  const Result& baseline = *outcome.baseline;
+  Result& current = outcome.current;
+  CheckOptions& options = outcome.plan.gate;
+  std::string current_name = r.result.empty() ? std::string("the run") : r.result;
+  GateMetrics chosen = gate_metrics(baseline, current, options.metrics, r.metric_given, r.baseline, current_name);
+  options.metrics = std::move(chosen.metrics);
+  for (const std::string& note : chosen.notes) std::cerr << "crowdprof: note: " << note << "\n";
+  if (!r.plan.timings_only) require_same_run(baseline, current, r.baseline);
+  for (const std::string& note : comparison_notes(baseline, current))
+    std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
+  for (const std::string& key : options.metrics)
+    for (const auto& [result, path] : {std::pair{&baseline, r.baseline}, {&current, current_name}})
+      if (!metric_samples(*result, key))
+        throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
+                               "check another --metric");
+  CheckResult result = check_results(baseline, current, options);
+  for (long long round = 1; remeasure && round <= r.confirm && only_timings_regressed(result); ++round) {
+    std::cerr << "crowdprof: note: slower than the baseline (" << slower_metrics(result)
+              << ") with the same work: measuring again to confirm (" << round << " of " << r.confirm
+              << ", --confirm)\n";
+    std::optional<Result> again = remeasure();
+    if (!again) {
+      outcome.kind = CheckOutcome::Kind::Interrupted;
+      return;
+    }
+    current = std::move(*again);
+    result = check_results(baseline, current, options);
+    if (!result.regressed())
+      std::cerr << "crowdprof: note: not confirmed: measured again, it is within the gate (a slow moment of the "
+                   "machine, not of the build)\n";
+    else if (round == r.confirm)
+      std::cerr << "crowdprof: note: confirmed: slower again (" << slower_metrics(result) << ")\n";
+  }
+  outcome.result = std::move(result);
+  outcome.kind = CheckOutcome::Kind::Gated;
+}
+
+// How a stored-baseline check's runs are made and judged: timed (forked,
+// spread, confirmed) or counted (--metric instructions: spawned, against the
+// tolerance alone). The one place the two part.
+struct CheckWay {
+  MakeRuns runs;
+  void (*judge)(const CheckRun&, CheckOutcome&, const std::function<std::optional<Result>()>&);
+};
+
+CheckWay way_of(const CheckPlan& plan) {
+  if (plan.counted()) return {count_instructions, judge_count};
+  return {time_runs, judge_timings};
+}
+
+// ---- check --against BASE: an A/B of two builds at the same moment
+// (gate/ab_check.h). Both builds are run as processes of their own, the current
+// one as well (this binary), with the same bench options, in ABBA groups; the
+// verdict compares their paired ratios.
+
+// The bench options the command line gave, as arguments both builds accept:
+// only what was given, so the base build applies its own defaults to the rest
+// as the current one does.
+std::vector<std::string> ab_bench_arguments(const SpecLayer& command_line,
+                                            const std::map<std::string, std::string>& overrides = {}) {
+  SpecLayer given = command_line;
+  for (const auto& [name, text] : overrides) given.values[name] = text;
+  std::vector<std::string> args = {"bench", given.values.at("file")};
+  for (const auto& [name, text] : given.values) {
+    if (name == "file" || name == "static") continue;
+    args.push_back(option_spelling(name));
+    args.push_back(text);
+  }
+  if (given.has("static")) args.push_back("--static");
+  args.push_back("-q");
+  return args;
+}
+
+std::string shell_quoted(const std::string& text) {
+  if (!text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,+:%") ==
+                           std::string::npos)
+    return text;
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct AbBuild {
+  std::string label;  // "base" or "current"
+  std::string binary;
+  std::string version;
+};
+
+// The version line of a crowdprof binary, or InputError naming it.
+std::string require_crowdprof(const std::string& binary, const ScratchFolder& scratch) {
+  struct stat info {};
+  if (::stat(binary.c_str(), &info) != 0)
+    throw InputError(binary, "no such file (--against names the base build's crowdprof binary)");
+  if (!S_ISREG(info.st_mode)) throw InputError(binary, "not a regular file (--against names a crowdprof binary)");
+  if (::access(binary.c_str(), X_OK) != 0)
+    throw InputError(binary, "not executable (chmod +x it, or name the built binary)");
+  Finished version = run_program(binary, {"--version"}, scratch.file("version.err"), scratch.file("version.out"));
+  std::ifstream in(scratch.file("version.out"));
+  std::string line;
+  std::getline(in, line);
+  if (version.status != 0 || line.rfind("crowdprof ", 0) != 0)
+    throw InputError(binary, "not crowdprof: '--version' " +
+                                 (version.status != 0 ? "exited with status " + std::to_string(version.status)
+                                                      : "printed '" + line.substr(0, 80) + "'"));
+  return line;
+}
+
+// One process of `build`: its result, read and validated as this build reads
+// results. A base whose run fails or writes what this build cannot read is
+// the base's fault (InputError naming it); the current build's is a failed run.
+std::optional<Result> run_ab_process(const AbBuild& build, const std::vector<std::string>& bench_args,
+                                     const ScratchFolder& scratch, const std::string& name) {
+  std::string result_path = scratch.file(name + ".json");
+  std::vector<std::string> args = bench_args;
+  args.push_back("--json");
+  args.push_back(result_path);
+  Finished finished = run_program(build.binary, args, scratch.file(name + ".err"));
+  if (interrupt_requested().load()) return std::nullopt;
+  auto fail = [&](const std::string& why) -> Result {
+    if (build.label == "base") throw InputError(build.binary, "the base build " + why);
+    throw std::runtime_error("this build " + why);
+  };
+  if (finished.status != 0)
+    return fail("failed its run (exit " + std::to_string(finished.status) + "): " +
+                (finished.error_text.empty() ? "no message" : first_line(finished.error_text)));
+  Result result;
+  try {
+    result = read_result(result_path);
+  } catch (const InputError& e) {
+    return fail(std::string("wrote a result this build cannot read: ") + e.what());
+  }
+  result.wall_s = finished.wall_s;
+  return result;
+}
+
+json ab_process_record(const AbBuild& build, size_t group, size_t position, const Result& result,
+                       const AbProcess& process) {
+  return {{"build", build.label},           {"group", group},
+          {"position", position},           {"wall_s", result.wall_s.value_or(0.0)},
+          {"median_ms", process.median_ms}, {"digest", process.digest}};
+}
+
+// The A/B's own refusals and defaults: its defaults differ from a stored
+// baseline's (the frame, and a 5% tolerance).
+AbOptions ab_gate_of(const CheckRun& r, const CheckPlan& plan) {
+  for (const char* option : {"--baseline", "--result", "--update-baseline", "--runs", "--spread", "--confirm",
+                             "--confirm-spread", "--svg", "--csv", "--trace", "--screenshot"})
+    if (r.was_given(option))
+      throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
+  if (r.metric_given &&
+      std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), "calibrated") != plan.gate.metrics.end())
+    throw UsageError("--metric calibrated is for a stored baseline: an A/B pairs both builds in time, which is what "
+                     "the calibration probe does for a baseline; check frame (the default) or cpu");
+  if (!r.command_line.has("file")) throw UsageError("check --against needs a scene FILE to run on both builds");
+  RunSpec spec = resolve_run_spec(run_layers(r.command_line, nullptr, &r.defaults));
+  validate_run_spec(spec);
+  // Under 6 groups no paired test reaches p < 0.05 (the smallest two-sided p is 2/2^groups).
+  if (r.groups < 6 || r.groups > 100)
+    throw SettingError("groups", std::to_string(r.groups), "expected 6 to 100 (fewer can never be significant)");
+  std::vector<NamedPath> inputs = bench_input_files(spec.file);
+  inputs.push_back({"--against binary", r.against});
+  r.files.require_usable(inputs);
+  AbOptions gate;
+  gate.metrics = r.metric_given ? plan.gate.metrics : std::vector<std::string>{"frame_ms"};
+  gate.tolerance = r.plan.tolerance_given ? plan.gate.tolerance : kAbTolerance;
+  gate.alpha = plan.gate.alpha;
+  gate.floor = plan.gate.floor;
+  gate.compare_work = !r.plan.timings_only;
+  return gate;
+}
+
+// The base binary is checked before anything runs: InputError naming it when
+// it is missing, not a regular executable file, not crowdprof, or when a
+// one-frame run of the same options gives no result this build reads.
+CheckOutcome run_ab(const CheckRun& r, const CheckPlan& plan) {
+  CheckOutcome outcome;
+  outcome.plan = plan;
+  AbRun& ab = outcome.ab.emplace();
+  ab.gate = ab_gate_of(r, plan);
+  install_interrupt_handlers();  // a ^C reaches the run in progress, then ends the A/B (exit 130)
+  ScratchFolder scratch;
+  auto start = std::chrono::steady_clock::now();
+  // Absolute, so that a name without a slash is the file named, not one on PATH.
+  const std::string base_binary = std::filesystem::absolute(r.against).string();
+  AbBuild base{"base", base_binary, require_crowdprof(base_binary, scratch)};
+  AbBuild current{"current", std::filesystem::read_symlink("/proc/self/exe").string(), version_line()};
+  ab.bench_args = ab_bench_arguments(r.command_line);
+
+  // Before any measured run: both builds run one frame of the same options
+  // and their results must be ones this build reads, of the same run.
+  std::vector<std::string> probe_args = ab_bench_arguments(r.command_line, {{"frames", "1"}, {"warmup", "0"}});
+  std::optional<Result> base_probe = run_ab_process(base, probe_args, scratch, "probe-base");
+  if (!base_probe) return outcome;
+  std::optional<Result> current_probe = run_ab_process(current, probe_args, scratch, "probe-current");
+  if (!current_probe) return outcome;
+  // Runs of other settings (the base reads an option otherwise) are other
+  // work: judged and reported as such, with the setting that differs.
+  std::string run_difference;
+  if (ab.gate.compare_work) try {
+      require_same_run(*base_probe, *current_probe, base.binary);
+    } catch (const InputError& e) {
+      run_difference = e.what();
+      size_t from = run_difference.find("another run: ");
+      if (from != std::string::npos) run_difference = run_difference.substr(from + 13);
+      run_difference = run_difference.substr(0, run_difference.find(" (rerun"));
+    }
+
+  for (const std::string& key : ab.gate.metrics)
+    for (const Result* probe : {&*base_probe, &*current_probe})
+      if (!metric_samples(*probe, key))
+        throw InputError(probe == &*base_probe ? base.binary : current.binary,
+                         "its results have no \"samples." + key + "\": check another --metric");
+
+  const bool show_progress = !r.quiet && ::isatty(STDERR_FILENO);
+  std::vector<AbGroup> groups;
+  for (size_t g = 0; g < static_cast<size_t>(r.groups); ++g) {
+    AbGroup group;
+    group.base_first = g % 2 == 0;
+    // ABBA, then BAAB: each build is as often first as last.
+    const AbBuild* order[4] = {&base, &current, &current, &base};
+    if (!group.base_first) order[0] = order[3] = &current, order[1] = order[2] = &base;
+    int base_seen = 0, current_seen = 0;
+    if (show_progress) std::cerr << "\rcrowdprof: check --against: group " << (g + 1) << " of " << r.groups << std::flush;
+    for (size_t position = 0; position < 4; ++position) {
+      const AbBuild& build = *order[position];
+      std::optional<Result> result = run_ab_process(
+          build, ab.bench_args, scratch, build.label + "-" + std::to_string(g) + "-" + std::to_string(position));
+      if (!result) {
+        std::cerr << "\ncrowdprof: interrupted: an A/B cut short is not judged\n";
+        return outcome;
+      }
+      AbProcess process = ab_process(*result);
+      ab.processes.push_back(ab_process_record(build, g, position, *result, process));
+      if (&build == &base) group.base[base_seen++] = std::move(process), ab.last_base = std::move(*result);
+      else group.current[current_seen++] = std::move(process), ab.last_current = std::move(*result);
+    }
+    groups.push_back(std::move(group));
+  }
+  if (show_progress) std::cerr << "\n";
+  ab.result = judge_ab(groups, ab.gate);
+  if (!run_difference.empty()) {
+    ab.result.work.run_difference = run_difference;
+    ab.result.work.equal = false;
+  }
+  ab.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ab.base_binary = base.binary;
+  ab.base_version = base.version;
+  ab.current_binary = current.binary;
+  ab.current_version = current.version;
+  std::string reproduce = "crowdprof check";
+  for (size_t i = 1; i < ab.bench_args.size() - 1; ++i) reproduce += " " + shell_quoted(ab.bench_args[i]);  // no "bench", no -q
+  for (const std::string& arg : r.gate_arguments) reproduce += " " + shell_quoted(arg);
+  reproduce += " --against " + shell_quoted(base.binary);
+  ab.reproduce = reproduce;
+  outcome.kind = CheckOutcome::Kind::Ab;
+  return outcome;
+}
+
+}  // namespace
+
+json AbRun::document() const {
+  json metrics = json::array();
+  for (const AbMetric& metric : result.metrics)
+    metrics.push_back({{"metric", metric_display_name(metric.metric)},
+                       {"key", metric.metric},
+                       {"base_ms", metric.base_ms},
+                       {"current_ms", metric.current_ms},
+                       {"current_median_ms", metric.current_median_ms},
+                       {"change", metric.change.median},
+                       {"change_low", metric.change.low},
+                       {"change_high", metric.change.high},
+                       {"confidence", gate.confidence},
+                       {"ratios", metric.ratios},
+                       {"p", metric.test.p},
+                       {"p_adjusted", metric.p_adjusted},
+                       {"exact_p", metric.test.exact},
+                       {"floor_ms", metric.floor_ms},
+                       {"verdict", metric.regressed ? "slower" : metric.improved ? "faster" : "no change"}});
+  json counters = json::array();
+  for (const CounterDifference& c : result.work.counters)
+    counters.push_back({{"name", c.name}, {"base", c.baseline}, {"current", c.current}});
+  return {{"crowdprof",
+           {{"version", last_current.environment.version}, {"format", kResultFormat}, {"kind", "ab_check"}}},
+          {"builds",
+           {{"base",
+             {{"binary", base_binary}, {"version", base_version}, {"environment", environment_to_json(last_base)}}},
+            {"current",
+             {{"binary", current_binary},
+              {"version", current_version},
+              {"environment", environment_to_json(last_current)}}}}},
+          {"bench_arguments", bench_args},
+          {"tolerance", gate.tolerance},
+          {"alpha", gate.alpha},
+          {"metrics", metrics},
+          {"work",
+           {{"compared", result.work.compared},
+            {"equal", result.work.equal},
+            {"base_digest", result.work.base_digest},
+            {"current_digest", result.work.current_digest},
+            {"counters_differing", counters}}},
+          {"processes", processes},
+          {"wall_s", wall_s},
+          {"regressed", result.regressed()}};
+}
+
+CheckOutcome run_check(const CheckRun& r) {
+  CheckRequest asked = r.plan;
+  asked.ab = !r.against.empty();
+  for (const char* option : {"--csv", "--html", "--svg", "--trace", "--screenshot"})
+    if (r.was_given(option)) asked.timed_outputs.push_back(option);
+  CheckPlan plan = plan_check(asked);
+  if (!r.against.empty()) return run_ab(r, plan);
+  if (r.baseline.empty())
+    throw UsageError("check needs --baseline FILE (a stored result) or --against BINARY (an A/B of two builds)");
+  CheckState state{r, {}};
+  if (r.command_line.has("file")) state.spec.file = r.command_line.values.at("file");
+  if (!r.result.empty() && r.command_line.has("file"))
+    throw UsageError("give either a scene FILE to run or --result FILE to read, not both");
+  require_safe_outputs(r, state.spec.file);
+  CheckOutcome outcome;
+  outcome.plan = plan;
+  outcome.baseline = read_baseline(r);
+  // The probe's workers spin on into the next frame, where CPU time counts them:
+  // runs are calibrated when a new baseline gates on the calibrated frame, or
+  // when the baseline was calibrated, so that both sides' CPU time counts alike.
+  const std::vector<std::string>& metrics = plan.gate.metrics;
+  state.calibrate = r.plan.update_baseline
+                        ? std::find(metrics.begin(), metrics.end(), "calibrated") != metrics.end()
+                        : outcome.baseline && !outcome.baseline->samples.probe_ms.empty();
+  const CheckWay way = way_of(plan);
+  std::optional<Result> current =
+      r.result.empty() ? measure(state, plan, outcome.baseline, way.runs) : read_result(r.result);
+  if (!current) return outcome;
+  outcome.current = std::move(*current);
+  if (r.plan.update_baseline) {
+    outcome.kind = CheckOutcome::Kind::BaselineWritten;
+    return outcome;
+  }
+  std::function<std::optional<Result>()> remeasure;
+  CheckPlan confirming = plan;
+  confirming.spread_s = std::max(plan.spread_s, r.confirm_spread);
+  if (r.result.empty()) remeasure = [&] { return measure(state, confirming, outcome.baseline, way.runs); };
+  way.judge(r, outcome, remeasure);
+  return outcome;
+}
+
+}  // namespace crowdprof
