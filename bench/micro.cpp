@@ -79,15 +79,13 @@ void sample_next_frame(Copy& copy, float* time) {
 }
 
 void per_joint(benchmark::State& state, size_t joints) {
-  state.counters["ns_per_joint"] = benchmark::Counter(static_cast<double>(joints),
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+  state.counters["ns_per_joint"] = benchmark::Counter(
+      static_cast<double>(joints), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void per_vertex(benchmark::State& state, size_t vertices) {
-  state.counters["ns_per_vertex"] = benchmark::Counter(static_cast<double>(vertices),
-                                                       benchmark::Counter::kIsIterationInvariantRate |
-                                                           benchmark::Counter::kInvert);
+  state.counters["ns_per_vertex"] = benchmark::Counter(
+      static_cast<double>(vertices), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // GB/s of all threads together: each thread's counter is already the total
@@ -154,25 +152,25 @@ BENCHMARK(BM_MemoryWriteStreaming)->Threads(1)->Threads(2)->UseRealTime()->Unit(
 // (docs/performance.md). Compiled for each width here, run where the CPU has it.
 // Vectors stay inside the functions compiled for their width (no vector in an
 // interface of baseline x86-64 code, whose ABI differs).
-#define CROWDPROF_MULTIPLY_ADD_RATE(V, FMA, SET)                                             \
-  volatile float one = 0.99999994f, tiny = 1e-7f; /* 1 - 2^-24: values stay finite */     \
-  const V x = SET(one), y = SET(tiny);                                                      \
-  V a[12];                                                                                  \
-  for (int i = 0; i < 12; ++i) a[i] = SET(static_cast<float>(i));                           \
-  V chain = SET(1.0f);                                                                      \
-  constexpr int64_t kSteps = 1 << 16;                                                       \
-  const bool dependent = state.range(0) == 1;                                               \
-  for (auto _ : state) {                                                                    \
-    if (dependent) {                                                                        \
-      for (int64_t k = 0; k < kSteps; ++k) chain = FMA(chain, x, y);                        \
-      benchmark::DoNotOptimize(chain);                                                      \
-    } else {                                                                                \
-      for (int64_t k = 0; k < kSteps; ++k)                                                  \
-        for (V & v : a) v = FMA(v, x, y);                                                   \
-      for (V & v : a) benchmark::DoNotOptimize(v);                                          \
-    }                                                                                       \
-  }                                                                                         \
-  state.counters["multiply_adds_per_second"] = benchmark::Counter(                          \
+#define CROWDPROF_MULTIPLY_ADD_RATE(V, FMA, SET)                                      \
+  volatile float one = 0.99999994f, tiny = 1e-7f; /* 1 - 2^-24: values stay finite */ \
+  const V x = SET(one), y = SET(tiny);                                                \
+  V a[12];                                                                            \
+  for (int i = 0; i < 12; ++i) a[i] = SET(static_cast<float>(i));                     \
+  V chain = SET(1.0f);                                                                \
+  constexpr int64_t kSteps = 1 << 16;                                                 \
+  const bool dependent = state.range(0) == 1;                                         \
+  for (auto _ : state) {                                                              \
+    if (dependent) {                                                                  \
+      for (int64_t k = 0; k < kSteps; ++k) chain = FMA(chain, x, y);                  \
+      benchmark::DoNotOptimize(chain);                                                \
+    } else {                                                                          \
+      for (int64_t k = 0; k < kSteps; ++k)                                            \
+        for (V & v : a) v = FMA(v, x, y);                                             \
+      for (V & v : a) benchmark::DoNotOptimize(v);                                    \
+    }                                                                                 \
+  }                                                                                   \
+  state.counters["multiply_adds_per_second"] = benchmark::Counter(                    \
       static_cast<double>(dependent ? kSteps : 12 * kSteps), benchmark::Counter::kIsIterationInvariantRate)
 
 [[gnu::target("avx2,fma")]] void BM_MultiplyAddRateAVX2(benchmark::State& state) {
@@ -328,8 +326,7 @@ CrowdOutput& crowd_output(size_t copies, size_t vertices) {
   out.stride = vertices;
   while ((out.stride * sizeof(glm::vec3)) % 64) ++out.stride;
   const size_t bytes = copies * out.stride * sizeof(glm::vec3);
-  const double available =
-      static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  const double available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   if (2.0 * static_cast<double>(bytes) > 0.8 * available) {
     out.missing = "needs " + std::to_string(2 * bytes >> 20) + " MiB, the machine has " +
                   std::to_string(static_cast<size_t>(available) >> 20) + " MiB free";
@@ -393,7 +390,8 @@ void BM_SkinningCrowd(benchmark::State& state, std::string target) {
   const size_t mine = last - first;
   const auto all_threads = benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kAvgThreads;
   state.counters["vertices_per_second"] = benchmark::Counter(static_cast<double>(mine * n), all_threads);
-  state.counters["bytes_per_second"] = benchmark::Counter(static_cast<double>(mine * n * kFloatVertexBytes), all_threads);
+  state.counters["bytes_per_second"] =
+      benchmark::Counter(static_cast<double>(mine * n * kFloatVertexBytes), all_threads);
   state.counters["GB/s"] = total_rate(mine * n * kFloatVertexBytes);
   state.counters["streaming"] = benchmark::Counter(streaming ? 1 : 0, benchmark::Counter::kAvgThreads);
   state.SetLabel(target);
@@ -477,10 +475,14 @@ int main(int argc, char** argv) {
   // Vector multiply-adds a second: twelve independent chains (0) or one (1).
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
     benchmark::RegisterBenchmark("BM_MultiplyAddRate/AVX2", crowdprof::BM_MultiplyAddRateAVX2)
-        ->Arg(0)->Arg(1)->ArgName("dependent");
+        ->Arg(0)
+        ->Arg(1)
+        ->ArgName("dependent");
   if (__builtin_cpu_supports("avx512f"))
     benchmark::RegisterBenchmark("BM_MultiplyAddRate/AVX3", crowdprof::BM_MultiplyAddRateAVX3)
-        ->Arg(0)->Arg(1)->ArgName("dependent");
+        ->Arg(0)
+        ->Arg(1)
+        ->ArgName("dependent");
 #endif
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

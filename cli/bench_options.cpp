@@ -42,7 +42,9 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
     }
     if (name == "mode") help = "Preset of switches: " + mode_names() + help.substr(help.find(" ("));
     std::string flags = name == "characters" ? "-n,--characters" : option_spelling(name);
-    cmd.add_option(flags, o.typed[name], help)->type_name(std::string(setting.value))->group(std::string(setting.group));
+    cmd.add_option(flags, o.typed[name], help)
+        ->type_name(std::string(setting.value))
+        ->group(std::string(setting.group));
   }
   for (const SwitchSpec& spec : switch_table()) {
     std::string name(spec.name);
@@ -98,8 +100,8 @@ struct OutputKind {
   const char* what;  // in messages: "cannot write SVG file ..."
 };
 // By OutputOption.
-constexpr OutputKind kOutputKinds[] = {{"--csv", "CSV"},          {"--json", "JSON"},       {"--trace", "trace"},
-                                       {"--screenshot", "PNG"},   {"--html", "HTML"},       {"--svg", "SVG"},
+constexpr OutputKind kOutputKinds[] = {{"--csv", "CSV"},          {"--json", "JSON"},        {"--trace", "trace"},
+                                       {"--screenshot", "PNG"},   {"--html", "HTML"},        {"--svg", "SVG"},
                                        {"--summary-csv", "CSV"},  {"--gbench-json", "JSON"}, {"--junit", "JUnit XML"},
                                        {"--markdown", "Markdown"}};
 }  // namespace

@@ -52,9 +52,9 @@ struct BenchCliOptions {
   crowdprof::RunSpec spec;  // resolved by resolve_bench_spec
   bool quiet = false;
   std::string csv, json, trace;
-  std::string screenshot;  // bench: the last frame as a PNG
-  std::string html;        // the HTML report of the run (docs/report.md)
-  DeclaredOutputs outputs;  // the command's output options, bench's and its own
+  std::string screenshot;       // bench: the last frame as a PNG
+  std::string html;             // the HTML report of the run (docs/report.md)
+  DeclaredOutputs outputs;      // the command's output options, bench's and its own
   CLI::App* command = nullptr;  // the command the options were parsed by
 };
 

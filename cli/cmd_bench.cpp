@@ -48,7 +48,8 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
                      " (parallel), add --threads 1");
   // The report embeds the screenshot by reading it back: it needs a file.
   if (is_standard_output(options.screenshot) && !options.html.empty())
-    throw UsageError("--screenshot " + options.screenshot + " with --html: the report reads the screenshot back from "
+    throw UsageError("--screenshot " + options.screenshot +
+                     " with --html: the report reads the screenshot back from "
                      "its file; give --screenshot a file");
   if (!options.screenshot.empty() && spec.backend == "none")
     throw UsageError("--screenshot needs a GL backend: --backend auto, egl or osmesa");
@@ -76,8 +77,7 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   Result report = run_bench(crowd, spec.file, run);
   report.run.backend = rendering.backend_name();
   report.run.renderer = rendering.renderer_name();
-  if (options.outputs.files().prints_on_stdout(options.quiet))
-    std::cout << format_profile(report);
+  if (options.outputs.files().prints_on_stdout(options.quiet)) std::cout << format_profile(report);
   if (!options.csv.empty()) write_text(options.csv, "CSV", [&](std::ostream& out) { write_csv(report, out); });
   if (!summary_csv.empty())
     write_text(summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv({&report}, out); });
@@ -91,8 +91,8 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   if (report.partial) {
     bool wrote = !options.csv.empty() || !options.json.empty() || !options.trace.empty() || !summary_csv.empty() ||
                  !gbench_json.empty();
-    std::cerr << "crowdprof: interrupted: " << report.frames() << " of " << report.frames_planned
-              << " frames measured" << (wrote ? ", and written as a partial result" : "") << "\n";
+    std::cerr << "crowdprof: interrupted: " << report.frames() << " of " << report.frames_planned << " frames measured"
+              << (wrote ? ", and written as a partial result" : "") << "\n";
     return kExitInterrupted;
   }
   if (!options.screenshot.empty()) {
@@ -113,30 +113,37 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCliOptions>();
   auto outputs = std::make_shared<BenchOutputs>();
-  auto* cmd = app.add_subcommand("bench", "Fill a scene with copies of a character (or the crowd of a scene file), "
-                                          "play actions and print where each frame's time goes (BGE-style profile)");
+  auto* cmd = app.add_subcommand("bench",
+                                 "Fill a scene with copies of a character (or the crowd of a scene file), "
+                                 "play actions and print where each frame's time goes (BGE-style profile)");
   cmd->footer("Examples:\n  crowdprof bench scenes/thesis.json --mode culled --json result.json");
   add_bench_options(*cmd, *options);
   options->outputs.declare(*cmd, OutputOption::Csv, options->csv, "Write one row per measured frame to this CSV file");
-  options->outputs.declare(*cmd, OutputOption::GbenchJson, outputs->gbench_json,
-                  "Write the run as Google Benchmark's JSON (each frame a repetition; mean, median, stddev), for "
-                  "compare.py, github-action-benchmark or Bencher");
+  options->outputs.declare(
+      *cmd, OutputOption::GbenchJson, outputs->gbench_json,
+      "Write the run as Google Benchmark's JSON (each frame a repetition; mean, median, stddev), for "
+      "compare.py, github-action-benchmark or Bencher");
   cmd->add_flag("--count-instructions", outputs->count_instructions, kCountInstructionsHelp);
   cmd->add_flag("--calibrate", outputs->calibrate,
                 "After every frame, time a fixed calibration probe (a skinning kernel of fixed size on the same "
                 "threads) and record each frame over it: the metric check --metric calibrated compares, which a "
                 "change of the machine's speed moves less than the frame; in --json as samples.probe_ms and "
                 "samples.calibrated");
-  options->outputs.declare(*cmd, OutputOption::SummaryCsv, outputs->summary_csv,
-                  "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
-  options->outputs.declare(*cmd, OutputOption::Json, options->json, "Write the run's summary (and per-frame samples) to this JSON file");
-  options->outputs.declare(*cmd, OutputOption::Trace, options->trace,
-                  "Write a Chrome trace-event JSON (Perfetto, chrome://tracing): a span per stage per frame, and per "
-                  "task on each worker thread");
-  options->outputs.declare(*cmd, OutputOption::Screenshot, options->screenshot, "Write the last frame as a PNG (needs a GL backend)");
-  options->outputs.declare(*cmd, OutputOption::Html, options->html,
-                  "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
-                  "opens in any browser");
+  options->outputs.declare(
+      *cmd, OutputOption::SummaryCsv, outputs->summary_csv,
+      "Write one row for the run to this CSV file: median, p95, p99 and fps of the frame and of its CPU time");
+  options->outputs.declare(*cmd, OutputOption::Json, options->json,
+                           "Write the run's summary (and per-frame samples) to this JSON file");
+  options->outputs.declare(
+      *cmd, OutputOption::Trace, options->trace,
+      "Write a Chrome trace-event JSON (Perfetto, chrome://tracing): a span per stage per frame, and per "
+      "task on each worker thread");
+  options->outputs.declare(*cmd, OutputOption::Screenshot, options->screenshot,
+                           "Write the last frame as a PNG (needs a GL backend)");
+  options->outputs.declare(
+      *cmd, OutputOption::Html, options->html,
+      "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
+      "opens in any browser");
   group_outputs(*cmd);
   cmd->callback([&run, options, outputs] { run = [options, outputs] { return bench(*options, *outputs); }; });
 }

@@ -59,7 +59,8 @@ int capacity(CapacityCliOptions& o) {
   CapacityRule rule;
   rule.budget_ms = o.budget;
   rule.resolution = o.resolution;
-  if (o.start < 1 || o.start > 10'000'000) throw UsageError("--start " + std::to_string(o.start) + ": expected 1 to 10000000");
+  if (o.start < 1 || o.start > 10'000'000)
+    throw UsageError("--start " + std::to_string(o.start) + ": expected 1 to 10000000");
   if (o.max_characters < 1 || o.max_characters > 10'000'000)
     throw UsageError("--max-characters " + std::to_string(o.max_characters) + ": expected 1 to 10000000");
   rule.start = static_cast<size_t>(o.start);
@@ -123,8 +124,7 @@ int capacity(CapacityCliOptions& o) {
   result.frames = o.bench.spec.frames;
   result.warmup = o.bench.spec.warmup;
 
-  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet))
-    std::cout << format_capacity(result);
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet)) std::cout << format_capacity(result);
   if (!o.summary_csv.empty())
     write_text(o.summary_csv, "CSV", [&](std::ostream& out) {
       // Each mode at its capacity: the largest crowd that fit.
@@ -142,7 +142,8 @@ int capacity(CapacityCliOptions& o) {
     const bool measured = std::any_of(result.modes.begin(), result.modes.end(),
                                       [](const ModeCapacity& mode) { return mode.fit_run || mode.fail_run; });
     if (!measured) {
-      std::cerr << "crowdprof: note: no crowd size was measured whole: no HTML report written to " << o.bench.html << "\n";
+      std::cerr << "crowdprof: note: no crowd size was measured whole: no HTML report written to " << o.bench.html
+                << "\n";
     } else {
       HtmlReportInput input;
       add_document(input, result_document_from_json(capacity_to_json(result), "this capacity search"),
@@ -152,10 +153,10 @@ int capacity(CapacityCliOptions& o) {
   }
   if (result.partial) {
     std::cerr << "crowdprof: interrupted: round " << rounds << " was cut short and is left out of the search; "
-              << "the results are those of the " << rounds - 1 << " round" << (rounds == 2 ? "" : "s")
-              << " before it" << (o.bench.json.empty() && o.svg.empty() && o.bench.html.empty() && o.summary_csv.empty()
-                                     ? ""
-                                     : ", written as a partial result")
+              << "the results are those of the " << rounds - 1 << " round" << (rounds == 2 ? "" : "s") << " before it"
+              << (o.bench.json.empty() && o.svg.empty() && o.bench.html.empty() && o.summary_csv.empty()
+                      ? ""
+                      : ", written as a partial result")
               << "\n";
     return kExitInterrupted;
   }
@@ -166,13 +167,15 @@ int capacity(CapacityCliOptions& o) {
 
 void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CapacityCliOptions>();
-  auto* cmd = app.add_subcommand("capacity", "Find, per mode, the largest crowd whose median frame (or one category) "
-                                             "fits a time budget, by a search over the crowd size");
+  auto* cmd = app.add_subcommand("capacity",
+                                 "Find, per mode, the largest crowd whose median frame (or one category) "
+                                 "fits a time budget, by a search over the crowd size");
   cmd->footer("Examples:\n  crowdprof capacity scenes/humanoid.glb --budget 16.7 --modes threaded,shared");
   add_bench_options(*cmd, options->bench);
   cmd->remove_option(cmd->get_option("--mode"));        // --modes instead
   cmd->remove_option(cmd->get_option("--characters"));  // the search picks the sizes
-  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps, as the reports draw it)")->required();
+  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps, as the reports draw it)")
+      ->required();
   cmd->add_option("--modes", options->modes,
                   "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
                   "preset, e.g. master+lookups=bundled")
@@ -190,14 +193,19 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
                   "character)")
       ->capture_default_str();
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
-  options->bench.outputs.declare(*cmd, OutputOption::SummaryCsv, options->summary_csv,
-                  "Write one row per mode at its capacity (the largest crowd that fit) to this CSV file: median, p95, "
-                  "p99 and fps of the frame and of its CPU time");
-  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write every size tried per mode, with its median and percentiles");
-  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write a chart: the median against the crowd size per mode, and the budget");
-  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
-                  "Write an HTML report: each mode's run at its capacity, and the median frame against the crowd size");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::SummaryCsv, options->summary_csv,
+      "Write one row per mode at its capacity (the largest crowd that fit) to this CSV file: median, p95, "
+      "p99 and fps of the frame and of its CPU time");
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json,
+                                 "Write every size tried per mode, with its median and percentiles");
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg,
+                                 "Write a chart: the median against the crowd size per mode, and the budget");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::Html, options->bench.html,
+      "Write an HTML report: each mode's run at its capacity, and the median frame against the crowd size");
   group_outputs(*cmd);
-  group_options(*cmd, "Search", {"--budget", "--modes", "--metric", "--start", "--max-characters", "--precision", "--block"});
+  group_options(*cmd, "Search",
+                {"--budget", "--modes", "--metric", "--start", "--max-characters", "--precision", "--block"});
   cmd->callback([&run, options] { run = [options] { return capacity(*options); }; });
 }

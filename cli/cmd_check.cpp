@@ -103,8 +103,9 @@ int check(const CheckCliOptions& o) {
 
 void add_check_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CheckCliOptions>();
-  auto* cmd = app.add_subcommand("check", "Run a bench (or read a result) and compare it with a baseline: exit 1 "
-                                          "when it got slower or its work changed (see docs/compare-and-check.md)");
+  auto* cmd = app.add_subcommand("check",
+                                 "Run a bench (or read a result) and compare it with a baseline: exit 1 "
+                                 "when it got slower or its work changed (see docs/compare-and-check.md)");
   cmd->footer(
       "Examples:\n  crowdprof check scenes/thesis.json --baseline base.json --update-baseline\n"
       "  crowdprof check scenes/thesis.json --baseline base.json\n"
@@ -131,20 +132,22 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "ABBA groups of processes beside this build, so that the machine's changes of speed fall on both; "
                   "gates on the paired ratios (Wilcoxon signed-rank); default metric frame, tolerance 5% "
                   "(docs/ci.md)");
-  cmd->add_option("--groups", options->groups,
-                  "With --against: ABBA groups of four processes (two of each build)")
+  cmd->add_option("--groups", options->groups, "With --against: ABBA groups of four processes (two of each build)")
       ->capture_default_str();
-  options->bench.outputs.declare(*cmd, OutputOption::Junit, options->junit,
-                  "Write the verdict as JUnit XML: a test case per metric and one for the work, the verdict as a "
-                  "failure's message");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::Junit, options->junit,
+      "Write the verdict as JUnit XML: a test case per metric and one for the work, the verdict as a "
+      "failure's message");
   options->bench.outputs.declare(*cmd, OutputOption::Markdown, options->markdown,
-                  "Write the verdict as a Markdown table (a CI job summary or a pull-request comment)");
+                                 "Write the verdict as a Markdown table (a CI job summary or a pull-request comment)");
   cmd->add_option("--result", options->result, "Compare this result of bench --json instead of running a bench");
   cmd->add_option("--metric", options->metrics,
                   "Timed metrics that must not regress: calibrated (the wall-clock frame over a fixed calibration "
                   "probe timed right after it on the same threads, so a change of the machine's speed falls on both; "
-                  "a baseline or --result without it is checked on cpu; not with --against), cpu (CPU time of every thread in the frame, waiting "
-                  "workers' spinning included), frame (wall clock), categories such as Animations, Rasterizer, or all: the frame and every category "
+                  "a baseline or --result without it is checked on cpu; not with --against), cpu (CPU time of every "
+                  "thread in the frame, waiting "
+                  "workers' spinning included), frame (wall clock), categories such as Animations, Rasterizer, or all: "
+                  "the frame and every category "
                   "(Holm-corrected together); or instructions: instructions per frame on one thread (hardware "
                   "counter, else callgrind), tolerance 1%, one run")
       ->delimiter(',')
@@ -168,9 +171,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "after an idle wait starts slow: measure first); 0: back to back")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test")->capture_default_str();
-  cmd->add_option("--confirm", options->confirm,
-                  "When a timed metric fails and the work is the same, measure again this many times and fail only if "
-                  "each fails too (a machine shared with other jobs is slow for seconds at a time); 0 to 10, 0: fail at once")
+  cmd->add_option(
+         "--confirm", options->confirm,
+         "When a timed metric fails and the work is the same, measure again this many times and fail only if "
+         "each fails too (a machine shared with other jobs is slow for seconds at a time); 0 to 10, 0: fail at once")
       ->check(CLI::Range(0, 10).description(""))
       ->capture_default_str();
   cmd->add_option("--confirm-spread", options->confirm_spread,
@@ -182,15 +186,18 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
                 "(tests/scripts/measure_gate.sh); counters and digest are not compared");
   cmd->add_flag("--update-baseline", options->update, "Write the result as the new baseline instead of comparing");
-  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv, "Write the run's frames to this CSV file");
-  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write the run's result (as bench --json) to this file");
-  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write a chart of the metric per frame, baseline against current");
-  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
-                  "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
+  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv,
+                                 "Write the run's frames to this CSV file");
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json,
+                                 "Write the run's result (as bench --json) to this file");
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg,
+                                 "Write a chart of the metric per frame, baseline against current");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::Html, options->bench.html,
+      "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
   group_outputs(*cmd);
   group_options(*cmd, kGateGroup,
                 {"--baseline", "--against", "--groups", "--result", "--metric", "--tolerance", "--floor", "--runs",
-                 "--spread", "--alpha", "--confirm", "--confirm-spread", "--timings-only",
-                 "--update-baseline"});
+                 "--spread", "--alpha", "--confirm", "--confirm-spread", "--timings-only", "--update-baseline"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

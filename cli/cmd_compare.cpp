@@ -39,15 +39,17 @@ struct CompareCliOptions {
 
 }  // namespace
 
-ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named,
-                     bool note) {
+ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named, bool note) {
   ModeRun run;
   for (BenchConfig& config : configs) {
     config.crowd.copies = copies;
     SettingText why = why_cannot_run(config);
-    if (why.empty()) run.configs.push_back(config);
-    else if (named) throw SettingsUsageError(why);
-    else if (note) std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << as_options(why) << "\n";
+    if (why.empty())
+      run.configs.push_back(config);
+    else if (named)
+      throw SettingsUsageError(why);
+    else if (note)
+      std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << as_options(why) << "\n";
   }
   if (run.configs.empty()) throw UsageError("none of the modes can run here");
   check_fits_in_memory(scene.characters, run.configs);  // only the modes that will run
@@ -57,7 +59,7 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
 }
 
 std::vector<Result> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
-                                 const std::string& what) {
+                              const std::string& what) {
   std::vector<CrowdBench*> benches;
   for (auto& bench : modes.benches) benches.push_back(bench.get());
   RunOptions run;
@@ -128,12 +130,12 @@ int compare(CompareCliOptions& o) {
       if (by_passes) config.mode.passes = static_cast<uint32_t>(n);
     ModeRun point = make_benches(scene, at_point, by_passes ? copies : n, named, false);
     std::string label = by_passes ? "sweep passes=" + std::to_string(n) : "sweep n=" + std::to_string(n);
-    std::vector<Result> reports = run_modes(point, o.bench, comparison.block, rendering, label + ", " + modes_text + ",");
+    std::vector<Result> reports =
+        run_modes(point, o.bench, comparison.block, rendering, label + ", " + modes_text + ",");
     comparison.sweep.insert(comparison.sweep.end(), reports.begin(), reports.end());
   }
 
-  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet))
-    std::cout << format_comparison(comparison);
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet)) std::cout << format_comparison(comparison);
   if (!o.bench.csv.empty())
     write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_comparison_csv(comparison, out); });
   // The main run's modes, then the sweep's other points.
@@ -141,7 +143,8 @@ int compare(CompareCliOptions& o) {
   for (const Result& report : comparison.runs) rows.push_back(&report);
   for (const Result& report : comparison.sweep)
     if (!is_main_point(comparison, report)) rows.push_back(&report);
-  if (!o.summary_csv.empty()) write_text(o.summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv(rows, out); });
+  if (!o.summary_csv.empty())
+    write_text(o.summary_csv, "CSV", [&](std::ostream& out) { write_summary_csv(rows, out); });
   if (!o.gbench_json.empty())
     write_text(o.gbench_json, "JSON", [&](std::ostream& out) { out << gbench_document(rows).dump(2) << "\n"; });
   if (!o.bench.json.empty())
@@ -155,7 +158,8 @@ int compare(CompareCliOptions& o) {
               << tracer->dropped() << " later ones were dropped\n";
   if (!o.bench.html.empty()) {
     HtmlReportInput input;
-    add_document(input, result_document_from_json(comparison_to_json(comparison), "this comparison"), "this comparison");
+    add_document(input, result_document_from_json(comparison_to_json(comparison), "this comparison"),
+                 "this comparison");
     write_html_report(o.bench.html, std::move(input));
   }
   if (partial) {
@@ -174,15 +178,18 @@ int compare(CompareCliOptions& o) {
 
 void add_compare_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CompareCliOptions>();
-  auto* cmd = app.add_subcommand("compare", "Run several modes on one scene, interleaved in blocks of frames, and "
-                                            "print each mode's median frame, categories and speedup");
+  auto* cmd = app.add_subcommand("compare",
+                                 "Run several modes on one scene, interleaved in blocks of frames, and "
+                                 "print each mode's median frame, categories and speedup");
   cmd->footer("Examples:\n  crowdprof compare scenes/humanoid.glb -n 160 --modes master,culled,threaded");
   add_bench_options(*cmd, options->bench);
   cmd->remove_option(cmd->get_option("--mode"));  // --modes instead
   cmd->add_option("--modes", options->modes,
                   "Modes to compare, the first being the reference for speedups (default: every mode the backend "
-                  "can run of " + mode_names() + "); a mode may set switches away from its preset, "
-                  "e.g. master+lookups=bundled")
+                  "can run of " +
+                      mode_names() +
+                      "); a mode may set switches away from its preset, "
+                      "e.g. master+lookups=bundled")
       ->delimiter(',')
       ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
@@ -190,18 +197,25 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                   "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160, or drawn this many times a "
                   "frame, e.g. passes=1,2,4,6 (see --passes): rows in the table and JSON, a chart in the SVG and "
                   "HTML");
-  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv, "Write one row per measured frame of every mode to this CSV file");
-  options->bench.outputs.declare(*cmd, OutputOption::SummaryCsv, options->summary_csv,
-                  "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
-                  "of its CPU time");
-  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json, "Write the comparison (and every mode's bench JSON) to this file");
+  options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv,
+                                 "Write one row per measured frame of every mode to this CSV file");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::SummaryCsv, options->summary_csv,
+      "Write one row per mode (and sweep size) to this CSV file: median, p95, p99 and fps of the frame and "
+      "of its CPU time");
+  options->bench.outputs.declare(*cmd, OutputOption::Json, options->bench.json,
+                                 "Write the comparison (and every mode's bench JSON) to this file");
   options->bench.outputs.declare(*cmd, OutputOption::GbenchJson, options->gbench_json,
-                  "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
-                  "github-action-benchmark or Bencher");
-  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg, "Write charts: frame time per frame per mode, categories per mode, cost against drawn error (modes that save work beside what they stray by), sweep");
-  options->bench.outputs.declare(*cmd, OutputOption::Html, options->bench.html,
-                  "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
-  options->bench.outputs.declare(*cmd, OutputOption::Trace, options->trace, "Write a Chrome trace-event JSON (Perfetto) of the main run");
+                                 "Write every mode (and sweep size) as Google Benchmark's JSON, for compare.py, "
+                                 "github-action-benchmark or Bencher");
+  options->bench.outputs.declare(*cmd, OutputOption::Svg, options->svg,
+                                 "Write charts: frame time per frame per mode, categories per mode, cost against drawn "
+                                 "error (modes that save work beside what they stray by), sweep");
+  options->bench.outputs.declare(
+      *cmd, OutputOption::Html, options->bench.html,
+      "Write an HTML report: the modes side by side, frame time per frame, categories, the sweep");
+  options->bench.outputs.declare(*cmd, OutputOption::Trace, options->trace,
+                                 "Write a Chrome trace-event JSON (Perfetto) of the main run");
   group_outputs(*cmd);
   group_options(*cmd, "Comparison", {"--modes", "--block", "--sweep"});
   cmd->callback([&run, options] { run = [options] { return compare(*options); }; });

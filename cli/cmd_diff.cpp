@@ -32,7 +32,8 @@ int diff(const DiffCliOptions& o) {
   CheckOptions options;
   options.tolerance = parse_tolerance(o.tolerance);
   options.floor = parse_floor(o.floor);
-  if (!(o.alpha > 0 && o.alpha < 1)) throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
+  if (!(o.alpha > 0 && o.alpha < 1))
+    throw UsageError("--alpha " + std::to_string(o.alpha) + ": expected between 0 and 1");
   options.alpha = o.alpha;
   o.outputs.files().require_usable({{"file A", o.a}, {"file B", o.b}});
   std::vector<Result> a = bench_results_in(read_json_file(o.a), o.a);
@@ -58,24 +59,28 @@ int diff(const DiffCliOptions& o) {
 
 void add_diff_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<DiffCliOptions>();
-  auto* cmd = app.add_subcommand("diff", "Two results (bench, check or compare JSON) side by side: per metric the "
-                                         "medians and change, untested (results run apart differ by the machine's "
-                                         "drift: use compare or check --against), but the calibrated frame where both "
-                                         "have it; exit 1 when B does other work or its calibrated frame is slower "
-                                         "(see docs/compare-and-check.md)");
+  auto* cmd = app.add_subcommand("diff",
+                                 "Two results (bench, check or compare JSON) side by side: per metric the "
+                                 "medians and change, untested (results run apart differ by the machine's "
+                                 "drift: use compare or check --against), but the calibrated frame where both "
+                                 "have it; exit 1 when B does other work or its calibrated frame is slower "
+                                 "(see docs/compare-and-check.md)");
   cmd->footer("Examples:\n  crowdprof diff before.json after.json");
-  cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")->required();
+  cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")
+      ->required();
   cmd->add_option("b", options->b, "Result B, judged against A")->required();
   cmd->add_option("--tolerance", options->tolerance,
                   "Slowdown of the calibrated frame's median allowed before a significant shift fails")
       ->capture_default_str();
   cmd->add_option("--floor", options->floor,
-                  "Smallest slowdown of the calibrated frame's median that can fail: a time (0.05ms, 50us) or a share of A's median")
+                  "Smallest slowdown of the calibrated frame's median that can fail: a time (0.05ms, 50us) or a share "
+                  "of A's median")
       ->capture_default_str();
   cmd->add_option("--alpha", options->alpha, "Significance level of the Mann-Whitney U test, before Holm's correction")
       ->capture_default_str();
   options->outputs.declare(*cmd, OutputOption::Json, options->json, "Also write the comparison as JSON to this file");
-  options->outputs.declare(*cmd, OutputOption::Html, options->html, "Also write an HTML report of A and B side by side (docs/report.md)");
+  options->outputs.declare(*cmd, OutputOption::Html, options->html,
+                           "Also write an HTML report of A and B side by side (docs/report.md)");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)");
   cmd->callback([&run, options] { run = [options] { return diff(*options); }; });
 }

@@ -20,7 +20,8 @@ struct GenArgs {
 
 int gen(const GenArgs& args) {
   const std::string ext = std::filesystem::path(args.output).extension().string();
-  if (args.gltf && ext == ".glb") throw crowdprof::UsageError("--gltf writes JSON glTF, but " + args.output + " ends in .glb");
+  if (args.gltf && ext == ".glb")
+    throw crowdprof::UsageError("--gltf writes JSON glTF, but " + args.output + " ends in .glb");
   crowdprof::GltfWriteOptions options;
   options.binary = !(args.gltf || ext == ".gltf");
   options.draco = args.draco;
@@ -29,7 +30,7 @@ int gen(const GenArgs& args) {
   crowdprof::Character character = crowdprof::generate_humanoid(humanoid);
   crowdprof::write_gltf(character, args.output, options);
   if (crowdprof::is_standard_output(args.output)) return crowdprof::kExitOk;  // stdout holds the file alone
-  std::error_code error;  // a pipe has no size
+  std::error_code error;                                                      // a pipe has no size
   uintmax_t bytes = std::filesystem::file_size(args.output, error);
   std::cout << "wrote " << args.output << ": " << character.skeleton.joint_count() << " joints, "
             << character.mesh.vertex_count() << " vertices, " << character.actions.size() << " actions"
@@ -43,14 +44,17 @@ int gen(const GenArgs& args) {
 
 void add_gen_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<GenArgs>();
-  auto* cmd = app.add_subcommand("gen", "Write the procedural humanoid (69 bones, 4,951 vertices, dance/walk/wave "
-                                        "by default) as .glb or .gltf");
+  auto* cmd = app.add_subcommand("gen",
+                                 "Write the procedural humanoid (69 bones, 4,951 vertices, dance/walk/wave "
+                                 "by default) as .glb or .gltf");
   cmd->footer(
       "Examples:\n  crowdprof gen -o big.glb --bones 300 --vertices 20000\n  crowdprof gen -o locomotion.glb --actions "
       "locomotion");
   cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")->required();
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
-  cmd->add_option("--vertices", args->humanoid.vertices, "Vertex count, 500 to 2,500,000 (the most the loader takes back)")->capture_default_str();
+  cmd->add_option("--vertices", args->humanoid.vertices,
+                  "Vertex count, 500 to 2,500,000 (the most the loader takes back)")
+      ->capture_default_str();
   cmd->add_option("--seed", args->humanoid.seed, "Varies proportions and motion slightly")->capture_default_str();
   cmd->add_option("--lods", args->humanoid.lod_levels,
                   "Also write this many coarser tessellations of the body (1/2, 1/4, 1/10 of the vertices, at least "

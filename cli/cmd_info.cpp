@@ -21,8 +21,9 @@ nlohmann::json describe(const crowdprof::GltfAsset& asset, const crowdprof::Char
 }  // namespace
 
 void add_info_command(CLI::App& app, std::function<int()>& run) {
-  auto* cmd = app.add_subcommand("info", "Describe the characters in a glTF/GLB file: joints, vertices, "
-                                         "influences, fix-ups, actions, Draco, memory");
+  auto* cmd = app.add_subcommand("info",
+                                 "Describe the characters in a glTF/GLB file: joints, vertices, "
+                                 "influences, fix-ups, actions, Draco, memory");
   cmd->footer("Examples:\n  crowdprof info scenes/humanoid.glb");
   static std::string file;
   static bool json = false;
@@ -45,9 +46,11 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
       nlohmann::json doc = {{"scene_file", file}, {"scene_hash", scene.hash}, {"characters", nlohmann::json::array()}};
       for (size_t i = 0; i < scene.characters.size(); ++i) {
         const crowdprof::SceneCharacter& c = scene.characters[i];
-        if (!json) std::cout << (i ? "\n" : "") << file << ": characters[" << i << "]: " << c.file << ", " << c.count
-                             << (c.count == 1 ? " copy\n" : " copies\n");
-        nlohmann::json info = describe(crowdprof::load_scene_asset(c), crowdprof::scene_character_spec(c), json, std::cout);
+        if (!json)
+          std::cout << (i ? "\n" : "") << file << ": characters[" << i << "]: " << c.file << ", " << c.count
+                    << (c.count == 1 ? " copy\n" : " copies\n");
+        nlohmann::json info =
+            describe(crowdprof::load_scene_asset(c), crowdprof::scene_character_spec(c), json, std::cout);
         if (json) doc["characters"].push_back({{"file", c.file}, {"count", c.count}, {"info", info}});
       }
       if (json) std::cout << doc.dump(2) << "\n";

@@ -46,9 +46,9 @@ int render(RenderCliOptions& options) {
   write_png(options.output, rendering.renderer->width(), rendering.renderer->height(), pixels);
   if (prints_on_stdout(options.bench.quiet, {options.output}))
     std::cout << options.output << ": frame " << options.frame << ", " << rendering.renderer->width() << "x"
-              << rendering.renderer->height() << ", " << record.counters.copies_visible << " of " << crowd.crowd().size()
-              << " copies drawn, mode " << config.mode_name << (crowd.gpu_skinned() ? " (skinned on the GPU)" : "")
-              << ", " << rendering.renderer_name() << "\n";
+              << rendering.renderer->height() << ", " << record.counters.copies_visible << " of "
+              << crowd.crowd().size() << " copies drawn, mode " << config.mode_name
+              << (crowd.gpu_skinned() ? " (skinned on the GPU)" : "") << ", " << rendering.renderer_name() << "\n";
   return kExitOk;
 }
 

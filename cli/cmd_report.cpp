@@ -39,8 +39,9 @@ int report(const ReportCliOptions& o) {
 
 void add_report_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ReportCliOptions>();
-  auto* cmd = app.add_subcommand("report", "Write an HTML report (charts, tables, environment) of results of bench, "
-                                           "check or compare --json: one file that opens in any browser");
+  auto* cmd = app.add_subcommand("report",
+                                 "Write an HTML report (charts, tables, environment) of results of bench, "
+                                 "check or compare --json: one file that opens in any browser");
   cmd->footer("Examples:\n  crowdprof report result.json -o report.html");
   cmd->add_option("results", options->files, "Result files (JSON); several: side by side")->required();
   cmd->add_option("-o,--output", options->output, "The HTML file to write")->required();

@@ -25,4 +25,4 @@ ModeRun make_benches(const crowdprof::BenchScene& scene, std::vector<crowdprof::
 // The benches of `modes` interleaved in blocks of `block` frames (frame/compare.h),
 // with --frames, --warmup, progress on a terminal naming `what`, and ^C.
 std::vector<crowdprof::Result> run_modes(ModeRun& modes, const BenchCliOptions& options, size_t block,
-                                            const crowdprof::BenchRendering& rendering, const std::string& what);
+                                         const crowdprof::BenchRendering& rendering, const std::string& what);

@@ -27,8 +27,10 @@ void one_style_of_help(CLI::App& app) {
     if (option->get_type_size() == 0) continue;  // a flag
     std::string value = option->get_type_name();
     value = value.substr(0, value.find(':'));
-    if (value == "INT" || value == "UINT") value = "N";
-    else if (value == "FLOAT") value = "NUMBER";
+    if (value == "INT" || value == "UINT")
+      value = "N";
+    else if (value == "FLOAT")
+      value = "NUMBER";
     else if (value == "TEXT") {
       // Files: what a command writes, and the files it reads besides its positionals.
       bool file = option->get_group() == "Outputs" || !option->nonpositional();  // every positional is a file
@@ -89,7 +91,8 @@ int run_command(int argc, char** argv) {
          "64 MiB), regular or streaming (also the environment variable CROWDPROF_STORES)")
       ->trigger_on_parse();
   app.require_subcommand(0, 1);  // none only with --version or --help
-  app.footer("Each command lists its options: crowdprof bench --help\n\nExamples:\n  crowdprof bench scenes/thesis.json");
+  app.footer(
+      "Each command lists its options: crowdprof bench --help\n\nExamples:\n  crowdprof bench scenes/thesis.json");
   std::function<int()> run;
   add_info_command(app, run);
   add_gen_command(app, run);
@@ -115,9 +118,8 @@ int run_command(int argc, char** argv) {
     std::string near = nearest_name(word, commands);
     // A file where the command goes: the command was left out.
     if (near.empty() && word.find('.') != std::string::npos) near = "bench " + word;
-    std::cerr << "crowdprof: unknown command '" << word << "'"
-              << (near.empty() ? "" : "; did you mean " + near + "?") << " (commands: " << command_list(app)
-              << "; see crowdprof --help)\n";
+    std::cerr << "crowdprof: unknown command '" << word << "'" << (near.empty() ? "" : "; did you mean " + near + "?")
+              << " (commands: " << command_list(app) << "; see crowdprof --help)\n";
     return crowdprof::kExitUsage;
   }
   try {
@@ -157,4 +159,6 @@ int run_command(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return after_flushing_stdout(run_command(argc, argv)); }
+int main(int argc, char** argv) {
+  return after_flushing_stdout(run_command(argc, argv));
+}

@@ -21,7 +21,8 @@ size_t edit_distance(std::string_view a, std::string_view b) {
     for (size_t j = 1; j <= b.size(); ++j) {
       size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
       d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
   return d[a.size()][b.size()];
 }
@@ -73,7 +74,8 @@ std::string expected_value(const CLI::Option& option) {
 std::string unexpected(CLI::App& app, CLI::App& command) {
   std::vector<std::string> extras = app.remaining(true);
   // The first option (the rest are likely its values); else the first word.
-  auto option = std::find_if(extras.begin(), extras.end(), [](const std::string& e) { return e.size() > 1 && e[0] == '-'; });
+  auto option =
+      std::find_if(extras.begin(), extras.end(), [](const std::string& e) { return e.size() > 1 && e[0] == '-'; });
   if (option != extras.end()) {
     std::string typed = option->substr(0, option->find('='));
     std::string near = nearest_name(typed, option_names(command));
@@ -118,8 +120,8 @@ std::string nearest_name(std::string_view typed, const std::vector<std::string>&
       tie = true;
     }
   }
-  std::string_view letters = typed.substr(typed.find_first_not_of('-') == std::string_view::npos ? typed.size()
-                                                                                                  : typed.find_first_not_of('-'));
+  std::string_view letters = typed.substr(
+      typed.find_first_not_of('-') == std::string_view::npos ? typed.size() : typed.find_first_not_of('-'));
   size_t allowed = letters.size() <= 3 ? 1 : letters.size() <= 8 ? 2 : 3;
   if (!best.empty() && !tie && best_distance <= allowed) return best;
   // A unique prefix: --fram for --frames.
@@ -193,7 +195,9 @@ namespace {
 std::string current_command;
 }  // namespace
 
-void set_current_command(const std::string& command) { current_command = command; }
+void set_current_command(const std::string& command) {
+  current_command = command;
+}
 
 namespace {
 // An error's text with the settings it names spelled as the options the user typed.
@@ -214,8 +218,8 @@ int report_current_exception() {
     return kExitBadInput;
   } catch (const SettingError& e) {
     // lib/ names the setting; the user typed its option.
-    std::cerr << "crowdprof: " << (current_command.empty() ? "" : current_command + ": ") << option_name(e.name)
-              << " '" << e.value << "': " << e.why
+    std::cerr << "crowdprof: " << (current_command.empty() ? "" : current_command + ": ") << option_name(e.name) << " '"
+              << e.value << "': " << e.why
               << (current_command.empty() ? "" : " (see crowdprof " + current_command + " --help)") << "\n";
     return kExitUsage;
   } catch (const UsageError& e) {

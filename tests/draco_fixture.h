@@ -23,8 +23,9 @@ struct DracoFixture : SkinnedFixture {
                      static_cast<int64_t>(component_size) * components, 0);
       int id = mesh.AddAttribute(attribute, true, static_cast<uint32_t>(n));
       for (size_t v = 0; v < n; ++v)
-        mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(v)),
-                                              bytes_of(accessor) + v * component_size * static_cast<size_t>(components));
+        mesh.attribute(id)->SetAttributeValue(
+            draco::AttributeValueIndex(static_cast<uint32_t>(v)),
+            bytes_of(accessor) + v * component_size * static_cast<size_t>(components));
       return static_cast<int>(mesh.attribute(id)->unique_id());
     };
     int position = add(draco::GeometryAttribute::POSITION, positions, 3, draco::DT_FLOAT32, 4);
@@ -33,12 +34,13 @@ struct DracoFixture : SkinnedFixture {
     int weight = add(draco::GeometryAttribute::GENERIC, weights, 4, draco::DT_FLOAT32, 4);
     const auto* index = reinterpret_cast<const uint16_t*>(bytes_of(indices));
     for (size_t t = 0; t < 4; ++t)
-      mesh.AddFace({draco::PointIndex(index[3 * t]), draco::PointIndex(index[3 * t + 1]),
-                    draco::PointIndex(index[3 * t + 2])});
+      mesh.AddFace(
+          {draco::PointIndex(index[3 * t]), draco::PointIndex(index[3 * t + 1]), draco::PointIndex(index[3 * t + 2])});
     draco::Encoder encoder;
     encoder.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);  // keeps the vertex order
     draco::EncoderBuffer encoded;
-    if (!encoder.EncodeMeshToBuffer(mesh, &encoded).ok()) throw std::runtime_error("Draco could not encode the fixture");
+    if (!encoder.EncodeMeshToBuffer(mesh, &encoded).ok())
+      throw std::runtime_error("Draco could not encode the fixture");
     draco_view = add_view(encoded.data(), encoded.size());
     // The primitive's accessors now describe what Draco decodes, and hold no view.
     for (int a : {positions, normals, joints, weights, indices}) accessor(a).erase("bufferView");

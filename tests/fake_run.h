@@ -12,7 +12,7 @@ namespace crowdprof::test {
 // Frames of the given times, `animations_share` of each charged to
 // Animations and the rest to Rasterizer.
 inline Result fake_run(const std::string& mode, size_t characters, const std::vector<double>& frame_ms,
-                          double animations_share = 1.0) {
+                       double animations_share = 1.0) {
   Result report;
   report.run.mode = mode;
   report.run.characters = characters;

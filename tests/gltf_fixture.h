@@ -60,10 +60,8 @@ struct GltfFixture {
   int add_accessor(const std::vector<T>& values, int component_type, const char* type, size_t components,
                    bool normalized = false) {
     int view = add_view(values.data(), values.size() * sizeof(T));
-    nlohmann::json a = {{"bufferView", view},
-                        {"componentType", component_type},
-                        {"count", values.size() / components},
-                        {"type", type}};
+    nlohmann::json a = {
+        {"bufferView", view}, {"componentType", component_type}, {"count", values.size() / components}, {"type", type}};
     if (normalized) a["normalized"] = true;
     json["accessors"].push_back(a);
     return static_cast<int>(json["accessors"].size() - 1);
@@ -151,8 +149,7 @@ struct SkinnedFixture : GltfFixture {
     std::vector<float> w = {1, 0, 0, 0, 1, 0, 0, 0, .5f, .5f, 0, 0, .5f, .5f, 0, 0, .75f, .25f, 0, 0, .75f, .25f, 0, 0};
     std::vector<uint16_t> i = {0, 1, 2, 2, 1, 3, 2, 3, 4, 4, 3, 5};
     std::vector<float> ibm;
-    for (int k = 0; k < 3; ++k)
-      ibm.insert(ibm.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -float(k), 0, 1});
+    for (int k = 0; k < 3; ++k) ibm.insert(ibm.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -float(k), 0, 1});
     positions = add_accessor(p, kFloat, "VEC3", 3);
     normals = add_accessor(n, kFloat, "VEC3", 3);
     joints = add_accessor(j, kUShort, "VEC4", 4);
@@ -162,11 +159,12 @@ struct SkinnedFixture : GltfFixture {
     times = add_accessor(std::vector<float>{0, 1}, kFloat, "SCALAR", 1);
     rotations = add_accessor(std::vector<float>{0, 0, 0, 1, 0, 0, 0.38268343f, 0.92387953f}, kFloat, "VEC4", 4);
     translations = add_accessor(std::vector<float>{0, 0, 0, 0, 0.5f, 0}, kFloat, "VEC3", 3);
-    json["meshes"] = {{{"name", "body"},
-                       {"primitives",
-                        {{{"attributes",
-                           {{"POSITION", positions}, {"NORMAL", normals}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}},
-                          {"indices", indices}}}}}};
+    json["meshes"] = {
+        {{"name", "body"},
+         {"primitives",
+          {{{"attributes",
+             {{"POSITION", positions}, {"NORMAL", normals}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}},
+            {"indices", indices}}}}}};
     json["nodes"] = {{{"name", "body"}, {"mesh", 0}, {"skin", 0}},
                      {{"name", "hip"}, {"children", {2}}},
                      {{"name", "spine"}, {"translation", {0, 1, 0}}, {"children", {3}}},

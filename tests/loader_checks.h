@@ -35,7 +35,8 @@ inline void expect_bad_input(const std::string& file, const std::vector<std::str
   std::string message = input_error(file);
   EXPECT_EQ(message.rfind(file + ": ", 0), 0u) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  for (const std::string& word : words) EXPECT_NE(message.find(word), std::string::npos) << "no \"" << word << "\" in: " << message;
+  for (const std::string& word : words)
+    EXPECT_NE(message.find(word), std::string::npos) << "no \"" << word << "\" in: " << message;
 
   CliResult cli = run_cli("info " + shell_quoted(file));
   EXPECT_EQ(cli.status, 3) << cli.err;

@@ -14,8 +14,8 @@
 namespace crowdprof::test {
 
 inline Character one_joint_character(const std::string& name, std::vector<glm::vec3> positions,
-                                     std::vector<glm::vec3> normals, std::vector<uint32_t> indices,
-                                     ChannelPath path, std::vector<float> key_values) {
+                                     std::vector<glm::vec3> normals, std::vector<uint32_t> indices, ChannelPath path,
+                                     std::vector<float> key_values) {
   Character c;
   c.name = name;
   Skeleton& s = c.skeleton;

@@ -36,9 +36,9 @@ inline std::unique_ptr<GlContext> try_context(GlBackend backend, std::string* wh
 
 }  // namespace crowdprof::test
 
-#define OPEN_GL_OR_SKIP(context)                                                              \
-  std::string why_##context;                                                                  \
-  auto context = crowdprof::test::try_context(crowdprof::GlBackend::Egl, &why_##context);     \
+#define OPEN_GL_OR_SKIP(context)                                                                      \
+  std::string why_##context;                                                                          \
+  auto context = crowdprof::test::try_context(crowdprof::GlBackend::Egl, &why_##context);             \
   if (!context) context = crowdprof::test::try_context(crowdprof::GlBackend::OsMesa, &why_##context); \
   if (!context) GTEST_SKIP() << "no GL backend on this machine: " << why_##context
 
@@ -50,7 +50,7 @@ struct Frame {
   bool gpu_skinned = false;
   std::string digest;
   std::vector<glm::vec2> pixels_of_vertices;  // copy 0's skinned vertices on screen, when CPU-skinned
-  std::vector<GpuTime> gpu_times;  // every frame's that was read back
+  std::vector<GpuTime> gpu_times;             // every frame's that was read back
 };
 
 struct Shot {
@@ -60,7 +60,7 @@ struct Shot {
   std::string camera = "default";
   size_t joint_cap = 128;
   ActionChoice actions = ActionChoice::Shared;
-  std::string hide_features;  // gl_features.h
+  std::string hide_features;             // gl_features.h
   float bake_rate = kDefaultBakeRateHz;  // skinning baked
   VertexFormat vertex_format = VertexFormat::Float;
   uint32_t passes = 1;  // modes.h

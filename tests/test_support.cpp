@@ -26,7 +26,9 @@ std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
-nlohmann::json read_json(const std::filesystem::path& path) { return nlohmann::json::parse(std::ifstream(path)); }
+nlohmann::json read_json(const std::filesystem::path& path) {
+  return nlohmann::json::parse(std::ifstream(path));
+}
 
 std::string write_json(const std::filesystem::path& path, const nlohmann::json& doc) {
   std::ofstream(path) << doc.dump(1);

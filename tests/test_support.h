@@ -9,15 +9,27 @@
 
 namespace crowdprof::test {
 
-inline std::filesystem::path source_dir() { return CROWDPROF_SOURCE_DIR; }
-inline std::filesystem::path samples_dir() { return CROWDPROF_SAMPLES_DIR; }
-inline bool have_samples() { return std::filesystem::is_directory(samples_dir()); }
-inline std::string sample(const std::string& relative) { return (samples_dir() / relative).string(); }
+inline std::filesystem::path source_dir() {
+  return CROWDPROF_SOURCE_DIR;
+}
+inline std::filesystem::path samples_dir() {
+  return CROWDPROF_SAMPLES_DIR;
+}
+inline bool have_samples() {
+  return std::filesystem::is_directory(samples_dir());
+}
+inline std::string sample(const std::string& relative) {
+  return (samples_dir() / relative).string();
+}
 
 // scenes/humanoid.glb, the bundled thesis character, as a path string.
-inline std::string humanoid_glb() { return (source_dir() / "scenes" / "humanoid.glb").string(); }
+inline std::string humanoid_glb() {
+  return (source_dir() / "scenes" / "humanoid.glb").string();
+}
 // `path` in single quotes, for a shell command line.
-inline std::string shell_quoted(const std::string& text) { return "'" + text + "'"; }
+inline std::string shell_quoted(const std::string& text) {
+  return "'" + text + "'";
+}
 
 // A file's bytes ("" when it cannot be read: the test's own checks say why).
 std::string read_file(const std::filesystem::path& path);
@@ -42,9 +54,9 @@ bool have_gl();
 
 }  // namespace crowdprof::test
 
-#define CROWDPROF_REQUIRE_SAMPLES()                                                                 \
-  do {                                                                                            \
-    if (!crowdprof::test::have_samples())                                                         \
+#define CROWDPROF_REQUIRE_SAMPLES()                                                                \
+  do {                                                                                             \
+    if (!crowdprof::test::have_samples())                                                          \
       GTEST_SKIP() << "sample characters not found at " << crowdprof::test::samples_dir().string() \
-                   << " (they sit beside the project, in ../shared/samples)";                    \
+                   << " (they sit beside the project, in ../shared/samples)";                      \
   } while (0)

@@ -30,7 +30,7 @@ struct Part {
 
 struct OzzCharacter {
   ozz::unique_ptr<ozz::animation::Skeleton> skeleton;
-  std::vector<int> ozz_of_joint;  // ozz's index of each crowdprof joint
+  std::vector<int> ozz_of_joint;                   // ozz's index of each crowdprof joint
   std::vector<ozz::math::Float4x4> inverse_binds;  // in ozz's joint order
   std::vector<Part> parts;
 };

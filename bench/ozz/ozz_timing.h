@@ -24,7 +24,8 @@ inline double ms_since(std::chrono::steady_clock::time_point start) {
 // about 1.2x (ratio 0.49 against 0.36-0.41 in blocks of 10 or 40): the
 // switch, not the work.
 template <class OzzFrame, class CrowdprofFrame>
-InterleavedTimes time_interleaved(size_t warmup, size_t frames, OzzFrame&& ozz_frame, CrowdprofFrame&& crowdprof_frame) {
+InterleavedTimes time_interleaved(size_t warmup, size_t frames, OzzFrame&& ozz_frame,
+                                  CrowdprofFrame&& crowdprof_frame) {
   constexpr size_t kBlock = 10;
   InterleavedTimes times;
   for (size_t f = 0; f < warmup; ++f) {

@@ -20,8 +20,7 @@ float baked_position(const Action& action, size_t intervals, float time) {
   float duration = action.duration();
   if (!(duration > 0.0f)) return 0.0f;
   float t = std::clamp(time, action.start, action.end);
-  return std::clamp((t - action.start) / duration * static_cast<float>(intervals), 0.0f,
-                    static_cast<float>(intervals));
+  return std::clamp((t - action.start) / duration * static_cast<float>(intervals), 0.0f, static_cast<float>(intervals));
 }
 
 bool BakeJob::Validate() const {
@@ -37,8 +36,9 @@ bool BakeJob::Run() const {
   size_t joints = skeleton->joint_count(), intervals = baked_intervals(*action, rate_hz);
   for (size_t s = 0; s <= intervals; ++s) {
     // The last sample is the last key exactly, not start + intervals x step.
-    float time = s == intervals ? action->end
-                                : action->start + action->duration() * static_cast<float>(s) / static_cast<float>(intervals);
+    float time = s == intervals
+                     ? action->end
+                     : action->start + action->duration() * static_cast<float>(s) / static_cast<float>(intervals);
     reset_to_rest(*skeleton, pose);  // joints the action leaves alone stand at rest (no allocation: sized)
     run_job(SamplingJob{action, time, targets, cursor, pose}, "SamplingJob");
     run_job(LocalToModelJob{skeleton, pose, model}, "LocalToModelJob");
@@ -102,7 +102,8 @@ bool bake_character(const Character& character, std::span<const std::span<const 
     const Action& action = character.actions[a];
     reset_cursor(action, &cursor);
     std::span<SkinMatrix> output =
-        std::span(baked.matrices).subspan(baked.first_sample[a] * baked.joints, (baked.intervals[a] + 1) * baked.joints);
+        std::span(baked.matrices)
+            .subspan(baked.first_sample[a] * baked.joints, (baked.intervals[a] + 1) * baked.joints);
     if (!BakeJob{&skeleton, &action, targets[a], rate_hz, &cursor, &pose, model, output}.Run()) return false;
   }
   *out = std::move(baked);

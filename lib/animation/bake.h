@@ -24,7 +24,9 @@ inline constexpr float kDefaultBakeRateHz = 30.0f;
 // included, so a looping copy never interpolates across the loop. The interval
 // is duration / intervals <= 1 / rate.
 size_t baked_intervals(const Action& action, float rate_hz);
-inline size_t baked_samples(const Action& action, float rate_hz) { return baked_intervals(action, rate_hz) + 1; }
+inline size_t baked_samples(const Action& action, float rate_hz) {
+  return baked_intervals(action, rate_hz) + 1;
+}
 
 // Where a time on the action's clock falls among the samples: sample index u in
 // [0, intervals] with its fraction (u = 2.25: a quarter of the way from sample 2
@@ -57,7 +59,7 @@ struct BakeJob {
 struct BakedPaletteJob {
   std::span<const SkinMatrix> baked;
   size_t joints = 0;
-  float position = 0.0f;  // from baked_position
+  float position = 0.0f;         // from baked_position
   std::span<SkinMatrix> output;  // one per joint
 
   // At least two samples of `joints` matrices, position finite, output sized.

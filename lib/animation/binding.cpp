@@ -45,8 +45,7 @@ std::string channel_path(const Skeleton& skeleton, const Channel& channel) {
   return path;
 }
 
-int32_t resolve_channel_path(const Skeleton& skeleton, std::string_view path,
-                             ChannelPath* out_property) {
+int32_t resolve_channel_path(const Skeleton& skeleton, std::string_view path, ChannelPath* out_property) {
   if (!path.starts_with(kPrefix)) return -1;
   // The name runs to the first quote that no backslash escapes.
   size_t i = kPrefix.size();
@@ -88,8 +87,7 @@ ActionBindings bind_action(const Skeleton& skeleton, const Action& action) {
 }
 
 bool ResolvePathsJob::Validate() const {
-  return skeleton != nullptr && bindings != nullptr &&
-         targets_out.size() == bindings->paths.size();
+  return skeleton != nullptr && bindings != nullptr && targets_out.size() == bindings->paths.size();
 }
 
 bool ResolvePathsJob::Run() const {

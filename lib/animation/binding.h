@@ -26,8 +26,7 @@ std::string channel_path(const Skeleton& skeleton, const Channel& channel);
 // Returns the first joint of that name and sets *out_property (when not null),
 // or returns -1 when the path is malformed, names an unknown property or no
 // joint has that name. Allocates nothing.
-int32_t resolve_channel_path(const Skeleton& skeleton, std::string_view path,
-                             ChannelPath* out_property);
+int32_t resolve_channel_path(const Skeleton& skeleton, std::string_view path, ChannelPath* out_property);
 
 // One action's paths and, resolved once, the joint each channel drives: the
 // targets SamplingJob takes.

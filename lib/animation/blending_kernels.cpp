@@ -33,16 +33,23 @@ struct BlendSums {
 // order unless GLM_FORCE_QUAT_DATA_WXYZ).
 static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::quat) == 16 && offsetof(glm::quat, x) == 0 &&
               offsetof(glm::quat, w) == 12);
-const float* floats_of(const std::vector<glm::vec3>& v) { return &v[0].x; }
-const float* floats_of(const std::vector<glm::quat>& v) { return &v[0].x; }
-float* floats_of(std::vector<glm::vec3>& v) { return &v[0].x; }
-float* floats_of(std::vector<glm::quat>& v) { return &v[0].x; }
+const float* floats_of(const std::vector<glm::vec3>& v) {
+  return &v[0].x;
+}
+const float* floats_of(const std::vector<glm::quat>& v) {
+  return &v[0].x;
+}
+float* floats_of(std::vector<glm::vec3>& v) {
+  return &v[0].x;
+}
+float* floats_of(std::vector<glm::quat>& v) {
+  return &v[0].x;
+}
 
 // w1*w2 + x1*x2 + y1*y2 + z1*z2 in glm::dot's order for quaternions:
 // (w + x) + (y + z).
 HWY_INLINE BlendVec QuatDot(const BlendVec (&a)[4], const BlendVec (&b)[4]) {
-  return hn::Add(hn::Add(hn::Mul(a[3], b[3]), hn::Mul(a[0], b[0])),
-                 hn::Add(hn::Mul(a[1], b[1]), hn::Mul(a[2], b[2])));
+  return hn::Add(hn::Add(hn::Mul(a[3], b[3]), hn::Mul(a[0], b[0])), hn::Add(hn::Mul(a[1], b[1]), hn::Mul(a[2], b[2])));
 }
 
 // sums += weight * pose, each rotation first turned onto the hemisphere of the
@@ -108,7 +115,9 @@ namespace crowdprof {
 
 HWY_EXPORT(BlendJointGroups);
 
-size_t blend_joint_groups(const BlendKernelArgs& args) { return HWY_DYNAMIC_DISPATCH(BlendJointGroups)(args); }
+size_t blend_joint_groups(const BlendKernelArgs& args) {
+  return HWY_DYNAMIC_DISPATCH(BlendJointGroups)(args);
+}
 
 }  // namespace crowdprof
 #endif

@@ -9,7 +9,9 @@ namespace {
 
 const glm::mat4 kIdentity(1.0f);
 
-bool is_identity(const glm::mat4& m) { return std::memcmp(&m, &kIdentity, sizeof m) == 0; }
+bool is_identity(const glm::mat4& m) {
+  return std::memcmp(&m, &kIdentity, sizeof m) == 0;
+}
 
 // A matrix as four column vectors (GCC/Clang vector types), so that products
 // are column multiply-adds whatever glm's own code compiles to.
@@ -34,8 +36,7 @@ glm::mat4 to_mat4(const Columns& columns) {
 glm::mat4 multiply(const glm::mat4& a, const glm::mat4& b) {
   const Columns ca = columns_of(a);
   Columns out;
-  for (int c = 0; c < 4; ++c)
-    out.c[c] = ca.c[0] * b[c][0] + ca.c[1] * b[c][1] + ca.c[2] * b[c][2] + ca.c[3] * b[c][3];
+  for (int c = 0; c < 4; ++c) out.c[c] = ca.c[0] * b[c][0] + ca.c[1] * b[c][1] + ca.c[2] * b[c][2] + ca.c[3] * b[c][3];
   return to_mat4(out);
 }
 
@@ -59,7 +60,9 @@ Float4 load_quat(const glm::quat& q) {
 
 // A vec3's x, y, z, then 0, built in registers: copied as 12 bytes into a
 // vector in memory and loaded, the load waited for the smaller stores.
-Float4 load_vec3(const glm::vec3& p) { return Float4{p.x, p.y, p.z, 0.0f}; }
+Float4 load_vec3(const glm::vec3& p) {
+  return Float4{p.x, p.y, p.z, 0.0f};
+}
 
 // Transposes the 4x4 whose rows are a, b, c and d: a then holds their first
 // elements, b their second, and so on.
@@ -86,9 +89,9 @@ ScaledAxes scaled_axes(const LocalPose& pose, size_t first, size_t count) {
   const Float4 &x = q[0], &y = q[1], &z = q[2], &w = q[3];
   const Float4 qxx = x * x, qyy = y * y, qzz = z * z, qxz = x * z, qxy = x * y, qyz = y * z;
   const Float4 qwx = w * x, qwy = w * y, qwz = w * z;
-  const Float4 rotation[9] = {1.0f - 2.0f * (qyy + qzz), 2.0f * (qxy + qwz), 2.0f * (qxz - qwy),
-                              2.0f * (qxy - qwz), 1.0f - 2.0f * (qxx + qzz), 2.0f * (qyz + qwx),
-                              2.0f * (qxz + qwy), 2.0f * (qyz - qwx), 1.0f - 2.0f * (qxx + qyy)};
+  const Float4 rotation[9] = {1.0f - 2.0f * (qyy + qzz), 2.0f * (qxy + qwz),        2.0f * (qxz - qwy),
+                              2.0f * (qxy - qwz),        1.0f - 2.0f * (qxx + qzz), 2.0f * (qyz + qwx),
+                              2.0f * (qxz + qwy),        2.0f * (qyz - qwx),        1.0f - 2.0f * (qxx + qyy)};
   ScaledAxes out;
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 3; ++k) out.axis[3 * c + k] = rotation[3 * c + k] * s[c];
@@ -124,8 +127,7 @@ glm::mat4 trs(const glm::vec3& t, const ScaledAxes& axes, int i) {
 
 bool skeleton_sized(const Skeleton& skeleton) {
   const size_t n = skeleton.joint_count();
-  if (skeleton.parents.size() != n || skeleton.inverse_binds.size() != n ||
-      skeleton.parent_offsets.size() != n)
+  if (skeleton.parents.size() != n || skeleton.inverse_binds.size() != n || skeleton.parent_offsets.size() != n)
     return false;
   for (size_t j = 0; j < n; ++j)
     if (skeleton.parents[j] >= static_cast<int>(j)) return false;  // parents come first
@@ -137,8 +139,8 @@ bool skeleton_sized(const Skeleton& skeleton) {
 bool LocalToModelJob::Validate() const {
   if (skeleton == nullptr || input == nullptr || !skeleton_sized(*skeleton)) return false;
   const size_t n = skeleton->joint_count();
-  return input->translations.size() == n && input->rotations.size() == n &&
-         input->scales.size() == n && output.size() == n;
+  return input->translations.size() == n && input->rotations.size() == n && input->scales.size() == n &&
+         output.size() == n;
 }
 
 bool LocalToModelJob::Run() const {

@@ -28,7 +28,9 @@ uint32_t find_segment(const float* times, uint32_t n, float t, uint32_t hint) {
   return static_cast<uint32_t>(std::upper_bound(times + k + 1, times + last + 1, t) - times) - 1;
 }
 
-glm::vec3 vec3_at(const float* p) { return {p[0], p[1], p[2]}; }
+glm::vec3 vec3_at(const float* p) {
+  return {p[0], p[1], p[2]};
+}
 
 glm::quat quat_at(const float* p) {
   glm::quat q;
@@ -87,8 +89,7 @@ glm::vec3 sample_vec3(const Channel& channel, const Segment& s) {
   if (channel.interpolation == Interpolation::CubicSpline) {
     const float* key = v + 9 * s.k;  // in-tangent, value, out-tangent
     if (s.hold) return vec3_at(key + 3);
-    return hermite(vec3_at(key + 3), vec3_at(key + 6), vec3_at(key + 12), vec3_at(key + 9), s.span,
-                   s.alpha);
+    return hermite(vec3_at(key + 3), vec3_at(key + 6), vec3_at(key + 12), vec3_at(key + 9), s.span, s.alpha);
   }
   const float* key = v + 3 * s.k;
   if (s.hold || channel.interpolation == Interpolation::Step) return vec3_at(key);
@@ -99,7 +100,7 @@ glm::vec3 sample_vec3(const Channel& channel, const Segment& s) {
 // back in two registers, was stored in two halves and reloaded whole, which
 // stalled on store forwarding once a rotation channel.
 inline __attribute__((always_inline)) glm::quat slerp_shortest_inlined(const glm::quat& a, const glm::quat& b_in,
-                                                                        float t) {
+                                                                       float t) {
   glm::quat b = b_in;
   float cosine = glm::dot(a, b);
   if (cosine < 0.0f) {  // q and -q are the same rotation: take the shorter way
@@ -122,8 +123,8 @@ glm::quat sample_quat(const Channel& channel, const Segment& s) {
   if (channel.interpolation == Interpolation::CubicSpline) {
     const float* key = v + 12 * s.k;
     if (s.hold) return quat_at(key + 4);
-    const glm::vec4 q = hermite(glm::make_vec4(key + 4), glm::make_vec4(key + 8),
-                                glm::make_vec4(key + 16), glm::make_vec4(key + 12), s.span, s.alpha);
+    const glm::vec4 q = hermite(glm::make_vec4(key + 4), glm::make_vec4(key + 8), glm::make_vec4(key + 16),
+                                glm::make_vec4(key + 12), s.span, s.alpha);
     const float length2 = glm::dot(q, q);
     // Tangents can cancel the values out; the nearer key is then the best guess.
     if (!(length2 > 1e-12f)) return quat_at(s.alpha < 0.5f ? key + 4 : key + 16);
@@ -142,7 +143,9 @@ size_t floats_per_key(const Channel& channel) {
 
 }  // namespace
 
-glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b, float t) { return slerp_shortest_inlined(a, b, t); }
+glm::quat slerp_shortest(const glm::quat& a, const glm::quat& b, float t) {
+  return slerp_shortest_inlined(a, b, t);
+}
 
 void reset_cursor(const Action& action, SamplingCursor* cursor) {
   cursor->keys.assign(action.channels.size(), 0u);
@@ -159,8 +162,7 @@ bool SamplingJob::Validate() const {
   for (size_t i = 0; i < channels; ++i) {
     const Channel& channel = action->channels[i];
     if (targets[i] >= static_cast<int64_t>(joints)) return false;
-    if (channel.times.empty() || channel.values.size() != channel.times.size() * floats_per_key(channel))
-      return false;
+    if (channel.times.empty() || channel.values.size() != channel.times.size() * floats_per_key(channel)) return false;
   }
   return true;
 }
@@ -176,9 +178,15 @@ bool SamplingJob::Run() const {
     const Segment s = locate(channel, t, &cursor->keys[i]);
     const auto j = static_cast<size_t>(joint);
     switch (channel.path) {
-      case ChannelPath::Translation: output->translations[j] = sample_vec3(channel, s); break;
-      case ChannelPath::Rotation: output->rotations[j] = sample_quat(channel, s); break;
-      case ChannelPath::Scale: output->scales[j] = sample_vec3(channel, s); break;
+      case ChannelPath::Translation:
+        output->translations[j] = sample_vec3(channel, s);
+        break;
+      case ChannelPath::Rotation:
+        output->rotations[j] = sample_quat(channel, s);
+        break;
+      case ChannelPath::Scale:
+        output->scales[j] = sample_vec3(channel, s);
+        break;
     }
   }
   return true;

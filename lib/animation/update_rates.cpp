@@ -67,8 +67,10 @@ bool AnimBudgetJob::Run() const {
   }
   while (low < high) {
     uint64_t mid = low + (high - low) / 2;
-    if (plan->expected_updates(mid) <= target) high = mid;
-    else low = mid + 1;
+    if (plan->expected_updates(mid) <= target)
+      high = mid;
+    else
+      low = mid + 1;
   }
   *demotions = low;
   return true;

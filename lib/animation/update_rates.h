@@ -27,7 +27,7 @@ uint8_t lod_shift(float screen_fraction, float every_1, float every_2, float eve
 // screen first, each with its LOD shift. Built once (it allocates); the
 // per-frame job below only reads it.
 struct BudgetPlan {
-  std::vector<uint32_t> order;     // copies, smallest on screen first (ties: lower index first)
+  std::vector<uint32_t> order;      // copies, smallest on screen first (ties: lower index first)
   std::vector<uint8_t> base_shift;  // per entry of order: the copy's LOD shift (0 without LOD)
   // prefix[s * (n + 1) + r]: expected updates per frame of order[0, r) when each
   // is slowed by s more doublings (capped at kMaxRateShift); exact in double.
@@ -60,8 +60,8 @@ constexpr double kBudgetAim = 0.75;
 struct AnimBudgetJob {
   const BudgetPlan* plan = nullptr;
   double budget_ms = 0;
-  double measured_ms = 0;     // Animations of the previous frame
-  uint64_t updates_done = 0;  // copy updates that frame
+  double measured_ms = 0;         // Animations of the previous frame
+  uint64_t updates_done = 0;      // copy updates that frame
   uint64_t* demotions = nullptr;  // in: the previous frame's; out: this frame's
 
   bool Validate() const;

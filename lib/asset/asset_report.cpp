@@ -32,10 +32,10 @@ nlohmann::json describe_action(const Action& a) {
 }
 
 nlohmann::json describe_fixups(const Fixups& f) {
-  return {{"influences_trimmed", f.influences_trimmed},   {"weights_renormalised", f.weights_renormalised},
-          {"weightless_vertices", f.weightless_vertices}, {"normals_computed", f.normals_computed},
+  return {{"influences_trimmed", f.influences_trimmed},     {"weights_renormalised", f.weights_renormalised},
+          {"weightless_vertices", f.weightless_vertices},   {"normals_computed", f.normals_computed},
           {"rotations_normalised", f.rotations_normalised}, {"channels_dropped", f.channels_dropped},
-          {"names_made_unique", f.names_made_unique}, {"actions_dropped", f.actions_dropped}};
+          {"names_made_unique", f.names_made_unique},       {"actions_dropped", f.actions_dropped}};
 }
 
 }  // namespace
@@ -107,9 +107,9 @@ std::string vertex_cache_line(const nlohmann::json& models) {
     char text[160];
     std::snprintf(text, sizeof text, "%s%s %u/%u/%u %.2f/%.2f -> %.2f/%.2f", line.empty() ? "" : "; ",
                   m["model"].get<std::string>().c_str(), m["cache_size"].get<unsigned>(),
-                  m["warp_size"].get<unsigned>(), m["primgroup_size"].get<unsigned>(),
-                  m["file"]["acmr"].get<double>(), m["file"]["atvr"].get<double>(),
-                  m["optimized"]["acmr"].get<double>(), m["optimized"]["atvr"].get<double>());
+                  m["warp_size"].get<unsigned>(), m["primgroup_size"].get<unsigned>(), m["file"]["acmr"].get<double>(),
+                  m["file"]["atvr"].get<double>(), m["optimized"]["acmr"].get<double>(),
+                  m["optimized"]["atvr"].get<double>());
     line += text;
   }
   return line;
@@ -126,23 +126,23 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
     auto histogram = influence_histogram(c.mesh);
     nlohmann::json actions = nlohmann::json::array();
     for (const Action& a : c.actions) actions.push_back(describe_action(a));
-    out["characters"].push_back({{"skin", s},
-                                 {"name", c.name},
-                                 {"joints", c.skeleton.joint_count()},
-                                 {"hierarchy_depth", c.skeleton.depth()},
-                                 {"vertices", c.mesh.vertex_count()},
-                                 {"triangles", c.mesh.triangle_count()},
-                                 {"primitives", c.mesh.primitives.size()},
-                                 {"height", standing_of(c).height},
-                                 {"influences_histogram", {{"1", histogram[0]}, {"2", histogram[1]},
-                                                           {"3", histogram[2]}, {"4", histogram[3]}}},
-                                 {"fixups", describe_fixups(c.fixups)},
-                                 {"actions", actions},
-                                 {"draco_decoded", c.draco_decoded},
-                                 {"mesh_lods", describe_mesh_lods(c)},
-                                 {"mesh_lods_source", mesh_lods_source(c)},
-                                 {"vertex_cache", describe_vertex_cache(c)},
-                                 {"shared_bytes", c.shared_bytes()}});
+    out["characters"].push_back(
+        {{"skin", s},
+         {"name", c.name},
+         {"joints", c.skeleton.joint_count()},
+         {"hierarchy_depth", c.skeleton.depth()},
+         {"vertices", c.mesh.vertex_count()},
+         {"triangles", c.mesh.triangle_count()},
+         {"primitives", c.mesh.primitives.size()},
+         {"height", standing_of(c).height},
+         {"influences_histogram", {{"1", histogram[0]}, {"2", histogram[1]}, {"3", histogram[2]}, {"4", histogram[3]}}},
+         {"fixups", describe_fixups(c.fixups)},
+         {"actions", actions},
+         {"draco_decoded", c.draco_decoded},
+         {"mesh_lods", describe_mesh_lods(c)},
+         {"mesh_lods_source", mesh_lods_source(c)},
+         {"vertex_cache", describe_vertex_cache(c)},
+         {"shared_bytes", c.shared_bytes()}});
   }
   if (asset.characters.empty()) {
     nlohmann::json actions = nlohmann::json::array();
@@ -193,7 +193,8 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "\n";
     out << "  vertex cache: ACMR/ATVR (vertices shaded per triangle / per vertex), file order -> optimized\n";
     for (const nlohmann::json& part : describe_vertex_cache(c))
-      out << "    " << (part.contains("primitive") ? "primitive " + part["primitive"].dump() : "LOD " + part["level"].dump())
+      out << "    "
+          << (part.contains("primitive") ? "primitive " + part["primitive"].dump() : "LOD " + part["level"].dump())
           << ": " << vertex_cache_line(part["models"]) << "\n";
     out << "  influences:  1: " << h[0] << "  2: " << h[1] << "  3: " << h[2] << "  4: " << h[3] << " vertices\n";
     const Fixups& f = c.fixups;
@@ -208,8 +209,8 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "\n";
     out << "  actions:     " << c.actions.size() << "\n";
     for (const Action& a : c.actions)
-      out << "    " << a.name << ": " << a.duration() << " s (" << a.start << "-" << a.end << "), "
-          << a.channels.size() << " channels, " << interpolations(a) << "\n";
+      out << "    " << a.name << ": " << a.duration() << " s (" << a.start << "-" << a.end << "), " << a.channels.size()
+          << " channels, " << interpolations(a) << "\n";
     out << "  Draco:       " << (c.draco_decoded ? "decoded" : "no") << "\n";
     out << "  shared data: " << c.shared_bytes() << " bytes\n";
   }

@@ -16,18 +16,24 @@ int Skeleton::depth() const {
 
 const char* to_string(Interpolation interpolation) {
   switch (interpolation) {
-    case Interpolation::Step: return "STEP";
-    case Interpolation::Linear: return "LINEAR";
-    case Interpolation::CubicSpline: return "CUBICSPLINE";
+    case Interpolation::Step:
+      return "STEP";
+    case Interpolation::Linear:
+      return "LINEAR";
+    case Interpolation::CubicSpline:
+      return "CUBICSPLINE";
   }
   return "?";
 }
 
 const char* to_string(ChannelPath path) {
   switch (path) {
-    case ChannelPath::Translation: return "translation";
-    case ChannelPath::Rotation: return "rotation";
-    case ChannelPath::Scale: return "scale";
+    case ChannelPath::Translation:
+      return "translation";
+    case ChannelPath::Rotation:
+      return "rotation";
+    case ChannelPath::Scale:
+      return "scale";
   }
   return "?";
 }
@@ -41,14 +47,13 @@ size_t Character::shared_bytes() const {
   const Skeleton& s = skeleton;
   size_t bytes = bytes_of(s.parents) + bytes_of(s.rest_translations) + bytes_of(s.rest_rotations) +
                  bytes_of(s.rest_scales) + bytes_of(s.inverse_binds) + bytes_of(s.parent_offsets);
-  bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.joints) +
-           bytes_of(mesh.weights) + bytes_of(mesh.indices) + bytes_of(mesh.primitives);
+  bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.joints) + bytes_of(mesh.weights) +
+           bytes_of(mesh.indices) + bytes_of(mesh.primitives);
   for (const SkinnedMesh& lod : file_lods)
     bytes += bytes_of(lod.positions) + bytes_of(lod.normals) + bytes_of(lod.joints) + bytes_of(lod.weights) +
              bytes_of(lod.indices) + bytes_of(lod.primitives);
   for (const Action& action : actions)
-    for (const Channel& channel : action.channels)
-      bytes += bytes_of(channel.times) + bytes_of(channel.values);
+    for (const Channel& channel : action.channels) bytes += bytes_of(channel.times) + bytes_of(channel.values);
   return bytes;
 }
 

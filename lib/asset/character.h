@@ -93,8 +93,8 @@ struct Fixups {
   size_t names_made_unique = 0;     // joints renamed: nameless, or a name used twice
   size_t actions_dropped = 0;       // animations left with no channel on this skin's joints
   size_t total() const {
-    return influences_trimmed + weights_renormalised + weightless_vertices + normals_computed +
-           rotations_normalised + channels_dropped + names_made_unique + actions_dropped;
+    return influences_trimmed + weights_renormalised + weightless_vertices + normals_computed + rotations_normalised +
+           channels_dropped + names_made_unique + actions_dropped;
   }
 };
 

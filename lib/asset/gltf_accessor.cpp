@@ -13,24 +13,37 @@ namespace {
 
 int component_count(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
 const char* type_name(int components) {
   switch (components) {
-    case 1: return "SCALAR";
-    case 3: return "VEC3";
-    case 4: return "VEC4";
-    case 16: return "MAT4";
-    default: return "?";
+    case 1:
+      return "SCALAR";
+    case 3:
+      return "VEC3";
+    case 4:
+      return "VEC4";
+    case 16:
+      return "MAT4";
+    default:
+      return "?";
   }
 }
 
@@ -50,8 +63,7 @@ AccessorReader::Layout AccessorReader::layout(int index, int components, const s
          " accessors)");
   const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(index)];
   std::string name = "accessor " + std::to_string(index);
-  if (component_count(a.type) != components)
-    fail(name + " is not " + type_name(components));
+  if (component_count(a.type) != components) fail(name + " is not " + type_name(components));
   if (a.sparse.isSparse) fail(name + " is sparse, which crowdprof does not read");
   int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
   if (size <= 0) fail(name + " has unknown component type " + std::to_string(a.componentType));
@@ -70,8 +82,8 @@ AccessorReader::Layout AccessorReader::layout(int index, int components, const s
   // Offsets come from the file and may be near 2^64: compare without adding them.
   if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
     fail(view_name + " reaches past the end of buffer " + std::to_string(v.buffer) + " (bytes " +
-         std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) + " of " +
-         std::to_string(b.data.size()) + ")");
+         std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) + " of " + std::to_string(b.data.size()) +
+         ")");
   uint64_t stride = v.byteStride ? uint64_t(v.byteStride) : element;
   if (stride < element) fail(view_name + " has a stride smaller than " + name + "'s elements");
   // count <= 2^24 and stride <= 2^8 here, so the span cannot overflow.
@@ -79,8 +91,12 @@ AccessorReader::Layout AccessorReader::layout(int index, int components, const s
   if (a.byteOffset > v.byteLength || span > v.byteLength - a.byteOffset)
     fail(name + " reads past the end of " + view_name + " (bytes " + std::to_string(a.byteOffset) + " + " +
          std::to_string(span) + " of " + std::to_string(v.byteLength) + ")");
-  return {b.data.data() + v.byteOffset + a.byteOffset, a.count, static_cast<size_t>(stride), a.componentType,
-          components, a.normalized};
+  return {b.data.data() + v.byteOffset + a.byteOffset,
+          a.count,
+          static_cast<size_t>(stride),
+          a.componentType,
+          components,
+          a.normalized};
 }
 
 size_t AccessorReader::count(int index, int components, const std::string& what) const {
@@ -95,7 +111,9 @@ std::vector<float> AccessorReader::floats(int index, int components, const std::
     for (int c = 0; c < components; ++c) {
       float value = 0.0f;
       switch (l.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: value = load<float>(p + 4 * c); break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+          value = load<float>(p + 4 * c);
+          break;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
           float raw = load<uint8_t>(p + c);
           value = l.normalized ? raw / 255.0f : raw;
@@ -137,9 +155,15 @@ std::vector<uint32_t> AccessorReader::uints(int index, int components, const std
     for (int c = 0; c < components; ++c) {
       uint32_t value = 0;
       switch (l.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = load<uint8_t>(p + c); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: value = load<uint16_t>(p + 2 * c); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: value = load<uint32_t>(p + 4 * c); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          value = load<uint8_t>(p + c);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+          value = load<uint16_t>(p + 2 * c);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+          value = load<uint32_t>(p + 4 * c);
+          break;
         default:
           throw InputError(file, what + ": accessor " + std::to_string(index) +
                                      " must hold unsigned integers, has component type " +

@@ -16,7 +16,6 @@ namespace crowdprof {
 
 namespace {
 
-
 Interpolation parse_interpolation(const std::string& text, const std::string& where, const std::string& file) {
   if (text.empty() || text == "LINEAR") return Interpolation::Linear;
   if (text == "STEP") return Interpolation::Step;
@@ -54,9 +53,12 @@ std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vec
       if (ch.target_node >= 0 && static_cast<size_t>(ch.target_node) >= model.nodes.size())
         throw InputError(file, where + " targets node " + std::to_string(ch.target_node) + ", which does not exist");
       Channel channel;
-      if (ch.target_path == "translation") channel.path = ChannelPath::Translation;
-      else if (ch.target_path == "rotation") channel.path = ChannelPath::Rotation;
-      else if (ch.target_path == "scale") channel.path = ChannelPath::Scale;
+      if (ch.target_path == "translation")
+        channel.path = ChannelPath::Translation;
+      else if (ch.target_path == "rotation")
+        channel.path = ChannelPath::Rotation;
+      else if (ch.target_path == "scale")
+        channel.path = ChannelPath::Scale;
       else if (ch.target_path != "weights")
         throw InputError(file, where + ": unknown target path \"" + printable(ch.target_path, 40) + "\"");
       int joint = ch.target_node < 0 ? -1 : node_to_joint[static_cast<size_t>(ch.target_node)];
@@ -79,8 +81,9 @@ std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vec
       channel.values = reader.floats(sampler.output, components, sampler_where + " output");
       size_t expected = channel.times.size() * per_key * static_cast<size_t>(components);
       if (channel.values.size() != expected)
-        throw InputError(file, sampler_where + ": output has " + str(channel.values.size() / static_cast<size_t>(components)) +
-                                   " values for " + str(channel.times.size()) + " keys (needs " +
+        throw InputError(file, sampler_where + ": output has " +
+                                   str(channel.values.size() / static_cast<size_t>(components)) + " values for " +
+                                   str(channel.times.size()) + " keys (needs " +
                                    str(expected / static_cast<size_t>(components)) + ")");
       // Channels may share one huge accessor: bound what all of them read together.
       key_floats += channel.times.size() + channel.values.size();

@@ -23,9 +23,8 @@ std::string not_gltf(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   static const std::pair<const char*, const char*> kOthers[] = {
-      {".fbx", "an FBX file"},          {".dae", "a COLLADA file"},
-      {".blend", "a Blender file"},     {".3ds", "a 3ds file"},   {".usd", "a USD file"},
-      {".usdz", "a USDZ file"},         {".usda", "a USD file"},  {".usdc", "a USD file"}};
+      {".fbx", "an FBX file"}, {".dae", "a COLLADA file"}, {".blend", "a Blender file"}, {".3ds", "a 3ds file"},
+      {".usd", "a USD file"},  {".usdz", "a USDZ file"},   {".usda", "a USD file"},      {".usdc", "a USD file"}};
   if (ext == ".obj")  // OBJ holds meshes only: converting it gives no skin to animate
     return "is a Wavefront OBJ file, not glTF: OBJ holds no skeleton or animation; crowdprof needs a skinned, "
            "animated character as .glb or .gltf, e.g. rigged in Blender and written with File > Export > glTF 2.0";
@@ -54,8 +53,7 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
   std::string head = read_file_head(path);
   if (head.rfind("glTF", 0) != 0) {
     size_t first = head.find_first_not_of(" \t\r\n");
-    if (first != std::string::npos && head[first] != '{')
-      throw InputError(path, not_gltf(path));
+    if (first != std::string::npos && head[first] != '{') throw InputError(path, not_gltf(path));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
@@ -89,8 +87,8 @@ void split_glb(GltfContainer& c, const std::vector<unsigned char>& bytes) {
     uint64_t payload = offset + 8;
     if (payload + chunk_length > length)
       throw InputError(path, "truncated GLB: chunk at byte " + std::to_string(offset) + " needs " +
-                                 std::to_string(chunk_length) + " bytes, " +
-                                 std::to_string(length - payload) + " remain");
+                                 std::to_string(chunk_length) + " bytes, " + std::to_string(length - payload) +
+                                 " remain");
     const char* data = reinterpret_cast<const char*>(bytes.data() + payload);
     if (!have_json) {
       if (chunk_type != 0x4E4F534Au) throw InputError(path, "GLB's first chunk is not JSON");
@@ -108,7 +106,9 @@ void split_glb(GltfContainer& c, const std::vector<unsigned char>& bytes) {
 
 }  // namespace
 
-GltfContainer read_gltf_container(const std::string& path) { return gltf_container_from_bytes(read_bytes(path), path); }
+GltfContainer read_gltf_container(const std::string& path) {
+  return gltf_container_from_bytes(read_bytes(path), path);
+}
 
 GltfContainer gltf_container_from_bytes(const std::vector<unsigned char>& bytes, const std::string& path) {
   GltfContainer c;
@@ -127,8 +127,7 @@ GltfContainer gltf_container_from_bytes(const std::vector<unsigned char>& bytes,
   }
   size_t first = 0;
   while (first < bytes.size() && std::isspace(bytes[first])) ++first;
-  if (first == bytes.size() || bytes[first] != '{')
-    throw InputError(path, not_gltf(path));
+  if (first == bytes.size() || bytes[first] != '{') throw InputError(path, not_gltf(path));
   c.json_text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   c.json = parse_json(path, c.json_text.data(), c.json_text.data() + c.json_text.size());
   return c;
@@ -161,8 +160,10 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
   // (Symlinks are judged below, on the resolved path.)
   int depth = 0;
   for (const auto& part : relative) {
-    if (part == "..") --depth;
-    else if (part != "." && !part.empty()) ++depth;
+    if (part == "..")
+      --depth;
+    else if (part != "." && !part.empty())
+      ++depth;
     if (depth < 0) refuse("points outside the asset's folder; refused");
   }
   std::error_code ec;

@@ -18,13 +18,12 @@ namespace crowdprof {
 // The same bound holds for all of a file's buffers together.
 inline constexpr uint64_t kMaxAssetBytes = 1ull << 30;
 
-
 struct GltfContainer {
   std::string path;      // as the user gave it (used in messages)
   std::string base_dir;  // folder that external URIs must stay inside
   bool binary = false;   // GLB
   nlohmann::json json;
-  std::string json_text;  // the text `json` was parsed from, handed to tiny_gltf as it is
+  std::string json_text;           // the text `json` was parsed from, handed to tiny_gltf as it is
   std::vector<unsigned char> bin;  // GLB BIN chunk; empty for .gltf
 };
 
@@ -43,10 +42,11 @@ void preflight_gltf(const GltfContainer& container);
 
 // Resolves a relative URI against base_dir, refusing anything that leaves it.
 // Returns the absolute path. Throws InputError naming `what` ("buffer 0").
-std::string resolve_inside(const GltfContainer& container, const std::string& uri,
-                           const std::string& what);
+std::string resolve_inside(const GltfContainer& container, const std::string& uri, const std::string& what);
 
 // An index or count as error messages print it.
-inline std::string str(size_t i) { return std::to_string(i); }
+inline std::string str(size_t i) {
+  return std::to_string(i);
+}
 
 }  // namespace crowdprof

@@ -24,7 +24,6 @@ namespace crowdprof {
 
 namespace {
 
-
 template <typename V>
 bool finite(const V& v) {
   for (int i = 0; i < V::length(); ++i)
@@ -42,7 +41,8 @@ Trs node_trs(const tinygltf::Node& node, size_t index, const std::string& file) 
   Trs trs;
   auto check = [&](const std::vector<double>& v, size_t size, const char* what) {
     if (!v.empty() && v.size() != size)
-      throw InputError(file, "node " + str(index) + " has a " + what + " of " + str(v.size()) + " numbers, not " + str(size));
+      throw InputError(file,
+                       "node " + str(index) + " has a " + what + " of " + str(v.size()) + " numbers, not " + str(size));
     // Beyond float's range a value would become Inf when narrowed.
     for (double x : v)
       if (!(std::abs(x) <= double(std::numeric_limits<float>::max())))
@@ -106,8 +106,8 @@ struct Skin {
 
 // Orders the skin's joints parent first (depth-first, keeping the file's order
 // among siblings), so subtrees are contiguous and parents[j] < j.
-Skin order_joints(const tinygltf::Model& model, const std::vector<int>& parents, const tinygltf::Skin& skin,
-                  int s, const std::string& file) {
+Skin order_joints(const tinygltf::Model& model, const std::vector<int>& parents, const tinygltf::Skin& skin, int s,
+                  const std::string& file) {
   size_t node_count = model.nodes.size();
   std::vector<int> skin_index(node_count, -1);
   for (size_t i = 0; i < skin.joints.size(); ++i) {
@@ -124,8 +124,10 @@ Skin order_joints(const tinygltf::Model& model, const std::vector<int>& parents,
   for (size_t i = 0; i < skin.joints.size(); ++i) {
     int up = parents[static_cast<size_t>(skin.joints[i])];
     while (up >= 0 && skin_index[static_cast<size_t>(up)] < 0) up = parents[static_cast<size_t>(up)];
-    if (up < 0) roots.push_back(static_cast<int>(i));
-    else children[static_cast<size_t>(skin_index[static_cast<size_t>(up)])].push_back(static_cast<int>(i));
+    if (up < 0)
+      roots.push_back(static_cast<int>(i));
+    else
+      children[static_cast<size_t>(skin_index[static_cast<size_t>(up)])].push_back(static_cast<int>(i));
   }
   Skin out;
   out.from_skin.assign(skin.joints.size(), -1);
@@ -234,7 +236,8 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
     indices.resize(n);
     for (size_t i = 0; i < n; ++i) indices[i] = static_cast<uint32_t>(i);
   }
-  if (indices.size() % 3) throw InputError(file, where + ": " + str(indices.size()) + " indices is not whole triangles");
+  if (indices.size() % 3)
+    throw InputError(file, where + ": " + str(indices.size()) + " indices is not whole triangles");
   if (mesh.indices.size() + indices.size() > 3 * kMaxMeshVertices)
     throw InputError(file, where + ": the skinned mesh would have more than " + str(kMaxMeshVertices) +
                                " triangles; refused as absurd");
@@ -261,7 +264,8 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
         if (weight > 0.0f) influence[used++] = {weight, joint};
       }
     // Largest first; ties keep file order, so loading is deterministic.
-    std::stable_sort(influence, influence + used, [](const Influence& a, const Influence& b) { return a.weight > b.weight; });
+    std::stable_sort(influence, influence + used,
+                     [](const Influence& a, const Influence& b) { return a.weight > b.weight; });
     bool trimmed = used > 4;
     if (trimmed) {
       ++fixups.influences_trimmed;  // the renormalisation that follows is part of this fix-up
@@ -271,7 +275,8 @@ void append_primitive(const tinygltf::Model& model, size_t m, size_t p, const Sk
     glm::vec4 out_weights(0.0f);
     float sum = 0.0f;
     for (int k = 0; k < used; ++k) sum += influence[k].weight;
-    if (!std::isfinite(sum)) throw InputError(file, where + ": vertex " + str(v) + "'s weights add up past float's range");
+    if (!std::isfinite(sum))
+      throw InputError(file, where + ": vertex " + str(v) + "'s weights add up past float's range");
     if (used == 0) {
       ++fixups.weightless_vertices;
       out_weights[0] = 1.0f;
@@ -336,7 +341,8 @@ std::vector<std::vector<int>> lod_chains(const tinygltf::Model& model, int s, co
                                    ", which is not another node with a mesh bound to skin " +
                                    str(static_cast<size_t>(s)));
       if (target.extensions.count("MSFT_lod"))
-        throw InputError(file, where + " names node " + str(static_cast<size_t>(lod)) + ", which has levels of its own");
+        throw InputError(file,
+                         where + " names node " + str(static_cast<size_t>(lod)) + ", which has levels of its own");
       if (!named.insert(lod).second)
         throw InputError(file, where + " names node " + str(static_cast<size_t>(lod)) + " a second time");
       chains[n].push_back(lod);
@@ -364,8 +370,8 @@ void keep_coarser_levels(Character& c) {
 
 void check_finite(const Character& c, int s, const std::string& file) {
   auto fail = [&](const std::string& what) {
-    throw InputError(file, "skin " + str(static_cast<size_t>(s)) + ": " + what +
-                               " is not finite (values in the file too large?)");
+    throw InputError(
+        file, "skin " + str(static_cast<size_t>(s)) + ": " + what + " is not finite (values in the file too large?)");
   };
   auto finite_matrix = [](const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); };
   const Skeleton& k = c.skeleton;
@@ -471,8 +477,10 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
     // viewer of MSFT_lod draws for a part without levels).
     for (size_t level = 0; level < levels; ++level) {
       const std::vector<int>& chain = chains[n];
-      const size_t lod_mesh = chain.empty() ? m : static_cast<size_t>(model.nodes[static_cast<size_t>(
-                                                      chain[std::min(level, chain.size() - 1)])].mesh);
+      const size_t lod_mesh =
+          chain.empty()
+              ? m
+              : static_cast<size_t>(model.nodes[static_cast<size_t>(chain[std::min(level, chain.size() - 1)])].mesh);
       for (size_t p = 0; p < model.meshes[lod_mesh].primitives.size(); ++p) {
         append_primitive(model, lod_mesh, p, order, skin.joints.size(), file, character.file_lods[level],
                          character.fixups);
@@ -486,7 +494,9 @@ Character convert_skin(const tinygltf::Model& model, const std::vector<int>& par
   }
   keep_coarser_levels(character);
   character.actions = convert_actions(model, order.node_to_joint, file, &character.fixups);
-  character.name = !skin.name.empty() ? skin.name : !mesh_node_name.empty() ? mesh_node_name : "skin" + str(static_cast<size_t>(s));
+  character.name = !skin.name.empty()        ? skin.name
+                   : !mesh_node_name.empty() ? mesh_node_name
+                                             : "skin" + str(static_cast<size_t>(s));
   check_finite(character, s, file);
   return character;
 }

@@ -29,7 +29,9 @@ bool file_exists(const std::string& path, void* user) {
   auto [b, f] = std::mismatch(base.begin(), base.end(), full.begin(), full.end());
   return !ec && b == base.end() && fs::is_regular_file(full, ec);
 }
-std::string expand_nothing(const std::string& path, void*) { return path; }
+std::string expand_nothing(const std::string& path, void*) {
+  return path;
+}
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   if (!file_exists(path, user)) {
     if (err) *err += "cannot read " + path + "\n";
@@ -44,8 +46,7 @@ bool write_nothing(std::string* err, const std::string&, const std::vector<unsig
   return false;
 }
 // Images are never decoded: crowdprof draws untextured meshes.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                void*) {
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
 }
 
@@ -65,8 +66,8 @@ void put_u32(std::vector<unsigned char>& out, uint32_t v) {
 // document the preflight checked, without a dump and copy of it first.
 tinygltf::Model run_tinygltf(const GltfContainer& c, const std::string& text) {
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing,
-                         const_cast<GltfContainer*>(&c)});
+  loader.SetFsCallbacks(
+      {&file_exists, &expand_nothing, &read_whole_file, &write_nothing, const_cast<GltfContainer*>(&c)});
   loader.SetImageLoader(&skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
@@ -91,11 +92,9 @@ tinygltf::Model run_tinygltf(const GltfContainer& c, const std::string& text) {
       glb.insert(glb.end(), c.bin.begin(), c.bin.end());
       glb.resize(glb.size() + bin_padded - c.bin.size(), 0);
     }
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()),
-                                     c.base_dir);
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()), c.base_dir);
   } else {
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned>(text.size()),
-                                    c.base_dir);
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned>(text.size()), c.base_dir);
   }
   if (!ok) throw InputError(c.path, first_line(err));
   return model;
@@ -105,9 +104,13 @@ tinygltf::Model run_tinygltf(const GltfContainer& c, const std::string& text) {
 // headers it knows, up to the first character that is not base64. -1 for a data:
 // URI tiny_gltf would not decode (it would look for a file of that name instead).
 int64_t data_uri_bytes(const std::string& uri) {
-  static const char* headers[] = {"data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,",
-                                  "data:image/jpeg;base64,", "data:image/png;base64,", "data:image/bmp;base64,",
-                                  "data:image/gif;base64,", "data:text/plain;base64,"};
+  static const char* headers[] = {"data:application/octet-stream;base64,",
+                                  "data:application/gltf-buffer;base64,",
+                                  "data:image/jpeg;base64,",
+                                  "data:image/png;base64,",
+                                  "data:image/bmp;base64,",
+                                  "data:image/gif;base64,",
+                                  "data:text/plain;base64,"};
   for (const char* header : headers) {
     if (uri.rfind(header, 0) != 0) continue;
     size_t n = 0;
@@ -189,30 +192,49 @@ int type_components(const nlohmann::json& accessor) {
 // The Draco data type a glTF component type is stored as.
 draco::DataType draco_type_of(int64_t component_type) {
   switch (component_type) {
-    case 5120: return draco::DT_INT8;
-    case 5121: return draco::DT_UINT8;
-    case 5122: return draco::DT_INT16;
-    case 5123: return draco::DT_UINT16;
-    case 5125: return draco::DT_UINT32;
-    case 5126: return draco::DT_FLOAT32;
-    default: return draco::DT_INVALID;
+    case 5120:
+      return draco::DT_INT8;
+    case 5121:
+      return draco::DT_UINT8;
+    case 5122:
+      return draco::DT_INT16;
+    case 5123:
+      return draco::DT_UINT16;
+    case 5125:
+      return draco::DT_UINT32;
+    case 5126:
+      return draco::DT_FLOAT32;
+    default:
+      return draco::DT_INVALID;
   }
 }
 
 std::string draco_type_name(draco::DataType type) {
   switch (type) {
-    case draco::DT_INT8: return "8-bit integers";
-    case draco::DT_UINT8: return "unsigned 8-bit integers";
-    case draco::DT_INT16: return "16-bit integers";
-    case draco::DT_UINT16: return "unsigned 16-bit integers";
-    case draco::DT_INT32: return "32-bit integers";
-    case draco::DT_UINT32: return "unsigned 32-bit integers";
-    case draco::DT_INT64: return "64-bit integers";
-    case draco::DT_UINT64: return "unsigned 64-bit integers";
-    case draco::DT_FLOAT32: return "32-bit floats";
-    case draco::DT_FLOAT64: return "64-bit floats";
-    case draco::DT_BOOL: return "booleans";
-    default: return "values of Draco type " + std::to_string(static_cast<int>(type));
+    case draco::DT_INT8:
+      return "8-bit integers";
+    case draco::DT_UINT8:
+      return "unsigned 8-bit integers";
+    case draco::DT_INT16:
+      return "16-bit integers";
+    case draco::DT_UINT16:
+      return "unsigned 16-bit integers";
+    case draco::DT_INT32:
+      return "32-bit integers";
+    case draco::DT_UINT32:
+      return "unsigned 32-bit integers";
+    case draco::DT_INT64:
+      return "64-bit integers";
+    case draco::DT_UINT64:
+      return "unsigned 64-bit integers";
+    case draco::DT_FLOAT32:
+      return "32-bit floats";
+    case draco::DT_FLOAT64:
+      return "64-bit floats";
+    case draco::DT_BOOL:
+      return "booleans";
+    default:
+      return "values of Draco type " + std::to_string(static_cast<int>(type));
   }
 }
 
@@ -290,8 +312,8 @@ std::vector<DracoPrimitive> trial_decode_draco(const GltfContainer& c) {
 // stride and offset in Draco's units while writing it tightly packed in the
 // accessor's; make the views say what the bytes hold. An accessor still on an old
 // view was not decoded (tiny_gltf ignores a failed conversion), so refuse it.
-void normalise_draco_views(tinygltf::Model& model, const std::vector<DracoPrimitive>& draco,
-                           size_t views_in_file, const std::string& file) {
+void normalise_draco_views(tinygltf::Model& model, const std::vector<DracoPrimitive>& draco, size_t views_in_file,
+                           const std::string& file) {
   for (const DracoPrimitive& d : draco) {
     for (int index : d.accessors) {
       const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(index)];

@@ -19,7 +19,6 @@ const json& array_or_empty(const json& object, const char* key) {
   return object.is_object() && object.contains(key) && object[key].is_array() ? object[key] : empty;
 }
 
-
 struct Checker {
   const GltfContainer& c;
 
@@ -38,8 +37,7 @@ struct Checker {
   void index(const json& value, const std::string& key, const char* array, const std::string& where,
              const json* within = nullptr) const {
     const json& target = within ? *within : array_or_empty(c.json, array);
-    if (!value.is_number_integer())
-      fail(where, key + " is " + printable(value.dump(), 40) + ", not an index");
+    if (!value.is_number_integer()) fail(where, key + " is " + printable(value.dump(), 40) + ", not an index");
     if (value.is_number_unsigned() && value.get<uint64_t>() < target.size()) return;
     fail(where, key + " names " + array + "[" + value.dump() + "], which does not exist (" + str(target.size()) +
                     " in the " + (within ? "animation" : "file") + ")");
@@ -58,7 +56,8 @@ struct Checker {
   }
   uint64_t unsigned_number(const json& object, const char* key, uint64_t fallback, const std::string& where) const {
     if (!object.contains(key)) return fallback;
-    if (!object[key].is_number_unsigned()) fail(where, std::string(key) + " is " + printable(object[key].dump(), 40) + ", not a byte count");
+    if (!object[key].is_number_unsigned())
+      fail(where, std::string(key) + " is " + printable(object[key].dump(), 40) + ", not a byte count");
     return object[key].get<uint64_t>();
   }
 
@@ -127,7 +126,8 @@ struct Checker {
       optional(skin, "skeleton", "nodes", where);
     }
     const json& scenes = array_or_empty(c.json, "scenes");
-    for (size_t s = 0; s < scenes.size(); ++s) each(object(c.json, "scenes", s, "scene " + str(s)), "nodes", "nodes", "scene " + str(s));
+    for (size_t s = 0; s < scenes.size(); ++s)
+      each(object(c.json, "scenes", s, "scene " + str(s)), "nodes", "nodes", "scene " + str(s));
     optional(c.json, "scene", "scenes", "the file");
   }
 
@@ -201,10 +201,13 @@ struct Checker {
             !draco["attributes"].is_object())
           fail(where, "needs bufferView and attributes");
         index(draco["bufferView"], "bufferView", "bufferViews", where);
-        if (!prim.contains("indices")) fail(where, "primitive has no indices; crowdprof reads Draco triangle meshes only");
+        if (!prim.contains("indices"))
+          fail(where, "primitive has no indices; crowdprof reads Draco triangle meshes only");
         for (auto& [name, id] : draco["attributes"].items()) {
-          if (!id.is_number_unsigned()) fail(where, "attribute " + printable(name) + " has id " + printable(id.dump(), 20));
-          if (!prim["attributes"].contains(name)) fail(where, "attribute " + printable(name) + " is not among the primitive's");
+          if (!id.is_number_unsigned())
+            fail(where, "attribute " + printable(name) + " has id " + printable(id.dump(), 20));
+          if (!prim["attributes"].contains(name))
+            fail(where, "attribute " + printable(name) + " is not among the primitive's");
         }
         // tiny_gltf decodes a view once: a second primitive on it would keep undecoded accessors.
         std::string identity = prim["attributes"].dump() + prim["indices"].dump();
@@ -235,7 +238,8 @@ void preflight_gltf(const GltfContainer& c) {
     if (!name.is_string() || !supported_required_extensions().count(name.get<std::string>()))
       throw InputError(c.path, "requires extension " + printable(name.dump()) + ", which crowdprof does not support");
   }
-  for (const char* key : {"buffers", "bufferViews", "accessors", "meshes", "nodes", "skins", "animations", "scenes", "images"})
+  for (const char* key :
+       {"buffers", "bufferViews", "accessors", "meshes", "nodes", "skins", "animations", "scenes", "images"})
     if (root.contains(key) && !root[key].is_array()) throw InputError(c.path, std::string(key) + " is not an array");
   Checker check{c};
   check.buffers();

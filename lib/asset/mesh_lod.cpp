@@ -142,8 +142,9 @@ std::vector<MeshLod> mesh_lods_of(const Character& character) {
     MeshLod lod;
     lod.mesh = character.file_lods[l];
     lod.target_share = static_cast<float>(static_cast<double>(lod.mesh.triangle_count()) / full);
-    lod.error = world_per_mesh_unit * (l < character.file_lod_errors.size() ? character.file_lod_errors[l]
-                                                                            : surface_distance(character.mesh, lod.mesh));
+    lod.error =
+        world_per_mesh_unit * (l < character.file_lod_errors.size() ? character.file_lod_errors[l]
+                                                                    : surface_distance(character.mesh, lod.mesh));
     lods.push_back(std::move(lod));
   }
   return lods;

@@ -14,9 +14,9 @@ namespace crowdprof {
 
 // One simplified level of a mesh.
 struct MeshLod {
-  SkinnedMesh mesh;                    // its own vertices and triangles (indices into them), one primitive
+  SkinnedMesh mesh;                     // its own vertices and triangles (indices into them), one primitive
   std::vector<uint32_t> source_vertex;  // per vertex of `mesh`: the full mesh's vertex it is
-  float target_share = 1;              // of the full mesh's triangles asked for
+  float target_share = 1;               // of the full mesh's triangles asked for
   // How far the simplified surface strays from the full one: from
   // build_mesh_lods, meshoptimizer's estimate in the mesh's own (bind-pose)
   // units; from mesh_lods_of, in world units (asset/standing.h), as every

@@ -16,8 +16,8 @@ Standing standing_of(const Character& character) {
   std::vector<glm::mat4> skin(joints);
   std::vector<glm::mat4> model(joints);
   for (size_t j = 0; j < joints; ++j) {
-    const glm::mat4 local = glm::translate(glm::mat4(1.0f), s.rest_translations[j]) * glm::mat4_cast(s.rest_rotations[j]) *
-                            glm::scale(glm::mat4(1.0f), s.rest_scales[j]);
+    const glm::mat4 local = glm::translate(glm::mat4(1.0f), s.rest_translations[j]) *
+                            glm::mat4_cast(s.rest_rotations[j]) * glm::scale(glm::mat4(1.0f), s.rest_scales[j]);
     const int parent = s.parents[j];
     model[j] = (parent >= 0 ? model[static_cast<size_t>(parent)] : glm::mat4(1.0f)) * s.parent_offsets[j] * local;
     skin[j] = model[j] * s.inverse_binds[j];

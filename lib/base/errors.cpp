@@ -24,9 +24,8 @@ std::string SettingText::str(const Speller& spell) const {
     }
     out.append(marked_, i, open - i);
     const size_t close = marked_.find('}', open);
-    const std::string_view inside = close == std::string::npos
-                                        ? std::string_view{}
-                                        : std::string_view(marked_).substr(open + 1, close - open - 1);
+    const std::string_view inside =
+        close == std::string::npos ? std::string_view{} : std::string_view(marked_).substr(open + 1, close - open - 1);
     if (!is_name(inside)) {
       out += '{';
       i = open + 1;

@@ -26,7 +26,7 @@ class SettingText {
   using Speller = std::function<std::string(std::string_view setting)>;
   SettingText() = default;
   SettingText(std::string marked) : marked_(std::move(marked)) {}  // NOLINT: from any built string
-  SettingText(const char* marked) : marked_(marked) {}              // NOLINT
+  SettingText(const char* marked) : marked_(marked) {}             // NOLINT
   bool empty() const { return marked_.empty(); }
   const std::string& marked() const { return marked_; }
   // The names as the library spells them (the setting's own name).
@@ -58,8 +58,7 @@ class NamesSettings {
 // A problem with an input file: `what()` is "<file>: <problem>".
 class InputError : public std::runtime_error {
  public:
-  InputError(const std::string& file, const std::string& problem)
-      : std::runtime_error(file + ": " + problem) {}
+  InputError(const std::string& file, const std::string& problem) : std::runtime_error(file + ": " + problem) {}
 };
 
 // A problem with the command line or with options that do not fit the input.
@@ -88,8 +87,10 @@ class SettingsInputError : public InputError, public NamesSettings {
 // names the option the user typed instead (-n/--characters).
 struct SettingError : UsageError {
   SettingError(std::string setting_name, std::string text, const std::string& problem)
-      : UsageError(setting_name + " '" + text + "': " + problem), name(std::move(setting_name)),
-        value(std::move(text)), why(problem) {}
+      : UsageError(setting_name + " '" + text + "': " + problem),
+        name(std::move(setting_name)),
+        value(std::move(text)),
+        why(problem) {}
   std::string name, value, why;
 };
 

@@ -18,8 +18,14 @@ class DepthLimitedDom : public nlohmann::detail::json_sax_dom_parser<nlohmann::j
   DepthLimitedDom(nlohmann::json& out, const std::string& path) : json_sax_dom_parser(out), path_(path) {}
   bool start_object(std::size_t size) { return enter() && json_sax_dom_parser::start_object(size); }
   bool start_array(std::size_t size) { return enter() && json_sax_dom_parser::start_array(size); }
-  bool end_object() { --depth_; return json_sax_dom_parser::end_object(); }
-  bool end_array() { --depth_; return json_sax_dom_parser::end_array(); }
+  bool end_object() {
+    --depth_;
+    return json_sax_dom_parser::end_object();
+  }
+  bool end_array() {
+    --depth_;
+    return json_sax_dom_parser::end_array();
+  }
 
  private:
   bool enter() {

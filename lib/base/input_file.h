@@ -1,6 +1,6 @@
 // What every reader of a file from outside (characters, baselines, results)
-// shares, and how a character file is named on the command line, so that each refuses the same things in the same words: JSON that
-// cannot be used, and a look at a file's first bytes before it is read whole.
+// shares, and how a character file is named on the command line, so that each refuses the same things in the same
+// words: JSON that cannot be used, and a look at a file's first bytes before it is read whole.
 #pragma once
 
 #include <cstddef>

@@ -17,10 +17,10 @@ constexpr ModeSwitches thesis(Lookups lookups, bool culling, PoseStorage pose, b
   return s;
 }
 
-constexpr ModeSwitches kMaster = thesis(Lookups::PerFrameString, false, PoseStorage::SharedScratch, false,
-                                        SkinningSite::CpuInRasterizer);
-constexpr ModeSwitches kCulled = thesis(Lookups::PerFrameString, true, PoseStorage::SharedScratch, false,
-                                        SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kMaster =
+    thesis(Lookups::PerFrameString, false, PoseStorage::SharedScratch, false, SkinningSite::CpuInRasterizer);
+constexpr ModeSwitches kCulled =
+    thesis(Lookups::PerFrameString, true, PoseStorage::SharedScratch, false, SkinningSite::CpuInRasterizer);
 constexpr ModeSwitches kThreaded =
     thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::CpuInAnimations);
 constexpr ModeSwitches kHwskin = thesis(Lookups::Bundled, true, PoseStorage::PerCopy, true, SkinningSite::Gpu);
@@ -49,31 +49,38 @@ constexpr ModeSwitches kCompute = with(kBuffer, &ModeSwitches::skinning, Skinnin
 constexpr ModeSwitches kBaked = with(kInstanced, &ModeSwitches::skinning, SkinningSite::Baked);
 
 constexpr std::array<ModePreset, 10> kPresets = {{
-    {"master", "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
-               "skinning in the render stage",
+    {"master",
+     "the BGE before the thesis: string lookups every frame, every copy posed, one thread, "
+     "skinning in the render stage",
      kMaster},
     {"culled", "master plus animation culling: copies off-screen get no pose update and no skinning (4.1)", kCulled},
     {"threaded", "culled plus bundled lookups (4.2) and pose updates and skinning in parallel (4.3)", kThreaded},
     {"hwskin", "threaded, with skinning in the vertex shader (4.4; needs a GL backend)", kHwskin},
     {"buffer", "hwskin with every copy's palette in one shader storage buffer: no 128-bone limit", kBuffer},
     {"instanced", "buffer, drawn with one instanced draw call per character kind and material", kInstanced},
-    {"shared", "threaded plus animation sharing: one pose and one skinned mesh per (action, time), drawn by every "
-               "copy in that state",
+    {"shared",
+     "threaded plus animation sharing: one pose and one skinned mesh per (action, time), drawn by every "
+     "copy in that state",
      kShared},
-    {"budget", "shared with times snapped to 1/30 s, and Animations kept under 2 ms by updating the copies "
-               "smallest on screen less often (every 2nd to 64th frame, held between) when it needs to",
+    {"budget",
+     "shared with times snapped to 1/30 s, and Animations kept under 2 ms by updating the copies "
+     "smallest on screen less often (every 2nd to 64th frame, held between) when it needs to",
      kBudget},
-    {"compute", "threaded's poses, skinned by a compute shader into a vertex buffer, then one plain draw per copy "
-                "(as UPBGE and Unreal's GPU skin cache; no bone limit)",
+    {"compute",
+     "threaded's poses, skinned by a compute shader into a vertex buffer, then one plain draw per copy "
+     "(as UPBGE and Unreal's GPU skin cache; no bone limit)",
      kCompute},
-    {"baked", "actions baked into bone matrices at load; per frame each copy sends only its action and time, and the "
-              "vertex shader interpolates and skins, one instanced draw per character (no bone limit)",
+    {"baked",
+     "actions baked into bone matrices at load; per frame each copy sends only its action and time, and the "
+     "vertex shader interpolates and skins, one instanced draw per character (no bone limit)",
      kBaked},
 }};
 
 }  // namespace
 
-std::span<const ModePreset> mode_presets() { return kPresets; }
+std::span<const ModePreset> mode_presets() {
+  return kPresets;
+}
 
 const ModePreset* find_mode(std::string_view name) {
   for (const ModePreset& preset : kPresets)
@@ -92,7 +99,8 @@ SettingText conflicts(const ModeSwitches& s) {
     return "a shared scratch pose (the BGE's bPose swap) cannot be filled by several threads: use {pose} per-copy";
   if (s.palettes == PaletteStorage::Buffer && !skins_on_gpu(s.skinning))
     return "{palettes} buffer holds the palettes the GPU skins with: it needs {skinning} gpu, compute or baked";
-  if ((s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) && s.palettes != PaletteStorage::Buffer)
+  if ((s.skinning == SkinningSite::Compute || s.skinning == SkinningSite::Baked) &&
+      s.palettes != PaletteStorage::Buffer)
     return "{skinning} " + std::string(to_string(s.skinning)) +
            " reads its matrices from shader storage buffers: it needs {palettes} buffer";
   if (s.skinning == SkinningSite::Compute && s.draw == DrawMethod::Instanced)
@@ -127,25 +135,42 @@ SettingText conflicts(const ModeSwitches& s) {
 std::string_view to_string(Lookups lookups) {
   return lookups == Lookups::PerFrameString ? "string" : "bundled";
 }
-std::string_view to_string(PoseStorage pose) { return pose == PoseStorage::SharedScratch ? "shared" : "per-copy"; }
+std::string_view to_string(PoseStorage pose) {
+  return pose == PoseStorage::SharedScratch ? "shared" : "per-copy";
+}
 std::string_view to_string(SkinningSite site) {
   switch (site) {
-    case SkinningSite::CpuInRasterizer: return "rasterizer";
-    case SkinningSite::CpuInAnimations: return "animations";
-    case SkinningSite::Gpu: return "gpu";
-    case SkinningSite::Compute: return "compute";
-    case SkinningSite::Baked: return "baked";
+    case SkinningSite::CpuInRasterizer:
+      return "rasterizer";
+    case SkinningSite::CpuInAnimations:
+      return "animations";
+    case SkinningSite::Gpu:
+      return "gpu";
+    case SkinningSite::Compute:
+      return "compute";
+    case SkinningSite::Baked:
+      return "baked";
   }
   return "?";
 }
 
-std::string_view to_string(VertexFormat format) { return format == VertexFormat::Packed ? "packed" : "float"; }
+std::string_view to_string(VertexFormat format) {
+  return format == VertexFormat::Packed ? "packed" : "float";
+}
 std::string_view to_string(PaletteStorage palettes) {
   return palettes == PaletteStorage::Uniforms ? "uniforms" : "buffer";
 }
-std::string_view to_string(FrustumTest frustum) { return frustum == FrustumTest::Gpu ? "gpu" : "cpu"; }
-std::string_view to_string(Crossfade crossfade) { return crossfade == Crossfade::Frozen ? "frozen" : "sampled"; }
-std::string_view to_string(IndexOrder order) { return order == IndexOrder::File ? "file" : "optimized"; }
-std::string_view to_string(DrawMethod draw) { return draw == DrawMethod::PerCopy ? "per-copy" : "instanced"; }
+std::string_view to_string(FrustumTest frustum) {
+  return frustum == FrustumTest::Gpu ? "gpu" : "cpu";
+}
+std::string_view to_string(Crossfade crossfade) {
+  return crossfade == Crossfade::Frozen ? "frozen" : "sampled";
+}
+std::string_view to_string(IndexOrder order) {
+  return order == IndexOrder::File ? "file" : "optimized";
+}
+std::string_view to_string(DrawMethod draw) {
+  return draw == DrawMethod::PerCopy ? "per-copy" : "instanced";
+}
 
 }  // namespace crowdprof

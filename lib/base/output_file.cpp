@@ -38,8 +38,8 @@ fs::path folder_of(const std::string& path) {
 int own_descriptor(const std::string& path) {
   if (path == "-") return STDOUT_FILENO;
   std::string pid = "/proc/" + std::to_string(::getpid()) + "/fd/";
-  for (const std::string& prefix : {std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"),
-                                    std::string("/dev/fd/"), pid}) {
+  for (const std::string& prefix :
+       {std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"), std::string("/dev/fd/"), pid}) {
     if (path.size() <= prefix.size() || path.compare(0, prefix.size(), prefix) != 0) continue;
     int fd = -1;
     const char* first = path.data() + prefix.size();
@@ -122,7 +122,8 @@ std::string canonical_spelling(const std::string& path) {
 bool same_file(const std::string& a, const std::string& b) {
   if (canonical_spelling(a) == canonical_spelling(b)) return true;
   if (a == "-" || b == "-") return false;
-  struct stat sa {}, sb {};
+  struct stat sa {
+  }, sb{};
   return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
@@ -158,8 +159,7 @@ Way choose_way(const std::string& path, const std::string& what, const Destinati
   // folder, a read-only mount's writable file): written in place.
   if (exists && ::access(target.c_str(), W_OK) == 0) return Way::InPlace;
   fail(path, what,
-       via(path, destination,
-           "the folder " + folder.string() + " cannot take a new file: " + std::strerror(saved)));
+       via(path, destination, "the folder " + folder.string() + " cannot take a new file: " + std::strerror(saved)));
 }
 
 void write_descriptor(const std::string& path, const std::string& what, int descriptor, std::string_view bytes) {

@@ -40,9 +40,12 @@ std::string shortest(float value) {
 }
 
 std::string set_on_off(bool& field, std::string_view text) {
-  if (text == "on") field = true;
-  else if (text == "off") field = false;
-  else return "expected on or off";
+  if (text == "on")
+    field = true;
+  else if (text == "off")
+    field = false;
+  else
+    return "expected on or off";
   return {};
 }
 
@@ -109,7 +112,9 @@ std::string set_lod_thresholds_into(LodThresholds& lod, std::string_view text) {
   return {};
 }
 
-std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) { return set_lod_thresholds_into(s.lod, text); }
+std::string set_lod_thresholds(ModeSwitches& s, std::string_view text) {
+  return set_lod_thresholds_into(s.lod, text);
+}
 
 std::string set_mesh_lod_thresholds(ModeSwitches& s, std::string_view text) {
   LodThresholds parsed;
@@ -123,8 +128,8 @@ std::string set_passes(ModeSwitches& s, std::string_view text) {
   std::optional<double> value = parse_number(text);
   // The range first: a double outside uint32_t's is undefined to convert.
   if (!value || !(*value >= 1 && *value <= kMaxPasses) || *value != std::floor(*value))
-    return "expected 1 to " + std::to_string(kMaxPasses) + " (1: colour; 2: depth prepass and colour; more: " +
-           "shadow cascades between them)";
+    return "expected 1 to " + std::to_string(kMaxPasses) +
+           " (1: colour; 2: depth prepass and colour; more: " + "shadow cascades between them)";
   s.passes = static_cast<uint32_t>(*value);
   return {};
 }
@@ -160,8 +165,7 @@ const std::array kSwitches = {
                "(no bone limit)",
                [](const ModeSwitches& s) { return json(to_string(s.palettes)); },
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.palettes, t, kPalettes); }},
-    SwitchSpec{"draw", "per-copy|instanced",
-               "A draw call per copy, or one per character kind (needs palettes buffer)",
+    SwitchSpec{"draw", "per-copy|instanced", "A draw call per copy, or one per character kind (needs palettes buffer)",
                [](const ModeSwitches& s) { return json(to_string(s.draw)); },
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.draw, t, kDraws); }},
     SwitchSpec{"vertex_format", "float|packed",
@@ -239,12 +243,13 @@ const std::array kSwitches = {
                  return problem;
                },
                false},
-    SwitchSpec{"blend_in", "SECONDS",
-               "With transitions: how long a copy fades from its last action into its next (at most half of "
-               "--transitions); 0 snaps",
-               [](const ModeSwitches& s) { return json(s.blend_in_s); },
-               [](ModeSwitches& s, std::string_view t) { return set_seconds(s.blend_in_s, t, "seconds from 0 to 3600"); },
-               false},
+    SwitchSpec{
+        "blend_in", "SECONDS",
+        "With transitions: how long a copy fades from its last action into its next (at most half of "
+        "--transitions); 0 snaps",
+        [](const ModeSwitches& s) { return json(s.blend_in_s); },
+        [](ModeSwitches& s, std::string_view t) { return set_seconds(s.blend_in_s, t, "seconds from 0 to 3600"); },
+        false},
     SwitchSpec{"crossfade", "frozen|sampled",
                "With transitions: frozen fades toward the pose held when the change came, one action sampled a "
                "frame (the BGE's); sampled samples both actions every frame of the fade (blend trees': ozz, Unreal)",
@@ -254,7 +259,9 @@ const std::array kSwitches = {
 
 }  // namespace
 
-std::span<const SwitchSpec> switch_table() { return kSwitches; }
+std::span<const SwitchSpec> switch_table() {
+  return kSwitches;
+}
 
 const SwitchSpec* find_switch(std::string_view name) {
   for (const SwitchSpec& spec : kSwitches)
@@ -283,14 +290,17 @@ std::string switch_text(const json& value) {
   return value.dump();
 }
 
-std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s) { return switch_text(spec.get(s)); }
+std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s) {
+  return switch_text(spec.get(s));
+}
 
 json switches_to_json(const ModeSwitches& s) {
   const ModeSwitches plain;
   json switches = json::object();
   for (const SwitchSpec& spec : kSwitches) {
     json value = spec.get(s);
-    if (spec.always_recorded || !spec.when_absent.empty() || value != spec.get(plain)) switches[std::string(spec.name)] = std::move(value);
+    if (spec.always_recorded || !spec.when_absent.empty() || value != spec.get(plain))
+      switches[std::string(spec.name)] = std::move(value);
   }
   return switches;
 }
@@ -316,8 +326,10 @@ std::string preset_values(const SwitchSpec& spec) {
   for (const ModePreset& preset : mode_presets()) {
     std::string value = switch_text(spec, preset.switches);
     auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == value; });
-    if (group == groups.end()) groups.push_back({value, std::string(preset.name)});
-    else group->second += ", " + std::string(preset.name);
+    if (group == groups.end())
+      groups.push_back({value, std::string(preset.name)});
+    else
+      group->second += ", " + std::string(preset.name);
   }
   if (groups.size() == 1) return groups.front().first + " in every mode";
   auto count = [](const std::string& names) { return std::count(names.begin(), names.end(), ',') + 1; };

@@ -52,7 +52,8 @@ GltfAsset load_scene_asset(const SceneCharacter& c, std::string* hash) {
 BenchScene load_bench_scene(const RunSpec& spec) {
   BenchScene loaded;
   if (!is_scene_file(spec.file)) {
-    if (spec.actions == "scene") throw SettingError("actions", "scene", spec.file + " is a character, not a scene file");
+    if (spec.actions == "scene")
+      throw SettingError("actions", "scene", spec.file + " is a character, not a scene file");
     loaded.owned.push_back(ordered(load_character(spec.file)));
     loaded.characters.push_back(loaded.owned.back().get());
     loaded.files.push_back(spec.file);
@@ -75,7 +76,7 @@ BenchScene load_bench_scene(const RunSpec& spec) {
 std::vector<SpecLayer> run_layers(const SpecLayer& command_line, const SpecLayer* baseline, const SpecLayer* defaults) {
   std::vector<SpecLayer> layers;
   if (defaults) layers.push_back(*defaults);
-  std::string file = command_line.has("file") ? command_line.values.at("file")
+  std::string file = command_line.has("file")            ? command_line.values.at("file")
                      : baseline && baseline->has("file") ? baseline->values.at("file")
                                                          : std::string();
   if (is_scene_file(file)) layers.push_back(scene_layer(load_scene_file(file)));

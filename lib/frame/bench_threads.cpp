@@ -19,8 +19,8 @@ std::shared_ptr<BenchThreads> bench_threads(size_t threads) {
   auto made_now = std::make_shared<BenchThreads>();
   // The worker limit this arena finds: the process's widest control, else oneTBB's default.
   std::shared_ptr<tbb::global_control> control = widest.lock();
-  size_t limit = control ? widest_threads
-                         : tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  size_t limit =
+      control ? widest_threads : tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
   if (threads > limit) {
     // A wider control replaces the narrower one in every live arena, so that
     // the narrower one dies with this lock and stops capping the new arena.

@@ -34,6 +34,8 @@ std::shared_ptr<BenchThreads> bench_threads(size_t threads);
 // an arena at least two (the caller's and a worker's), even one of one thread,
 // and two outside threads executing in it at once take both. What a per-thread
 // scratch indexed by tbb::this_task_arena::current_thread_index() needs.
-inline size_t arena_slots(size_t threads) { return threads < 2 ? 2 : threads; }
+inline size_t arena_slots(size_t threads) {
+  return threads < 2 ? 2 : threads;
+}
 
 }  // namespace crowdprof

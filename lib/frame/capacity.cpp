@@ -11,7 +11,9 @@ namespace crowdprof {
 
 namespace {
 
-bool fits(const CapacityRule& rule, const CapacityPoint& point) { return point.median_ms <= rule.budget_ms; }
+bool fits(const CapacityRule& rule, const CapacityPoint& point) {
+  return point.median_ms <= rule.budget_ms;
+}
 
 // The bracket the search narrows: the smallest N that did not fit (0: none
 // yet) and the largest N below it that did (0: none). Later points at the
@@ -80,7 +82,9 @@ CapacityResult capacity_result(const CapacityRule& rule, std::span<const Capacit
   return result;
 }
 
-std::string CapacityMetric::name() const { return category ? std::string(category_name(*category)) : "frame"; }
+std::string CapacityMetric::name() const {
+  return category ? std::string(category_name(*category)) : "frame";
+}
 
 std::optional<CapacityMetric> parse_capacity_metric(const std::string& text) {
   std::string wanted = lower(text);
@@ -115,7 +119,8 @@ CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric,
   return p;
 }
 
-CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& metric, const CapacityMeasure& measure) {
+CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& metric,
+                         const CapacityMeasure& measure) {
   CapacityRun run;
   run.metric = metric;
   for (size_t round = 1;; ++round) {
@@ -149,7 +154,8 @@ CapacityRun run_capacity(std::vector<ModeCapacity> modes, const CapacityMetric& 
     mode.result = capacity_result(mode.rule, mode.tried);
     // Bisection never moves a bracket's end outside it, so these are the ends' reports.
     if (!mode.result.fit || !mode.fit_run || mode.fit_run->run.characters != mode.result.fit->n) mode.fit_run.reset();
-    if (!mode.result.fail || !mode.fail_run || mode.fail_run->run.characters != mode.result.fail->n) mode.fail_run.reset();
+    if (!mode.result.fail || !mode.fail_run || mode.fail_run->run.characters != mode.result.fail->n)
+      mode.fail_run.reset();
   }
   run.modes = std::move(modes);
   return run;

@@ -28,9 +28,9 @@ namespace crowdprof {
 
 struct CapacityRule {
   double budget_ms = 1000.0 / 60.0;  // a point fits when its median is <= this; 60 fps, as the charts draw it
-  size_t start = 10;         // the first N tried
-  size_t cap = 100'000;      // the largest N tried
-  double resolution = 0.05;  // the bracket's width at which the search stops, relative to the fit
+  size_t start = 10;                 // the first N tried
+  size_t cap = 100'000;              // the largest N tried
+  double resolution = 0.05;          // the bracket's width at which the search stops, relative to the fit
 
   // Empty when the rule can run, else why not, naming the setting: "{budget}
   // must be a number of milliseconds above 0" (cli/ spells it --budget).
@@ -57,8 +57,8 @@ CapacityResult capacity_result(const CapacityRule& rule, std::span<const Capacit
 // One mode's search and what it measured.
 struct ModeCapacity {
   std::string mode;
-  int threads = 1;  // as its runs reported
-  CapacityRule rule;  // its cap may be lower than the user's: the memory
+  int threads = 1;                   // as its runs reported
+  CapacityRule rule;                 // its cap may be lower than the user's: the memory
   std::vector<CapacityPoint> tried;  // in the order measured
   CapacityResult result;
   // What was measured at result.fit and at result.fail (the reports, for the
@@ -86,8 +86,8 @@ struct CapacityRun {
   std::vector<ModeCapacity> modes;
   CapacityMetric metric;
   size_t block = 10, frames = 0, warmup = 0;  // of every point (set by the caller, for the report)
-  bool partial = false;  // a round was cut short (^C): the results are what was found before it
-  std::optional<Result> first;  // the first report measured, for the run's description
+  bool partial = false;                       // a round was cut short (^C): the results are what was found before it
+  std::optional<Result> first;                // the first report measured, for the run's description
 };
 
 // Runs every mode's search, one round of measurements at a time, until each

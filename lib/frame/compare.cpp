@@ -25,7 +25,7 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
 }
 
 std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
-                                       const RunOptions& options, size_t block) {
+                                    const RunOptions& options, size_t block) {
   block = std::max<size_t>(block, 1);
   std::vector<Result> reports(benches.size());
   Environment environment = current_environment();
@@ -78,14 +78,17 @@ Sweep parse_sweep(const std::string& text) {
     list = text.substr(7);
   }
   const bool passes = sweep.axis == SweepAxis::Passes;
-  const char* expected = passes ? "expected passes such as passes=1,2,4,6" : "expected crowd sizes such as n=10,20,40,80,160, or passes=1,2,4,6";
+  const char* expected = passes ? "expected passes such as passes=1,2,4,6"
+                                : "expected crowd sizes such as n=10,20,40,80,160, or passes=1,2,4,6";
   std::stringstream in(list);
   std::string item;
   auto bad = [&](const std::string& why) { return UsageError("--sweep '" + text + "': " + why); };
   while (std::getline(in, item, ',')) {
-    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos) throw bad(expected);
+    if (item.empty() || item.size() > 8 || item.find_first_not_of("0123456789") != std::string::npos)
+      throw bad(expected);
     size_t n = std::stoul(item);
-    if (passes && (n < 1 || n > kMaxPasses)) throw bad("each count of passes must be 1 to " + std::to_string(kMaxPasses));
+    if (passes && (n < 1 || n > kMaxPasses))
+      throw bad("each count of passes must be 1 to " + std::to_string(kMaxPasses));
     if (!passes && (n < 1 || n > 10'000'000)) throw bad("each size must be 1 to 10,000,000");
     if (std::find(sweep.points.begin(), sweep.points.end(), n) == sweep.points.end()) sweep.points.push_back(n);
   }
@@ -134,7 +137,8 @@ std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
   for (size_t i = 0; i < names.size(); ++i) {
     RunSpec scratch;
     apply_mode_spec(names[i], scratch);  // throws on a bad name or switch
-    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i))
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) !=
+        names.begin() + static_cast<std::ptrdiff_t>(i))
       throw UsageError("--modes: " + names[i] + " is listed twice");
   }
   return names;

@@ -27,7 +27,7 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
 // cold after the others ran). progress, if set, counts frames of all benches.
 // One report per bench, in order, as run_bench would give.
 std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
-                                       const RunOptions& options, size_t block);
+                                    const RunOptions& options, size_t block);
 
 // A mode as --modes names it: a preset, then any switches set away from it,
 // PRESET+SWITCH=VALUE+..., e.g. master+lookups=bundled (the thesis's Fig. 8).

@@ -12,7 +12,9 @@ namespace crowdprof {
 
 namespace {
 
-size_t whole_batches(size_t vertices) { return (vertices + kSkinBatch - 1) / kSkinBatch * kSkinBatch; }
+size_t whole_batches(size_t vertices) {
+  return (vertices + kSkinBatch - 1) / kSkinBatch * kSkinBatch;
+}
 
 // The most channels of any of the character's actions: a pose slot's lookups.
 uint64_t max_channels(const Character& c) {
@@ -31,16 +33,15 @@ bool cpu_vertices(const ModeSwitches& mode) {
 // `fades`: the copy may change action (transitions).
 uint64_t copy_bytes(const Character& c, const ModeSwitches& mode, bool fades) {
   const uint64_t channels = max_channels(c);
-  const uint64_t vertex_bytes = !cpu_vertices(mode)                         ? 0
+  const uint64_t vertex_bytes = !cpu_vertices(mode)                          ? 0
                                 : mode.vertex_format == VertexFormat::Packed ? kPackedVertexBytes
                                                                              : kFloatVertexBytes;
   // Transitions: the pose and cursor of the action a copy fades from.
   // Besides: the fade's per-copy words, the two vectors' headers, the
   // schedule's state (scene/transitions.h) and its storage's action and weight.
-  const uint64_t fading = fades
-                              ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) + channels * 4 +
-                                    32 + sizeof(SamplingCursor) + sizeof(LocalPose) + 56 + 8
-                              : 0;
+  const uint64_t fading = fades ? c.skeleton.joint_count() * (sizeof(glm::vec3) * 2 + sizeof(glm::quat)) +
+                                      channels * 4 + 32 + sizeof(SamplingCursor) + sizeof(LocalPose) + 56 + 8
+                                : 0;
   return c.skeleton.joint_count() * sizeof(SkinMatrix) + whole_batches(c.mesh.vertex_count()) * vertex_bytes +
          channels * 4 + 64 + sizeof(glm::mat4) /* world */ + sizeof(Aabb) + 4 * sizeof(size_t) /* offsets */ + fading;
 }
@@ -69,7 +70,8 @@ uint64_t estimate_bench_bytes(std::span<const Character* const> characters, cons
     }
   for (size_t k = 0; k < characters.size(); ++k) {
     uint64_t slots = mode.pose == PoseStorage::SharedScratch ? 1 : copies[k];
-    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode, fades[k]) + slots * slot_bytes(*characters[k]);
+    bytes += characters[k]->shared_bytes() + copies[k] * copy_bytes(*characters[k], mode, fades[k]) +
+             slots * slot_bytes(*characters[k]);
   }
   return bytes;
 }

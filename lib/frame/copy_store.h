@@ -30,8 +30,8 @@ struct CopyStore {
             const Crowd& crowd, const ModeSwitches& mode, std::span<const uint8_t> mesh_level = {});
 
   // Per copy.
-  std::vector<float> times;                // this frame's time on its action's clock (Logic)
-  std::vector<uint8_t> visible;            // inside the frustum (the last Scenegraph stage)
+  std::vector<float> times;      // this frame's time on its action's clock (Logic)
+  std::vector<uint8_t> visible;  // inside the frustum (the last Scenegraph stage)
   std::vector<SamplingCursor> cursors;
   // Transitions (issue 53), per copy; empty without them. The Logic stage
   // writes the action each copy plays now, its weight (< 1 while fading) and
@@ -48,7 +48,7 @@ struct CopyStore {
   // Each storage's vertices start on a cache line (whole batches of
   // kSkinBatch vertices), so that skinning can stream whole lines.
   std::vector<size_t> joint_offset, vertex_offset;
-  std::vector<float> storage_time;         // the time it was evaluated at (NaN: rest)
+  std::vector<float> storage_time;  // the time it was evaluated at (NaN: rest)
   // Transitions: the action and fade weight it was evaluated with (empty without).
   std::vector<uint16_t> storage_action;
   std::vector<float> storage_weight;

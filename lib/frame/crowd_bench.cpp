@@ -61,9 +61,11 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
     transitions_ = std::make_unique<TransitionSchedule>(characters_, crowd_, config.crowd.seed);
   std::vector<uint8_t> posed_on_cpu;
   for (const PreparedCharacter& p : prepared_) posed_on_cpu.push_back(p.posed_on_cpu);
-  planner_ = std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));
-  poser_ = std::make_unique<PoseUpdater>(PoseUpdateContext{characters_, prepared_, &crowd_, store_.get(), mode,
-                                                           config.threads, config.tracer, config.trace_pid, mesh_level_});
+  planner_ =
+      std::make_unique<UpdatePlanner>(characters_, crowd_, camera_.view_projection(), mode, std::move(posed_on_cpu));
+  poser_ =
+      std::make_unique<PoseUpdater>(PoseUpdateContext{characters_, prepared_, &crowd_, store_.get(), mode,
+                                                      config.threads, config.tracer, config.trace_pid, mesh_level_});
   if (mode.skinning == SkinningSite::Baked) {
     bake_summary_ = bake_characters(characters_, config.bake_rate_hz, prepared_);
     baked_instances_.resize(crowd_.size());
@@ -291,10 +293,9 @@ void CrowdBench::update_poses(Counters& counters) {
   // For tests of the budget: a replayed Animations time makes its choices reproducible.
   const std::vector<double>& replay = config_.replay_animations_ms;
   const double measured = replay.empty() || frame_ == 0 ? last_animations_ms_ : replay[(frame_ - 1) % replay.size()];
-  std::span<const StateJob> jobs = planner_->plan(
-      {frame_, store_->times, store_->visible, measured, store_->actions, store_->from_actions, store_->weights,
-       store_->from_times},
-      counters);
+  std::span<const StateJob> jobs = planner_->plan({frame_, store_->times, store_->visible, measured, store_->actions,
+                                                   store_->from_actions, store_->weights, store_->from_times},
+                                                  counters);
   counters.channel_lookups = poser_->update(jobs);
 }
 
@@ -324,7 +325,8 @@ void CrowdBench::count_gpu_culled_work(Counters& counters) {
       const uint64_t copies = gpu_visible_[k * kMeshLevels + level];
       if (copies == 0) continue;
       // A level the character lacks was never appended to: a pass that says so is broken.
-      if (level >= prepared_[k].levels()) throw std::runtime_error("the GPU's cull pass drew a mesh level the character lacks");
+      if (level >= prepared_[k].levels())
+        throw std::runtime_error("the GPU's cull pass drew a mesh level the character lacks");
       c.*kLodCopies[level] = copies;
       c.*kLodVertices[level] = copies * prepared_[k].vertices_of(level);
       c.*kLodTriangles[level] = copies * triangles_of(k, level);

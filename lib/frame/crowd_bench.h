@@ -38,7 +38,7 @@ struct BenchConfig {
   CrowdOptions crowd;  // groups index the characters the bench is made with
   std::string mode_name = "threaded";
   ModeSwitches mode;
-  int threads = 1;  // worker threads when mode.parallel
+  int threads = 1;    // worker threads when mode.parallel
   double fps = 60.0;  // the simulated clock: frame k shows time k / fps
   // Mode `baked`: samples per second each action is baked at (--bake-rate).
   float bake_rate_hz = kDefaultBakeRateHz;
@@ -237,7 +237,7 @@ class CrowdBench {
   Crowd crowd_;
   Camera camera_;
   Frustum frustum_;
-  std::vector<glm::mat4> shadow_cameras_;  // passes > 2: one per cascade
+  std::vector<glm::mat4> shadow_cameras_;    // passes > 2: one per cascade
   std::vector<PreparedCharacter> prepared_;  // per character; immutable once made
   BakeRecord bake_summary_;
   std::unique_ptr<CopyStore> store_;

@@ -73,7 +73,8 @@ AnimationRecord CrowdBench::measure_animation() const {
       worst = std::max(worst, static_cast<double>(glm::distance(drawn[v], exact[v])));
     fidelity.max_deviation = std::max(fidelity.max_deviation, worst);
     double height = heights[crowd_.kind[i]];
-    if (height > 0) fidelity.deviation_fraction_of_height = std::max(fidelity.deviation_fraction_of_height, worst / height);
+    if (height > 0)
+      fidelity.deviation_fraction_of_height = std::max(fidelity.deviation_fraction_of_height, worst / height);
   }
   return fidelity;
 }
@@ -173,9 +174,9 @@ DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t ma
       e.height = heights[k];
       const Aabb& box = crowd_.world_boxes[i];
       const double box_height = box.max.y - box.min.y;
-      e.px_per_unit = box_height > 0
-                          ? screen_height_fraction(view_projection, box) * static_cast<double>(screen_height_px) / box_height
-                          : 0.0;
+      e.px_per_unit = box_height > 0 ? screen_height_fraction(view_projection, box) *
+                                           static_cast<double>(screen_height_px) / box_height
+                                     : 0.0;
     }
   };
   auto run = [&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, copies.size(), 8), measure); };
@@ -233,7 +234,8 @@ MeshLodRecord CrowdBench::mesh_lod_fidelity(int screen_height_px) const {
     const Aabb& box = crowd_.world_boxes[i];
     const double box_height = box.max.y - box.min.y;
     if (box_height > 0)
-      f.error_px = std::max(f.error_px, error * screen_height_fraction(view_projection, box) * screen_height_px / box_height);
+      f.error_px =
+          std::max(f.error_px, error * screen_height_fraction(view_projection, box) * screen_height_px / box_height);
   }
   return record;
 }

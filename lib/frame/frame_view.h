@@ -64,18 +64,18 @@ struct FrameView {
   std::span<const glm::mat4> shadow_view_projections;
   std::span<const CharacterView> characters;  // per character
   // Per copy.
-  std::span<const uint16_t> kind;          // index into characters
+  std::span<const uint16_t> kind;  // index into characters
   std::span<const glm::mat4> world;
-  std::span<const uint8_t> visible;        // inside the frustum this frame
-  std::span<const uint32_t> shown;         // the pose storage it draws (sharing), empty: its own
-  std::span<const BakedInstance> baked;    // mode baked: this frame's, for copies on screen
-  std::span<const BakedFade> baked_fades;  // mode baked with transitions: as baked; empty without
-  std::span<const Aabb> world_boxes;       // what frustum gpu tests (the CPU's test reads the same)
+  std::span<const uint8_t> visible;          // inside the frustum this frame
+  std::span<const uint32_t> shown;           // the pose storage it draws (sharing), empty: its own
+  std::span<const BakedInstance> baked;      // mode baked: this frame's, for copies on screen
+  std::span<const BakedFade> baked_fades;    // mode baked with transitions: as baked; empty without
+  std::span<const Aabb> world_boxes;         // what frustum gpu tests (the CPU's test reads the same)
   std::span<const BakedClock> baked_clocks;  // mode baked with frustum gpu: fixed at load
-  std::span<const uint8_t> mesh_level;     // mesh LOD: the level each copy draws; empty: all level 0
+  std::span<const uint8_t> mesh_level;       // mesh LOD: the level each copy draws; empty: all level 0
   // Per pose storage (one per copy): where its palette and vertices start.
   std::span<const size_t> joint_offset, vertex_offset;
-  std::span<const SkinMatrix> palettes;    // every storage's skinning matrices
+  std::span<const SkinMatrix> palettes;           // every storage's skinning matrices
   std::span<const glm::vec3> positions, normals;  // float vertices skinned on the CPU
   std::span<const uint16_t> packed_positions;     // packed: 3 codes a vertex
   std::span<const uint32_t> packed_normals;

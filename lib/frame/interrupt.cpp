@@ -28,6 +28,10 @@ void install_interrupt_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-const std::atomic<bool>& interrupt_requested() { return requested; }
+const std::atomic<bool>& interrupt_requested() {
+  return requested;
+}
 
-void forward_interrupts_to(int pid) { forward_to.store(static_cast<pid_t>(pid)); }
+void forward_interrupts_to(int pid) {
+  forward_to.store(static_cast<pid_t>(pid));
+}

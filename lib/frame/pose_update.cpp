@@ -82,9 +82,9 @@ void PoseUpdater::for_each_index(std::string_view task, size_t n, const Body& bo
       }
       auto start = CategoryClock::Clock::now();
       for (size_t i = range.begin(); i != range.end(); ++i) body(i);
-      tracer->span(task, "task", start, CategoryClock::Clock::now(), context_.trace_pid,
-                   {{"first_copy", static_cast<int64_t>(range.begin())},
-                    {"copies", static_cast<int64_t>(range.size())}});
+      tracer->span(
+          task, "task", start, CategoryClock::Clock::now(), context_.trace_pid,
+          {{"first_copy", static_cast<int64_t>(range.begin())}, {"copies", static_cast<int64_t>(range.size())}});
     });
   });
 }
@@ -300,7 +300,8 @@ void PoseUpdater::skin_vertices(size_t storage, size_t first, size_t count) {
   if (count == 0) return;
   const PreparedCharacter& prepared = context_.prepared[crowd_.kind[storage]];
   const size_t v = store_.vertex_offset[storage] + first;
-  std::span<const SkinMatrix> palette = std::span(store_.palettes).subspan(store_.joint_offset[storage], prepared.joints);
+  std::span<const SkinMatrix> palette =
+      std::span(store_.palettes).subspan(store_.joint_offset[storage], prepared.joints);
   const SkinningPlan* plan = &prepared.plan_of(level_of(storage));
   if (store_.packed) {
     run_job(PackedSkinningJob{palette, plan, &prepared.quantisation, first, count,

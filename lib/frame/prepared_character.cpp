@@ -78,7 +78,8 @@ BakeRecord bake_characters(std::span<const Character* const> characters, float r
     summary.samples += p.baked.samples();
     BakeDeviation d = measure_bake_deviation(character, targets, p.baked, p.skinning_plan);
     summary.max_deviation = std::max(summary.max_deviation, static_cast<double>(d.model_units));
-    summary.max_deviation_fraction = std::max(summary.max_deviation_fraction, static_cast<double>(d.fraction_of_height()));
+    summary.max_deviation_fraction =
+        std::max(summary.max_deviation_fraction, static_cast<double>(d.fraction_of_height()));
   }
   return summary;
 }

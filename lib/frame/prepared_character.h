@@ -60,7 +60,7 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
 // Returns what baking cost and how far it strays (result/result.h BakeRecord:
 // the worst character's deviation; bake_ms over every action of every character).
 BakeRecord bake_characters(std::span<const Character* const> characters, float rate_hz,
-                            std::span<PreparedCharacter> prepared);
+                           std::span<PreparedCharacter> prepared);
 
 // A character's skinning matrices in its rest pose. Allocates.
 std::vector<SkinMatrix> rest_palette(const Character& character);

@@ -52,9 +52,12 @@ namespace {
 
 std::string_view choice_name(ActionChoice choice) {
   switch (choice) {
-    case ActionChoice::Shared: return "shared";
-    case ActionChoice::Random: return "random";
-    case ActionChoice::Weighted: return "weighted";
+    case ActionChoice::Shared:
+      return "shared";
+    case ActionChoice::Random:
+      return "random";
+    case ActionChoice::Weighted:
+      return "weighted";
   }
   return "?";
 }

@@ -61,11 +61,13 @@ std::string set_resolution(RunSpec& spec, std::string_view value) {
 }
 
 const std::array kSettings = {
-    SettingSpec{"characters", "N", "Copies in the crowd (a mixed scene's counts are scaled to it)", "160, or the scene's",
+    SettingSpec{"characters", "N", "Copies in the crowd (a mixed scene's counts are scaled to it)",
+                "160, or the scene's",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.characters, t, 1, 10'000'000, "a crowd needs at least 1 copy",
                                    "at most 10,000,000 copies");
-                }, "Crowd"},
+                },
+                "Crowd"},
     SettingSpec{"actions", "shared|random",
                 "shared: every copy plays one action in phase (the thesis scene); random: a random action and phase "
                 "per copy (the thesis's -random)",
@@ -74,21 +76,25 @@ const std::array kSettings = {
                   if (t != "shared" && t != "random" && t != "scene") return "expected one of shared, random";
                   s.actions = std::string(t);
                   return {};
-                }, "Crowd"},
+                },
+                "Crowd"},
     SettingSpec{"action", "NAME", "With shared actions: the action's name", "the first",
                 [](RunSpec& s, std::string_view t) { return set_text(s.action, t); }, "Crowd"},
     SettingSpec{"seed", "N", "Seed for random actions", "1, or the scene's",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.seed, t, 0, 0xffffffffLL, "expected 0 to 4294967295", "expected 0 to 4294967295");
-                }, "Crowd"},
+                },
+                "Crowd"},
     SettingSpec{"frames", "N", "Frames measured", "120",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.frames, t, 1, 10'000'000, "at least 1 frame is measured", "at most 10,000,000");
-                }, "Run"},
+                },
+                "Run"},
     SettingSpec{"warmup", "N", "Frames run before measuring", "10",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.warmup, t, 0, 10'000'000, "cannot be negative", "at most 10,000,000");
-                }, "Run"},
+                },
+                "Run"},
     SettingSpec{"fps", "FPS",
                 "Simulated clock: frame k shows time k/fps, however long frames take, so runs are reproducible", "60",
                 [](RunSpec& s, std::string_view t) -> std::string {
@@ -97,7 +103,8 @@ const std::array kSettings = {
                   if (!(*v > 0) || *v > 100000) return "expected a rate between 0 and 100000";
                   s.fps = *v;
                   return {};
-                }, "Run"},
+                },
+                "Run"},
     SettingSpec{"bake_rate", "HZ", "Skinning baked: samples per second each action is baked at (see docs/modes.md)",
                 "30",
                 [](RunSpec& s, std::string_view t) -> std::string {
@@ -106,17 +113,20 @@ const std::array kSettings = {
                   if (!(*v > 0) || !(*v <= 10000)) return "expected more than 0 and at most 10000 samples per second";
                   s.bake_rate = *v;
                   return {};
-                }, "GPU"},
+                },
+                "GPU"},
     SettingSpec{"mode", "MODE", "Preset of switches (the first four are the thesis's; see docs/modes.md)", "threaded",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   if (!find_mode(t)) return "expected one of " + mode_names();
                   s.mode = std::string(t);
                   return {};
-                }, "Run"},
+                },
+                "Run"},
     SettingSpec{"threads", "N", "Worker threads for parallel modes", "all cores",
                 [](RunSpec& s, std::string_view t) {
                   return set_whole(s.threads, t, 1, 1024, "expected 1 to 1024", "expected 1 to 1024");
-                }, "Run"},
+                },
+                "Run"},
     SettingSpec{"camera", "VIEW",
                 "default (thesis framing, part of the crowd off-screen), all, close (a few copies at the front), or "
                 "EX,EY,EZ,TX,TY,TZ",
@@ -129,7 +139,8 @@ const std::array kSettings = {
                   }
                   s.camera = std::string(t);
                   return {};
-                }, "View"},
+                },
+                "View"},
     SettingSpec{"lens", "MM",
                 "Focal length in mm on Blender's 32 mm sensor fitted to the larger side (35 is Blender's, 49.1 "
                 "degrees across)",
@@ -140,7 +151,8 @@ const std::array kSettings = {
                   if (*v != 0 && !(*v >= 1 && *v <= 5000)) return "expected a focal length of 1 to 5000 mm";
                   s.lens = *v;
                   return {};
-                }, "View"},
+                },
+                "View"},
     SettingSpec{"backend", "auto|egl|osmesa|none",
                 "Where frames are drawn: egl (a GPU, else Mesa's surfaceless llvmpipe), osmesa, auto (egl, then "
                 "osmesa, then none) or none (CPU only, nothing drawn)",
@@ -149,7 +161,8 @@ const std::array kSettings = {
                   if (!parse_backend(t)) return "expected auto, egl, osmesa or none";
                   s.backend = std::string(t);
                   return {};
-                }, "GPU"},
+                },
+                "GPU"},
     SettingSpec{"resolution", "WxH", "Frame size in pixels, and the camera's aspect", "1600x900, or the scene's",
                 set_resolution, "View"},
     SettingSpec{"static", "on|off", "Accept a character without actions: a crowd in its rest pose", "off",
@@ -157,7 +170,8 @@ const std::array kSettings = {
                   if (t != "on" && t != "off") return "expected on or off";
                   s.allow_static = t == "on";
                   return {};
-                }, "Crowd"},
+                },
+                "Crowd"},
 };
 
 // A bad value from `layer`: the command line's is a usage error, a file's an
@@ -166,12 +180,13 @@ const std::array kSettings = {
                             const std::string& problem) {
   if (layer.source == SpecLayer::Source::CommandLine || layer.source == SpecLayer::Source::Defaults)
     throw SettingError(name, text, problem);
-  std::string what = layer.source == SpecLayer::Source::Baseline ? "records a run that crowdprof cannot make: "
-                                                                  : "";
+  std::string what = layer.source == SpecLayer::Source::Baseline ? "records a run that crowdprof cannot make: " : "";
   throw InputError(layer.path, what + name + " '" + text + "': " + problem);
 }
 
-std::string text_of(const json& value) { return switch_text(value); }
+std::string text_of(const json& value) {
+  return switch_text(value);
+}
 
 }  // namespace
 
@@ -189,7 +204,9 @@ std::string RunSpec::mode_name() const {
   return preset && mode_switches() != preset->switches ? mode + "+custom" : mode;
 }
 
-std::span<const SettingSpec> setting_table() { return kSettings; }
+std::span<const SettingSpec> setting_table() {
+  return kSettings;
+}
 
 const SettingSpec* find_setting(std::string_view name) {
   for (const SettingSpec& spec : kSettings)
@@ -283,16 +300,26 @@ std::vector<std::string> run_spec_arguments(const RunSpec& spec) {
     return std::string(text);
   };
   std::vector<std::string> args = {spec.file,
-                                   "--characters", std::to_string(spec.characters),
-                                   "--seed", std::to_string(spec.seed),
-                                   "--frames", std::to_string(spec.frames),
-                                   "--warmup", std::to_string(spec.warmup),
-                                   "--fps", number(spec.fps),
-                                   "--bake-rate", number(spec.bake_rate),
-                                   "--mode", spec.mode,
-                                   "--camera", spec.camera,
-                                   "--backend", spec.backend,
-                                   "--resolution", spec.resolution};
+                                   "--characters",
+                                   std::to_string(spec.characters),
+                                   "--seed",
+                                   std::to_string(spec.seed),
+                                   "--frames",
+                                   std::to_string(spec.frames),
+                                   "--warmup",
+                                   std::to_string(spec.warmup),
+                                   "--fps",
+                                   number(spec.fps),
+                                   "--bake-rate",
+                                   number(spec.bake_rate),
+                                   "--mode",
+                                   spec.mode,
+                                   "--camera",
+                                   spec.camera,
+                                   "--backend",
+                                   spec.backend,
+                                   "--resolution",
+                                   spec.resolution};
   if (spec.actions != "scene") args.insert(args.end(), {"--actions", spec.actions});
   if (!spec.action.empty()) args.insert(args.end(), {"--action", spec.action});
   if (spec.threads > 0) args.insert(args.end(), {"--threads", std::to_string(spec.threads)});

@@ -76,7 +76,6 @@ struct SpecLayer {
   bool has(const std::string& name) const { return values.count(name) > 0; }
 };
 
-
 // What a scene file sets: the crowd size, seed, camera, lens, resolution, and
 // each character's actions ("actions": "scene").
 SpecLayer scene_layer(const SceneFile& scene);

@@ -83,7 +83,7 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
   run_budget(input);
   jobs_.clear();
   if (!any_posed_on_cpu_) return jobs_;  // no pose to build: a cost flat in the crowd (frustum gpu)
-  size_t changes = 0;  // copies taking a new state: changing_copies_, changing_keys_
+  size_t changes = 0;                    // copies taking a new state: changing_copies_, changing_keys_
   const bool share = mode_.share_poses;
   const double quantum = mode_.share_quantum_s;
   const bool culling = mode_.animation_culling;
@@ -100,7 +100,10 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     if (!posed_on_cpu_[crowd_.kind[i]] || (culling && !visible[i])) continue;
     const uint8_t shift = shift_[i];
     // Most copies are updated every frame: that count lives in a register.
-    if (shift == 0) ++every_frame; else ++by_rate[shift];
+    if (shift == 0)
+      ++every_frame;
+    else
+      ++by_rate[shift];
     // Copy i takes its turn at offset i: neighbours of one period alternate.
     const int64_t last = last_update_[i];
     if (!update_due(frame_number, last, shift, i)) {
@@ -110,7 +113,10 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     if (last >= 0) longest_gap = std::max<uint64_t>(longest_gap, frame - last);
     last_update_[i] = frame;
     updated_[i] = 1;
-    if (shift == 0) ++updated_every_frame; else ++updates_by_rate[shift];
+    if (shift == 0)
+      ++updated_every_frame;
+    else
+      ++updates_by_rate[shift];
     const uint16_t action_index = input.actions.empty() ? crowd_.action[i] : input.actions[i];
     const std::vector<Action>& actions = characters_[crowd_.kind[i]]->actions;
     // The nearest multiple of the quantum from the action's start, never past its end.
@@ -176,7 +182,8 @@ std::span<const StateJob> UpdatePlanner::plan(const PlanInput& input, Counters& 
     while (end < changes && changing_keys_[end] == key) ++end;
     bool evaluate = false;
     uint32_t storage = sharing_.take(copies.subspan(c, end - c), key, &evaluate);
-    if (evaluate) jobs_.push_back({copies[c], storage, changing_times_[c], changing_weights_[c], changing_from_times_[c]});
+    if (evaluate)
+      jobs_.push_back({copies[c], storage, changing_times_[c], changing_weights_[c], changing_from_times_[c]});
     c = end;
   }
   return jobs_;

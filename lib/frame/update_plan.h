@@ -88,7 +88,9 @@ class UpdatePlanner {
   // The storage a copy shows: its own, or with sharing its state's.
   size_t storage_of(size_t copy) const { return mode_.share_poses ? sharing_.shown(copy) : copy; }
   // Every copy's storage with sharing; empty without (each shows its own).
-  std::span<const uint32_t> shown() const { return mode_.share_poses ? sharing_.shown_storages() : std::span<const uint32_t>{}; }
+  std::span<const uint32_t> shown() const {
+    return mode_.share_poses ? sharing_.shown_storages() : std::span<const uint32_t>{};
+  }
   const UpdateSchedule& schedule() const { return schedule_; }
 
  private:
@@ -108,7 +110,7 @@ class UpdatePlanner {
   // Sharing, room for every copy: this frame's copies taking a new state, and its key.
   std::vector<uint32_t> changing_copies_;
   std::vector<uint64_t> changing_keys_;
-  std::vector<float> changing_times_;  // each changing copy's (snapped) time...
+  std::vector<float> changing_times_;                          // each changing copy's (snapped) time...
   std::vector<float> changing_weights_, changing_from_times_;  // ...and fade
   PoseSharing sharing_;
   BudgetPlan budget_plan_;

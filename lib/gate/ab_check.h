@@ -24,7 +24,7 @@ namespace crowdprof {
 struct AbProcess {
   std::map<std::string, double> median_ms;  // per samples key ("frame_ms", "cpu_ms", categories)
   std::string digest;
-  bool digest_cpu_vertices = true;     // Result::digest_cpu_vertices
+  bool digest_cpu_vertices = true;      // Result::digest_cpu_vertices
   std::string vertex_order = "joints";  // Result::vertex_order
   RecordedCounters counters;
 };
@@ -67,7 +67,7 @@ struct AbMetric {
   double current_median_ms = 0;
   std::vector<double> ratios;  // per group, current over base
   MedianInterval change;       // of the ratios, minus 1: +0.1 is 10% slower
-  SignedRank test;                     // of the log ratios against zero
+  SignedRank test;             // of the log ratios against zero
   double p_adjusted = 1;
   double floor_ms = 0;
   bool beyond_tolerance = false, beyond_floor = false, significant = false;
@@ -82,8 +82,8 @@ struct AbWork {
   // the bench ordered them by joints): the digests are not compared, and why.
   std::string digest_note;
   std::vector<CounterDifference> counters;  // base's first process against current's first, those that differ
-  std::string inconsistent;  // a build whose own processes did different work, if any
-  std::string run_difference;  // set by the caller: the runs' settings differ (require_same_run's words)
+  std::string inconsistent;                 // a build whose own processes did different work, if any
+  std::string run_difference;               // set by the caller: the runs' settings differ (require_same_run's words)
 };
 
 struct AbResult {

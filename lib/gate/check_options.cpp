@@ -44,16 +44,13 @@ double parse_tolerance(std::string_view text) {
     throw SettingError("tolerance", std::string(text),
                        "a fraction is below 1; for percent write " + std::string(text) + "%");
   if (is_percent) value /= 100.0;
-  if (value > 10.0)
-    throw SettingError("tolerance", std::string(text), "at most 1000%");
+  if (value > 10.0) throw SettingError("tolerance", std::string(text), "at most 1000%");
   return value;
 }
 
 Floor parse_floor(std::string_view text) {
   std::string s(text);
-  auto bad = [&](const std::string& why) {
-    return SettingError("floor", std::string(text), why);
-  };
+  auto bad = [&](const std::string& why) { return SettingError("floor", std::string(text), why); };
   double scale = 0;  // to ms; 0 for a percentage
   bool is_percent = false;
   for (auto [suffix, to_ms] : {std::pair<const char*, double>{"ms", 1.0}, {"us", 1e-3}, {"s", 1000.0}}) {

@@ -45,8 +45,8 @@ struct CheckOptions {
   // at the same moment moves least (docs/compare-and-check.md has the measurement).
   std::vector<std::string> metrics = {"calibrated"};
   double tolerance = kDefaultTolerance;  // a slowdown of the median beyond this fraction...
-  double alpha = 0.05;      // ...that the U test finds significant at this level (Holm-corrected over metrics)...
-  Floor floor;              // ...and larger than this
+  double alpha = 0.05;  // ...that the U test finds significant at this level (Holm-corrected over metrics)...
+  Floor floor;          // ...and larger than this
   // False only to measure the gate itself (check --timings-only): timings of
   // two different runs, counters and digest not compared.
   bool compare_work = true;

@@ -29,14 +29,16 @@ CheckPlan plan_check(const CheckRequest& r) {
                          "instructions is a metric of its own: its runs are counted, not timed");
     // A counted run is not a timed one: no frame times worth a file.
     for (const std::string& option : r.timed_outputs)
-      throw UsageError(option + " is not written by --metric instructions (its runs are counted, not timed); --json, "
-                                "--junit and --markdown are");
+      throw UsageError(option +
+                       " is not written by --metric instructions (its runs are counted, not timed); --json, "
+                       "--junit and --markdown are");
     if (r.ab) throw UsageError("--metric instructions is for a stored baseline: an A/B times both builds side by side");
     if (!r.tolerance_given) plan.gate.tolerance = kInstructionTolerance;
     plan.gate.metrics = {kInstructionsMetric};
     return plan;
   }
-  if (r.timings_only && r.update_baseline) throw SettingsUsageError("{timings_only} compares; it cannot record a baseline");
+  if (r.timings_only && r.update_baseline)
+    throw SettingsUsageError("{timings_only} compares; it cannot record a baseline");
   plan.gate.metrics.clear();
   auto add = [&](const std::string& key) {
     if (std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), key) == plan.gate.metrics.end())

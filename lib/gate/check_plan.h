@@ -42,7 +42,8 @@ inline constexpr const char* kInstructionsMetric = "instructions";
 inline constexpr double kInstructionTolerance = 0.01;
 
 struct CheckPlan {
-  CheckOptions gate;  // metrics (samples keys, no repeats, or kInstructionsMetric alone), tolerance, floor, alpha, work compared
+  CheckOptions
+      gate;  // metrics (samples keys, no repeats, or kInstructionsMetric alone), tolerance, floor, alpha, work compared
   size_t runs = kCheckRuns;  // each a process of its own
   double spread_s = 0;       // the runs start this many seconds apart in all
   bool update_baseline = false;

@@ -77,8 +77,8 @@ void require_recorded_action(const CheckState& s, const Character& character) {
     if (action.name == s.spec.action) return;
     names += (names.empty() ? "" : ", ") + action.name;
   }
-  throw InputError(s.r.baseline, "the baseline is of another run: its action '" + s.spec.action +
-                                     "' is not one of " + s.spec.file + "'s (" + names + ")");
+  throw InputError(s.r.baseline, "the baseline is of another run: its action '" + s.spec.action + "' is not one of " +
+                                     s.spec.file + "'s (" + names + ")");
 }
 
 std::string spelled(const CheckRun& r, const SettingText& text) {
@@ -188,8 +188,8 @@ std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& p
   std::vector<double> counts;
   for (size_t i = 1; i <= plan.runs; ++i) {
     if (!s.r.quiet && ::isatty(STDERR_FILENO))
-      std::cerr << "\rcrowdprof: check: counting instructions" << (callgrind ? " under callgrind" : "") << ", run "
-                << i << " of " << plan.runs << std::flush;
+      std::cerr << "\rcrowdprof: check: counting instructions" << (callgrind ? " under callgrind" : "") << ", run " << i
+                << " of " << plan.runs << std::flush;
     Finished finished = run_program(program, args, scratch.file("run.err"));
     if (interrupt_requested().load()) {
       std::cerr << "\ncrowdprof: interrupted: instructions are not compared from a cut run\n";
@@ -210,8 +210,9 @@ std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& p
       if (!problem.empty()) throw std::runtime_error("--metric instructions: " + problem);
       // The frames toggle collection through valgrind's header, found at build time.
       if (total == 0)
-        throw std::runtime_error("--metric instructions: callgrind counted nothing: this crowdprof was built without "
-                                 "valgrind's callgrind.h (apt-get install valgrind, then build again)");
+        throw std::runtime_error(
+            "--metric instructions: callgrind counted nothing: this crowdprof was built without "
+            "valgrind's callgrind.h (apt-get install valgrind, then build again)");
       instructions.source = "callgrind";
       instructions.per_frame = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
     } else if (!instructions.per_frame) {
@@ -240,7 +241,7 @@ std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& p
 std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline) {
   const CheckRun& r = s.r;
   std::vector<Result> runs;
-  json partial;  // a cut run's document: written as it is, never read back
+  json partial;                  // a cut run's document: written as it is, never read back
   install_interrupt_handlers();  // here, to forward a ^C to the run in progress
   auto start = std::chrono::steady_clock::now();
   for (size_t i = 1; i <= plan.runs && partial.is_null(); ++i) {
@@ -308,8 +309,10 @@ using MakeRuns = std::optional<Result> (*)(const CheckState&, const CheckPlan&, 
 // then `runs` makes them.
 std::optional<Result> measure(CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline,
                               MakeRuns runs) {
-  if (baseline) resolve_with_baseline(s, *baseline);
-  else s.spec = resolve_run_spec(run_layers(s.r.command_line, nullptr, &s.r.defaults));
+  if (baseline)
+    resolve_with_baseline(s, *baseline);
+  else
+    s.spec = resolve_run_spec(run_layers(s.r.command_line, nullptr, &s.r.defaults));
   if (s.spec.file.empty()) throw UsageError("check needs a scene FILE to run, or --result FILE");
   require_safe_outputs(s.r, s.spec.file);  // the scene file may have come from the baseline
   return runs(s, plan, baseline);
@@ -337,8 +340,7 @@ void judge_count(const CheckRun& r, CheckOutcome& outcome, const std::function<s
   CountCheck& count = outcome.count;
   count.origin = instruction_origin(*current.instructions);
   if (base_origin != count.origin)
-    throw InputError(r.baseline, "its instructions were counted by " + base_origin + ", this run's by " +
-                                     count.origin +
+    throw InputError(r.baseline, "its instructions were counted by " + base_origin + ", this run's by " + count.origin +
                                      ": counts compare only from the same source, SIMD target and compiler (record "
                                      "the baseline again here)");
   if (!r.plan.timings_only) require_same_run(baseline, current, r.baseline);
@@ -368,8 +370,7 @@ std::string slower_metrics(const CheckResult& result) {
 // The timed gate. `remeasure` runs the check's runs again (empty when the
 // result was read from a file): a timed failure with the work unchanged must
 // repeat r.confirm times.
-void judge_timings(const CheckRun& r, CheckOutcome& outcome,
-                   const std::function<std::optional<Result>()>& remeasure) {
+void judge_timings(const CheckRun& r, CheckOutcome& outcome, const std::function<std::optional<Result>()>& remeasure) {
   const Result& baseline = *outcome.baseline;
   Result& current = outcome.current;
   CheckOptions& options = outcome.plan.gate;
@@ -383,8 +384,9 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome,
   for (const std::string& key : options.metrics)
     for (const auto& [result, path] : {std::pair{&baseline, r.baseline}, {&current, current_name}})
       if (!metric_samples(*result, key))
-        throw InputError(path, "has no \"samples." + key + "\" (recorded by an older crowdprof): record it again, or "
-                               "check another --metric");
+        throw InputError(path, "has no \"samples." + key +
+                                   "\" (recorded by an older crowdprof): record it again, or "
+                                   "check another --metric");
   CheckResult result = check_results(baseline, current, options);
   for (long long round = 1; remeasure && round <= r.confirm && only_timings_regressed(result); ++round) {
     std::cerr << "crowdprof: note: slower than the baseline (" << slower_metrics(result)
@@ -444,8 +446,9 @@ std::vector<std::string> ab_bench_arguments(const SpecLayer& command_line,
 }
 
 std::string shell_quoted(const std::string& text) {
-  if (!text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,+:%") ==
-                           std::string::npos)
+  if (!text.empty() &&
+      text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,+:%") ==
+          std::string::npos)
     return text;
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -493,8 +496,8 @@ std::optional<Result> run_ab_process(const AbBuild& build, const std::vector<std
     throw std::runtime_error("this build " + why);
   };
   if (finished.status != 0)
-    return fail("failed its run (exit " + std::to_string(finished.status) + "): " +
-                (finished.error_text.empty() ? "no message" : first_line(finished.error_text)));
+    return fail("failed its run (exit " + std::to_string(finished.status) +
+                "): " + (finished.error_text.empty() ? "no message" : first_line(finished.error_text)));
   Result result;
   try {
     result = read_result(result_path);
@@ -521,8 +524,9 @@ AbOptions ab_gate_of(const CheckRun& r, const CheckPlan& plan) {
       throw UsageError(std::string(option) + " is not for an A/B: --against runs both builds and compares them");
   if (r.metric_given &&
       std::find(plan.gate.metrics.begin(), plan.gate.metrics.end(), "calibrated") != plan.gate.metrics.end())
-    throw UsageError("--metric calibrated is for a stored baseline: an A/B pairs both builds in time, which is what "
-                     "the calibration probe does for a baseline; check frame (the default) or cpu");
+    throw UsageError(
+        "--metric calibrated is for a stored baseline: an A/B pairs both builds in time, which is what "
+        "the calibration probe does for a baseline; check frame (the default) or cpu");
   if (!r.command_line.has("file")) throw UsageError("check --against needs a scene FILE to run on both builds");
   RunSpec spec = resolve_run_spec(run_layers(r.command_line, nullptr, &r.defaults));
   validate_run_spec(spec);
@@ -592,7 +596,8 @@ CheckOutcome run_ab(const CheckRun& r, const CheckPlan& plan) {
     const AbBuild* order[4] = {&base, &current, &current, &base};
     if (!group.base_first) order[0] = order[3] = &current, order[1] = order[2] = &base;
     int base_seen = 0, current_seen = 0;
-    if (show_progress) std::cerr << "\rcrowdprof: check --against: group " << (g + 1) << " of " << r.groups << std::flush;
+    if (show_progress)
+      std::cerr << "\rcrowdprof: check --against: group " << (g + 1) << " of " << r.groups << std::flush;
     for (size_t position = 0; position < 4; ++position) {
       const AbBuild& build = *order[position];
       std::optional<Result> result = run_ab_process(
@@ -603,8 +608,10 @@ CheckOutcome run_ab(const CheckRun& r, const CheckPlan& plan) {
       }
       AbProcess process = ab_process(*result);
       ab.processes.push_back(ab_process_record(build, g, position, *result, process));
-      if (&build == &base) group.base[base_seen++] = std::move(process), ab.last_base = std::move(*result);
-      else group.current[current_seen++] = std::move(process), ab.last_current = std::move(*result);
+      if (&build == &base)
+        group.base[base_seen++] = std::move(process), ab.last_base = std::move(*result);
+      else
+        group.current[current_seen++] = std::move(process), ab.last_current = std::move(*result);
     }
     groups.push_back(std::move(group));
   }
@@ -620,7 +627,8 @@ CheckOutcome run_ab(const CheckRun& r, const CheckPlan& plan) {
   ab.current_binary = current.binary;
   ab.current_version = current.version;
   std::string reproduce = "crowdprof check";
-  for (size_t i = 1; i < ab.bench_args.size() - 1; ++i) reproduce += " " + shell_quoted(ab.bench_args[i]);  // no "bench", no -q
+  for (size_t i = 1; i < ab.bench_args.size() - 1; ++i)
+    reproduce += " " + shell_quoted(ab.bench_args[i]);  // no "bench", no -q
   for (const std::string& arg : r.gate_arguments) reproduce += " " + shell_quoted(arg);
   reproduce += " --against " + shell_quoted(base.binary);
   ab.reproduce = reproduce;
@@ -647,32 +655,33 @@ json AbRun::document() const {
                        {"p_adjusted", metric.p_adjusted},
                        {"exact_p", metric.test.exact},
                        {"floor_ms", metric.floor_ms},
-                       {"verdict", metric.regressed ? "slower" : metric.improved ? "faster" : "no change"}});
+                       {"verdict", metric.regressed  ? "slower"
+                                   : metric.improved ? "faster"
+                                                     : "no change"}});
   json counters = json::array();
   for (const CounterDifference& c : result.work.counters)
     counters.push_back({{"name", c.name}, {"base", c.baseline}, {"current", c.current}});
-  return {{"crowdprof",
-           {{"version", last_current.environment.version}, {"format", kResultFormat}, {"kind", "ab_check"}}},
-          {"builds",
-           {{"base",
-             {{"binary", base_binary}, {"version", base_version}, {"environment", environment_to_json(last_base)}}},
-            {"current",
-             {{"binary", current_binary},
-              {"version", current_version},
-              {"environment", environment_to_json(last_current)}}}}},
-          {"bench_arguments", bench_args},
-          {"tolerance", gate.tolerance},
-          {"alpha", gate.alpha},
-          {"metrics", metrics},
-          {"work",
-           {{"compared", result.work.compared},
-            {"equal", result.work.equal},
-            {"base_digest", result.work.base_digest},
-            {"current_digest", result.work.current_digest},
-            {"counters_differing", counters}}},
-          {"processes", processes},
-          {"wall_s", wall_s},
-          {"regressed", result.regressed()}};
+  return {
+      {"crowdprof", {{"version", last_current.environment.version}, {"format", kResultFormat}, {"kind", "ab_check"}}},
+      {"builds",
+       {{"base", {{"binary", base_binary}, {"version", base_version}, {"environment", environment_to_json(last_base)}}},
+        {"current",
+         {{"binary", current_binary},
+          {"version", current_version},
+          {"environment", environment_to_json(last_current)}}}}},
+      {"bench_arguments", bench_args},
+      {"tolerance", gate.tolerance},
+      {"alpha", gate.alpha},
+      {"metrics", metrics},
+      {"work",
+       {{"compared", result.work.compared},
+        {"equal", result.work.equal},
+        {"base_digest", result.work.base_digest},
+        {"current_digest", result.work.current_digest},
+        {"counters_differing", counters}}},
+      {"processes", processes},
+      {"wall_s", wall_s},
+      {"regressed", result.regressed()}};
 }
 
 CheckOutcome run_check(const CheckRun& r) {
@@ -696,9 +705,8 @@ CheckOutcome run_check(const CheckRun& r) {
   // runs are calibrated when a new baseline gates on the calibrated frame, or
   // when the baseline was calibrated, so that both sides' CPU time counts alike.
   const std::vector<std::string>& metrics = plan.gate.metrics;
-  state.calibrate = r.plan.update_baseline
-                        ? std::find(metrics.begin(), metrics.end(), "calibrated") != metrics.end()
-                        : outcome.baseline && !outcome.baseline->samples.probe_ms.empty();
+  state.calibrate = r.plan.update_baseline ? std::find(metrics.begin(), metrics.end(), "calibrated") != metrics.end()
+                                           : outcome.baseline && !outcome.baseline->samples.probe_ms.empty();
   const CheckWay way = way_of(plan);
   std::optional<Result> current =
       r.result.empty() ? measure(state, plan, outcome.baseline, way.runs) : read_result(r.result);

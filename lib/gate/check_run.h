@@ -25,7 +25,7 @@ namespace crowdprof {
 // Everything a `check` was asked, as plain values: what check_plan.h plans
 // from, the files, the runs' settings and the outputs.
 struct CheckRun {
-  CheckRequest plan;  // metrics, tolerance, floor, alpha, runs, spread, ...
+  CheckRequest plan;          // metrics, tolerance, floor, alpha, runs, spread, ...
   bool metric_given = false;  // the metrics were named: nothing is swapped for them
   std::string baseline;       // the stored result compared against (or written, plan.update_baseline)
   std::string result;         // a result to read instead of running
@@ -39,7 +39,7 @@ struct CheckRun {
   // lasts seconds to a minute, and runs spread over one sample both sides of it.
   double confirm_spread = 60;
 
-  SpecLayer command_line;  // the settings given, the scene file among them
+  SpecLayer command_line;                                   // the settings given, the scene file among them
   SpecLayer defaults{SpecLayer::Source::Defaults, "", {}};  // the command's own
   bool quiet = false;
   RunOutputs outputs;  // --csv, --json, --trace, --screenshot, --html
@@ -81,8 +81,8 @@ struct AbRun {
   std::vector<std::string> bench_args;  // as both builds ran them
   nlohmann::json processes = nlohmann::json::array();
   double wall_s = 0;
-  Result last_base, last_current;  // the last run of each build
-  std::string reproduce;  // the check command that reproduces it
+  Result last_base, last_current;   // the last run of each build
+  std::string reproduce;            // the check command that reproduces it
   nlohmann::json document() const;  // --json
 };
 
@@ -92,8 +92,8 @@ struct CheckOutcome {
   CheckPlan plan;  // its gate's metrics as judged
   std::optional<Result> baseline;
   Result current;
-  CheckResult result;  // Gated; Counted: the work alone
-  CountCheck count;    // Counted
+  CheckResult result;       // Gated; Counted: the work alone
+  CountCheck count;         // Counted
   std::optional<AbRun> ab;  // Ab
 };
 

@@ -84,8 +84,8 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
   const std::string content_a = contents(a), content_b = contents(b);
   if (!content_a.empty() && !content_b.empty()) {
     if (content_a != content_b)
-      throw InputError(path_b, "of another character than " + path_a + ": asset " + content_a + " (" +
-                                   shown(names(a)) + ") in A, " + content_b + " (" + shown(names(b)) +
+      throw InputError(path_b, "of another character than " + path_a + ": asset " + content_a + " (" + shown(names(a)) +
+                                   ") in A, " + content_b + " (" + shown(names(b)) +
                                    ") in B (diff compares results of one character, by its file's content)");
   } else if (names(a) != names(b)) {
     throw InputError(path_b, "of another character than " + path_a + ": " + shown(names(a)) + " in A, " +
@@ -122,7 +122,8 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
       if (std::max(metric_median(ra, key), metric_median(rb, key)) >= 0.005) shown_only.push_back(key);
     }
     for (const std::string& key : shown_only) {
-      MetricCheck m = check_metric(metric_display_name(key), *metric_samples(ra, key), *metric_samples(rb, key), options);
+      MetricCheck m =
+          check_metric(metric_display_name(key), *metric_samples(ra, key), *metric_samples(rb, key), options);
       m.tested = false;  // its medians and change only: no verdict
       m.regressed = m.significant = false;
       pair.check.metrics.push_back(std::move(m));
@@ -137,7 +138,8 @@ Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const
     diff.pairs.push_back(std::move(pair));
   }
   if (diff.pairs.empty())
-    throw InputError(path_b, "no mode and crowd size in common with " + path_a + " (diff pairs results by mode and -n)");
+    throw InputError(path_b,
+                     "no mode and crowd size in common with " + path_a + " (diff pairs results by mode and -n)");
   return diff;
 }
 
@@ -146,17 +148,20 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
   out << "A: " << diff.a << "\nB: " << diff.b << "\n";
   for (const DiffPair& pair : diff.pairs) {
     const CheckResult& r = pair.check;
-    const auto tested = std::count_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
+    const auto tested =
+        std::count_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
     out << "\n" << pair.mode << ", " << pair.characters << " characters";
     if (tested > 0) {
-      const MetricCheck& first = *std::find_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
-      out << " (tolerance " << fixed(options.tolerance * 100, 1) << "%, floor " << metric_value_text(first, first.floor_ms)
-          << " " << first.value_unit << ", p Holm-corrected over " << tested << " metric" << (tested > 1 ? "s" : "") << ")";
+      const MetricCheck& first =
+          *std::find_if(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.tested; });
+      out << " (tolerance " << fixed(options.tolerance * 100, 1) << "%, floor "
+          << metric_value_text(first, first.floor_ms) << " " << first.value_unit << ", p Holm-corrected over " << tested
+          << " metric" << (tested > 1 ? "s" : "") << ")";
     }
     out << "\n";
     char line[200];
-    std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", "metric", "A median", "B median",
-                  "change", "p", "p Holm", "verdict");
+    std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", "metric", "A median", "B median", "change",
+                  "p", "p Holm", "verdict");
     out << line;
     for (const MetricCheck& m : r.metrics) {
       std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", m.metric.c_str(),
@@ -170,21 +175,24 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
       out << "not tested: A and B ran apart, not interleaved: their frames sample two moments of the machine, and the\n"
              "  change holds the machine's drift as well as yours. To test a change, run both in one process\n"
              "  (crowdprof compare) or build against build (crowdprof check --against BASE_BINARY).\n"
-          << (tested > 0 ? "tested: the calibrated frame, each frame over a probe timed beside it, which the machine's\n"
-                           "  drift moves less\n"
-                         : "");
+          << (tested > 0
+                  ? "tested: the calibrated frame, each frame over a probe timed beside it, which the machine's\n"
+                    "  drift moves less\n"
+                  : "");
     if (r.counters.empty() && r.counters_missing.empty()) out << "counters: same\n";
     for (const CounterDifference& d : r.counters)
       out << "counter " << d.name << ": " << d.baseline << " -> " << d.current << " per frame: CHANGED\n";
     for (const std::string& name : r.counters_missing) out << "counter " << name << ": in A, missing in B: CHANGED\n";
     out << "digest: " << r.baseline_digest;
-    if (r.baseline_digest == r.current_digest) out << ", same\n";
-    else out << " -> " << r.current_digest << ": " << r.digest_note() << "\n";
+    if (r.baseline_digest == r.current_digest)
+      out << ", same\n";
+    else
+      out << " -> " << r.current_digest << ": " << r.digest_note() << "\n";
     for (const std::string& note : pair.notes) out << "note: " << note << "\n";
   }
   out << (diff.regressed() ? "REGRESSION: B is slower or does other work than A\n"
-                           : diff.tested() ? "ok: B is not slower than A and does the same work\n"
-                                           : "ok: B does the same work as A (its timings are not tested)\n");
+          : diff.tested()  ? "ok: B is not slower than A and does the same work\n"
+                           : "ok: B does the same work as A (its timings are not tested)\n");
   return out.str();
 }
 
@@ -199,7 +207,14 @@ DiffRecord diff_record(const Diff& diff, const CheckOptions& options) {
   d.alpha = options.alpha;
   for (const DiffPair& pair : diff.pairs) {
     const CheckResult& r = pair.check;
-    DiffRecord::Pair p{pair.mode, pair.characters, r.regressed(), pair.notes, {}, {}, r.baseline_digest, r.current_digest,
+    DiffRecord::Pair p{pair.mode,
+                       pair.characters,
+                       r.regressed(),
+                       pair.notes,
+                       {},
+                       {},
+                       r.baseline_digest,
+                       r.current_digest,
                        r.digest_not_comparable() ? r.digest_note() : std::string()};
     for (const MetricCheck& m : r.metrics) {
       DiffRecord::Metric metric;

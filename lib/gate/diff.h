@@ -46,8 +46,8 @@ struct Diff {
 // 0.005 ms in either.
 // InputError when B is of another character than A, or when the files share
 // no mode and crowd size.
-Diff diff_results(const std::vector<Result>& a, const std::string& path_a,
-                  const std::vector<Result>& b, const std::string& path_b, const CheckOptions& options);
+Diff diff_results(const std::vector<Result>& a, const std::string& path_a, const std::vector<Result>& b,
+                  const std::string& path_b, const CheckOptions& options);
 
 // The table for stdout: per pair a header, one row per metric (A and B
 // medians, change, p, Holm-corrected p, verdict; "-" and "not tested" for

@@ -10,9 +10,9 @@
 namespace crowdprof {
 
 struct MannWhitney {
-  double u = 0;        // U of the first sample: pairs (a, b) with a > b, ties counting 1/2
-  double z = 0;        // U standardised; positive when the first sample tends to be larger
-  double p = 1;        // two-sided p-value from the normal approximation
+  double u = 0;  // U of the first sample: pairs (a, b) with a > b, ties counting 1/2
+  double z = 0;  // U standardised; positive when the first sample tends to be larger
+  double p = 1;  // two-sided p-value from the normal approximation
   size_t n1 = 0, n2 = 0;
 };
 

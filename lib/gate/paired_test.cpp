@@ -24,7 +24,9 @@ double exact_lower_tail(size_t n, double w) {
   return at_most / std::ldexp(1.0, static_cast<int>(n));
 }
 
-double normal_two_sided(double z) { return std::erfc(std::fabs(z) / std::sqrt(2.0)); }
+double normal_two_sided(double z) {
+  return std::erfc(std::fabs(z) / std::sqrt(2.0));
+}
 
 }  // namespace
 

@@ -11,10 +11,10 @@
 namespace crowdprof {
 
 struct SignedRank {
-  double w_plus = 0;  // sum of the ranks of |d| over the positive differences
-  double p = 1;       // two-sided
-  size_t n = 0;       // differences that are not zero
-  bool exact = false; // p from the exact distribution (no ties, n <= 25), else the normal approximation
+  double w_plus = 0;   // sum of the ranks of |d| over the positive differences
+  double p = 1;        // two-sided
+  size_t n = 0;        // differences that are not zero
+  bool exact = false;  // p from the exact distribution (no ties, n <= 25), else the normal approximation
 };
 
 // The Wilcoxon signed-rank test of `differences` against a median of zero.

@@ -40,7 +40,9 @@ ScratchFolder::~ScratchFolder() {
   fs::remove_all(path_, ignored);
 }
 
-std::string ScratchFolder::file(const std::string& name) const { return (fs::path(path_) / name).string(); }
+std::string ScratchFolder::file(const std::string& name) const {
+  return (fs::path(path_) / name).string();
+}
 
 Finished run_program(const std::string& program, const std::vector<std::string>& args, const std::string& stderr_path,
                      const std::string& stdout_path) {
@@ -84,7 +86,9 @@ Finished run_program(const std::string& program, const std::vector<std::string>&
   return finished;
 }
 
-std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+std::string first_line(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
 
 bool on_path(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -101,8 +105,8 @@ bool on_path(const std::string& program) {
 
 namespace {
 
-[[noreturn]] void forked_child_main(const std::function<nlohmann::json()>& work, const std::function<int()>& report_exception,
-                             int out) {
+[[noreturn]] void forked_child_main(const std::function<nlohmann::json()>& work,
+                                    const std::function<int()>& report_exception, int out) {
   int status = kExitOk;
   try {
     std::string text = work().dump();
@@ -152,7 +156,7 @@ nlohmann::json run_in_child_process(const std::function<nlohmann::json()>& work,
   }
   if (child == 0) {
     ::close(fds[0]);
-    ::setpgid(0, 0);                      // ^C from the terminal goes to the parent, which forwards it once
+    ::setpgid(0, 0);                     // ^C from the terminal goes to the parent, which forwards it once
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the parent
     if (::getppid() != parent) ::_exit(kExitRuntime);
     forked_child_main(work, report_exception, fds[1]);
@@ -177,8 +181,8 @@ nlohmann::json run_in_child_process(const std::function<nlohmann::json()>& work,
   }
   forward_interrupts_to(0);
   if (WIFSIGNALED(raw))
-    throw std::runtime_error(std::string("a measured run was ended by signal ") + std::to_string(WTERMSIG(raw)) +
-                             " (" + strsignal(WTERMSIG(raw)) + ")");
+    throw std::runtime_error(std::string("a measured run was ended by signal ") + std::to_string(WTERMSIG(raw)) + " (" +
+                             strsignal(WTERMSIG(raw)) + ")");
   if (WEXITSTATUS(raw) != kExitOk) throw ChildFailed(WEXITSTATUS(raw));
   try {
     return nlohmann::json::parse(text);

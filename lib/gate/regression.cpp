@@ -114,7 +114,8 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   // Runs are the unit when both results pool enough of them: processes differ
   // more than frames of one process do (gate/processes.h).
   std::vector<double> base_frame = run_medians(baseline, "frame_ms", kMannWhitneyMinSamples);
-  double floor = floor_ms(options.floor, summarize(base_frame.empty() ? samples_of(baseline, "frame_ms") : base_frame).median);
+  double floor =
+      floor_ms(options.floor, summarize(base_frame.empty() ? samples_of(baseline, "frame_ms") : base_frame).median);
   for (const std::string& key : options.metrics) {
     std::vector<double> a = run_medians(baseline, key, kMannWhitneyMinSamples);
     std::vector<double> b = run_medians(current, key, kMannWhitneyMinSamples);
@@ -175,15 +176,17 @@ std::string metric_value_text(const MetricCheck& m, double v) {
 std::string format_check(const CheckResult& result, const CheckOptions& options) {
   std::ostringstream out;
   double whole = std::round(options.tolerance * 100.0);
-  std::string tolerance = fixed(options.tolerance * 100.0, std::abs(options.tolerance * 100.0 - whole) < 1e-9 ? 0 : 1) + "%";
+  std::string tolerance =
+      fixed(options.tolerance * 100.0, std::abs(options.tolerance * 100.0 - whole) < 1e-9 ? 0 : 1) + "%";
   bool corrected = result.metrics.size() > 1;
   auto metric_line = [&](const MetricCheck& m, const char* verdict) {
     const std::string unit = " " + m.value_unit;
     out << verdict << " " << m.metric << ": median " << metric_value_text(m, m.baseline.median) << unit << " -> "
         << metric_value_text(m, m.current.median) << unit << " (" << percent(m.change) << ", tolerance " << tolerance
-        << ", floor " << metric_value_text(m, m.floor_ms) << unit << "), IQR " << metric_value_text(m, m.baseline_iqr) << " -> "
-        << metric_value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
-    if (corrected) out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
+        << ", floor " << metric_value_text(m, m.floor_ms) << unit << "), IQR " << metric_value_text(m, m.baseline_iqr)
+        << " -> " << metric_value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
+    if (corrected)
+      out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
     out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " " << m.unit
         << (m.unit == "runs" ? ", the median of each" : "")
         << (m.too_few_samples ? "; too few for the test, decided on the tolerance and floor" : "") << ")\n";
@@ -198,18 +201,24 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
     out << "CHANGED digest: " << result.baseline_digest << " -> " << result.current_digest
         << " (the last frame's poses or skinned vertices differ)\n";
   else if (result.baseline_digest != result.current_digest)
-    out << "digest " << result.baseline_digest << " -> " << result.current_digest << " " << result.digest_note() << "\n";
+    out << "digest " << result.baseline_digest << " -> " << result.current_digest << " " << result.digest_note()
+        << "\n";
   if (result.regressed()) return out.str();
   // One line: every metric's verdict, then the exact checks.
   out << "ok";
   for (const MetricCheck& m : result.metrics) {
-    out << " " << m.metric << " " << metric_value_text(m, m.baseline.median) << " -> " << metric_value_text(m, m.current.median)
-        << " " << m.value_unit << " (" << percent(m.change) << ", p = " << p_value(m.p_adjusted);
+    out << " " << m.metric << " " << metric_value_text(m, m.baseline.median) << " -> "
+        << metric_value_text(m, m.current.median) << " " << m.value_unit << " (" << percent(m.change)
+        << ", p = " << p_value(m.p_adjusted);
     if (m.beyond_tolerance && !m.beyond_floor)
-      out << ", beyond " << tolerance << " but under the floor of " << metric_value_text(m, m.floor_ms) << " " << m.value_unit;
-    else if (m.beyond_tolerance) out << ", beyond " << tolerance << " but not significant";
-    else if (m.change < -options.tolerance && m.p_adjusted < options.alpha) out << ", faster";
-    else out << ", within " << tolerance;
+      out << ", beyond " << tolerance << " but under the floor of " << metric_value_text(m, m.floor_ms) << " "
+          << m.value_unit;
+    else if (m.beyond_tolerance)
+      out << ", beyond " << tolerance << " but not significant";
+    else if (m.change < -options.tolerance && m.p_adjusted < options.alpha)
+      out << ", faster";
+    else
+      out << ", within " << tolerance;
     out << ");";
   }
   if (!result.metrics.empty())

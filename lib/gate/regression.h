@@ -31,7 +31,7 @@ struct MetricCheck {
   // results measured apart: frames of one process are not samples of another
   // moment, so a p-value would call the machine's drift significant).
   bool tested = true;
-  std::string unit = "frames";   // what was compared: each frame, or the median of each run ("runs")
+  std::string unit = "frames";  // what was compared: each frame, or the median of each run ("runs")
   // What the values are in: "ms", or "probes" for calibrated (each frame over
   // the calibration probe's time at the same moment).
   std::string value_unit = "ms";
@@ -52,7 +52,7 @@ inline bool vertex_orders_differ(const std::string& baseline, const std::string&
 
 struct CheckResult {
   std::vector<MetricCheck> metrics;
-  std::vector<CounterDifference> counters;  // only those that differ
+  std::vector<CounterDifference> counters;    // only those that differ
   std::vector<std::string> counters_missing;  // in the baseline, not in the current result
   std::string baseline_digest, current_digest;
   // The SIMD targets the two ran on and whether their kernels fused

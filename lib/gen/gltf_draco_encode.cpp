@@ -113,7 +113,8 @@ DracoPrimitive encode_draco_primitive(std::span<const glm::vec3> positions, std:
   in.Init(buffer.data(), buffer.size());
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&in);
-  if (!decoded.ok()) throw std::runtime_error(std::string("Draco cannot decode its own stream: ") + decoded.status().error_msg());
+  if (!decoded.ok())
+    throw std::runtime_error(std::string("Draco cannot decode its own stream: ") + decoded.status().error_msg());
   const draco::Mesh& back = *decoded.value();
   out.points = back.num_points();
   out.faces = back.num_faces();

@@ -15,11 +15,17 @@ namespace {
 using Json = nlohmann::ordered_json;  // keys in the order written: readable, and stable
 
 enum : int {  // glTF component types and buffer view targets
-  kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126,
-  kArrayBuffer = 34962, kElementArrayBuffer = 34963,
+  kUnsignedByte = 5121,
+  kUnsignedShort = 5123,
+  kUnsignedInt = 5125,
+  kFloat = 5126,
+  kArrayBuffer = 34962,
+  kElementArrayBuffer = 34963,
 };
 
-Json vec(glm::vec3 v) { return Json::array({v.x, v.y, v.z}); }
+Json vec(glm::vec3 v) {
+  return Json::array({v.x, v.y, v.z});
+}
 
 // One glTF document under construction: its JSON and its single binary buffer.
 class Document {
@@ -36,7 +42,9 @@ class Document {
     return push("bufferViews", std::move(v));
   }
   template <typename T>
-  int view(const std::vector<T>& data, int target = 0) { return view(data.data(), data.size() * sizeof(T), target); }
+  int view(const std::vector<T>& data, int target = 0) {
+    return view(data.data(), data.size() * sizeof(T), target);
+  }
 
   // An accessor; `view` < 0 for one whose data is Draco-compressed.
   int accessor(int view, int component, size_t count, const char* type, Json min = nullptr, Json max = nullptr) {
@@ -88,7 +96,8 @@ void check(const Character& c) {
   for (const Action& a : c.actions)
     for (const Channel& ch : a.channels) {
       size_t per_key = static_cast<size_t>(ch.components()) * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
-      if (ch.joint < 0 || size_t(ch.joint) >= joints || ch.times.empty() || ch.values.size() != ch.times.size() * per_key)
+      if (ch.joint < 0 || size_t(ch.joint) >= joints || ch.times.empty() ||
+          ch.values.size() != ch.times.size() * per_key)
         fail("a channel of action '" + a.name + "' does not fit the skeleton or its keys");
     }
 }
@@ -110,14 +119,16 @@ void write_skeleton(Document& doc, const Skeleton& s, std::vector<int>& scene_no
   for (size_t j = 0; j < joints; ++j) {  // non-joint nodes between a joint and its parent
     if (j >= s.parent_offsets.size() || s.parent_offsets[j] == glm::mat4(1.0f)) continue;
     const float* m = &s.parent_offsets[j][0][0];
-    nodes.push_back({{"name", s.names[j] + ".offset"}, {"matrix", std::vector<float>(m, m + 16)},
-                     {"children", Json::array({j})}});
+    nodes.push_back(
+        {{"name", s.names[j] + ".offset"}, {"matrix", std::vector<float>(m, m + 16)}, {"children", Json::array({j})}});
     top[j] = static_cast<int>(nodes.size()) - 1;
   }
   for (size_t j = 0; j < joints; ++j) {
     int parent = s.parents[j];
-    if (parent < 0) scene_nodes.push_back(top[j]);
-    else nodes[static_cast<size_t>(parent)]["children"].push_back(top[j]);
+    if (parent < 0)
+      scene_nodes.push_back(top[j]);
+    else
+      nodes[static_cast<size_t>(parent)]["children"].push_back(top[j]);
   }
   doc.root["nodes"] = std::move(nodes);
 
@@ -148,18 +159,22 @@ Json write_primitive(Document& doc, const SkinnedMesh& m, const Primitive& p, bo
     attrs["JOINTS_0"] = doc.accessor(-1, joint_type, points, "VEC4");
     attrs["WEIGHTS_0"] = doc.accessor(-1, kFloat, points, "VEC4");
     prim["indices"] = doc.accessor(-1, points <= 65535 ? kUnsignedShort : kUnsignedInt, d.faces * 3, "SCALAR");
-    Json ids = {{"POSITION", d.position_id}, {"NORMAL", d.normal_id}, {"JOINTS_0", d.joints_id}, {"WEIGHTS_0", d.weights_id}};
+    Json ids = {
+        {"POSITION", d.position_id}, {"NORMAL", d.normal_id}, {"JOINTS_0", d.joints_id}, {"WEIGHTS_0", d.weights_id}};
     prim["extensions"] = {{"KHR_draco_mesh_compression", {{"bufferView", doc.view(d.bytes)}, {"attributes", ids}}}};
     return prim;
   }
 
   glm::vec3 lo = n ? positions[0] : glm::vec3(0.0f), hi = lo;
   for (const glm::vec3& v : positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
-  attrs["POSITION"] = doc.accessor(doc.view(positions.data(), n * sizeof(glm::vec3), kArrayBuffer), kFloat, n, "VEC3", vec(lo), vec(hi));
+  attrs["POSITION"] = doc.accessor(doc.view(positions.data(), n * sizeof(glm::vec3), kArrayBuffer), kFloat, n, "VEC3",
+                                   vec(lo), vec(hi));
   attrs["NORMAL"] = doc.accessor(doc.view(normals.data(), n * sizeof(glm::vec3), kArrayBuffer), kFloat, n, "VEC3");
   int joints_view;
-  if (joints_u8) joints_view = doc.view(std::vector<glm::u8vec4>(joints.begin(), joints.end()), kArrayBuffer);
-  else joints_view = doc.view(joints.data(), n * sizeof(glm::u16vec4), kArrayBuffer);
+  if (joints_u8)
+    joints_view = doc.view(std::vector<glm::u8vec4>(joints.begin(), joints.end()), kArrayBuffer);
+  else
+    joints_view = doc.view(joints.data(), n * sizeof(glm::u16vec4), kArrayBuffer);
   attrs["JOINTS_0"] = doc.accessor(joints_view, joint_type, n, "VEC4");
   attrs["WEIGHTS_0"] = doc.accessor(doc.view(weights.data(), n * sizeof(glm::vec4), kArrayBuffer), kFloat, n, "VEC4");
   // 65535 is the primitive-restart value, which glTF forbids as an index.

@@ -49,9 +49,9 @@ namespace {
 struct Layout {
   int spine = 1, neck = 1, jaw = 0;
   int upper_arm = 1, forearm = 1, thigh = 1, shin = 1;
-  int fingers = 0;                      // thumb, index, middle, ring, little: the first `fingers`
-  std::array<int, 5> phalanges{};       // per finger
-  int metacarpals = 0;                  // for index, middle, ring, little: the first `metacarpals`
+  int fingers = 0;                 // thumb, index, middle, ring, little: the first `fingers`
+  std::array<int, 5> phalanges{};  // per finger
+  int metacarpals = 0;             // for index, middle, ring, little: the first `metacarpals`
 
   int count() const {
     int hand = metacarpals;
@@ -68,20 +68,42 @@ struct Growth {
   int finger = 0;  // for Phalanx
 };
 
-bool midline(Step step) { return step == Step::Spine || step == Step::Neck || step == Step::Jaw; }
+bool midline(Step step) {
+  return step == Step::Spine || step == Step::Neck || step == Step::Jaw;
+}
 
 void apply(Layout& layout, Growth g) {
   switch (g.step) {
-    case Step::Spine: ++layout.spine; break;
-    case Step::Neck: ++layout.neck; break;
-    case Step::Jaw: layout.jaw = 1; break;
-    case Step::Finger: layout.phalanges[static_cast<size_t>(layout.fingers++)] = 1; break;
-    case Step::Phalanx: ++layout.phalanges[static_cast<size_t>(g.finger)]; break;
-    case Step::UpperArm: ++layout.upper_arm; break;
-    case Step::Forearm: ++layout.forearm; break;
-    case Step::Thigh: ++layout.thigh; break;
-    case Step::Shin: ++layout.shin; break;
-    case Step::Metacarpal: ++layout.metacarpals; break;
+    case Step::Spine:
+      ++layout.spine;
+      break;
+    case Step::Neck:
+      ++layout.neck;
+      break;
+    case Step::Jaw:
+      layout.jaw = 1;
+      break;
+    case Step::Finger:
+      layout.phalanges[static_cast<size_t>(layout.fingers++)] = 1;
+      break;
+    case Step::Phalanx:
+      ++layout.phalanges[static_cast<size_t>(g.finger)];
+      break;
+    case Step::UpperArm:
+      ++layout.upper_arm;
+      break;
+    case Step::Forearm:
+      ++layout.forearm;
+      break;
+    case Step::Thigh:
+      ++layout.thigh;
+      break;
+    case Step::Shin:
+      ++layout.shin;
+      break;
+    case Step::Metacarpal:
+      ++layout.metacarpals;
+      break;
   }
 }
 
@@ -136,8 +158,8 @@ class RigBuilder {
   }
 
   // Splits head..tail into `n` bones named name[_NN]suffix; returns the last.
-  int chain(const std::string& name, const std::string& suffix, bool numbered, int parent, Part part,
-            int side, int finger, int n, glm::dvec3 head, glm::dvec3 tail, double bow = 0.0) {
+  int chain(const std::string& name, const std::string& suffix, bool numbered, int parent, Part part, int side,
+            int finger, int n, glm::dvec3 head, glm::dvec3 tail, double bow = 0.0) {
     auto point = [&](int i) {
       double s = double(i) / n;
       return head + (tail - head) * s + glm::dvec3(0, 0, bow * std::sin(3.141592653589793 * s));
@@ -150,8 +172,8 @@ class RigBuilder {
     return parent;
   }
 
-  int add(const std::string& name, int parent, Part part, int side, int finger, int segment,
-          int segments, glm::dvec3 head, glm::dvec3 tail) {
+  int add(const std::string& name, int parent, Part part, int side, int finger, int segment, int segments,
+          glm::dvec3 head, glm::dvec3 tail) {
     Bone b{name, parent, part, side, finger, segment, segments, head, tail, orientation_along(head, tail)};
     rig_.bones.push_back(b);
     return static_cast<int>(rig_.bones.size()) - 1;
@@ -217,8 +239,8 @@ Rig build_rig(const Layout& layout, const Build& build) {
   rig.build = build;
   RigBuilder r(rig);
   int hips = r.add("hips", -1, Part::Hips, 0, -1, 0, 1, r.at(0, 0.94, 0), r.at(0, 1.02, 0));
-  int chest = r.chain("spine", "", true, hips, Part::Spine, 0, -1, layout.spine, r.at(0, 1.02, 0),
-                      r.at(0, 1.44, 0), -0.02 * build.height);
+  int chest = r.chain("spine", "", true, hips, Part::Spine, 0, -1, layout.spine, r.at(0, 1.02, 0), r.at(0, 1.44, 0),
+                      -0.02 * build.height);
   int neck = r.chain("neck", "", true, chest, Part::Neck, 0, -1, layout.neck, r.at(0, 1.44, 0), r.at(0, 1.55, 0.01));
   int head = r.add("head", neck, Part::Head, 0, -1, 0, 1, r.at(0, 1.55, 0.01), r.at(0, 1.78, 0.01));
   if (layout.jaw) r.add("jaw", head, Part::Jaw, 0, -1, 0, 1, r.at(0, 1.60, 0.015), r.at(0, 1.555, 0.085));

@@ -22,7 +22,9 @@ struct Pose {
 
 using PoseFn = std::function<void(double phase, Pose&)>;
 
-double rise(double x) { return 0.5 - 0.5 * std::cos(x); }  // 0..1..0, smooth
+double rise(double x) {
+  return 0.5 - 0.5 * std::cos(x);
+}  // 0..1..0, smooth
 
 struct Actor {
   const Rig& rig;
@@ -35,8 +37,10 @@ struct Actor {
   // Spreads a bend over a chain (the spine, a split limb) or puts it on its first segment.
   void bend(Pose& pose, Part part, int side, glm::dvec3 angles, bool spread) const {
     each(pose, part, side, [&](const Bone& b, glm::dvec3& a) {
-      if (spread) a += angles * (amp / b.segments);
-      else if (b.segment == 0) a += angles * amp;
+      if (spread)
+        a += angles * (amp / b.segments);
+      else if (b.segment == 0)
+        a += angles * amp;
     });
   }
   void fingers(Pose& pose, double curl, double spread) const {

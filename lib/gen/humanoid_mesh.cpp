@@ -11,11 +11,10 @@
 namespace crowdprof::humanoid {
 namespace {
 
-
 struct Ring {
-  double s;       // fraction of the path's length
-  double ru, rv;  // radii along the width axis and across it
-  double forward; // centre shift along +Z (face, chest, calf)
+  double s;        // fraction of the path's length
+  double ru, rv;   // radii along the width axis and across it
+  double forward;  // centre shift along +Z (face, chest, calf)
 };
 
 // A closed tube: rings along a polyline, a pole at each end.
@@ -36,7 +35,8 @@ glm::dvec3 point_at(const std::vector<glm::dvec3>& path, double s) {
   double want = std::clamp(s, 0.0, 1.0) * length_of(path);
   for (size_t i = 1; i < path.size(); ++i) {
     double seg = glm::length(path[i] - path[i - 1]);
-    if (want <= seg || i + 1 == path.size()) return path[i - 1] + (path[i] - path[i - 1]) * (seg > 0 ? want / seg : 0.0);
+    if (want <= seg || i + 1 == path.size())
+      return path[i - 1] + (path[i] - path[i - 1]) * (seg > 0 ? want / seg : 0.0);
     want -= seg;
   }
   return path.back();
@@ -155,7 +155,8 @@ void weigh(glm::dvec3 p, const Rig& rig, const std::vector<int>& bones, glm::u16
   // Shares on stable_float's grid: a vertex midway between two bones is then
   // an exact tie, broken by bone index, on any build.
   for (auto& x : w) x.first = stable_float(x.first / total);
-  std::sort(w.begin(), w.end(), [](auto& x, auto& y) { return x.first != y.first ? x.first > y.first : x.second < y.second; });
+  std::sort(w.begin(), w.end(),
+            [](auto& x, auto& y) { return x.first != y.first ? x.first > y.first : x.second < y.second; });
   w.resize(std::min<size_t>(w.size(), 4));
   double sum = 0.0;
   for (auto& x : w) sum += x.first;
@@ -183,7 +184,9 @@ void add(std::vector<int>& set, const std::vector<int>& bones) {
 
 std::vector<Tube> body_tubes(const Rig& rig) {
   const Build& k = rig.build;
-  auto at = [&](double x, double y, double z) { return glm::dvec3(x * k.height * k.width, y * k.height, z * k.height); };
+  auto at = [&](double x, double y, double z) {
+    return glm::dvec3(x * k.height * k.width, y * k.height, z * k.height);
+  };
   const double g = k.height * k.girth;
   auto ring = [&](double s, double ru, double rv, double fwd = 0.0) { return Ring{s, ru * g, rv * g, fwd * k.height}; };
   auto head_of = [&](int b) { return rig.bones[static_cast<size_t>(b)].head; };
@@ -198,10 +201,16 @@ std::vector<Tube> body_tubes(const Rig& rig) {
   torso.path.push_back(head_of(rig.first(Part::Neck)));
   torso.path.push_back(at(0, 1.50, 0));
   auto by_y = [](double y, double y0, double y1) { return (y - y0) / (y1 - y0); };
-  for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{
-           {0.84, 0.10, 0.075, 0}, {0.90, 0.16, 0.105, 0}, {0.97, 0.172, 0.112, 0}, {1.08, 0.145, 0.098, 0.005},
-           {1.20, 0.155, 0.105, 0.012}, {1.31, 0.172, 0.112, 0.016}, {1.39, 0.182, 0.1, 0.005},
-           {1.45, 0.165, 0.088, 0}, {1.49, 0.09, 0.062, 0}, {1.50, 0.05, 0.045, 0}})
+  for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{{0.84, 0.10, 0.075, 0},
+                                                                {0.90, 0.16, 0.105, 0},
+                                                                {0.97, 0.172, 0.112, 0},
+                                                                {1.08, 0.145, 0.098, 0.005},
+                                                                {1.20, 0.155, 0.105, 0.012},
+                                                                {1.31, 0.172, 0.112, 0.016},
+                                                                {1.39, 0.182, 0.1, 0.005},
+                                                                {1.45, 0.165, 0.088, 0},
+                                                                {1.49, 0.09, 0.062, 0},
+                                                                {1.50, 0.05, 0.045, 0}})
     torso.profile.push_back(ring(by_y(y, 0.84, 1.50), ru, rv, f));
   add(torso.bones, rig.chain(Part::Hips));
   add(torso.bones, rig.chain(Part::Spine));
@@ -216,17 +225,24 @@ std::vector<Tube> body_tubes(const Rig& rig) {
   for (int b : rig.chain(Part::Neck)) head.path.push_back(head_of(b));
   head.path.push_back(head_of(rig.first(Part::Head)));
   head.path.push_back(at(0, 1.797, 0.01));
-  for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{
-           {1.42, 0.06, 0.06, 0}, {1.50, 0.05, 0.052, 0}, {1.555, 0.052, 0.058, 0.005}, {1.60, 0.072, 0.085, 0.018},
-           {1.67, 0.08, 0.097, 0.02}, {1.73, 0.076, 0.092, 0.012}, {1.765, 0.06, 0.075, 0.008},
-           {1.785, 0.04, 0.05, 0.005}, {1.797, 0.018, 0.022, 0.004}})
+  for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{{1.42, 0.06, 0.06, 0},
+                                                                {1.50, 0.05, 0.052, 0},
+                                                                {1.555, 0.052, 0.058, 0.005},
+                                                                {1.60, 0.072, 0.085, 0.018},
+                                                                {1.67, 0.08, 0.097, 0.02},
+                                                                {1.73, 0.076, 0.092, 0.012},
+                                                                {1.765, 0.06, 0.075, 0.008},
+                                                                {1.785, 0.04, 0.05, 0.005},
+                                                                {1.797, 0.018, 0.022, 0.004}})
     head.profile.push_back(ring(by_y(y, 1.42, 1.797), ru, rv, f));
   add(head.bones, {rig.last(Part::Spine)});
   add(head.bones, rig.chain(Part::Neck));
   add(head.bones, {rig.first(Part::Head), rig.first(Part::Jaw)});
   tubes.push_back(head);
-  tubes.push_back(Tube{{at(0, 1.665, 0.09), at(0, 1.645, 0.128)}, {1, 0, 0},
-                       {ring(0, 0.014, 0.012), ring(1, 0.008, 0.007)}, {rig.first(Part::Head)}});
+  tubes.push_back(Tube{{at(0, 1.665, 0.09), at(0, 1.645, 0.128)},
+                       {1, 0, 0},
+                       {ring(0, 0.014, 0.012), ring(1, 0.008, 0.007)},
+                       {rig.first(Part::Head)}});
 
   for (int side : {1, -1}) {
     const double s = side;
@@ -238,8 +254,13 @@ std::vector<Tube> body_tubes(const Rig& rig) {
     glm::dvec3 wrist = head_of(rig.first(Part::Hand, side));
     arm.path.push_back(wrist);
     arm.path.push_back(wrist + at(s * 0.01, 0, 0));
-    for (auto [x, ru, rv] : std::vector<std::array<double, 3>>{{0.13, 0.05, 0.054}, {0.20, 0.052, 0.054},
-             {0.30, 0.047, 0.05}, {0.44, 0.037, 0.04}, {0.52, 0.04, 0.046}, {0.66, 0.028, 0.034}, {0.705, 0.024, 0.03}})
+    for (auto [x, ru, rv] : std::vector<std::array<double, 3>>{{0.13, 0.05, 0.054},
+                                                               {0.20, 0.052, 0.054},
+                                                               {0.30, 0.047, 0.05},
+                                                               {0.44, 0.037, 0.04},
+                                                               {0.52, 0.04, 0.046},
+                                                               {0.66, 0.028, 0.034},
+                                                               {0.705, 0.024, 0.03}})
       arm.profile.push_back(ring(by_y(x, 0.13, 0.705), ru, rv));
     add(arm.bones, {rig.last(Part::Spine), rig.first(Part::Clavicle, side)});
     add(arm.bones, rig.chain(Part::UpperArm, side));
@@ -249,10 +270,13 @@ std::vector<Tube> body_tubes(const Rig& rig) {
 
     // Palm down, thumb forward; fingers are thin tubes along their phalanges.
     int hand = rig.first(Part::Hand, side);
-    Tube palm{{wrist - at(s * 0.01, 0, 0), wrist + at(s * 0.09, 0, 0)}, {0, 0, 1},
-              {ring(0, 0.03, 0.017), ring(0.4, 0.044, 0.018), ring(1, 0.04, 0.012)}, {}};
+    Tube palm{{wrist - at(s * 0.01, 0, 0), wrist + at(s * 0.09, 0, 0)},
+              {0, 0, 1},
+              {ring(0, 0.03, 0.017), ring(0.4, 0.044, 0.018), ring(1, 0.04, 0.012)},
+              {}};
     add(palm.bones, {rig.last(Part::Forearm, side), hand});
-    for (int f = 0; f < 5; ++f) add(palm.bones, {rig.first(Part::Metacarpal, side, f), rig.first(Part::Finger, side, f)});
+    for (int f = 0; f < 5; ++f)
+      add(palm.bones, {rig.first(Part::Metacarpal, side, f), rig.first(Part::Finger, side, f)});
     tubes.push_back(palm);
     for (int f = 0; f < 5; ++f) {
       std::vector<int> phalanges = rig.chain(Part::Finger, side, f);
@@ -276,8 +300,11 @@ std::vector<Tube> body_tubes(const Rig& rig) {
     glm::dvec3 ankle = head_of(rig.first(Part::Foot, side));
     leg.path.push_back(ankle);
     leg.path.push_back(ankle - at(0, 0.015, 0));
-    for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{{0.97, 0.085, 0.09, 0}, {0.80, 0.075, 0.08, 0},
-             {0.50, 0.05, 0.055, 0}, {0.36, 0.052, 0.06, -0.01}, {0.07, 0.033, 0.036, 0}})
+    for (auto [y, ru, rv, f] : std::vector<std::array<double, 4>>{{0.97, 0.085, 0.09, 0},
+                                                                  {0.80, 0.075, 0.08, 0},
+                                                                  {0.50, 0.05, 0.055, 0},
+                                                                  {0.36, 0.052, 0.06, -0.01},
+                                                                  {0.07, 0.033, 0.036, 0}})
       leg.profile.push_back(ring(by_y(y, 0.97, 0.07), ru, rv, f));
     add(leg.bones, rig.chain(Part::Hips));
     add(leg.bones, rig.chain(Part::Thigh, side));
@@ -285,8 +312,10 @@ std::vector<Tube> body_tubes(const Rig& rig) {
     add(leg.bones, {rig.first(Part::Foot, side)});
     tubes.push_back(leg);
 
-    Tube foot{{at(s * 0.1, 0.045, -0.065), at(s * 0.105, 0.04, 0.11), at(s * 0.11, 0.028, 0.19)}, {1, 0, 0},
-              {ring(0, 0.03, 0.035), ring(0.25, 0.04, 0.04), ring(0.7, 0.048, 0.03), ring(1, 0.035, 0.016)}, {}};
+    Tube foot{{at(s * 0.1, 0.045, -0.065), at(s * 0.105, 0.04, 0.11), at(s * 0.11, 0.028, 0.19)},
+              {1, 0, 0},
+              {ring(0, 0.03, 0.035), ring(0.25, 0.04, 0.04), ring(0.7, 0.048, 0.03), ring(1, 0.035, 0.016)},
+              {}};
     add(foot.bones, {rig.last(Part::Shin, side), rig.first(Part::Foot, side), rig.first(Part::Toe, side)});
     tubes.push_back(foot);
   }
@@ -331,7 +360,8 @@ SkinnedMesh build_mesh(const Rig& rig, int vertices) {
   for (size_t v = 0; v < n; ++v) {
     mesh.positions.push_back(stable_float(builder.positions[v]));
     mesh.normals.push_back(stable_float(glm::normalize(normals[v])));
-    weigh(builder.positions[v], rig, tubes[static_cast<size_t>(builder.tube_of[v])].bones, mesh.joints[v], mesh.weights[v]);
+    weigh(builder.positions[v], rig, tubes[static_cast<size_t>(builder.tube_of[v])].bones, mesh.joints[v],
+          mesh.weights[v]);
   }
   mesh.indices = std::move(builder.indices);
   mesh.primitives.push_back({0, static_cast<uint32_t>(mesh.indices.size()), 0, static_cast<uint32_t>(n)});

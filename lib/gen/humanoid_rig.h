@@ -19,21 +19,33 @@
 namespace crowdprof::humanoid {
 
 enum class Part : uint8_t {
-  Hips, Spine, Neck, Head, Jaw,
-  Clavicle, UpperArm, Forearm, Hand, Metacarpal, Finger,
-  Thigh, Shin, Foot, Toe,
+  Hips,
+  Spine,
+  Neck,
+  Head,
+  Jaw,
+  Clavicle,
+  UpperArm,
+  Forearm,
+  Hand,
+  Metacarpal,
+  Finger,
+  Thigh,
+  Shin,
+  Foot,
+  Toe,
 };
 
 struct Bone {
   std::string name;
   int parent = -1;
   Part part = Part::Hips;
-  int side = 0;      // +1 the character's left (+X), -1 its right, 0 the midline
-  int finger = -1;   // 0 thumb .. 4 little finger
-  int segment = 0;   // index in its chain (a limb or the spine may be split)
-  int segments = 1;  // length of that chain
-  glm::dvec3 head{0.0};  // bind pose, model space
-  glm::dvec3 tail{0.0};  // where the bone ends: its child's head, or a tip
+  int side = 0;                                // +1 the character's left (+X), -1 its right, 0 the midline
+  int finger = -1;                             // 0 thumb .. 4 little finger
+  int segment = 0;                             // index in its chain (a limb or the spine may be split)
+  int segments = 1;                            // length of that chain
+  glm::dvec3 head{0.0};                        // bind pose, model space
+  glm::dvec3 tail{0.0};                        // where the bone ends: its child's head, or a tip
   glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  // model space; local +Y runs head to tail
 };
 
@@ -63,13 +75,15 @@ inline float stable_float(double v) {
   double r = std::nearbyint(v * 0x1p24) * 0x1p-24;
   return r == 0.0 ? 0.0f : static_cast<float>(r);
 }
-inline glm::vec3 stable_float(const glm::dvec3& v) { return {stable_float(v.x), stable_float(v.y), stable_float(v.z)}; }
+inline glm::vec3 stable_float(const glm::dvec3& v) {
+  return {stable_float(v.x), stable_float(v.y), stable_float(v.z)};
+}
 
 // A small, portable random source: the same seed gives the same numbers everywhere.
 class Random {
  public:
   explicit Random(uint64_t seed) : state_(seed) {}
-  double uniform();                         // [0, 1)
+  double uniform();  // [0, 1)
   double range(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
  private:

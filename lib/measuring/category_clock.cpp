@@ -3,18 +3,24 @@
 namespace crowdprof {
 
 namespace {
-constexpr std::array<std::string_view, kCategoryCount> kNames = {
-    "Physics", "Logic", "Animations", "Network", "Scenegraph", "Rasterizer", "Services", "Overhead", "Outside",
-    "GPU Latency"};
-constexpr std::array<std::string_view, kCategoryCount> kColumns = {
-    "physics", "logic", "animations", "network", "scenegraph", "rasterizer", "services", "overhead", "outside",
-    "gpu_latency"};
+constexpr std::array<std::string_view, kCategoryCount> kNames = {"Physics",    "Logic",      "Animations", "Network",
+                                                                 "Scenegraph", "Rasterizer", "Services",   "Overhead",
+                                                                 "Outside",    "GPU Latency"};
+constexpr std::array<std::string_view, kCategoryCount> kColumns = {"physics",    "logic",      "animations", "network",
+                                                                   "scenegraph", "rasterizer", "services",   "overhead",
+                                                                   "outside",    "gpu_latency"};
 }  // namespace
 
-std::string_view category_name(Category category) { return kNames[static_cast<size_t>(category)]; }
-std::string series_name(Category category) { return std::string(category_column(category)) + "_ms"; }
+std::string_view category_name(Category category) {
+  return kNames[static_cast<size_t>(category)];
+}
+std::string series_name(Category category) {
+  return std::string(category_column(category)) + "_ms";
+}
 
-std::string_view category_column(Category category) { return kColumns[static_cast<size_t>(category)]; }
+std::string_view category_column(Category category) {
+  return kColumns[static_cast<size_t>(category)];
+}
 
 double FrameTimes::total_ms() const {
   double total = 0.0;

@@ -24,7 +24,7 @@ struct Counters {
   // records (instanced and baked's instance records; a draw's model matrix).
   uint64_t palette_bytes_uploaded = 0, record_bytes_uploaded = 0;
   uint64_t draw_calls = 0;
-  uint64_t copies_fallback = 0;   // copies skinned on the CPU although the mode skins on the GPU
+  uint64_t copies_fallback = 0;  // copies skinned on the CPU although the mode skins on the GPU
   // GPU memory the palettes of GPU-skinned copies live in: the uniform array
   // (--palettes uniforms), or the storage buffers of every copy's palette (and
   // with --draw instanced, their instance records); with skinning compute, its

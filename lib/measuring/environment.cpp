@@ -11,7 +11,9 @@ const char* crowdprof_build_commit();
 
 namespace crowdprof {
 
-std::string simd_target() { return active_simd_target(); }
+std::string simd_target() {
+  return active_simd_target();
+}
 
 Environment current_environment() {
   Environment env;

@@ -21,7 +21,7 @@ namespace crowdprof {
 enum class GpuPass : uint8_t { Skinning, Prepass, Shadows, Colour };
 inline constexpr size_t kGpuPassCount = 4;
 inline constexpr std::array<std::string_view, kGpuPassCount> kGpuPassNames = {"skinning", "prepass", "shadows",
-                                                                               "colour"};
+                                                                              "colour"};
 
 // ARB_pipeline_statistics_query's counters crowdprof reads, per pass.
 enum class PipelineStat : uint8_t {
@@ -49,9 +49,10 @@ inline bool pass_drawn(GpuPass pass, uint32_t passes) {
 struct GpuPassFigures {
   static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   std::array<double, kGpuPassCount> ms{kNone, kNone, kNone, kNone};
-  std::array<std::array<double, kPipelineStatCount>, kGpuPassCount> stats{
-      {{kNone, kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone, kNone},
-       {kNone, kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone, kNone}}};
+  std::array<std::array<double, kPipelineStatCount>, kGpuPassCount> stats{{{kNone, kNone, kNone, kNone, kNone},
+                                                                           {kNone, kNone, kNone, kNone, kNone},
+                                                                           {kNone, kNone, kNone, kNone, kNone},
+                                                                           {kNone, kNone, kNone, kNone, kNone}}};
 
   bool timed() const { return ms[0] == ms[0]; }
   bool has_stats() const { return stats[0][0] == stats[0][0]; }

@@ -22,9 +22,12 @@ namespace crowdprof {
 
 const char* instruction_source_name(InstructionSource source) {
   switch (source) {
-    case InstructionSource::PerfEvent: return "perf_event";
-    case InstructionSource::Callgrind: return "callgrind";
-    case InstructionSource::None: break;
+    case InstructionSource::PerfEvent:
+      return "perf_event";
+    case InstructionSource::Callgrind:
+      return "callgrind";
+    case InstructionSource::None:
+      break;
   }
   return "none";
 }
@@ -64,7 +67,9 @@ bool read_count(int fd, uint64_t& count) {
 
 }  // namespace
 
-InstructionCounter::InstructionCounter(InstructionCounter&& other) noexcept { *this = std::move(other); }
+InstructionCounter::InstructionCounter(InstructionCounter&& other) noexcept {
+  *this = std::move(other);
+}
 
 InstructionCounter& InstructionCounter::operator=(InstructionCounter&& other) noexcept {
   std::swap(source_, other.source_);

@@ -21,7 +21,9 @@ struct CachedBuffer {
 };
 thread_local CachedBuffer cached;
 
-double microseconds(int64_t ns) { return static_cast<double>(ns) / 1000.0; }
+double microseconds(int64_t ns) {
+  return static_cast<double>(ns) / 1000.0;
+}
 
 }  // namespace
 
@@ -115,14 +117,14 @@ void Tracer::for_each_event(Emit emit) const {
   }
   for (const auto& [pid, name] : processes) {
     emit(nlohmann::json{{"name", "process_name"}, {"ph", "M"}, {"pid", pid}, {"tid", 0}, {"args", {{"name", name}}}});
-    emit(nlohmann::json{{"name", "process_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", 0},
-                        {"args", {{"sort_index", pid}}}});
+    emit(nlohmann::json{
+        {"name", "process_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", 0}, {"args", {{"sort_index", pid}}}});
   }
   for (const auto& [pid, tid] : threads) {
     std::string name = tid == 1 ? "main" : "worker " + std::to_string(tid);
     emit(nlohmann::json{{"name", "thread_name"}, {"ph", "M"}, {"pid", pid}, {"tid", tid}, {"args", {{"name", name}}}});
-    emit(nlohmann::json{{"name", "thread_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", tid},
-                        {"args", {{"sort_index", tid}}}});
+    emit(nlohmann::json{
+        {"name", "thread_sort_index"}, {"ph", "M"}, {"pid", pid}, {"tid", tid}, {"args", {{"sort_index", tid}}}});
   }
   for (const TraceSpan& s : all) {
     nlohmann::json event = {{"name", s.name},

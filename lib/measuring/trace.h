@@ -59,8 +59,8 @@ class Tracer {
 
   // Records [start, end) on the calling thread; safe from any thread. Only the
   // first recording of a thread takes a lock. Past max_spans(), only counts.
-  void span(std::string_view name, std::string_view category, Clock::time_point start, Clock::time_point end,
-            int pid, std::initializer_list<TraceArg> args = {});
+  void span(std::string_view name, std::string_view category, Clock::time_point start, Clock::time_point end, int pid,
+            std::initializer_list<TraceArg> args = {});
 
   // Names a process track (Perfetto shows it as the group's title).
   void name_process(int pid, std::string name);
@@ -90,7 +90,7 @@ class Tracer {
 
   const size_t max_spans_;
   std::atomic<size_t> offered_{0};  // spans offered to span(), kept or not
-  const uint64_t serial_;  // tells a thread's cached buffer from another tracer's
+  const uint64_t serial_;           // tells a thread's cached buffer from another tracer's
   const Clock::time_point epoch_;
   mutable std::mutex mutex_;
   std::vector<std::unique_ptr<ThreadBuffer>> buffers_;

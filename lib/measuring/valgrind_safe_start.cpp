@@ -11,5 +11,7 @@
 #include <cstdint>
 
 namespace hwy::platform {
-uint64_t TimerResolution() { return 1; }
+uint64_t TimerResolution() {
+  return 1;
+}
 }  // namespace hwy::platform

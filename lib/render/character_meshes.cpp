@@ -40,7 +40,10 @@ MeshLevelDraw CharacterMesh::draw_of(size_t level, bool rest, IndexOrder order) 
     return {rest_vao, instanced_vao, indices, index_count, reinterpret_cast<const void*>(first * sizeof(uint32_t)), 0};
   }
   const size_t l = std::min(level, levels.first_index.size()) - 1;
-  return {levels.rest_vao, levels.instanced_vao, levels.indices, levels.index_count[l],
+  return {levels.rest_vao,
+          levels.instanced_vao,
+          levels.indices,
+          levels.index_count[l],
           reinterpret_cast<const void*>(
               (order == IndexOrder::Optimized ? levels.first_optimized[l] : levels.first_index[l]) * sizeof(uint32_t)),
           rest ? static_cast<GLint>(levels.first_vertex[l]) : 0};
@@ -127,8 +130,8 @@ void CharacterMeshes::upload_levels(size_t kind, std::span<const MeshLod> lods) 
     all.joints.insert(all.joints.end(), lod.mesh.joints.begin(), lod.mesh.joints.end());
     all.weights.insert(all.weights.end(), lod.mesh.weights.begin(), lod.mesh.weights.end());
   }
-  l.indices = make_buffer(GL_ELEMENT_ARRAY_BUFFER, all.indices.size() * sizeof(uint32_t), all.indices.data(),
-                          GL_STATIC_DRAW);
+  l.indices =
+      make_buffer(GL_ELEMENT_ARRAY_BUFFER, all.indices.size() * sizeof(uint32_t), all.indices.data(), GL_STATIC_DRAW);
   GLuint* vaos[] = {&l.rest_vao, &l.instanced_vao};
   upload_rest_arrays(all, l.indices, l.rest_buffers, vaos);
   add_instance_attributes();  // to the instanced VAO, bound last

@@ -18,7 +18,7 @@ namespace crowdprof {
 struct MeshLevelDraw {
   GLuint vao = 0;            // rest-mesh VAO (GPU skinning): its vertices at base_vertex
   GLuint instanced_vao = 0;  // the same, with the instance records (CharacterMesh::instanced_vao)
-  GLuint indices = 0;  // the index buffer (CPU-skinned draws bind it to their own VAO)
+  GLuint indices = 0;        // the index buffer (CPU-skinned draws bind it to their own VAO)
   GLsizei index_count = 0;
   const void* first_index = nullptr;  // byte offset into `indices`
   GLint base_vertex = 0;              // of the level's vertices in the rest buffers (0 for CPU-skinned vertices)
@@ -32,8 +32,8 @@ struct CharacterMesh {
   GLuint indices = 0;
   // The rest mesh (0 until upload_rest_mesh): positions, normals, joints, weights.
   GLuint rest_buffers[4] = {0, 0, 0, 0};
-  GLuint rest_vao = 0;        // the rest mesh and indices, drawn one copy at a time
-  GLuint instanced_vao = 0;   // the same, with each instance's record (gpu_frame_buffers.h) from attribute 4
+  GLuint rest_vao = 0;       // the rest mesh and indices, drawn one copy at a time
+  GLuint instanced_vao = 0;  // the same, with each instance's record (gpu_frame_buffers.h) from attribute 4
   // Mesh LOD (0 until upload_levels): levels 1.. one after another, each with
   // its own indices (counted from its first vertex) and rest vertices.
   struct Levels {

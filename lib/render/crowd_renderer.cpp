@@ -84,8 +84,9 @@ void GlCrowdRenderer::require(const ModeSwitches& mode) const {
   }
   if (mode.skinning != SkinningSite::Gpu || mode.palettes != PaletteStorage::Buffer) return;
   if (!features_.storage_buffers())
-    throw GlUnavailable(context_.renderer() + " offers no shader storage buffers in the vertex stage "
-                        "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0), ",
+    throw GlUnavailable(context_.renderer() +
+                            " offers no shader storage buffers in the vertex stage "
+                            "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0), ",
                         "which {palettes} buffer needs: use {palettes} uniforms (mode hwskin)");
 }
 

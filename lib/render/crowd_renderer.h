@@ -94,15 +94,14 @@ class GlCrowdRenderer final : public FrameRenderer {
   int height() const { return framebuffer_.height(); }
   const GlContext& context() const { return context_; }
 
-
  private:
   GlContext& context_;
   Framebuffer framebuffer_;
   GlFeatures features_;
   size_t max_joints_ = 0;  // the uniform array's bone limit
   CharacterMeshes meshes_;
-  GpuTimer timer_;  // when features_.timer_queries()
-  ShadowMaps shadow_maps_;  // passes > 2: one per cascade, kept for later benches
+  GpuTimer timer_;                // when features_.timer_queries()
+  ShadowMaps shadow_maps_;        // passes > 2: one per cascade, kept for later benches
   std::vector<DrawPass> passes_;  // scratch: this frame's
   void bind_pass(const DrawPass& pass, bool after_prepass);
   // The techniques: made when the GL and the characters allow them

@@ -28,20 +28,32 @@ bool has_extension(const char* list, const char* name) {
 std::string egl_error_text() {
   EGLint error = eglGetError();
   switch (error) {
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error " + std::to_string(error);
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    default:
+      return "EGL error " + std::to_string(error);
   }
 }
 
-GlContext::Proc egl_proc(const char* name) { return eglGetProcAddress(name); }
+GlContext::Proc egl_proc(const char* name) {
+  return eglGetProcAddress(name);
+}
 
 class EglContext final : public GlContext {
  public:
@@ -74,14 +86,24 @@ class EglContext final : public GlContext {
     if (!surfaceless || !has_extension(extensions, "EGL_KHR_no_config_context")) {
       // A pbuffer-capable config: without EGL_PBUFFER_BIT some drivers offer
       // only window configs, which a headless display cannot use.
-      const EGLint wanted[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                               EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+      const EGLint wanted[] = {EGL_SURFACE_TYPE,
+                               EGL_PBUFFER_BIT,
+                               EGL_RENDERABLE_TYPE,
+                               EGL_OPENGL_BIT,
+                               EGL_RED_SIZE,
+                               8,
+                               EGL_GREEN_SIZE,
+                               8,
+                               EGL_BLUE_SIZE,
+                               8,
+                               EGL_NONE};
       EGLint count = 0;
       if (!eglChooseConfig(display_, wanted, &config, 1, &count) || count < 1)
         throw GlUnavailable(platform() + ": no OpenGL pbuffer config");
     }
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes);
     if (context_ == EGL_NO_CONTEXT)
       throw GlUnavailable(platform() + ": no OpenGL 4.3 core context (" + egl_error_text() + ")");
@@ -138,7 +160,8 @@ std::unique_ptr<GlContext> create_egl_context() {
       const char* extensions = query_string(devices[i], EGL_EXTENSIONS);
       std::string name = "EGL device " + std::to_string(i);
       if (has_extension(extensions, "EGL_EXT_device_drm"))
-        if (const char* file = query_string(devices[i], EGL_DRM_DEVICE_FILE_EXT)) name = "EGL device " + std::string(file);
+        if (const char* file = query_string(devices[i], EGL_DRM_DEVICE_FILE_EXT))
+          name = "EGL device " + std::string(file);
       // Mesa lists its software renderer as a device too: the surfaceless
       // platform below reaches the same, so it only comes last.
       bool is_software = has_extension(extensions, "EGL_MESA_device_software");

@@ -20,7 +20,7 @@ Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height)
   int limit = max_framebuffer_size();
   if (width < 1 || height < 1 || width > limit || height > limit)
     throw SettingsUsageError("{resolution} " + std::to_string(width) + "x" + std::to_string(height) +
-                     ": this GL renders 1 to " + std::to_string(limit) + " pixels each way");
+                             ": this GL renders 1 to " + std::to_string(limit) + " pixels each way");
   glGenFramebuffers(1, &framebuffer_);
   glGenRenderbuffers(1, &colour_);
   glGenRenderbuffers(1, &depth_);
@@ -40,7 +40,9 @@ Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height)
   }
 }
 
-Framebuffer::~Framebuffer() { release(); }
+Framebuffer::~Framebuffer() {
+  release();
+}
 
 void Framebuffer::release() {
   if (framebuffer_) glDeleteFramebuffers(1, &framebuffer_);

@@ -12,7 +12,9 @@ const GlContext* g_loaded = nullptr;
 constexpr int kMinMajor = 4, kMinMinor = 3;
 }  // namespace
 
-std::string_view to_string(GlBackend backend) { return backend == GlBackend::Egl ? "egl" : "osmesa"; }
+std::string_view to_string(GlBackend backend) {
+  return backend == GlBackend::Egl ? "egl" : "osmesa";
+}
 
 GlContext::~GlContext() {
   if (g_loaded == this) g_loaded = nullptr;
@@ -54,10 +56,14 @@ std::unique_ptr<GlContext> create_context(GlBackend backend) {
 
 std::unique_ptr<GlContext> open_backend(BackendChoice choice, SettingText* warning, const BackendOpeners& openers) {
   switch (choice) {
-    case BackendChoice::None: return nullptr;
-    case BackendChoice::Egl: return openers.egl();
-    case BackendChoice::OsMesa: return openers.osmesa();
-    case BackendChoice::Auto: break;
+    case BackendChoice::None:
+      return nullptr;
+    case BackendChoice::Egl:
+      return openers.egl();
+    case BackendChoice::OsMesa:
+      return openers.osmesa();
+    case BackendChoice::Auto:
+      break;
   }
   std::string egl_failure;
   try {

@@ -18,7 +18,6 @@ namespace crowdprof {
 
 enum class GlBackend : uint8_t { Egl, OsMesa };
 
-
 std::string_view to_string(GlBackend backend);  // "egl", "osmesa"
 
 class GlContext {
@@ -73,7 +72,6 @@ struct BackendOpeners {
 // The context `choice` asks for, current. None gives null. Auto tries EGL, then
 // OSMesa, and when neither works gives null and says why in *warning (one
 // line); an explicit backend that fails throws GlUnavailable.
-std::unique_ptr<GlContext> open_backend(BackendChoice choice, SettingText* warning,
-                                        const BackendOpeners& openers = {});
+std::unique_ptr<GlContext> open_backend(BackendChoice choice, SettingText* warning, const BackendOpeners& openers = {});
 
 }  // namespace crowdprof

@@ -16,8 +16,8 @@ std::string with_defines(std::string_view source, std::string_view defines) {
   int version_line = 1;
   for (size_t i = 0; i < end; ++i) version_line += source[i] == '\n';
   // GLSL 3.30 and later: the line after "#line N" is line N.
-  return std::string(source.substr(0, end + 1)) + std::string(defines) + "#line " +
-         std::to_string(version_line + 1) + "\n" + std::string(source.substr(end + 1));
+  return std::string(source.substr(0, end + 1)) + std::string(defines) + "#line " + std::to_string(version_line + 1) +
+         "\n" + std::string(source.substr(end + 1));
 }
 
 int first_log_line(std::string_view log) {

@@ -41,7 +41,8 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
   const uint64_t instance_bytes = with_instances ? std::max<uint64_t>(instances, 1) * sizeof(GpuInstance) : 0;
   // In one page, the rows themselves; past it, a page leaves less than its
   // largest palette empty at its end.
-  const uint64_t pages = page_rows_ > largest_rows ? rows / (page_rows_ - largest_rows) + 1 : std::max<size_t>(instances, 1);
+  const uint64_t pages =
+      page_rows_ > largest_rows ? rows / (page_rows_ - largest_rows) + 1 : std::max<size_t>(instances, 1);
   const uint64_t palette_rows =
       rows <= page_rows_ ? rows : std::min<uint64_t>(rows + pages * largest_rows, pages * page_rows_);
   // Records only (another skinning source's): no palette buffer.
@@ -52,8 +53,8 @@ void GpuFrameBuffers::reserve(size_t instances, size_t rows, size_t largest_rows
     if (palette_bytes + instance_bytes > free_bytes)
       throw GlUnavailable(std::string(with_instances ? "the palettes and instance records of " : "the palettes of ") +
                               std::to_string(instances) + " copies need " + mib(palette_bytes + instance_bytes) +
-                              "; the GPU has " + mib(free_bytes) + " free (" + gl.memory_source +
-                              "), room for about " + std::to_string(free_bytes / per_copy) + " copies: ",
+                              "; the GPU has " + mib(free_bytes) + " free (" + gl.memory_source + "), room for about " +
+                              std::to_string(free_bytes / per_copy) + " copies: ",
                           "use fewer copies");
   }
   if (instances > instances_.size()) instances_.resize(instances);

@@ -157,12 +157,12 @@ class GpuFrameBuffers {
   std::vector<GpuInstance> instances_;
   std::vector<glm::vec4> rows_;
   std::vector<InstanceRun> runs_;
-  std::vector<uint32_t> filled_;  // per kind, records added so far
-  std::vector<uint32_t> page_of_;  // per record
+  std::vector<uint32_t> filled_;             // per kind, records added so far
+  std::vector<uint32_t> page_of_;            // per record
   std::vector<uint32_t> placement_page_of_;  // per record
   size_t placement_page_copies_ = 1;
   size_t rows_used_ = 0;
-  size_t page_rows_ = 0;           // rows a page holds
+  size_t page_rows_ = 0;  // rows a page holds
   GLuint palette_buffer_ = 0, instance_buffer_ = 0;
   uint64_t palette_capacity_bytes_ = 0, instance_capacity_bytes_ = 0;
 };

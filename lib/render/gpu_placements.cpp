@@ -14,11 +14,15 @@ namespace crowdprof {
 
 namespace {
 
-bool same(const GpuPlacement& a, const GpuPlacement& b) { return std::memcmp(&a, &b, sizeof(GpuPlacement)) == 0; }
+bool same(const GpuPlacement& a, const GpuPlacement& b) {
+  return std::memcmp(&a, &b, sizeof(GpuPlacement)) == 0;
+}
 
 }  // namespace
 
-GpuPlacements::~GpuPlacements() { glDeleteBuffers(1, &buffer_); }
+GpuPlacements::~GpuPlacements() {
+  glDeleteBuffers(1, &buffer_);
+}
 
 uint64_t GpuPlacements::update(const FrameView& view, const GlFeatures& gl) {
   const size_t copies = std::max<size_t>(view.copies(), 1);  // a buffer to bind, even for no copy
@@ -62,7 +66,8 @@ size_t GpuPlacements::copies_per_page(const GlFeatures& gl) {
   const auto align = static_cast<uint64_t>(std::max<int64_t>(gl.uniform_offset_alignment, 1));
   // Copies from one offset a range may start at to the next, and whole
   // cycles of the colours: a copy's colour follows from its index in its page.
-  const uint64_t step = std::lcm(align / std::gcd(align, uint64_t{sizeof(GpuPlacement)}), uint64_t{kCopyColours.size()});
+  const uint64_t step =
+      std::lcm(align / std::gcd(align, uint64_t{sizeof(GpuPlacement)}), uint64_t{kCopyColours.size()});
   return std::max<uint64_t>(block / sizeof(GpuPlacement) / step * step, step);
 }
 
@@ -81,6 +86,8 @@ void GpuPlacements::bind_page(uint32_t page) const {
                     static_cast<GLsizeiptr>(size));
 }
 
-void GpuPlacements::bind_storage() const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPlacementBinding, buffer_); }
+void GpuPlacements::bind_storage() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPlacementBinding, buffer_);
+}
 
 }  // namespace crowdprof

@@ -45,7 +45,8 @@ void GpuTimer::measure_resolution() {
     floor = std::max(floor, ns);
   }
   glDeleteQueries(1, &query);
-  resolution_ms_ = static_cast<double>(std::max<uint64_t>(static_cast<uint64_t>(std::max<GLint64>(tick, 1)), floor)) * 1e-6;
+  resolution_ms_ =
+      static_cast<double>(std::max<uint64_t>(static_cast<uint64_t>(std::max<GLint64>(tick, 1)), floor)) * 1e-6;
 }
 
 void GpuTimer::begin(const void* owner, uint64_t frame, bool statistics) {
@@ -54,7 +55,8 @@ void GpuTimer::begin(const void* owner, uint64_t frame, bool statistics) {
   if (free == slots_.end()) {
     // Queries nobody took: drop the oldest, waiting for its result so that
     // its query object can be begun again.
-    free = std::min_element(slots_.begin(), slots_.end(), [](const Slot& a, const Slot& b) { return a.order < b.order; });
+    free =
+        std::min_element(slots_.begin(), slots_.end(), [](const Slot& a, const Slot& b) { return a.order < b.order; });
     GLuint64 ns = 0;
     glGetQueryObjectui64v(free->query, GL_QUERY_RESULT, &ns);
   }

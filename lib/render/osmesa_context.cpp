@@ -63,16 +63,30 @@ const OsMesaApi& osmesa() {
   return api;
 }
 
-GlContext::Proc osmesa_proc(const char* name) { return osmesa().get_proc_address(name); }
+GlContext::Proc osmesa_proc(const char* name) {
+  return osmesa().get_proc_address(name);
+}
 
 class OsMesaContext final : public GlContext {
  public:
   OsMesaContext() : GlContext(GlBackend::OsMesa, "OSMesa") {
     // No depth or stencil in OSMesa's own buffer: crowdprof draws into a
     // framebuffer object that has its own.
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                              OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              4,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
     context_ = osmesa().create_context_attribs(attributes, nullptr);
     if (!context_) throw GlUnavailable("OSMesa: no OpenGL 4.3 core context (is libOSMesa built with llvmpipe?)");
     try {
@@ -100,6 +114,8 @@ class OsMesaContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_osmesa_context() { return std::make_unique<OsMesaContext>(); }
+std::unique_ptr<GlContext> create_osmesa_context() {
+  return std::make_unique<OsMesaContext>();
+}
 
 }  // namespace crowdprof

@@ -17,7 +17,6 @@ std::string metric_column(const CapacityMetric& metric) {
   return metric.category ? std::string(category_column(*metric.category)) : "frame";
 }
 
-
 }  // namespace
 
 std::string format_capacity(const CapacityRun& run) {
@@ -31,12 +30,14 @@ std::string format_capacity(const CapacityRun& run) {
                     r.fit ? fixed(r.fit->median_ms, 3) : "-", r.fail ? std::to_string(r.fail->n) : "-",
                     r.fail ? fixed(r.fail->median_ms, 3) : "-", std::to_string(mode.tried.size())});
     if (r.capped)
-      notes += mode.mode + ": the cap of " + std::to_string(mode.rule.cap) + " characters fits; the capacity may be higher\n";
+      notes += mode.mode + ": the cap of " + std::to_string(mode.rule.cap) +
+               " characters fits; the capacity may be higher\n";
     if (!r.fit && r.fail)
       notes += mode.mode + ": not even " + std::to_string(r.fail->n) + " character" + (r.fail->n == 1 ? "" : "s") +
                " fit" + (r.fail->n == 1 ? "s" : "") + "\n";
     if (r.non_monotonic)
-      notes += mode.mode + ": a larger crowd measured more than 10% faster than a smaller one (noise, or a cost that "
+      notes += mode.mode +
+               ": a larger crowd measured more than 10% faster than a smaller one (noise, or a cost that "
                "does not grow with the crowd): the boundary found is one of several\n";
   }
   std::string out = align_columns(rows, {0});
@@ -45,9 +46,11 @@ std::string format_capacity(const CapacityRun& run) {
   size_t start = run.modes.empty() ? 0 : run.modes.front().rule.start;
   out += "fits_n: the largest crowd whose median " + run.metric.name() + " time was at most " + fixed(budget, 3) +
          " ms; over_n: the smallest crowd above it that was over\n";
-  out += "search: from " + std::to_string(start) + " characters, doubling while it fits, then bisection until over_n - fits_n <= max(1, " +
+  out += "search: from " + std::to_string(start) +
+         " characters, doubling while it fits, then bisection until over_n - fits_n <= max(1, " +
          fixed(resolution * 100, 1) + "% of fits_n); " + std::to_string(run.frames) + " frames per point after " +
-         std::to_string(run.warmup) + " warm-up, modes interleaved in blocks of " + std::to_string(run.block) + " frames\n";
+         std::to_string(run.warmup) + " warm-up, modes interleaved in blocks of " + std::to_string(run.block) +
+         " frames\n";
   return out + notes;
 }
 
@@ -83,14 +86,20 @@ ResultDocument capacity_document(const CapacityRun& run) {
   return d;
 }
 
-nlohmann::json capacity_to_json(const CapacityRun& run) { return result_document_to_json(capacity_document(run)); }
+nlohmann::json capacity_to_json(const CapacityRun& run) {
+  return result_document_to_json(capacity_document(run));
+}
 
 std::string capacity_svg(const CapacityRun& run) {
   ModeColours colours;
   std::string scene;
   if (run.first) scene = ": " + run.first->run.character + ", backend " + run.first->run.backend;
-  LineChart chart{"Median " + run.metric.name() + " time against crowd size" + scene, "characters (log scale)",
-                  "median " + run.metric.name() + " time (ms)", {}, true, true};
+  LineChart chart{"Median " + run.metric.name() + " time against crowd size" + scene,
+                  "characters (log scale)",
+                  "median " + run.metric.name() + " time (ms)",
+                  {},
+                  true,
+                  true};
   chart.id = "capacity";
   for (const ModeCapacity& mode : run.modes) {
     std::vector<CapacityPoint> points;

@@ -30,7 +30,9 @@ constexpr std::array<const char*, kCategoryCount> kCategoryColours = {
 
 }  // namespace
 
-const char* category_colour(Category category) { return kCategoryColours[static_cast<size_t>(category)]; }
+const char* category_colour(Category category) {
+  return kCategoryColours[static_cast<size_t>(category)];
+}
 
 ModeColours::ModeColours() {
   for (const ModePreset& preset : mode_presets()) fixed_.emplace_back(preset.name);

@@ -23,10 +23,12 @@ void write_check_svg(const std::string& path, const Result& baseline, const Resu
                      const std::string& metric) {
   std::string shown = metric == "frame_ms" ? "frame" : metric == "cpu_ms" ? "CPU" : metric;
   const bool ratio = metric == "calibrated";  // each frame over its probe: no unit
-  LineChart chart{"check: " + shown + (ratio ? " frame" : " time") + " per frame, baseline and current: " +
-                      scene_caption(current),
-                  "frame (0 = the first measured, after " + std::to_string(current.run.warmup) + " warm-up)",
-                  ratio ? "frame over the calibration probe" : "time (ms)", {}, false};
+  LineChart chart{
+      "check: " + shown + (ratio ? " frame" : " time") + " per frame, baseline and current: " + scene_caption(current),
+      "frame (0 = the first measured, after " + std::to_string(current.run.warmup) + " warm-up)",
+      ratio ? "frame over the calibration probe" : "time (ms)",
+      {},
+      false};
   ModeColours colours;  // baseline and current as the HTML report colours them
   for (const auto& [name, result] :
        {std::pair<const char*, const Result*>{"baseline", &baseline}, {"current", &current}}) {
@@ -61,10 +63,9 @@ int report_baseline(const CheckRun& r, const CheckOutcome& o, std::ostream& out)
   if (prints_on_stdout(r.quiet, {r.outputs.csv, r.outputs.json, r.svg, r.outputs.html}))
     out << "baseline written: " << r.baseline << " (" << current.run.mode << ", " << current.run.characters
         << " characters, frame median " << summarize(current.samples.frame_ms).median << " ms"
-        << (r.result.empty() && o.plan.runs > 1
-                ? ", the median of " + std::to_string(o.plan.runs) + " runs by " +
-                      metric_display_name(o.plan.gate.metrics.front())
-                : "")
+        << (r.result.empty() && o.plan.runs > 1 ? ", the median of " + std::to_string(o.plan.runs) + " runs by " +
+                                                      metric_display_name(o.plan.gate.metrics.front())
+                                                : "")
         << ", digest " << current.digest << ")\n";
   return kExitOk;
 }
@@ -123,8 +124,7 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
     table.title = "stored baseline " + r.baseline + " against " + current_name;
     write_verdict_files(r, table, "crowdprof check");
   }
-  if (r.files.prints_on_stdout(r.quiet))
-    out << format_check(o.result, options);
+  if (r.files.prints_on_stdout(r.quiet)) out << format_check(o.result, options);
   return o.result.regressed() ? kExitRegression : kExitOk;
 }
 
@@ -156,11 +156,16 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
 
 int report_check(const CheckRun& request, const CheckOutcome& outcome, std::ostream& out) {
   switch (outcome.kind) {
-    case CheckOutcome::Kind::Interrupted: return kExitInterrupted;
-    case CheckOutcome::Kind::BaselineWritten: return report_baseline(request, outcome, out);
-    case CheckOutcome::Kind::Counted: return report_count(request, outcome, out);
-    case CheckOutcome::Kind::Gated: return report_gate(request, outcome, out);
-    case CheckOutcome::Kind::Ab: return report_ab(request, *outcome.ab, out);
+    case CheckOutcome::Kind::Interrupted:
+      return kExitInterrupted;
+    case CheckOutcome::Kind::BaselineWritten:
+      return report_baseline(request, outcome, out);
+    case CheckOutcome::Kind::Counted:
+      return report_count(request, outcome, out);
+    case CheckOutcome::Kind::Gated:
+      return report_gate(request, outcome, out);
+    case CheckOutcome::Kind::Ab:
+      return report_ab(request, *outcome.ab, out);
   }
   return kExitOk;
 }

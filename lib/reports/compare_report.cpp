@@ -26,7 +26,6 @@ std::vector<double> frame_ms(const Result& run) {
   return out;
 }
 
-
 }  // namespace
 
 bool is_main_point(const Comparison& comparison, const Result& run) {
@@ -76,7 +75,8 @@ std::vector<CostErrorPoint> comparison_costs(const Comparison& comparison, const
   std::vector<CostErrorInput> costs;
   for (size_t r = 0; r < medians.size() && r < comparison.runs.size(); ++r)
     costs.push_back({medians[r].mode, medians[r].frame_ms,
-                     medians[r].category_ms[static_cast<size_t>(Category::Animations)], comparison.runs[r].drawn_error});
+                     medians[r].category_ms[static_cast<size_t>(Category::Animations)],
+                     comparison.runs[r].drawn_error});
   return cost_error_points(costs);
 }
 
@@ -112,7 +112,8 @@ std::string format_comparison(const Comparison& comparison) {
       if (!gpu[r].empty() && resolution > 0 && median < resolution) (cell = "<") += fixed(resolution, 4);
       row.push_back(cell);
     }
-    uint64_t culled = run.frame_records.empty() ? 0 : run.frame_records[median_frame(run.frame_records)].counters.copies_culled;
+    uint64_t culled =
+        run.frame_records.empty() ? 0 : run.frame_records[median_frame(run.frame_records)].counters.copies_culled;
     row.push_back(fixed(m.speedup, 2));
     row.push_back(std::to_string(culled));
     row.push_back(run.digest);
@@ -120,9 +121,9 @@ std::string format_comparison(const Comparison& comparison) {
   }
   std::string out = align_columns(rows, {0, rows.front().size() - 1});
   if (!comparison.runs.empty())
-    out += "median of " + std::to_string(comparison.runs.front().frame_records.size()) + " frames per mode, run in blocks of " +
-           std::to_string(comparison.block) + " frames; speedup_x = " + comparison.runs.front().run.mode +
-           "'s frame_ms / the mode's\n";
+    out += "median of " + std::to_string(comparison.runs.front().frame_records.size()) +
+           " frames per mode, run in blocks of " + std::to_string(comparison.block) +
+           " frames; speedup_x = " + comparison.runs.front().run.mode + "'s frame_ms / the mode's\n";
   out += format_cost_error(comparison_costs(comparison, medians));
   if (comparison.sweep.empty()) return out;
   rows.clear();
@@ -178,8 +179,11 @@ std::string comparison_svg(const Comparison& comparison) {
     sweep_scene = ": " + run.character + ", backend " + run.backend;
     warmup = std::to_string(run.warmup);
   }
-  LineChart frames{"Frame time per frame" + scene, "frame (0 = the first measured, after " + warmup + " warm-up)",
-                   "frame time (ms)", {}, false};
+  LineChart frames{"Frame time per frame" + scene,
+                   "frame (0 = the first measured, after " + warmup + " warm-up)",
+                   "frame time (ms)",
+                   {},
+                   false};
   for (const Result& run : comparison.runs) {
     LineSeries series{run.run.mode, {}, frame_ms(run), colours.colour(run.run.mode)};
     for (size_t i = 0; i < series.y.size(); ++i) series.x.push_back(static_cast<double>(i));
@@ -210,8 +214,8 @@ std::string comparison_svg(const Comparison& comparison) {
     std::vector<SweepPoint> points;
     for (const ModeMedians& m : mode_medians(comparison.sweep))
       points.push_back({m.mode, m.on(comparison.sweep_axis), m.frame_ms});
-    LineChart sweep = sweep_chart(points, comparison.sweep_axis, sweep_scene.substr(std::min<size_t>(2, sweep_scene.size())),
-                                  colours, std::nullopt);
+    LineChart sweep = sweep_chart(points, comparison.sweep_axis,
+                                  sweep_scene.substr(std::min<size_t>(2, sweep_scene.size())), colours, std::nullopt);
     sweep.id.clear();
     svg.add(sweep);
   }

@@ -16,10 +16,10 @@
 namespace crowdprof {
 
 struct Comparison {
-  std::vector<Result> runs;   // one per mode at the chosen crowd size, in the order asked
-  std::vector<Result> sweep;  // every (point, mode) of --sweep, by point then mode; empty without
+  std::vector<Result> runs;                      // one per mode at the chosen crowd size, in the order asked
+  std::vector<Result> sweep;                     // every (point, mode) of --sweep, by point then mode; empty without
   SweepAxis sweep_axis = SweepAxis::Characters;  // what the sweep's points vary
-  size_t block = 10;             // frames per block of the interleaving
+  size_t block = 10;                             // frames per block of the interleaving
 };
 
 // Per run (result/result_document.h's ModeMedians), with speedups against the

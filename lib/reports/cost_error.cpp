@@ -9,8 +9,8 @@ std::vector<CostErrorPoint> cost_error_points(const std::vector<CostErrorInput>&
   std::vector<CostErrorPoint> points;
   for (const CostErrorInput& in : inputs)
     if (in.error)
-      points.push_back(CostErrorPoint{in.mode, {}, in.frame_ms, in.animations_ms, 0, *in.error,
-                                      in.error->max_px > kFrontMaxErrorPx, false});
+      points.push_back(CostErrorPoint{
+          in.mode, {}, in.frame_ms, in.animations_ms, 0, *in.error, in.error->max_px > kFrontMaxErrorPx, false});
   if (points.size() < 2) return {};
   for (CostErrorPoint& p : points) {
     const size_t plus = p.mode.find('+');
@@ -39,18 +39,19 @@ std::string format_cost_error(const std::vector<CostErrorPoint>& points) {
   for (const CostErrorPoint& p : points) {
     const DrawnErrorRecord& e = p.error;
     const std::string saved = fixed(p.saved_ms, 3) + (p.saved_ms < 0 ? " (slower)" : "");
-    rows.push_back({p.mode, fixed(p.frame_ms, 3), p.mode == p.base ? "-" : saved,
-                    p.mode == p.base ? "-" : p.base, fixed(p.animations_ms, 3), fixed(e.max * 1000.0, 2),
-                    fixed(e.rms * 1000.0, 2), fixed(e.max_fraction * 100.0, 3), fixed(e.max_px, 2),
-                    fixed(e.rms_px, 2), fixed(e.switches_per_second, 1),
-                    p.past_threshold ? "past " + fixed(kFrontMaxErrorPx, 0) + " px" : p.front ? "*" : ""});
+    rows.push_back({p.mode, fixed(p.frame_ms, 3), p.mode == p.base ? "-" : saved, p.mode == p.base ? "-" : p.base,
+                    fixed(p.animations_ms, 3), fixed(e.max * 1000.0, 2), fixed(e.rms * 1000.0, 2),
+                    fixed(e.max_fraction * 100.0, 3), fixed(e.max_px, 2), fixed(e.rms_px, 2),
+                    fixed(e.switches_per_second, 1),
+                    p.past_threshold ? "past " + fixed(kFrontMaxErrorPx, 0) + " px"
+                    : p.front        ? "*"
+                                     : ""});
   }
   return "\nerror beside cost: the last frame's copies on screen as drawn against their exact, full-detail pose "
          "(mm: model units x 1000); saved_ms against the mode named before '+', or the first (negative: slower "
          "than it); front: no other mode as fast and as exact on screen (max_px), among those within " +
          fixed(kFrontMaxErrorPx, 0) + " px; past " + fixed(kFrontMaxErrorPx, 0) +
-         " px: drawn visibly off its exact pose, never on the front\n" +
-         align_columns(rows, {0, 3});
+         " px: drawn visibly off its exact pose, never on the front\n" + align_columns(rows, {0, 3});
 }
 
 }  // namespace crowdprof

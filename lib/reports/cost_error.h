@@ -14,7 +14,7 @@
 namespace crowdprof {
 
 struct CostErrorInput {
-  std::string mode;  // as the comparison names it: "threaded+update_lod=on"
+  std::string mode;                        // as the comparison names it: "threaded+update_lod=on"
   double frame_ms = 0, animations_ms = 0;  // medians
   std::optional<DrawnErrorRecord> error;
 };
@@ -39,10 +39,9 @@ struct CostErrorPoint {
 // The points of the inputs that carry an error; empty when fewer than two do.
 // A mode's base is the mode named by its name up to the first '+' when the
 // comparison has it ("threaded" for "threaded+mesh_lod=on"), else the first
-// mode ("baked" against "instanced" in --modes instanced,baked): compare interleaves them in blocks, so the saving is measured side
-// by side. The front is over frame_ms and the largest error on screen
-// (error.max_px): savings aimed at far copies stray furthest in millimetres
-// where they are smallest on screen, so pixels are what a viewer weighs. A
+// mode ("baked" against "instanced" in --modes instanced,baked): compare interleaves them in blocks, so the saving is
+// measured side by side. The front is over frame_ms and the largest error on screen (error.max_px): savings aimed at
+// far copies stray furthest in millimetres where they are smallest on screen, so pixels are what a viewer weighs. A
 // point past kFrontMaxErrorPx is never on the front: it is marked past it.
 std::vector<CostErrorPoint> cost_error_points(const std::vector<CostErrorInput>& inputs);
 

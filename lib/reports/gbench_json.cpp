@@ -65,14 +65,9 @@ std::vector<Series> series_of(const Result& report) {
 }
 
 nlohmann::json entry(const std::string& name, size_t family, size_t repetitions, const Result& report) {
-  return {{"name", name},
-          {"family_index", family},
-          {"per_family_instance_index", 0},
-          {"run_name", name},
-          {"repetitions", repetitions},
-          {"threads", report.run.threads},
-          {"iterations", 1},
-          {"time_unit", "ms"}};
+  return {{"name", name},     {"family_index", family},     {"per_family_instance_index", 0},
+          {"run_name", name}, {"repetitions", repetitions}, {"threads", report.run.threads},
+          {"iterations", 1},  {"time_unit", "ms"}};
 }
 
 }  // namespace
@@ -83,8 +78,8 @@ nlohmann::json gbench_document(const std::vector<const Result*>& runs) {
   for (const Result* report : runs) {
     for (const Series& series : series_of(*report)) {
       uint32_t passes = report->run.switches.passes;
-      std::string name = report->run.mode + "/" + report->run.character + "/n:" +
-                         std::to_string(report->run.characters) +
+      std::string name = report->run.mode + "/" + report->run.character +
+                         "/n:" + std::to_string(report->run.characters) +
                          (passes != 1 ? "/passes:" + std::to_string(passes) : std::string()) + "/" + series.metric;
       const size_t n = series.real.size();
       for (size_t i = 0; i < n; ++i) {
@@ -96,9 +91,9 @@ nlohmann::json gbench_document(const std::vector<const Result*>& runs) {
         benchmarks.push_back(std::move(e));
       }
       Summary real = summarize(series.real), cpu = summarize(series.cpu);
-      for (const auto& [aggregate, real_value, cpu_value] :
-           {std::tuple{"mean", real.mean, cpu.mean}, {"median", real.median, cpu.median},
-            {"stddev", real.stddev, cpu.stddev}}) {
+      for (const auto& [aggregate, real_value, cpu_value] : {std::tuple{"mean", real.mean, cpu.mean},
+                                                             {"median", real.median, cpu.median},
+                                                             {"stddev", real.stddev, cpu.stddev}}) {
         nlohmann::json e = entry(name + "_" + aggregate, family, n, *report);
         e["run_name"] = name;
         e["run_type"] = "aggregate";

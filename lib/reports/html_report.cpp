@@ -23,8 +23,9 @@ namespace crowdprof {
 
 namespace {
 
-
-std::string h(const std::string& text) { return xml_escape(text); }
+std::string h(const std::string& text) {
+  return xml_escape(text);
+}
 
 std::string base64(const std::string& bytes) {
   static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -42,20 +43,23 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 // The lead of a capacity page: per mode, the largest crowd within the budget.
 std::string capacity_section(const CapacityRecord& c) {
   std::string out = "<section id=\"capacity\"><h2>Capacity: the largest crowd whose median " + h(c.metric) +
-                    " time fits " + report_number(c.budget_ms, 3) + " ms</h2>\n<table><tr><th class=\"name\">mode</th>"
+                    " time fits " + report_number(c.budget_ms, 3) +
+                    " ms</h2>\n<table><tr><th class=\"name\">mode</th>"
                     "<th>threads</th><th>capacity (characters)</th><th>its median ms</th><th>first over</th>"
                     "<th>its median ms</th></tr>\n";
   for (const CapacityRecord::Row& row : c.rows) {
     out += "<tr><td class=\"name\">" + h(row.mode) + "</td><td>" + std::to_string(row.threads) + "</td><td><b>" +
            (row.fit ? std::to_string(row.fit->n) : std::string("none")) + "</b></td><td>" +
            (row.fit ? report_number(row.fit->median_ms, 3) : std::string("-")) + "</td><td>" +
-           (row.over ? std::to_string(row.over->n) : "over " + std::to_string(row.cap) + " (the cap fits)") + "</td><td>" +
-           (row.over ? report_number(row.over->median_ms, 3) : std::string("-")) + "</td></tr>\n";
+           (row.over ? std::to_string(row.over->n) : "over " + std::to_string(row.cap) + " (the cap fits)") +
+           "</td><td>" + (row.over ? report_number(row.over->median_ms, 3) : std::string("-")) + "</td></tr>\n";
   }
   out += "</table>\n<p>Search: from " + std::to_string(c.start) +
          " characters, doubling while the median fits, then halving the gap until the first crowd over is within " +
@@ -99,7 +103,8 @@ std::string switches_line(const ModeSwitches& switches) {
   std::string line;
   for (const SwitchSpec& spec : switch_table())
     if (recorded.contains(std::string(spec.name)))
-      line += (line.empty() ? "" : ", ") + option_spelling(spec.name) + " " + switch_text(recorded[std::string(spec.name)]);
+      line +=
+          (line.empty() ? "" : ", ") + option_spelling(spec.name) + " " + switch_text(recorded[std::string(spec.name)]);
   return line;
 }
 
@@ -177,8 +182,10 @@ std::string counters_table(const std::vector<ReportRun>& runs) {
   for (size_t i : rows) {
     out += "<tr><td class=\"name\">" + h(std::string(kCounterFields[i].name)) + "</td>";
     for (const ReportRun& run : runs)
-      out += "<td>" + (run.result.counters.present[i] ? with_thousands(run.result.counters.values.*kCounterFields[i].member)
-                                                      : std::string()) + "</td>";
+      out += "<td>" +
+             (run.result.counters.present[i] ? with_thousands(run.result.counters.values.*kCounterFields[i].member)
+                                             : std::string()) +
+             "</td>";
     out += "</tr>\n";
   }
   return out + "</table>\n";
@@ -187,8 +194,9 @@ std::string counters_table(const std::vector<ReportRun>& runs) {
 // The headline a reader looks for first: per run the median frame, p95, p99
 // and fps, to 3 significant digits, in µs below 1 ms.
 std::string headline_section(const std::vector<ReportRun>& runs) {
-  std::string out = "<section id=\"headline\"><table class=\"headline\"><tr><th class=\"name\">run</th>"
-                    "<th>median frame</th><th>p95</th><th>p99</th><th>fps (median)</th></tr>\n";
+  std::string out =
+      "<section id=\"headline\"><table class=\"headline\"><tr><th class=\"name\">run</th>"
+      "<th>median frame</th><th>p95</th><th>p99</th><th>fps (median)</th></tr>\n";
   for (const ReportRun& run : runs) {
     const std::vector<double>& ms = run.result.samples.frame_ms;
     const double median = median_frame_ms(ms);
@@ -237,15 +245,17 @@ std::string profile_by_category(const std::vector<ReportRun>& runs, const std::v
   for (const ReportRun& run : runs) out += "<th>" + h(run.label) + " ms</th><th>%</th>";
   out += "</tr>\n<tr><td class=\"name\"><b>Frametime</b></td>";
   for (const FrameTimes& t : medians)
-    out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
+    out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" +
+           (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
   out += "</tr>\n";
   for (size_t c = 0; c < kCategoryCount; ++c) {
     auto category = static_cast<Category>(c);
     out += "<tr><td class=\"name\">" + swatch(category) + h(std::string(category_name(category))) + "</td>";
     for (const FrameTimes& t : medians) {
       double share = t.total_ms() > 0 ? t.ms[c] / t.total_ms() : 0.0;
-      out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) + "% <span class=\"bar\" style=\"width:" +
-             report_number(share * 60, 1) + "px;background:" + category_colour(category) + "\"></span></td>";
+      out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) +
+             "% <span class=\"bar\" style=\"width:" + report_number(share * 60, 1) +
+             "px;background:" + category_colour(category) + "\"></span></td>";
     }
     out += "</tr>\n";
   }
@@ -266,12 +276,13 @@ std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector
       shown.push_back(c);
   std::string out = "<table class=\"by-run\"><tr><th class=\"name\">run</th><th>Frametime ms</th><th>fps</th>";
   for (size_t c : shown)
-    out += "<th>" + swatch(static_cast<Category>(c)) + h(std::string(category_name(static_cast<Category>(c)))) + "</th>";
+    out +=
+        "<th>" + swatch(static_cast<Category>(c)) + h(std::string(category_name(static_cast<Category>(c)))) + "</th>";
   out += "<th>GPU time</th></tr>\n";
   for (size_t r = 0; r < runs.size(); ++r) {
     const FrameTimes& t = medians[r];
-    out += "<tr><td class=\"name\">" + h(runs[r].label) + "</td><td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" +
-           (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
+    out += "<tr><td class=\"name\">" + h(runs[r].label) + "</td><td><b>" + report_number(t.total_ms(), 2) +
+           "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
     for (size_t c : shown) out += "<td>" + report_number(t.ms[c], 2) + "</td>";
     auto [value, how] = gpu_time_cells(runs[r]);
     out += "<td title=\"" + how + "\">" + value + "</td></tr>\n";
@@ -281,17 +292,17 @@ std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector
 
 // What each run was: its crowd, frames and digest.
 std::string runs_table(const std::vector<ReportRun>& runs) {
-  std::string out = "<table class=\"runs\"><tr><th class=\"name\">run</th><th>characters</th><th>joints</th>"
-                    "<th>vertices</th><th>frames</th><th>warm-up</th><th class=\"name\">actions</th>"
-                    "<th class=\"name\">scene</th><th class=\"name\">digest</th></tr>\n";
+  std::string out =
+      "<table class=\"runs\"><tr><th class=\"name\">run</th><th>characters</th><th>joints</th>"
+      "<th>vertices</th><th>frames</th><th>warm-up</th><th class=\"name\">actions</th>"
+      "<th class=\"name\">scene</th><th class=\"name\">digest</th></tr>\n";
   for (const ReportRun& run : runs) {
     const RunDescription& scene = run.result.run;
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(scene.characters) + "</td><td>" +
            std::to_string(scene.joints) + "</td><td>" + std::to_string(scene.vertices) + "</td><td>" +
-           std::to_string(run.result.frames()) + "</td><td>" + std::to_string(scene.warmup) + "</td><td class=\"name\">" +
-           h(scene.action_choice) + "</td><td class=\"name\" title=\"" + h(scene.file) + "\">" + h(file_name(scene.file)) +
-           "</td><td class=\"name\">" +
-           h(run.result.digest) + "</td></tr>\n";
+           std::to_string(run.result.frames()) + "</td><td>" + std::to_string(scene.warmup) +
+           "</td><td class=\"name\">" + h(scene.action_choice) + "</td><td class=\"name\" title=\"" + h(scene.file) +
+           "\">" + h(file_name(scene.file)) + "</td><td class=\"name\">" + h(run.result.digest) + "</td></tr>\n";
   }
   return out + "</table>\n";
 }
@@ -310,10 +321,12 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
 // time) with the pipeline statistics where the GL had them: only when some
 // run split its GPU time.
 std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
-  if (std::none_of(runs.begin(), runs.end(), [](const ReportRun& r) { return !r.result.samples.gpu_pass_ms[0].empty(); }))
+  if (std::none_of(runs.begin(), runs.end(),
+                   [](const ReportRun& r) { return !r.result.samples.gpu_pass_ms[0].empty(); }))
     return {};
-  std::string out = "<section id=\"gpu-passes\"><h2>GPU time by pass (median a frame)</h2>\n<table><tr>"
-                    "<th class=\"name\">run</th><th class=\"name\">pass</th><th>GPU ms</th>";
+  std::string out =
+      "<section id=\"gpu-passes\"><h2>GPU time by pass (median a frame)</h2>\n<table><tr>"
+      "<th class=\"name\">run</th><th class=\"name\">pass</th><th>GPU ms</th>";
   for (std::string_view stat : kPipelineStatNames) {
     std::string name(stat);
     std::replace(name.begin(), name.end(), '_', ' ');
@@ -332,8 +345,7 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
       if (r.pipeline_statistics) {
         for (size_t s = 0; s < kPipelineStatCount; ++s)
           out += "<td>" + with_thousands(static_cast<uint64_t>((*r.pipeline_statistics)[p][s])) + "</td>";
-        const double reuse =
-            r.invocations_per_vertex_drawn ? (*r.invocations_per_vertex_drawn)[p] : std::nan("");
+        const double reuse = r.invocations_per_vertex_drawn ? (*r.invocations_per_vertex_drawn)[p] : std::nan("");
         out += "<td>" + (std::isfinite(reuse) ? report_number(reuse, 3) : std::string("-")) + "</td>";
       } else {
         out += "<td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount + 1) + "\">unavailable: " +
@@ -343,11 +355,12 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
       out += "</tr>\n";
     }
     double gpu = metric_median(r, "gpu_ms");
-    out += "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\"><i>passes together</i></td><td>" +
-           report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount + 1) + "\">" +
-           (gpu > 0 ? report_number(100.0 * sum / gpu, 0) + "% of the frame's GPU time (" + report_number(gpu, 3) + " ms)"
-                    : std::string("the frame's GPU time is not known")) +
-           "</td></tr>\n";
+    out +=
+        "<tr><td class=\"name\">" + h(run.label) + "</td><td class=\"name\"><i>passes together</i></td><td>" +
+        report_number(sum, 3) + "</td><td class=\"name\" colspan=\"" + std::to_string(kPipelineStatCount + 1) + "\">" +
+        (gpu > 0 ? report_number(100.0 * sum / gpu, 0) + "% of the frame's GPU time (" + report_number(gpu, 3) + " ms)"
+                 : std::string("the frame's GPU time is not known")) +
+        "</td></tr>\n";
   }
   return out + "</table></section>\n";
 }
@@ -357,10 +370,11 @@ std::string gpu_passes_section(const std::vector<ReportRun>& runs) {
 std::string animation_stages_section(const std::vector<ReportRun>& runs) {
   if (std::none_of(runs.begin(), runs.end(), [](const ReportRun& r) { return animation_split(r.result).has_value(); }))
     return {};
-  std::string out = "<section id=\"animation-stages\"><h2>Animations by stage (thread time, median a frame)</h2>\n"
-                    "<p>Each stage's time summed over the threads that ran it; on one thread they add up to "
-                    "Animations, less what the pose update spends between stages.</p>\n<table><tr>"
-                    "<th class=\"name\">run</th>";
+  std::string out =
+      "<section id=\"animation-stages\"><h2>Animations by stage (thread time, median a frame)</h2>\n"
+      "<p>Each stage's time summed over the threads that ran it; on one thread they add up to "
+      "Animations, less what the pose update spends between stages.</p>\n<table><tr>"
+      "<th class=\"name\">run</th>";
   for (std::string_view label : kAnimationStageLabels) out += "<th>" + std::string(label) + " ms</th>";
   out += "<th>threads</th><th>of Animations' thread time</th></tr>\n";
   for (const ReportRun& run : runs) {
@@ -377,22 +391,27 @@ std::string animation_stages_section(const std::vector<ReportRun>& runs) {
 }
 
 std::string percentile_table(const std::vector<ReportRun>& runs) {
-  std::string out = "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
-                    "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
+  std::string out =
+      "<table><tr><th class=\"name\">run</th><th>frames</th><th>median ms</th><th>p95 ms</th><th>p99 ms</th>"
+      "<th>max ms</th><th>over 16.7 ms</th><th>over 33.3 ms</th></tr>\n";
   for (const ReportRun& run : runs) {
     const std::vector<double>& ms = run.result.samples.frame_ms;
-    auto over = [&](double budget) { return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; }); };
+    auto over = [&](double budget) {
+      return std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget; });
+    };
     out += "<tr><td class=\"name\">" + h(run.label) + "</td><td>" + std::to_string(ms.size()) + "</td><td>" +
            report_number(median_frame_ms(ms), 3) + "</td><td>" + report_number(quantile(ms, 0.95), 3) + "</td><td>" +
-           report_number(quantile(ms, 0.99), 3) + "</td><td>" + report_number(*std::max_element(ms.begin(), ms.end()), 3) + "</td><td>" +
+           report_number(quantile(ms, 0.99), 3) + "</td><td>" +
+           report_number(*std::max_element(ms.begin(), ms.end()), 3) + "</td><td>" +
            std::to_string(over(kBudgetsMs[0])) + "</td><td>" + std::to_string(over(kBudgetsMs[1])) + "</td></tr>\n";
   }
   return out + "</table>\n";
 }
 
 std::string modes_table(const std::vector<ReportRun>& runs) {
-  std::string out = "<table><tr><th class=\"name\">run</th><th>characters</th><th>threads</th><th>median frame ms</th>"
-                    "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
+  std::string out =
+      "<table><tr><th class=\"name\">run</th><th>characters</th><th>threads</th><th>median frame ms</th>"
+      "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
   std::map<size_t, double> first;  // per crowd size: the first run's median
   for (const ReportRun& run : runs) {
     size_t n = run.result.run.characters;
@@ -417,29 +436,37 @@ std::string html_p_text(double p) {
 std::string check_section(const CheckSection& check, std::string& charts) {
   const CheckResult& r = check.result;
   std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
-  std::string out = "<section id=\"check\"><h2>" + std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) + ": " + verdict + "</h2>\n";
+  std::string out = "<section id=\"check\"><h2>" +
+                    std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) +
+                    ": " + verdict + "</h2>\n";
   SvgDocument svg;
   svg.add(verdict_chart(r, check.options));
   charts += "v";
   out += svg.inline_svg();
-  out += "<table><tr><th class=\"name\">metric</th><th>baseline median</th><th>current median</th><th>change</th>"
-         "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
+  out +=
+      "<table><tr><th class=\"name\">metric</th><th>baseline median</th><th>current median</th><th>change</th>"
+      "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
   VerdictChart rows = verdict_chart(r, check.options);
   for (size_t m = 0; m < r.metrics.size(); ++m) {
     const MetricCheck& metric = r.metrics[m];
     // Milliseconds, or "probes" for the calibrated frame (a ratio).
     const std::string unit = " " + metric.value_unit;
-    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" + metric_value_text(metric, metric.baseline.median) +
-           unit + "</td><td>" + metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
-           (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%" : "n/a") +
+    out += "<tr><td class=\"name\">" + h(metric.metric) + "</td><td>" +
+           metric_value_text(metric, metric.baseline.median) + unit + "</td><td>" +
+           metric_value_text(metric, metric.current.median) + unit + "</td><td>" +
+           (std::isfinite(metric.change) ? (metric.change >= 0 ? "+" : "") + report_number(metric.change * 100, 1) + "%"
+                                         : "n/a") +
            "</td><td>" + (metric.tested ? html_p_text(metric.p_adjusted) : "-") + "</td><td>" +
-           metric_value_text(metric, metric.floor_ms) + unit +
-           "</td><td class=\"name\">" + h(rows.rows[m].verdict) + "</td></tr>\n";
+           metric_value_text(metric, metric.floor_ms) + unit + "</td><td class=\"name\">" + h(rows.rows[m].verdict) +
+           "</td></tr>\n";
   }
-  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) + "% and the floor (a slowdown must pass both; the green band is the larger), "
-         "significance level " + report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
+  out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) +
+         "% and the floor (a slowdown must pass both; the green band is the larger), "
+         "significance level " +
+         report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
   const bool digests_equal = r.baseline_digest == r.current_digest;
-  if (r.counters.empty() && r.counters_missing.empty() && digests_equal) out += "Counters and digest match the baseline.";
+  if (r.counters.empty() && r.counters_missing.empty() && digests_equal)
+    out += "Counters and digest match the baseline.";
   else if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs())
     out += "Counters match the baseline; digest " + h(r.digest_note()) + ".";
   for (const CounterDifference& d : r.counters)
@@ -499,10 +526,10 @@ std::string html_report(const HtmlReportInput& given) {
   std::string title = "crowdprof report" + from + ": " + caption +
                       (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
                                             input.capacity->metric
-                       : input.check  ? ", " + input.check->command
+                       : input.check            ? ", " + input.check->command
                        : !input.command.empty() ? ", " + input.command
-                       : input.runs.size() > 1 ? ", " + std::to_string(input.runs.size()) + " runs"
-                                               : ", " + input.runs.front().label);
+                       : input.runs.size() > 1  ? ", " + std::to_string(input.runs.size()) + " runs"
+                                                : ", " + input.runs.front().label);
   std::string charts;  // one letter per chart, for the count the page checks
   std::string body;
   body += "<h1>" + h(title) + "</h1>\n<p class=\"sources\">";
@@ -511,8 +538,7 @@ std::string html_report(const HtmlReportInput& given) {
     for (size_t s = 0; s < input.sources.size(); ++s) body += (s ? ", " : "") + h(input.sources[s]);
     body += ". ";
   }
-  body += "Made by crowdprof " + h(first.environment.version) +
-          "; one file, no network needed.</p>\n";
+  body += "Made by crowdprof " + h(first.environment.version) + "; one file, no network needed.</p>\n";
   if (input.capacity) body += capacity_section(*input.capacity);
   if (input.check) body += check_section(*input.check, charts);
   body += headline_section(input.runs);
@@ -523,8 +549,8 @@ std::string html_report(const HtmlReportInput& given) {
   SvgDocument frame_svg;
   frame_svg.add(frame_time_chart(input.runs, colours));
   charts += "f";
-  body += "<section id=\"frame-time\"><h2>Frame time per frame</h2>\n" + frame_svg.inline_svg() + percentile_table(input.runs) +
-          "</section>\n";
+  body += "<section id=\"frame-time\"><h2>Frame time per frame</h2>\n" + frame_svg.inline_svg() +
+          percentile_table(input.runs) + "</section>\n";
 
   body += "<section id=\"categories\"><h2>Categories per frame</h2>\n";
   for (const ReportRun& run : input.runs) {
@@ -543,7 +569,8 @@ std::string html_report(const HtmlReportInput& given) {
       svg.add(*costs);
       charts += "e";
     }
-    body += "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
+    body +=
+        "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
   }
 
   std::vector<SweepPoint> sweep = input.sweep;
@@ -564,14 +591,17 @@ std::string html_report(const HtmlReportInput& given) {
 
   body += environment_section(input.runs);
   if (!input.screenshot_png.empty())
-    body += "<section id=\"screenshot\"><h2>Screenshot (the last frame)</h2>\n<img class=\"screenshot\" alt=\"the last "
-            "frame drawn\" src=\"data:image/png;base64," + base64(input.screenshot_png) + "\"></section>\n";
+    body +=
+        "<section id=\"screenshot\"><h2>Screenshot (the last frame)</h2>\n<img class=\"screenshot\" alt=\"the last "
+        "frame drawn\" src=\"data:image/png;base64," +
+        base64(input.screenshot_png) + "\"></section>\n";
 
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
-         "content=\"width=device-width, initial-scale=1\">\n<title>" + h(title) + "</title>\n<script>\n" +
-         std::string(page_file("lib/reports/page/error_hook.js")) + "</script>\n<style>\n" +
-         std::string(page_file("lib/reports/page/report.css")) + "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body +
-         "<script>\n" + std::string(page_file("lib/reports/page/self_check.js")) + "</script>\n</body>\n</html>\n";
+         "content=\"width=device-width, initial-scale=1\">\n<title>" +
+         h(title) + "</title>\n<script>\n" + std::string(page_file("lib/reports/page/error_hook.js")) +
+         "</script>\n<style>\n" + std::string(page_file("lib/reports/page/report.css")) +
+         "</style>\n</head>\n<body data-charts=\"" + std::to_string(charts.size()) + "\">\n" + body + "<script>\n" +
+         std::string(page_file("lib/reports/page/self_check.js")) + "</script>\n</body>\n</html>\n";
 }
 
 void write_html_report(const std::string& path, const HtmlReportInput& input) {

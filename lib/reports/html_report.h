@@ -19,7 +19,7 @@ namespace crowdprof {
 struct CheckSection {
   CheckResult result;
   CheckOptions options;
-  std::string baseline;  // the baseline's path, as given
+  std::string baseline;           // the baseline's path, as given
   std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
 };
 
@@ -31,8 +31,8 @@ struct HtmlReportInput {
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
   std::optional<CapacityRecord> capacity;
-  std::string command;  // what made the page ("diff"), named in its title when no check or capacity is
-  std::string screenshot_png;        // PNG bytes; empty when no screenshot was taken
+  std::string command;         // what made the page ("diff"), named in its title when no check or capacity is
+  std::string screenshot_png;  // PNG bytes; empty when no screenshot was taken
 };
 
 // Adds the document read from `path` (read_result_document): a bench result,

@@ -43,8 +43,10 @@ std::string significant(double value) {
 // "8.93ms", or below 0.01 ms "4.2us": a small time never reads 0.00.
 std::string short_time(double ms) {
   char text[32];
-  if (ms >= 0.01) std::snprintf(text, sizeof text, "%.2fms", ms);
-  else std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
+  if (ms >= 0.01)
+    std::snprintf(text, sizeof text, "%.2fms", ms);
+  else
+    std::snprintf(text, sizeof text, "%.3gus", ms * 1000.0);
   return text;
 }
 
@@ -113,17 +115,17 @@ std::string format_drawn_error(const DrawnErrorRecord& e) {
 
 std::string format_culling_audit(const CullingAudit& c) {
   std::ostringstream out;
-  out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies
-      << " copies" << (c.copy_stride > 1 ? " (one in " + std::to_string(c.copy_stride) + ")" : std::string()) << " in "
-      << fixed(c.ms, 0) << " ms; " << c.in_view
-      << " in view, " << c.outside << " outside" << (c.undecided ? ", " + std::to_string(c.undecided) + " undecided" : "")
-      << "):";
+  out << "culling audit (" << c.frames << " exact pose" << (c.frames == 1 ? "" : "s") << " of " << c.copies << " copies"
+      << (c.copy_stride > 1 ? " (one in " + std::to_string(c.copy_stride) + ")" : std::string()) << " in "
+      << fixed(c.ms, 0) << " ms; " << c.in_view << " in view, " << c.outside << " outside"
+      << (c.undecided ? ", " + std::to_string(c.undecided) + " undecided" : "") << "):";
   for (size_t b = 0; b < c.boxes.size(); ++b) {
     const CullBoxAudit& box = c.boxes[b];
     std::string name(cull_box_name(static_cast<CullBox>(b)));
     std::replace(name.begin(), name.end(), '_', '-');
-    out << (b ? " |" : "") << " " << name << (static_cast<CullBox>(b) == CullBox::EveryAction ? " (this run's)" : "") << " "
-        << box.false_culls << " false culls, " << box.missed_culls << " missed, slack " << fixed(box.slack_mean, 2) << "x";
+    out << (b ? " |" : "") << " " << name << (static_cast<CullBox>(b) == CullBox::EveryAction ? " (this run's)" : "")
+        << " " << box.false_culls << " false culls, " << box.missed_culls << " missed, slack "
+        << fixed(box.slack_mean, 2) << "x";
   }
   out << "\n";
   return out.str();
@@ -159,17 +161,17 @@ std::string format_profile(const Result& report) {
     std::snprintf(line, sizeof line, "%-11s: %10s   median of %zu frames, GL timer queries (beside the frame)\n",
                   "GPU time", short_time(summarize(gpu).median).c_str(), gpu.size());
   else
-    std::snprintf(line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
-                  (run.gpu_timing_missing.empty() ? std::string("no timer query was read back")
-                                                   : run.gpu_timing_missing).c_str());
+    std::snprintf(
+        line, sizeof line, "%-11s: %8s     %s\n", "GPU time", "n/a",
+        (run.gpu_timing_missing.empty() ? std::string("no timer query was read back") : run.gpu_timing_missing)
+            .c_str());
   out << line;
   out << format_gpu_passes(report, gpu);
   // The slow frames, which a median hides: a game stutters on its p99.
   std::vector<double> totals = frame_ms(report.frame_records);
   Summary s = summarize(totals);
   // (The median is Frametime's, above: one median per run.)
-  std::snprintf(line, sizeof line, "Slow frames: p95 %.2f | p99 %.2f | max %.2f ms\n", s.p95, s.p99,
-                s.max);
+  std::snprintf(line, sizeof line, "Slow frames: p95 %.2f | p99 %.2f | max %.2f ms\n", s.p95, s.p99, s.max);
   out << line;
   if (std::optional<AnimationSplit> split = animation_split(report)) {
     out << "Animations by stage:";
@@ -177,8 +179,8 @@ std::string format_profile(const Result& report) {
       out << (st ? " |" : "") << " " << kAnimationStageLabels[st] << " " << fixed(split->median_ms[st], 3);
     out << " ms of thread time (medians";
     if (split->threads > 1) out << ", " << split->threads << " threads";
-    out << "; " << fixed(100.0 * split->coverage, 0) << "% of Animations'"
-        << (split->threads > 1 ? " thread time" : "") << ")\n";
+    out << "; " << fixed(100.0 * split->coverage, 0) << "% of Animations'" << (split->threads > 1 ? " thread time" : "")
+        << ")\n";
   }
   const Counters& k = frame.counters;
   if (run.crowd.size() > 1)
@@ -186,11 +188,9 @@ std::string format_profile(const Result& report) {
         << run.vertices << " vertices) | mode ";
   else
     out << run.characters << " characters x " << run.joints << " joints, " << run.vertices << " vertices | mode ";
-  out
-      << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend "
-      << run.backend << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | "
-      << k.poses_updated << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups
-      << " lookups";
+  out << run.mode << " | " << run.threads << (run.threads == 1 ? " thread" : " threads") << " | backend " << run.backend
+      << " | " << k.copies_culled << " copies culled, " << k.copies_visible << " on screen | " << k.poses_updated
+      << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups << " lookups";
   // Transitions from the switch, or from a scene file's groups (seen in their counters).
   if (run.switches.transitions_s > 0 || k.fades > 0 || k.actions_sampled != k.poses_updated)
     out << ", " << k.actions_sampled << " actions sampled, " << k.fades << " fades, " << k.joints_blended
@@ -213,8 +213,10 @@ std::string format_profile(const Result& report) {
     out << "GPU memory ";
     if (m.total_bytes) out << mib(*m.total_bytes) << (m.free_bytes ? ", " : "");
     if (m.free_bytes) out << mib(*m.free_bytes) << " free";
-    if (!m.total_bytes && !m.free_bytes) out << "unknown (the GL has neither NVX_gpu_memory_info nor ATI_meminfo)";
-    else out << " (" << m.source << ")";
+    if (!m.total_bytes && !m.free_bytes)
+      out << "unknown (the GL has neither NVX_gpu_memory_info nor ATI_meminfo)";
+    else
+      out << " (" << m.source << ")";
     out << " | largest storage block " << mib(m.max_storage_block_bytes) << "\n";
   }
   if (run.gpu_skinning) {
@@ -233,7 +235,8 @@ std::string format_profile(const Result& report) {
   if (run.crowd.size() > 1) {
     // As wide as the longest name, up to 48 (a generated character's gen command); longer ones keep their end.
     int width = 28;
-    for (const CharacterRun& c : run.crowd) width = std::max(width, static_cast<int>(std::min<size_t>(c.file.size(), 48)));
+    for (const CharacterRun& c : run.crowd)
+      width = std::max(width, static_cast<int>(std::min<size_t>(c.file.size(), 48)));
     const auto w = static_cast<size_t>(width);
     std::snprintf(line, sizeof line, "%-*s %6s %6s %8s %9s %6s %6s %16s %9s\n", width, "file", "copies", "joints",
                   "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
@@ -255,8 +258,10 @@ std::string format_profile(const Result& report) {
     for (size_t c = 0; c < run.crowd.size(); ++c) out << (c ? ", " : "") << run.crowd[c].action_choice;
     out << ", seed " << run.seed << ")";
   }
-  if (run.action_choice == "random") out << " (seed " << run.seed << ")";
-  else if (!run.action.empty()) out << " (" << run.action << ")";
+  if (run.action_choice == "random")
+    out << " (seed " << run.seed << ")";
+  else if (!run.action.empty())
+    out << " (" << run.action << ")";
   out << " | " << report.frame_records.size() << " frames after " << run.warmup << " warm-up at " << fixed(run.fps, 0)
       << " fps simulated | digest " << report.digest << "\n";
   if (report.animation) {
@@ -275,8 +280,9 @@ std::string format_profile(const Result& report) {
     out << " | error by level";
     for (size_t l = 1; l < m.levels.size(); ++l) {
       const MeshLevelRecord& level = m.levels[l];
-      out << (l > 1 ? " / " : " ") << fixed(level.error * 1000.0, 2) << " mm (" << fixed(level.error_fraction * 100.0, 2)
-          << "% of height" << (level.copies ? ", " + fixed(level.error_px, 2) + " px" : std::string()) << ")";
+      out << (l > 1 ? " / " : " ") << fixed(level.error * 1000.0, 2) << " mm ("
+          << fixed(level.error_fraction * 100.0, 2) << "% of height"
+          << (level.copies ? ", " + fixed(level.error_px, 2) + " px" : std::string()) << ")";
     }
     out << "\n";
   }

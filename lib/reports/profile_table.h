@@ -22,5 +22,4 @@ std::string format_drawn_error(const DrawnErrorRecord& error);
 void write_csv(const Result& report, std::ostream& out);
 std::string csv_header();
 
-
 }  // namespace crowdprof

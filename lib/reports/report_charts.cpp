@@ -49,7 +49,10 @@ std::string scene_caption(const Result& result) {
 
 LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
   LineChart chart{"Frame time per frame: " + (runs.empty() ? std::string() : scene_caption(runs.front().result)),
-                  frames_axis(runs), "frame time (ms)", {}, false};
+                  frames_axis(runs),
+                  "frame time (ms)",
+                  {},
+                  false};
   chart.id = "frame-time";
   double highest = 0;
   for (const ReportRun& run : runs) {
@@ -63,7 +66,8 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
     };
     for (Mark mark : {Mark{"median", 0.5, "2,3"}, Mark{"p95", 0.95, "6,3"}, Mark{"p99", 0.99, "12,3"}}) {
       double value = mark.q == 0.5 ? median_frame_ms(ms) : quantile(ms, mark.q);
-      std::string label = std::string(mark.name) + (runs.size() > 1 ? " " + run.label : "") + " " + report_number(value, 2) + " ms";
+      std::string label =
+          std::string(mark.name) + (runs.size() > 1 ? " " + run.label : "") + " " + report_number(value, 2) + " ms";
       chart.guides.push_back({value, label, colour, mark.dash, std::string("percentile ") + mark.name, true, true});
     }
     chart.series.push_back({run.label, frame_numbers(ms.size()), std::move(ms), colour});
@@ -71,8 +75,9 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
   // A budget far above every frame would squash the frames flat: it is then
   // named at the top of the chart instead of drawn.
   for (double budget : kBudgetsMs)
-    chart.guides.push_back({budget, report_number(budget, 1) + " ms budget (" + report_number(1000.0 / budget, 0) + " fps)", "#B00020",
-                            "8,4", "budget", highest >= 0.4 * budget, false});
+    chart.guides.push_back({budget,
+                            report_number(budget, 1) + " ms budget (" + report_number(1000.0 / budget, 0) + " fps)",
+                            "#B00020", "8,4", "budget", highest >= 0.4 * budget, false});
   // Several runs: labels of every percentile would pile up; the table below the
   // chart gives them, the lines keep their tooltips.
   if (runs.size() > 2)
@@ -83,7 +88,10 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
 
 StackedArea categories_chart(const ReportRun& run) {
   StackedArea chart{"Time per category per frame, " + run.label + ": " + scene_caption(run.result),
-                    frames_axis({run}), "time (ms), categories stacked", {}, {}};
+                    frames_axis({run}),
+                    "time (ms), categories stacked",
+                    {},
+                    {}};
   chart.id = "categories";
   chart.x = frame_numbers(run.result.frames());
   for (size_t c = 0; c < kCategoryCount; ++c) {
@@ -106,8 +114,11 @@ std::optional<LineChart> cost_error_chart(const std::vector<ReportRun>& runs, Mo
 
 std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours) {
   if (points.empty()) return std::nullopt;
-  LineChart chart{"Cost against error: median frame, largest drawn error on screen", "median frame time (ms)",
-                  "largest drawn error (px)", {}, true};
+  LineChart chart{"Cost against error: median frame, largest drawn error on screen",
+                  "median frame time (ms)",
+                  "largest drawn error (px)",
+                  {},
+                  true};
   chart.id = "cost-error";
   // The front first, so that each mode's dot is drawn over it.
   std::vector<const CostErrorPoint*> front;
@@ -121,8 +132,11 @@ std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& poi
   }
   chart.series.push_back(std::move(line));
   for (const CostErrorPoint& p : points)
-    chart.series.push_back({p.past_threshold ? p.mode + " (past " + report_number(kFrontMaxErrorPx, 0) + " px)" : p.mode,
-                            {p.frame_ms}, {p.error.max_px}, colours.colour(p.mode)});
+    chart.series.push_back(
+        {p.past_threshold ? p.mode + " (past " + report_number(kFrontMaxErrorPx, 0) + " px)" : p.mode,
+         {p.frame_ms},
+         {p.error.max_px},
+         colours.colour(p.mode)});
   return chart;
 }
 
@@ -135,7 +149,10 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs) {
   }
   StackedBars chart{"Median time per category, modes side by side: " +
                         (runs.empty() ? std::string() : scene_caption(runs.front().result)),
-                    "median time (ms)", {}, {}, {}};
+                    "median time (ms)",
+                    {},
+                    {},
+                    {}};
   chart.id = "modes";
   std::vector<size_t> shown;
   for (size_t c = 0; c < kCategoryCount; ++c)
@@ -157,8 +174,10 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, con
                       ModeColours& colours, std::optional<double> budget_ms) {
   const bool passes = axis == SweepAxis::Passes;
   LineChart chart{(passes ? "Median frame time against passes: " : "Median frame time against crowd size: ") + caption,
-                  passes ? "passes (draws of the crowd a frame)" : "characters (log scale)", "median frame time (ms)",
-                  {}, true};
+                  passes ? "passes (draws of the crowd a frame)" : "characters (log scale)",
+                  "median frame time (ms)",
+                  {},
+                  true};
   chart.log_x = !passes;
   chart.id = "sweep";
   for (const SweepPoint& point : points) {
@@ -178,8 +197,9 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, con
     series = std::move(sorted);
   }
   if (budget_ms)
-    chart.guides.push_back({*budget_ms, report_number(*budget_ms, 1) + " ms budget (" + report_number(1000.0 / *budget_ms, 0) + " fps)",
-                            "#B00020", "8,4", "budget", true, false});
+    chart.guides.push_back(
+        {*budget_ms, report_number(*budget_ms, 1) + " ms budget (" + report_number(1000.0 / *budget_ms, 0) + " fps)",
+         "#B00020", "8,4", "budget", true, false});
   return chart;
 }
 
@@ -190,7 +210,7 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
     // The words format_check uses for the same outcomes.
     std::string verdict = !m.tested                                                       ? "not tested"
                           : m.regressed                                                   ? "REGRESSION"
-                          : m.beyond_tolerance && !m.beyond_floor                        ? "slower, under the floor"
+                          : m.beyond_tolerance && !m.beyond_floor                         ? "slower, under the floor"
                           : m.beyond_tolerance                                            ? "slower, not significant"
                           : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";

@@ -26,7 +26,6 @@ struct ReportRun {
   std::string source;  // the file it came from ("" when made in this process)
 };
 
-
 // Frame budgets drawn on frame-time charts: 60 and 30 frames a second.
 inline constexpr double kBudgetsMs[] = {1000.0 / 60.0, 1000.0 / 30.0};
 
@@ -57,8 +56,8 @@ StackedBars modes_chart(const std::vector<ReportRun>& runs);
 
 // Median frame time against crowd size on a log axis, a line per mode; with a
 // budget (capacity's), the budget as a line.
-LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, const std::string& caption, ModeColours& colours,
-                      std::optional<double> budget_ms = std::nullopt);
+LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, const std::string& caption,
+                      ModeColours& colours, std::optional<double> budget_ms = std::nullopt);
 
 // Each run's median frame time against its largest drawn error (px), a dot
 // per run and the Pareto front as a line (reports/cost_error.h); nullopt when

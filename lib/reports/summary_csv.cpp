@@ -39,8 +39,8 @@ void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out
     out << csv_field(report->run.mode) << "," << report->run.characters << "," << report->run.threads << ","
         << report->frames() << "," << fixed(f.median, 4) << "," << fixed(f.p95, 4) << "," << fixed(f.p99, 4) << ","
         << rate(f.median) << "," << fixed(c.median, 4) << "," << fixed(c.p95, 4) << "," << fixed(c.p99, 4) << ","
-        << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes
-        << "," << to_string(report->run.switches.index_order);
+        << rate(c.median) << "," << (report->partial ? "true" : "false") << "," << report->run.switches.passes << ","
+        << to_string(report->run.switches.index_order);
     // Vertex reuse by pass: empty where the GL did not count it or the pass drew nothing.
     for (GpuPass pass : {GpuPass::Colour, GpuPass::Prepass, GpuPass::Shadows}) {
       const double reuse = report->invocations_per_vertex_drawn

@@ -53,7 +53,7 @@ double nice_step(double span, int count) {
 
 struct Axis {
   double lo = 0, hi = 1, step = 1;
-  bool log = false;  // lo and hi are powers of ten; ticks at 1, 2, 5 times them
+  bool log = false;            // lo and hi are powers of ten; ticks at 1, 2, 5 times them
   double at(double v) const {  // 0 at lo, 1 at hi
     return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
   }
@@ -120,13 +120,13 @@ void frame(std::string& out, const Panel& p, const std::string& title, const std
              label(v) + "</text>\n";
     }
   }
-  out += "<rect x=\"" + num(kLeft) + "\" y=\"" + num(p.top + kTop) + "\" width=\"" + num(p.plot_w()) +
-         "\" height=\"" + num(p.plot_h()) + "\" fill=\"none\" stroke=\"#888\"/>\n";
+  out += "<rect x=\"" + num(kLeft) + "\" y=\"" + num(p.top + kTop) + "\" width=\"" + num(p.plot_w()) + "\" height=\"" +
+         num(p.plot_h()) + "\" fill=\"none\" stroke=\"#888\"/>\n";
   out += "<text x=\"" + num(kLeft + p.plot_w() / 2) + "\" y=\"" + num(p.bottom() + 40) + "\" text-anchor=\"middle\">" +
          xml_escape(x_label) + "</text>\n";
   double mid = p.top + kTop + p.plot_h() / 2;
-  out += "<text x=\"20\" y=\"" + num(mid) + "\" text-anchor=\"middle\" transform=\"rotate(-90 20 " + num(mid) +
-         ")\">" + xml_escape(y_label) + "</text>\n";
+  out += "<text x=\"20\" y=\"" + num(mid) + "\" text-anchor=\"middle\" transform=\"rotate(-90 20 " + num(mid) + ")\">" +
+         xml_escape(y_label) + "</text>\n";
 }
 
 void legend_entry(std::string& out, const Panel& p, size_t index, const std::string& name, const std::string& colour) {
@@ -140,7 +140,9 @@ std::string chart_open(const char* kind, const std::string& id, size_t series) {
          " data-series=\"" + std::to_string(series) + "\">\n";
 }
 
-bool drawable(double v) { return std::isfinite(v) && v > 0; }
+bool drawable(double v) {
+  return std::isfinite(v) && v > 0;
+}
 
 }  // namespace
 
@@ -148,11 +150,21 @@ std::string xml_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         // Control characters are not allowed in XML 1.0 at all.
         if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
@@ -352,9 +364,10 @@ void SvgDocument::add(const VerdictChart& chart) {
   auto at = [&](double percent) { return kLeft + 60 + x.at(percent) * (p.plot_w() - 60); };
   for (size_t r = 0; r < chart.rows.size(); ++r) {
     double allowed = std::isfinite(chart.rows[r].allowed) ? chart.rows[r].allowed * 100 : 0.0;
-    out += "<rect class=\"tolerance\" x=\"" + num(at(0)) + "\" y=\"" + num(plot_top + row_h * static_cast<double>(r) + 2) +
-           "\" width=\"" + num(at(allowed) - at(0)) + "\" height=\"" + num(row_h - 4) +
-           "\" fill=\"#dff0d8\"><title>allowed: up to " + label(allowed) + "% slower</title></rect>\n";
+    out += "<rect class=\"tolerance\" x=\"" + num(at(0)) + "\" y=\"" +
+           num(plot_top + row_h * static_cast<double>(r) + 2) + "\" width=\"" + num(at(allowed) - at(0)) +
+           "\" height=\"" + num(row_h - 4) + "\" fill=\"#dff0d8\"><title>allowed: up to " + label(allowed) +
+           "% slower</title></rect>\n";
   }
   for (double v : x.ticks()) {
     out += "<line x1=\"" + num(at(v)) + "\" x2=\"" + num(at(v)) + "\" y1=\"" + num(plot_top) + "\" y2=\"" +
@@ -386,11 +399,13 @@ void SvgDocument::add(const VerdictChart& chart) {
 static std::string svg_element(int width, int height, const std::string& body, const char* xmlns) {
   std::string w = std::to_string(width), h = std::to_string(std::max(height, 1));
   return "<svg" + std::string(xmlns) + " width=\"" + w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h +
-         "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n" + body +
-         "</svg>\n";
+         "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n" +
+         body + "</svg>\n";
 }
 
-std::string SvgDocument::inline_svg() const { return svg_element(width_, height_, body_, ""); }
+std::string SvgDocument::inline_svg() const {
+  return svg_element(width_, height_, body_, "");
+}
 
 std::string SvgDocument::str() const {
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" +

@@ -19,7 +19,7 @@ struct LineSeries {
 // A horizontal line across a line chart at `y`: a frame budget, a percentile.
 struct Guide {
   double y = 0;
-  std::string label;           // in the right margin; empty: only a tooltip
+  std::string label;  // in the right margin; empty: only a tooltip
   std::string colour = "#444";
   std::string dash = "6,4";
   std::string kind = "guide";  // the element's class, for readers and tests
@@ -35,15 +35,15 @@ struct LineChart {
   bool markers = false;                 // a dot on every point (for few points)
   bool log_x = false;                   // a log-scaled x axis (crowd sizes); x <= 0 not drawn
   std::vector<Guide> guides = {};
-  std::string id = {};                  // data-chart, to find the chart in a page
+  std::string id = {};  // data-chart, to find the chart in a page
 };
 
 struct StackedBars {
   std::string title, y_label;
-  std::vector<std::string> segments;         // bottom to top, e.g. category names
-  std::vector<std::string> bars;             // one bar each, left to right
-  std::vector<std::vector<double>> values;   // [bar][segment]
-  std::vector<std::string> colours = {};     // per segment; empty: by position
+  std::vector<std::string> segments;        // bottom to top, e.g. category names
+  std::vector<std::string> bars;            // one bar each, left to right
+  std::vector<std::vector<double>> values;  // [bar][segment]
+  std::vector<std::string> colours = {};    // per segment; empty: by position
   std::string id = {};
 };
 
@@ -65,8 +65,8 @@ struct VerdictRow {
   double change = 0;    // a fraction: +0.2 is 20% slower
   std::string verdict;  // "ok", "REGRESSION", ...
   std::string colour;
-  std::string detail;   // tooltip: medians, p-value
-  double allowed = 0.1; // the band [0, allowed] of slowdown this metric may show
+  std::string detail;    // tooltip: medians, p-value
+  double allowed = 0.1;  // the band [0, allowed] of slowdown this metric may show
 };
 struct VerdictChart {
   std::string title;

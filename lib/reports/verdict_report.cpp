@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "base/number_text.h"  // percent
+#include "base/number_text.h"   // percent
 #include "reports/svg_chart.h"  // xml_escape
 #include "reports/text_table.h"
 
@@ -26,7 +26,9 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-std::string ms(double value) { return format(value < 1 ? "%.4f" : "%.3f", value); }
+std::string ms(double value) {
+  return format(value < 1 ? "%.4f" : "%.3f", value);
+}
 // A row's value with its unit: "1.234 ms", "22210727 instructions".
 std::string value(const GateRow& row, double v) {
   if (row.unit == "ms") return ms(v) + " ms";
@@ -39,8 +41,12 @@ std::string interval(const GateRow& row) {
   text.append(percent(row.change_low)).append(", ").append(percent(row.change_high)).append("]");
   return text;
 }
-std::string p_text(double p) { return p < 0.001 ? "<0.001" : format("%.3f", p); }
-std::string p_text(const GateRow& row) { return row.has_p ? p_text(row.p) : "-"; }
+std::string p_text(double p) {
+  return p < 0.001 ? "<0.001" : format("%.3f", p);
+}
+std::string p_text(const GateRow& row) {
+  return row.has_p ? p_text(row.p) : "-";
+}
 
 std::string work_digest_detail(const std::string& base, const std::string& current) {
   return base == current ? "digest " + base : "digest " + base + " -> " + current;
@@ -123,8 +129,7 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
   table.work_compared = options.compare_work;
   table.work_equal = !result.digest_differs() && result.counters.empty() && result.counters_missing.empty();
   table.work_detail = work_digest_detail(result.baseline_digest, result.current_digest);
-  if (result.digest_not_comparable())
-    table.work_detail += " (" + result.digest_note() + ")";
+  if (result.digest_not_comparable()) table.work_detail += " (" + result.digest_note() + ")";
   if (!result.counters.empty()) table.work_detail += "; " + counters_detail(result.counters);
   for (const std::string& name : result.counters_missing) table.work_detail += "; no counter " + name;
   return table;
@@ -133,10 +138,11 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
 std::string verdict_text(const GateTable& table) {
   std::ostringstream out;
   if (!table.title.empty()) out << table.title << "\n";
-  std::vector<std::vector<std::string>> rows = {{"metric", "base_ms", "current_ms", "change", "interval", "p", "verdict"}};
+  std::vector<std::vector<std::string>> rows = {
+      {"metric", "base_ms", "current_ms", "change", "interval", "p", "verdict"}};
   for (const GateRow& row : table.metrics)
-    rows.push_back({row.metric, ms(row.base_ms), ms(row.current_ms), percent(row.change), interval(row),
-                    p_text(row), row.verdict});
+    rows.push_back({row.metric, ms(row.base_ms), ms(row.current_ms), percent(row.change), interval(row), p_text(row),
+                    row.verdict});
   out << align_columns(rows, {0, 4, 6});
   if (table.work_compared)
     out << "work: " << (table.work_equal ? "the same" : "CHANGED") << " (" << table.work_detail << ")\n";
@@ -163,9 +169,9 @@ std::string verdict_junit(const GateTable& table, const std::string& suite) {
     if (row.failed)
       out << "      <failure message=\"" << xml_escape(failure_message(row)) << "\" type=\"slower\">"
           << xml_escape(table.reproduce.empty() ? "" : "reproduce: " + table.reproduce) << "</failure>\n";
-    out << "      <system-out>" << xml_escape(row.verdict + ": " + value(row, row.base_ms) + " -> " +
-                                              value(row, row.current_ms) + ", " + percent(row.change) + ", interval " +
-                                              interval(row) + ", p " + p_text(row))
+    out << "      <system-out>"
+        << xml_escape(row.verdict + ": " + value(row, row.base_ms) + " -> " + value(row, row.current_ms) + ", " +
+                      percent(row.change) + ", interval " + interval(row) + ", p " + p_text(row))
         << "</system-out>\n"
         << "    </testcase>\n";
   }
@@ -193,8 +199,8 @@ std::string verdict_markdown(const GateTable& table) {
   }
   out << "| metric | base | current | change | interval | p | verdict |\n|---|---:|---:|---:|---|---:|---|\n";
   for (const GateRow& row : table.metrics)
-    out << "| " << markdown_cell(row.metric) << " | " << value(row, row.base_ms) << " | " << value(row, row.current_ms) << " | "
-        << percent(row.change) << " | " << interval(row) << " | " << p_text(row) << " | "
+    out << "| " << markdown_cell(row.metric) << " | " << value(row, row.base_ms) << " | " << value(row, row.current_ms)
+        << " | " << percent(row.change) << " | " << interval(row) << " | " << p_text(row) << " | "
         << (row.failed ? "**" + row.verdict + "**" : row.verdict) << " |\n";
   out << "\n";
   if (table.work_compared)

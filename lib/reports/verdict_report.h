@@ -14,10 +14,10 @@
 namespace crowdprof {
 
 struct GateRow {
-  std::string metric;  // as users name it: "frame", "cpu", "animations_ms"
+  std::string metric;                  // as users name it: "frame", "cpu", "animations_ms"
   double base_ms = 0, current_ms = 0;  // in `unit`
   std::string unit = "ms";             // or "instructions" (per frame)
-  double change = 0;  // a fraction: +0.1 is 10% slower
+  double change = 0;                   // a fraction: +0.1 is 10% slower
   bool has_interval = false;
   double change_low = 0, change_high = 0;  // the confidence interval of the change
   double p = 1;                            // after Holm's correction
@@ -28,11 +28,11 @@ struct GateRow {
 };
 
 struct GateTable {
-  std::string title;                // what was compared, one line
+  std::string title;  // what was compared, one line
   std::vector<GateRow> metrics;
   bool work_compared = false, work_equal = true;
-  std::string work_detail;          // the digests, or what differs
-  std::string reproduce;            // the command that reproduces the check
+  std::string work_detail;  // the digests, or what differs
+  std::string reproduce;    // the command that reproduces the check
   bool failed() const;
 };
 

@@ -31,7 +31,8 @@ std::optional<AnimationSplit> animation_split(const Result& result) {
   AnimationSplit split;
   split.threads = result.run.switches.parallel ? std::max(1, result.run.threads) : 1;
   double sum = 0;
-  for (size_t st = 0; st < kAnimationStageCount; ++st) sum += split.median_ms[st] = quantile(s.animation_stage_ms[st], 0.5);
+  for (size_t st = 0; st < kAnimationStageCount; ++st)
+    sum += split.median_ms[st] = quantile(s.animation_stage_ms[st], 0.5);
   if (!(sum > 0)) return std::nullopt;
   for (size_t st = 0; st < kAnimationStageCount; ++st) split.share[st] = split.median_ms[st] / sum;
   const std::vector<double>& animations = s.category_ms[static_cast<size_t>(Category::Animations)];
@@ -80,9 +81,8 @@ size_t median_frame(const std::vector<FrameRecord>& frames) {
   if (frames.empty()) return 0;
   std::vector<size_t> order(frames.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return frames[a].times.total_ms() < frames[b].times.total_ms();
-  });
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return frames[a].times.total_ms() < frames[b].times.total_ms(); });
   return order[(order.size() - 1) / 2];
 }
 

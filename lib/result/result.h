@@ -37,8 +37,8 @@ inline constexpr size_t kMaxRuns = 100;
 // measured (a result stores copies_visible, copies_culled, poses_updated,
 // vertices_skinned and copies_fallback of it).
 struct CharacterRun {
-  std::string file;       // as the scene names it
-  std::string character;  // its name
+  std::string file;          // as the scene names it
+  std::string character;     // its name
   std::string content_hash;  // FNV-1a 64 of its file's bytes ("asset_hash"); empty in older results
   size_t copies = 0, joints = 0, vertices = 0, actions = 0;
   std::string action_choice;  // shared, random or weighted
@@ -105,8 +105,8 @@ struct DrawnErrorRecord {
   double max = 0, rms = 0;                    // model units (mm = x 1000 for glTF's metres)
   double max_fraction = 0, rms_fraction = 0;  // of the character's height
   double max_px = 0, rms_px = 0;
-  double mesh_max = 0;              // the largest mesh-level error included (model units)
-  double switches_per_second = 0;   // changes of update period, all copies
+  double mesh_max = 0;             // the largest mesh-level error included (model units)
+  double switches_per_second = 0;  // changes of update period, all copies
 };
 
 // The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
@@ -120,15 +120,15 @@ struct GpuMemoryRecord {
 
 // What was run: the scene, the crowd, the mode and how it was timed.
 struct RunDescription {
-  std::string file;        // the character's file (with #skin=N when chosen), or the scene file
-  std::string character;   // its name (of a mixed crowd: the names joined by " + ")
-  size_t characters = 0;   // copies in the crowd
+  std::string file;                              // the character's file (with #skin=N when chosen), or the scene file
+  std::string character;                         // its name (of a mixed crowd: the names joined by " + ")
+  size_t characters = 0;                         // copies in the crowd
   size_t joints = 0, vertices = 0, actions = 0;  // of a mixed crowd: the largest character's
-  std::string action_choice;  // "shared" or "random"; "scene": each character as its scene file says
-  std::string action;         // with shared: the action every copy plays ("" when there is none)
+  std::string action_choice;                     // "shared" or "random"; "scene": each character as its scene file says
+  std::string action;                            // with shared: the action every copy plays ("" when there is none)
   uint32_t seed = 0;
-  std::string mode;          // preset name, or "custom"
-  ModeSwitches switches;     // what the mode set
+  std::string mode;       // preset name, or "custom"
+  ModeSwitches switches;  // what the mode set
   int threads = 1;
   std::string backend = "none", renderer = "none";
   // Empty when frames were timed on the GPU (GL timer queries), else why not.
@@ -145,9 +145,9 @@ struct RunDescription {
   std::optional<LensRecord> lens;
   // When the run is of a scene file: its path and a hash of its contents.
   std::string scene_file, scene_hash;
-  std::vector<CharacterRun> crowd;  // per character, in the scene's order
+  std::vector<CharacterRun> crowd;                // per character, in the scene's order
   std::optional<GpuSkinningRecord> gpu_skinning;  // skinning compute or baked
-  std::optional<GpuMemoryRecord> gpu_memory;       // with a GL backend
+  std::optional<GpuMemoryRecord> gpu_memory;      // with a GL backend
 };
 
 // Per-frame samples in milliseconds, one per measured frame.
@@ -177,7 +177,7 @@ struct RecordedCounters {
 // Instructions per measured frame (bench --count-instructions, check --metric
 // instructions), with what a baseline must match to be compared.
 struct InstructionRecord {
-  std::string source;  // "perf_event", "callgrind" or "none"
+  std::string source;               // "perf_event", "callgrind" or "none"
   std::optional<double> per_frame;  // callgrind's is filled in by who ran it
   int threads = 1;
   std::string simd, compiler;

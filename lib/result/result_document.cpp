@@ -35,9 +35,12 @@ ModeMedians read_row(const json& row, SweepAxis axis, const std::string& path, c
     const bool counted = value.is_number_unsigned() || (value.is_number_integer() && value.get<int64_t>() >= 0);
     if (!counted || value.get<uint64_t>() > (uint64_t{1} << 31)) throw bad(whole);
     const uint64_t v = value.get<uint64_t>();
-    if (std::string_view(whole) == "characters") m.characters = static_cast<size_t>(v);
-    else if (std::string_view(whole) == "passes") m.passes = static_cast<uint32_t>(v);
-    else m.threads = static_cast<int>(v);
+    if (std::string_view(whole) == "characters")
+      m.characters = static_cast<size_t>(v);
+    else if (std::string_view(whole) == "passes")
+      m.passes = static_cast<uint32_t>(v);
+    else
+      m.threads = static_cast<int>(v);
   }
   if (row.contains("speedup")) {
     if (!finite(row["speedup"])) throw bad("speedup");
@@ -83,9 +86,13 @@ std::vector<ModeMedians> read_rows(const json& doc, const char* list, SweepAxis 
 json row_json(const ModeMedians& m, bool with_passes) {
   json categories = json::object();
   for (size_t k = 0; k < kCategoryCount; ++k) categories[series_name(static_cast<Category>(k))] = m.category_ms[k];
-  json j = {{"mode", m.mode},       {"characters", m.characters}, {"threads", m.threads},
-            {"frame_median_ms", m.frame_ms}, {"categories_median_ms", categories},
-            {"speedup", m.speedup}, {"digest", m.digest}};
+  json j = {{"mode", m.mode},
+            {"characters", m.characters},
+            {"threads", m.threads},
+            {"frame_median_ms", m.frame_ms},
+            {"categories_median_ms", categories},
+            {"speedup", m.speedup},
+            {"digest", m.digest}};
   if (with_passes || m.passes != 1) j["passes"] = m.passes;
   for (const CounterField& field : kCounterFields) j["counters"][std::string(field.name)] = m.counters.*field.member;
   return j;
@@ -135,13 +142,17 @@ CapacityRecord read_capacity(const json& doc, const std::string& path) {
       CapacityPoint p;
       p.n = count(point.value("characters", json()), "point's \"characters\"");
       p.median_ms = number(point.value("median_ms", json()), "point's \"median_ms\"");
-      for (auto [key, ms] : {std::pair{"p95_ms", &p.p95_ms}, {"p99_ms", &p.p99_ms}, {"min_ms", &p.min_ms},
-                             {"max_ms", &p.max_ms}, {"frame_median_ms", &p.frame_median_ms}})
+      for (auto [key, ms] : {std::pair{"p95_ms", &p.p95_ms},
+                             {"p99_ms", &p.p99_ms},
+                             {"min_ms", &p.min_ms},
+                             {"max_ms", &p.max_ms},
+                             {"frame_median_ms", &p.frame_median_ms}})
         *ms = number(point.value(key, json(0.0)), key);
       p.frames = count(point.value("frames", json(0)), "point's \"frames\"");
       p.round = count(point.value("round", json(0)), "point's \"round\"");
       const json partial = point.value("partial", json(false)), digest = point.value("digest", json(""));
-      if (!partial.is_boolean() || !digest.is_string()) throw bad("point's \"partial\" or \"digest\" is of another type");
+      if (!partial.is_boolean() || !digest.is_string())
+        throw bad("point's \"partial\" or \"digest\" is of another type");
       p.partial = partial.get<bool>();
       p.digest = digest.get<std::string>();
       return p;
@@ -180,14 +191,17 @@ ResultDocument result_document_from_json(const json& doc, const std::string& pat
   require_format(doc, path);
   out.kind = document_kind(doc);
   if (out.kind != "bench" && out.kind != "compare" && out.kind != "capacity")
-    throw InputError(path, "a '" + out.kind + "' result; report reads results of bench, check, compare and capacity --json");
+    throw InputError(path,
+                     "a '" + out.kind + "' result; report reads results of bench, check, compare and capacity --json");
   // A capacity search holds a comparison's runs (one per mode, at its
   // capacity) and sweep (every size it tried).
   out.runs = bench_results_in(doc, path);
   if (out.kind == "bench") return out;
   if (doc.contains("sweep_axis")) {
-    if (doc["sweep_axis"] == "passes") out.sweep_axis = SweepAxis::Passes;
-    else if (doc["sweep_axis"] != "characters") throw InputError(path, "\"sweep_axis\" should be characters or passes");
+    if (doc["sweep_axis"] == "passes")
+      out.sweep_axis = SweepAxis::Passes;
+    else if (doc["sweep_axis"] != "characters")
+      throw InputError(path, "\"sweep_axis\" should be characters or passes");
   }
   out.summary = read_rows(doc, "summary", SweepAxis::Characters, path);
   out.sweep = read_rows(doc, "sweep", out.sweep_axis, path);
@@ -207,12 +221,18 @@ ResultDocument read_result_document(const std::string& path) {
 namespace {
 
 json point_json(const CapacityPoint& p, double budget_ms) {
-  return {{"characters", p.n},         {"median_ms", p.median_ms},
-          {"p95_ms", p.p95_ms},        {"p99_ms", p.p99_ms},
-          {"min_ms", p.min_ms},        {"max_ms", p.max_ms},
-          {"frame_median_ms", p.frame_median_ms}, {"frames", p.frames},
-          {"fits", p.median_ms <= budget_ms},     {"round", p.round},
-          {"partial", p.partial},      {"digest", p.digest}};
+  return {{"characters", p.n},
+          {"median_ms", p.median_ms},
+          {"p95_ms", p.p95_ms},
+          {"p99_ms", p.p99_ms},
+          {"min_ms", p.min_ms},
+          {"max_ms", p.max_ms},
+          {"frame_median_ms", p.frame_median_ms},
+          {"frames", p.frames},
+          {"fits", p.median_ms <= budget_ms},
+          {"round", p.round},
+          {"partial", p.partial},
+          {"digest", p.digest}};
 }
 
 json capacity_json(const ResultDocument& d) {
@@ -229,17 +249,22 @@ json capacity_json(const ResultDocument& d) {
   j["crowdprof"]["kind"] = "capacity";
   j["budget_ms"] = c.budget_ms;
   j["metric"] = c.metric;
-  j["search"] = {{"start", c.start}, {"resolution", c.precision},
-                 {"rule", "doubling from start while the median fits, then bisection until first_over - largest_fit "
-                          "<= max(1, floor(resolution * largest_fit))"}};
+  j["search"] = {{"start", c.start},
+                 {"resolution", c.precision},
+                 {"rule",
+                  "doubling from start while the median fits, then bisection until first_over - largest_fit "
+                  "<= max(1, floor(resolution * largest_fit))"}};
   j["block_frames"] = d.block_frames;
   j["frames_per_point"] = c.frames_per_point;
   j["warmup_frames"] = c.warmup;
   j["partial"] = d.partial;
   j["modes"] = json::array();
   for (const CapacityRecord::Row& row : c.rows) {
-    json m = {{"mode", row.mode}, {"threads", row.threads}, {"cap", row.cap},
-              {"capped", row.capped}, {"non_monotonic", row.non_monotonic}};
+    json m = {{"mode", row.mode},
+              {"threads", row.threads},
+              {"cap", row.cap},
+              {"capped", row.capped},
+              {"non_monotonic", row.non_monotonic}};
     m["largest_fit"] = row.fit ? point_json(*row.fit, c.budget_ms) : json();
     m["first_over"] = row.over ? point_json(*row.over, c.budget_ms) : json();
     m["points"] = json::array();
@@ -294,12 +319,19 @@ json diff_record_to_json(const DiffRecord& d) {
   j["pairs"] = json::array();
   auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
   for (const DiffRecord::Pair& pair : d.pairs) {
-    json p = {{"mode", pair.mode}, {"characters", pair.characters}, {"regressed", pair.regressed}, {"notes", pair.notes}};
+    json p = {
+        {"mode", pair.mode}, {"characters", pair.characters}, {"regressed", pair.regressed}, {"notes", pair.notes}};
     p["metrics"] = json::array();
     for (const DiffRecord::Metric& m : pair.metrics)
-      p["metrics"].push_back({{"metric", m.metric},        {"a_median_ms", m.a_median}, {"b_median_ms", m.b_median},
-                              {"unit", m.unit},            {"change", optional(m.change)}, {"p", optional(m.p)},
-                              {"p_holm", optional(m.p_holm)}, {"tested", m.tested},   {"floor_ms", m.floor_ms},
+      p["metrics"].push_back({{"metric", m.metric},
+                              {"a_median_ms", m.a_median},
+                              {"b_median_ms", m.b_median},
+                              {"unit", m.unit},
+                              {"change", optional(m.change)},
+                              {"p", optional(m.p)},
+                              {"p_holm", optional(m.p_holm)},
+                              {"tested", m.tested},
+                              {"floor_ms", m.floor_ms},
                               {"verdict", m.verdict}});
     p["counters"] = json::array();
     for (const DiffRecord::Counter& counter : pair.counters)
@@ -341,9 +373,12 @@ DiffRecord diff_record_from_json(const json& doc, const std::string& path) {
     if (parent.contains(key) && parent[key].is_null()) return std::nullopt;
     return number(parent, key, at);
   };
-  auto whole = [&](const json& v) { return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0); };
+  auto whole = [&](const json& v) {
+    return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0);
+  };
   require_format(doc, path);
-  if (document_kind(doc) != "diff") throw InputError(path, "not a crowdprof diff (its \"crowdprof.kind\" is not \"diff\")");
+  if (document_kind(doc) != "diff")
+    throw InputError(path, "not a crowdprof diff (its \"crowdprof.kind\" is not \"diff\")");
   DiffRecord d;
   const json& tag = object(doc, "crowdprof", "crowdprof");
   d.version = text(tag, "version", "crowdprof.version");

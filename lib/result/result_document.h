@@ -41,7 +41,7 @@ struct ModeMedians {
   std::array<double, kCategoryCount> category_ms{};
   double speedup = 0;  // the first mode's frame_ms over this one's (same size and passes)
   std::string digest;
-  Counters counters;   // of the median frame
+  Counters counters;  // of the median frame
   size_t on(SweepAxis axis) const { return axis == SweepAxis::Passes ? passes : characters; }
 };
 
@@ -69,8 +69,8 @@ struct CapacityRecord {
     std::string mode;
     size_t threads = 0;
     size_t cap = 0;
-    bool capped = false;         // the cap fits
-    bool non_monotonic = false;  // a larger crowd was more than 10% faster than a smaller one
+    bool capped = false;                // the cap fits
+    bool non_monotonic = false;         // a larger crowd was more than 10% faster than a smaller one
     std::optional<CapacityPoint> fit;   // the largest crowd within the budget (none: not even the smallest)
     std::optional<CapacityPoint> over;  // the smallest crowd found over it (none: the cap fits)
     std::vector<CapacityPoint> points;  // in the order measured
@@ -79,13 +79,13 @@ struct CapacityRecord {
 };
 
 struct ResultDocument {
-  std::string kind = "bench";  // "bench" (bench, check), "compare" or "capacity"
-  std::vector<Result> runs;    // the bench result; a comparison's runs; a search's runs at each capacity
+  std::string kind = "bench";        // "bench" (bench, check), "compare" or "capacity"
+  std::vector<Result> runs;          // the bench result; a comparison's runs; a search's runs at each capacity
   std::vector<ModeMedians> summary;  // compare: one row per run
   std::vector<ModeMedians> sweep;    // compare --sweep, or every point a capacity search measured whole
   SweepAxis sweep_axis = SweepAxis::Characters;
-  size_t block_frames = 10;  // compare: frames per block of the interleaving
-  bool partial = false;      // stopped early (^C)
+  size_t block_frames = 10;                // compare: frames per block of the interleaving
+  bool partial = false;                    // stopped early (^C)
   std::optional<CapacityRecord> capacity;  // kind "capacity"
   // capacity: the first run measured, whose build, environment and scene head
   // the document (none read back: then the first of `runs` heads it).

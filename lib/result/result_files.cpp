@@ -54,7 +54,9 @@ nlohmann::json as_partial_result(nlohmann::json doc) {
   return doc;
 }
 
-Result read_result(const std::string& path) { return result_from_json(read_json_file(path), path); }
+Result read_result(const std::string& path) {
+  return result_from_json(read_json_file(path), path);
+}
 
 std::vector<Result> bench_results_in(const nlohmann::json& doc, const std::string& path) {
   std::string kind = document_kind(doc);
@@ -71,7 +73,8 @@ namespace {
 
 std::pair<std::string, std::string> split_skin(const std::string& file) {
   size_t hash = file.rfind("#skin=");
-  return hash == std::string::npos ? std::pair{file, std::string()} : std::pair{file.substr(0, hash), file.substr(hash)};
+  return hash == std::string::npos ? std::pair{file, std::string()}
+                                   : std::pair{file.substr(0, hash), file.substr(hash)};
 }
 }  // namespace
 
@@ -107,7 +110,8 @@ std::string recorded_scene_file(const Result& result, const std::string& result_
   return file + skin;
 }
 void write_result_file(const std::string& path, const std::string& what, const Result& result) {
-  write_text(path, what, [&](std::ostream& out) { out << with_paths_relative_to(result_to_json(result), path).dump(2) << "\n"; });
+  write_text(path, what,
+             [&](std::ostream& out) { out << with_paths_relative_to(result_to_json(result), path).dump(2) << "\n"; });
 }
 
 }  // namespace crowdprof

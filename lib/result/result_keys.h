@@ -23,6 +23,8 @@ inline const CounterField* counter_field(std::string_view name) {
 }
 
 // A pass's per-frame GPU times in "samples": gpu_<pass>_ms.
-inline std::string pass_samples_key(size_t pass) { return "gpu_" + std::string(kGpuPassNames[pass]) + "_ms"; }
+inline std::string pass_samples_key(size_t pass) {
+  return "gpu_" + std::string(kGpuPassNames[pass]) + "_ms";
+}
 
 }  // namespace crowdprof::result_keys

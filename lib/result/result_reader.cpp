@@ -139,7 +139,8 @@ class Reader {
 std::string unreadable_format(int64_t format, const std::string& version) {
   if (format >= kOldestResultFormat && format <= kResultFormat) return "";
   return "result format " + std::to_string(format) + " (crowdprof " + version + "); this crowdprof reads formats " +
-         std::to_string(kOldestResultFormat) + " to " + std::to_string(kResultFormat) + ": record it again with this version";
+         std::to_string(kOldestResultFormat) + " to " + std::to_string(kResultFormat) +
+         ": record it again with this version";
 }
 
 namespace {
@@ -252,7 +253,8 @@ void read_mode(const Reader& in, Result& r) {
   }
   uint64_t threads = in.count("/threads");
   if (threads > kMaxRecordedThreads)
-    in.fail(cannot + "threads '" + std::to_string(threads) + "': expected at most " + std::to_string(kMaxRecordedThreads));
+    in.fail(cannot + "threads '" + std::to_string(threads) + "': expected at most " +
+            std::to_string(kMaxRecordedThreads));
   r.run.threads = static_cast<int>(threads);
   r.run.warmup = bounded(in.count("/warmup"), in, "/warmup");
   r.run.fps = in.number("/fps");
@@ -277,7 +279,8 @@ void read_mode(const Reader& in, Result& r) {
     GpuMemoryRecord m;
     m.source = in.text("/gpu_memory/source");
     m.max_storage_block_bytes = in.count_or("/gpu_memory/max_storage_block_bytes", 0);
-    for (auto [key, field] : {std::pair{"/gpu_memory/total_bytes", &m.total_bytes}, {"/gpu_memory/free_bytes", &m.free_bytes}})
+    for (auto [key, field] :
+         {std::pair{"/gpu_memory/total_bytes", &m.total_bytes}, {"/gpu_memory/free_bytes", &m.free_bytes}})
       if (in.has(key) && !in.at(key).is_null()) *field = in.count(key);
     r.run.gpu_memory = m;
   }
@@ -316,15 +319,15 @@ void read_gpu_passes(const Reader& in, Result& r, size_t frames) {
     if (known == kGpuPassNames.end()) in.fail("\"gpu_time.passes\" names no pass '" + name + "'");
     const auto pass = static_cast<size_t>(known - kGpuPassNames.begin());
     if (in.has(at + "/invocations_per_vertex_drawn")) {
-      if (!r.invocations_per_vertex_drawn) r.invocations_per_vertex_drawn.emplace().fill(std::numeric_limits<double>::quiet_NaN());
+      if (!r.invocations_per_vertex_drawn)
+        r.invocations_per_vertex_drawn.emplace().fill(std::numeric_limits<double>::quiet_NaN());
       (*r.invocations_per_vertex_drawn)[pass] = in.number(at + "/invocations_per_vertex_drawn");
     }
     if (!in.has(at + "/statistics")) continue;
     in.object(at + "/statistics");
     auto& medians = r.pipeline_statistics ? *r.pipeline_statistics : r.pipeline_statistics.emplace();
     for (size_t s = 0; s < kPipelineStatCount; ++s)
-      medians[pass][s] =
-          static_cast<double>(in.count(at + "/statistics/" + std::string(kPipelineStatNames[s])));
+      medians[pass][s] = static_cast<double>(in.count(at + "/statistics/" + std::string(kPipelineStatNames[s])));
   }
 }
 
@@ -371,8 +374,7 @@ void read_samples(const Reader& in, Result& r) {
 void read_counters(const Reader& in, Result& r) {
   const json& counters = in.object("/counters");
   for (std::string_view name : kRequiredCounters) in.at("/counters/" + std::string(name));
-  for (const auto& [name, value] : counters.items())
-    in.require(whole(value), "/counters/" + name, "a whole number");
+  for (const auto& [name, value] : counters.items()) in.require(whole(value), "/counters/" + name, "a whole number");
   for (size_t i = 0; i < kCounterFields.size(); ++i) {
     std::string key(kCounterFields[i].name);
     if (!counters.contains(key)) continue;
@@ -387,8 +389,7 @@ void read_runs(const Reader& in, Result& r) {
   in.object("/runs");
   PooledRuns pool;
   pool.count = in.count("/runs/count");
-  if (pool.count == 0 || pool.count > kMaxRuns)
-    in.fail("\"runs.count\" should be 1 to " + std::to_string(kMaxRuns));
+  if (pool.count == 0 || pool.count > kMaxRuns) in.fail("\"runs.count\" should be 1 to " + std::to_string(kMaxRuns));
   const json& medians = in.object("/runs/median_ms");
   for (const auto& [written, values] : medians.items()) {
     std::string where = "/runs/median_ms/" + written;
@@ -461,10 +462,10 @@ void read_extras(const Reader& in, Result& r) {
     in.require(e.copy_stride >= 1, "/drawn_error/copy_stride", "a whole number, 1 or more");
     in.require(e.copies_deviating <= e.copies_checked, "/drawn_error/copies_deviating",
                "a whole number, at most copies_checked");
-    double* numbers[] = {&e.max, &e.rms, &e.max_fraction, &e.rms_fraction, &e.max_px, &e.rms_px, &e.mesh_max,
-                         &e.switches_per_second};
-    const char* names[] = {"max", "rms", "max_fraction", "rms_fraction", "max_px", "rms_px", "mesh_max",
-                           "switches_per_second"};
+    double* numbers[] = {&e.max,    &e.rms,    &e.max_fraction, &e.rms_fraction,
+                         &e.max_px, &e.rms_px, &e.mesh_max,     &e.switches_per_second};
+    const char* names[] = {"max",    "rms",    "max_fraction", "rms_fraction",
+                           "max_px", "rms_px", "mesh_max",     "switches_per_second"};
     for (size_t n = 0; n < std::size(names); ++n) {
       const std::string at = std::string("/drawn_error/") + names[n];
       *numbers[n] = in.number(at);
@@ -485,10 +486,12 @@ void read_extras(const Reader& in, Result& r) {
     in.require(c.copy_stride >= 1, "/culling_audit/copy_stride", "a whole number, 1 or more");
     in.require(c.ms >= 0, "/culling_audit/ms", "a number, 0 or more");
     const json& boxes = in.object("/culling_audit/boxes");
-    in.require(boxes.size() == kCullBoxes, "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
+    in.require(boxes.size() == kCullBoxes, "/culling_audit/boxes",
+               "an object of bind_pose, every_action, own_action and tight");
     for (size_t k = 0; k < kCullBoxes; ++k) {
       const std::string name(cull_box_name(static_cast<CullBox>(k)));
-      in.require(boxes.contains(name), "/culling_audit/boxes", "an object of bind_pose, every_action, own_action and tight");
+      in.require(boxes.contains(name), "/culling_audit/boxes",
+                 "an object of bind_pose, every_action, own_action and tight");
       const std::string at = "/culling_audit/boxes/" + name;
       in.object(at);
       CullBoxAudit& b = c.boxes[k];

@@ -63,28 +63,40 @@ json mesh_lod_json(const MeshLodRecord& m) {
 }
 
 json drawn_error_json(const DrawnErrorRecord& e) {
-  return {{"copies_checked", e.copies_checked}, {"copies_deviating", e.copies_deviating},
-          {"vertices", e.vertices},             {"copy_stride", e.copy_stride},
-          {"max", e.max},                       {"rms", e.rms},
-          {"max_fraction", e.max_fraction},     {"rms_fraction", e.rms_fraction},
-          {"max_px", e.max_px},                 {"rms_px", e.rms_px},
-          {"mesh_max", e.mesh_max},             {"switches_per_second", e.switches_per_second}};
+  return {{"copies_checked", e.copies_checked},
+          {"copies_deviating", e.copies_deviating},
+          {"vertices", e.vertices},
+          {"copy_stride", e.copy_stride},
+          {"max", e.max},
+          {"rms", e.rms},
+          {"max_fraction", e.max_fraction},
+          {"rms_fraction", e.rms_fraction},
+          {"max_px", e.max_px},
+          {"rms_px", e.rms_px},
+          {"mesh_max", e.mesh_max},
+          {"switches_per_second", e.switches_per_second}};
 }
 
 json culling_audit_json(const CullingAudit& c) {
   json boxes = json::object();
   for (size_t k = 0; k < kCullBoxes; ++k) {
     const CullBoxAudit& b = c.boxes[k];
-    boxes[std::string(cull_box_name(static_cast<CullBox>(k)))] = {{"drawn", b.drawn},
-                    {"false_culls", b.false_culls},
-                    {"missed_culls", b.missed_culls},
-                    {"worst_frame_false_culls", b.worst_frame_false_culls},
-                    {"worst_frame_missed_culls", b.worst_frame_missed_culls},
-                    {"slack_mean", b.slack_mean},
-                    {"slack_max", b.slack_max}};
+    boxes[std::string(cull_box_name(static_cast<CullBox>(k)))] = {
+        {"drawn", b.drawn},
+        {"false_culls", b.false_culls},
+        {"missed_culls", b.missed_culls},
+        {"worst_frame_false_culls", b.worst_frame_false_culls},
+        {"worst_frame_missed_culls", b.worst_frame_missed_culls},
+        {"slack_mean", b.slack_mean},
+        {"slack_max", b.slack_max}};
   }
-  return {{"frames", c.frames},   {"copies", c.copies},       {"copy_stride", c.copy_stride},
-          {"in_view", c.in_view}, {"outside", c.outside}, {"undecided", c.undecided}, {"boxes", boxes},
+  return {{"frames", c.frames},
+          {"copies", c.copies},
+          {"copy_stride", c.copy_stride},
+          {"in_view", c.in_view},
+          {"outside", c.outside},
+          {"undecided", c.undecided},
+          {"boxes", boxes},
           {"ms", c.ms}};
 }
 
@@ -100,10 +112,16 @@ json crowd_json(const std::vector<CharacterRun>& crowd) {
   json out = json::array();
   for (const CharacterRun& c : crowd) {
     json counters = json::object();
-    for (std::string_view name : kCharacterCounters) counters[std::string(name)] = c.counters.*counter_field(name)->member;
-    out.push_back({{"file", c.file},         {"character", c.character}, {"copies", c.copies},
-                   {"joints", c.joints},     {"vertices", c.vertices},   {"actions", c.actions},
-                   {"action_choice", c.action_choice}, {"counters", counters}});
+    for (std::string_view name : kCharacterCounters)
+      counters[std::string(name)] = c.counters.*counter_field(name)->member;
+    out.push_back({{"file", c.file},
+                   {"character", c.character},
+                   {"copies", c.copies},
+                   {"joints", c.joints},
+                   {"vertices", c.vertices},
+                   {"actions", c.actions},
+                   {"action_choice", c.action_choice},
+                   {"counters", counters}});
     if (!c.content_hash.empty()) out.back()["asset_hash"] = c.content_hash;
   }
   return out;
@@ -116,7 +134,8 @@ void write_gpu_passes(const Result& r, double gpu_median, json& gpu_time, json& 
   const GpuPassMedians medians = gpu_pass_medians(r.samples.gpu_pass_ms, r.run.switches.passes);
   for (size_t p = 0; p < kGpuPassCount; ++p) {
     if (!pass_drawn(static_cast<GpuPass>(p), r.run.switches.passes)) continue;
-    json pass = {{"pass", kGpuPassNames[p]}, {"median_ms", medians.median[p] ? json(*medians.median[p]) : json(nullptr)}};
+    json pass = {{"pass", kGpuPassNames[p]},
+                 {"median_ms", medians.median[p] ? json(*medians.median[p]) : json(nullptr)}};
     if (r.pipeline_statistics) {
       json statistics = json::object();
       for (size_t s = 0; s < kPipelineStatCount; ++s)
@@ -164,8 +183,9 @@ void write_gpu_time(const Result& r, json& j, json& samples) {
 
 nlohmann::json environment_to_json(const Result& r) {
   const Environment& env = r.environment;
-  return {{"cpu", env.cpu},         {"cores", env.cores},         {"compiler", env.compiler},
-          {"build_type", env.build_type}, {"simd", env.simd}, {"fused_multiply_add", env.fused_multiply_add},
+  return {{"cpu", env.cpu},           {"cores", env.cores},
+          {"compiler", env.compiler}, {"build_type", env.build_type},
+          {"simd", env.simd},         {"fused_multiply_add", env.fused_multiply_add},
           {"backend", r.run.backend}, {"renderer", r.run.renderer}};
 }
 
@@ -175,10 +195,17 @@ nlohmann::json result_to_json(const Result& r) {
   json j;
   j["crowdprof"] = {{"version", env.version}, {"commit", env.commit}, {"format", kResultFormat}};
   j["environment"] = environment_to_json(r);
-  j["scene"] = {{"file", run.file},         {"character", run.character}, {"characters", run.characters},
-                {"joints", run.joints},     {"vertices", run.vertices},   {"actions", run.actions},
-                {"action_choice", run.action_choice}, {"action", run.action}, {"seed", run.seed},
-                {"camera", run.camera}, {"resolution", run.resolution}};
+  j["scene"] = {{"file", run.file},
+                {"character", run.character},
+                {"characters", run.characters},
+                {"joints", run.joints},
+                {"vertices", run.vertices},
+                {"actions", run.actions},
+                {"action_choice", run.action_choice},
+                {"action", run.action},
+                {"seed", run.seed},
+                {"camera", run.camera},
+                {"resolution", run.resolution}};
   j["scene"]["lens"] = lens_json(run.lens);
   if (!run.scene_file.empty()) {
     j["scene"]["scene_file"] = run.scene_file;
@@ -227,18 +254,20 @@ nlohmann::json result_to_json(const Result& r) {
       stages[std::string(kAnimationStageNames[st])]["share"] = split->share[st];
       samples[animation_stage_series(st)] = s.animation_stage_ms[st];
     }
-    j["animations_split"] = {{"unit", "thread ms"}, {"threads", split->threads}, {"coverage", split->coverage},
-                             {"stages", stages}};
+    j["animations_split"] = {
+        {"unit", "thread ms"}, {"threads", split->threads}, {"coverage", split->coverage}, {"stages", stages}};
   }
   write_gpu_time(r, j, samples);
   j["counters"] = json::object();
   for (size_t i = 0; i < kCounterFields.size(); ++i)
-    if (r.counters.present[i]) j["counters"][std::string(kCounterFields[i].name)] = r.counters.values.*kCounterFields[i].member;
+    if (r.counters.present[i])
+      j["counters"][std::string(kCounterFields[i].name)] = r.counters.values.*kCounterFields[i].member;
   j["digest"] = r.digest;
   j["digest_cpu_vertices"] = r.digest_cpu_vertices;
   j["vertex_order"] = r.vertex_order;
   if (!r.stores.empty()) j["stores"] = r.stores;
-  if (r.bytes_uploaded_per_copy_on_screen) j["bytes_uploaded_per_copy_on_screen"] = *r.bytes_uploaded_per_copy_on_screen;
+  if (r.bytes_uploaded_per_copy_on_screen)
+    j["bytes_uploaded_per_copy_on_screen"] = *r.bytes_uploaded_per_copy_on_screen;
   if (r.palette_bytes_per_copy_on_screen) j["palette_bytes_per_copy_on_screen"] = *r.palette_bytes_per_copy_on_screen;
   if (r.record_bytes_per_copy_on_screen) j["record_bytes_per_copy_on_screen"] = *r.record_bytes_per_copy_on_screen;
   if (r.animation) j["animation"] = animation_json(*r.animation);

@@ -79,7 +79,8 @@ std::vector<std::string> comparison_notes(const Result& baseline, const Result& 
   const Environment& ce = current.environment;
   std::string elsewhere;
   auto compare = [&](const char* key, const std::string& a, const std::string& b) {
-    if (a != b && a != shown(std::string())) elsewhere += (elsewhere.empty() ? "" : "; ") + std::string(key) + " " + a + " there, " + b + " here";
+    if (a != b && a != shown(std::string()))
+      elsewhere += (elsewhere.empty() ? "" : "; ") + std::string(key) + " " + a + " there, " + b + " here";
   };
   compare("cpu", shown(be.cpu), shown(ce.cpu));
   if (be.cores != 0 && be.cores != ce.cores) compare("cores", shown(be.cores), shown(ce.cores));

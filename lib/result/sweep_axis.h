@@ -10,6 +10,8 @@ namespace crowdprof {
 enum class SweepAxis : uint8_t { Characters, Passes };
 
 // "characters" or "passes", as results name the axis (and its sweep rows the key).
-inline std::string_view to_string(SweepAxis axis) { return axis == SweepAxis::Passes ? "passes" : "characters"; }
+inline std::string_view to_string(SweepAxis axis) {
+  return axis == SweepAxis::Passes ? "passes" : "characters";
+}
 
 }  // namespace crowdprof

@@ -32,8 +32,8 @@ namespace {
 
 // Skins the whole mesh in the pose `local` and grows `box` around it.
 void grow_by_pose(const Character& c, const SkinningPlan& plan, const LocalPose& local, std::vector<glm::mat4>& model,
-                  std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions,
-                  std::vector<glm::vec3>& normals, Aabb& box) {
+                  std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals,
+                  Aabb& box) {
   run_job(LocalToModelJob{&c.skeleton, &local, model}, "LocalToModelJob");
   run_job(SkinningMatricesJob{&c.skeleton, model, palette}, "SkinningMatricesJob");
   run_job(SkinningJob{palette, &plan, 0, c.mesh.vertex_count(), positions, normals}, "SkinningJob");
@@ -69,9 +69,11 @@ Aabb bounds_of_poses(const Character& c, std::span<const size_t> actions, bool w
     SamplingCursor cursor;
     reset_cursor(action, &cursor);
     std::vector<float> times;
-    for (const Channel& channel : action.channels) times.insert(times.end(), channel.times.begin(), channel.times.end());
+    for (const Channel& channel : action.channels)
+      times.insert(times.end(), channel.times.begin(), channel.times.end());
     for (int i = 0; i <= samples_per_action; ++i)
-      times.push_back(action.start + action.duration() * static_cast<float>(i) / static_cast<float>(samples_per_action));
+      times.push_back(action.start +
+                      action.duration() * static_cast<float>(i) / static_cast<float>(samples_per_action));
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
     // Keys can be many (baked animations): a few hundred poses bound the box well.

@@ -11,7 +11,9 @@
 
 namespace crowdprof {
 
-glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+glm::mat4 Camera::view() const {
+  return glm::lookAt(eye, target, up);
+}
 
 float Lens::fov_x(float aspect) const {
   // Blender (BKE_camera_sensor_fit): the fitted side spans the sensor, the
@@ -22,7 +24,9 @@ float Lens::fov_x(float aspect) const {
   return 2.0f * std::atan(0.5f * sensor / focal_mm * aspect);
 }
 
-float Lens::fov_y(float aspect) const { return 2.0f * std::atan(std::tan(0.5f * fov_x(aspect)) / aspect); }
+float Lens::fov_y(float aspect) const {
+  return 2.0f * std::atan(std::tan(0.5f * fov_x(aspect)) / aspect);
+}
 
 std::optional<SensorFit> parse_sensor_fit(std::string_view text) {
   if (text == "auto") return SensorFit::Auto;
@@ -33,14 +37,19 @@ std::optional<SensorFit> parse_sensor_fit(std::string_view text) {
 
 std::string_view to_string(SensorFit fit) {
   switch (fit) {
-    case SensorFit::Auto: return "auto";
-    case SensorFit::Horizontal: return "horizontal";
-    case SensorFit::Vertical: return "vertical";
+    case SensorFit::Auto:
+      return "auto";
+    case SensorFit::Horizontal:
+      return "horizontal";
+    case SensorFit::Vertical:
+      return "vertical";
   }
   return "?";
 }
 
-glm::mat4 Camera::projection() const { return glm::perspective(fov_y(), aspect, near_plane, far_plane); }
+glm::mat4 Camera::projection() const {
+  return glm::perspective(fov_y(), aspect, near_plane, far_plane);
+}
 
 Frustum frustum_of(const glm::mat4& m) {
   // Rows of the matrix (glm is column-major: m[column][row]).
@@ -101,8 +110,10 @@ Camera make_camera(const std::string& spec, const Aabb& crowd, float aspect, con
       if (ec != std::errc() || !std::isfinite(v)) break;
       values.push_back(v);
       p = next;
-      if (p < end && *p == ',') ++p;
-      else break;
+      if (p < end && *p == ',')
+        ++p;
+      else
+        break;
     }
     if (values.size() != 6 || p != end)
       throw SettingError("camera", spec, "expected default, all, close or EX,EY,EZ,TX,TY,TZ");

@@ -13,7 +13,9 @@ namespace {
 
 // A float in [0, 1) from 24 bits of the generator (std::mt19937 is exact in
 // the standard; its distributions are not, so draws are made by hand).
-float unit(std::mt19937& random) { return static_cast<float>(random() >> 8) / static_cast<float>(1u << 24); }
+float unit(std::mt19937& random) {
+  return static_cast<float>(random() >> 8) / static_cast<float>(1u << 24);
+}
 
 }  // namespace
 
@@ -33,7 +35,8 @@ std::vector<CrowdGroup> crowd_groups(const CrowdOptions& options) {
   std::vector<std::pair<double, size_t>> remainders;
   size_t given = 0;
   for (size_t i = 0; i < groups.size(); ++i) {
-    double exact = static_cast<double>(groups[i].copies) * static_cast<double>(options.copies) / static_cast<double>(total);
+    double exact =
+        static_cast<double>(groups[i].copies) * static_cast<double>(options.copies) / static_cast<double>(total);
     groups[i].copies = static_cast<size_t>(std::floor(exact));
     given += groups[i].copies;
     remainders.push_back({exact - std::floor(exact), i});
@@ -112,8 +115,7 @@ Crowd make_crowd(std::span<const Character* const> characters, const CrowdOption
         size_t a = 0, last = 0;  // the last action with a weight: rounding never picks a zero
         for (size_t w = 0; w < group.weights.size(); ++w)
           if (group.weights[w] > 0) last = w;
-        while (a < last && (group.weights[a] <= 0 || draw >= group.weights[a]))
-          draw -= group.weights[a++];
+        while (a < last && (group.weights[a] <= 0 || draw >= group.weights[a])) draw -= group.weights[a++];
         action = static_cast<uint16_t>(a);
         phase = unit(random) * character.actions[action].duration();
       } else {
@@ -122,8 +124,7 @@ Crowd make_crowd(std::span<const Character* const> characters, const CrowdOption
     }
     crowd.action.push_back(action);
     crowd.phase.push_back(phase);
-    crowd.schedule_stream.push_back(
-        static_cast<uint32_t>(group.actions == ActionChoice::Shared ? n + pick : i));
+    crowd.schedule_stream.push_back(static_cast<uint32_t>(group.actions == ActionChoice::Shared ? n + pick : i));
     crowd.transitions.push_back(group.transitions.value_or(options.transitions));
   }
   if (std::none_of(crowd.transitions.begin(), crowd.transitions.end(),

@@ -41,9 +41,9 @@ struct CrowdGroup {
 
 // Where copies stand: a grid of rows across X, front row at +Z.
 struct CrowdLayout {
-  float spacing = 0.0f;  // metres between neighbours; 0: the largest animated footprint x 1.1
-  size_t rows = 0;       // 0: as many as make the grid about 1.6 times as wide as deep
-  float jitter = 0.0f;   // each copy moved up to this many metres in X and Z...
+  float spacing = 0.0f;      // metres between neighbours; 0: the largest animated footprint x 1.1
+  size_t rows = 0;           // 0: as many as make the grid about 1.6 times as wide as deep
+  float jitter = 0.0f;       // each copy moved up to this many metres in X and Z...
   uint32_t jitter_seed = 1;  // ...by a generator of this seed
 };
 
@@ -68,10 +68,10 @@ std::vector<CrowdGroup> crowd_groups(const CrowdOptions& options);
 // Immutable once made: where each copy stands, which character it is, and
 // what it plays.
 struct Crowd {
-  std::vector<glm::mat4> world;     // per copy
-  std::vector<uint16_t> kind;       // per copy, index into the characters
-  std::vector<uint16_t> action;     // per copy, index into its character's actions
-  std::vector<float> phase;         // per copy, seconds into its action at t = 0
+  std::vector<glm::mat4> world;  // per copy
+  std::vector<uint16_t> kind;    // per copy, index into the characters
+  std::vector<uint16_t> action;  // per copy, index into its character's actions
+  std::vector<float> phase;      // per copy, seconds into its action at t = 0
   // Per copy, which random stream its action changes are drawn from
   // (scene/transitions.h): its own (its index), or with shared actions its
   // group's (past every copy's), so that the group changes as one.
@@ -79,8 +79,8 @@ struct Crowd {
   // Per copy, its group's transitions; empty when no copy changes action.
   std::vector<TransitionTiming> transitions;
   std::vector<Aabb> character_boxes;  // per character: animated_bounds
-  std::vector<Aabb> world_boxes;    // per copy
-  Aabb crowd_box;                   // around every copy
+  std::vector<Aabb> world_boxes;      // per copy
+  Aabb crowd_box;                     // around every copy
   size_t columns = 0, rows = 0;
   size_t size() const { return world.size(); }
 };

@@ -31,11 +31,11 @@ struct CullBoxAudit {
 };
 
 struct CullingAudit {
-  size_t frames = 0;        // poses audited per copy
-  size_t copies = 0;        // copies audited per frame
-  size_t copy_stride = 1;   // every copy_stride-th copy of the crowd (1: all)
-  uint64_t in_view = 0;     // copy-frames with a skinned vertex inside the frustum
-  uint64_t outside = 0;     // copy-frames with every vertex outside one plane
+  size_t frames = 0;       // poses audited per copy
+  size_t copies = 0;       // copies audited per frame
+  size_t copy_stride = 1;  // every copy_stride-th copy of the crowd (1: all)
+  uint64_t in_view = 0;    // copy-frames with a skinned vertex inside the frustum
+  uint64_t outside = 0;    // copy-frames with every vertex outside one plane
   // Neither: no vertex inside, yet no one plane has them all outside (a
   // triangle may cross a corner of the view); counted as no strategy's error.
   uint64_t undecided = 0;

@@ -18,10 +18,14 @@ namespace crowdprof {
 
 std::string_view cull_box_name(CullBox box) {
   switch (box) {
-    case CullBox::BindPose: return "bind_pose";
-    case CullBox::EveryAction: return "every_action";
-    case CullBox::OwnAction: return "own_action";
-    case CullBox::Tight: return "tight";
+    case CullBox::BindPose:
+      return "bind_pose";
+    case CullBox::EveryAction:
+      return "every_action";
+    case CullBox::OwnAction:
+      return "own_action";
+    case CullBox::Tight:
+      return "tight";
   }
   return "?";
 }
@@ -60,8 +64,8 @@ Aabb empty_box() {
 
 }  // namespace
 
-CullingAuditor::CullingAuditor(std::span<const Character* const> characters, const Crowd& crowd,
-                               const Frustum& frustum, size_t copy_stride)
+CullingAuditor::CullingAuditor(std::span<const Character* const> characters, const Crowd& crowd, const Frustum& frustum,
+                               size_t copy_stride)
     : crowd_(crowd), frustum_(frustum) {
   for (const Character* c : characters) {
     auto data = std::make_unique<CharacterData>();
@@ -72,7 +76,8 @@ CullingAuditor::CullingAuditor(std::span<const Character* const> characters, con
     }
     for (const Action& action : c->actions) data->bindings.push_back(bind_action(c->skeleton, action));
     data->bind_pose = bind_pose_bounds(*c);
-    for (size_t a = 0; a < std::max<size_t>(1, c->actions.size()); ++a) data->own_action.push_back(action_bounds(*c, a));
+    for (size_t a = 0; a < std::max<size_t>(1, c->actions.size()); ++a)
+      data->own_action.push_back(action_bounds(*c, a));
     characters_.push_back(std::move(data));
   }
   audit_.copy_stride = std::max<size_t>(1, copy_stride);
@@ -122,8 +127,10 @@ void CullingAuditor::add_frame(std::span<const float> action_times, tbb::task_ar
         bool inside = true;
         for (size_t k = 0; k < 6; ++k) {
           const glm::vec4& plane = frustum_.planes[k];
-          if (glm::dot(glm::vec3(plane), p) + plane.w < 0.0f) inside = false;
-          else all_outside[k] = false;
+          if (glm::dot(glm::vec3(plane), p) + plane.w < 0.0f)
+            inside = false;
+          else
+            all_outside[k] = false;
         }
         any_inside = any_inside || inside;
       }
@@ -138,8 +145,10 @@ void CullingAuditor::add_frame(std::span<const float> action_times, tbb::task_ar
     }
   };
   auto run = [&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, audited_.size(), 16), audit_copies); };
-  if (arena) arena->execute(run);
-  else run();
+  if (arena)
+    arena->execute(run);
+  else
+    run();
   // Sums in copy order, so the figures do not depend on the threads.
   std::array<uint64_t, kCullBoxes> false_culls{}, missed_culls{};
   for (const Verdict& v : verdicts_) {

@@ -45,9 +45,9 @@ class CullingAuditor {
   std::vector<std::unique_ptr<CharacterData>> characters_;
   const Crowd& crowd_;
   Frustum frustum_;
-  std::vector<size_t> audited_;                              // copy indices
+  std::vector<size_t> audited_;                                // copy indices
   std::vector<std::array<Aabb, kCullBoxes - 1>> fixed_boxes_;  // per audited copy, world: all but Tight
-  std::vector<Verdict> verdicts_;                            // per audited copy, this frame
+  std::vector<Verdict> verdicts_;                              // per audited copy, this frame
   double slack_sum_[kCullBoxes] = {};
   uint64_t slack_count_[kCullBoxes] = {};
   CullingAudit audit_;

@@ -97,11 +97,14 @@ GeneratedCharacter generated_character(const SceneReader& r, const json& value, 
   if (value.contains("lods")) h.lod_levels = static_cast<int>(r.whole(value["lods"], key + ".lods", 0, 3));
   if (value.contains("actions")) {
     const std::string actions = r.text(value["actions"], key + ".actions");
-    if (actions == "locomotion") h.actions = HumanoidActions::Locomotion;
-    else if (actions != "default") r.fail(key + ".actions", "'" + actions + "': expected default or locomotion");
+    if (actions == "locomotion")
+      h.actions = HumanoidActions::Locomotion;
+    else if (actions != "default")
+      r.fail(key + ".actions", "'" + actions + "': expected default or locomotion");
   }
   if (value.contains("draco")) {
-    if (!value["draco"].is_boolean()) r.fail(key + ".draco", "expected true or false, got " + SceneReader::type_of(value["draco"]));
+    if (!value["draco"].is_boolean())
+      r.fail(key + ".draco", "expected true or false, got " + SceneReader::type_of(value["draco"]));
     g.draco = value["draco"].get<bool>();
   }
   return g;
@@ -197,7 +200,8 @@ SceneFile load_scene_file(const std::string& path) {
     const json& entry = characters[i];
     r.only_keys(entry, key, {"file", "generate", "count", "actions", "action", "transitions", "blend_in"});
     SceneCharacter c;
-    if (entry.contains("file") && entry.contains("generate")) r.fail(key + ".generate", "with file: give one of the two");
+    if (entry.contains("file") && entry.contains("generate"))
+      r.fail(key + ".generate", "with file: give one of the two");
     if (!entry.contains("file") && !entry.contains("generate")) r.fail(key + ".file", "missing (or generate)");
     if (entry.contains("generate")) {
       c.generate = generated_character(r, entry["generate"], key + ".generate");
@@ -219,9 +223,12 @@ SceneFile load_scene_file(const std::string& path) {
       const json& actions = entry["actions"];
       if (actions.is_string()) {
         std::string choice = actions.get<std::string>();
-        if (choice == "shared") c.actions = ActionChoice::Shared;
-        else if (choice == "random") c.actions = ActionChoice::Random;
-        else r.fail(key + ".actions", "'" + choice + "': expected shared, random, or an object of weights by action name");
+        if (choice == "shared")
+          c.actions = ActionChoice::Shared;
+        else if (choice == "random")
+          c.actions = ActionChoice::Random;
+        else
+          r.fail(key + ".actions", "'" + choice + "': expected shared, random, or an object of weights by action name");
       } else if (actions.is_object()) {
         c.actions = ActionChoice::Weighted;
         double total = 0;
@@ -232,8 +239,8 @@ SceneFile load_scene_file(const std::string& path) {
         }
         if (!(total > 0)) r.fail(key + ".actions", "weights must not all be zero");
       } else {
-        r.fail(key + ".actions", "expected shared, random, or an object of weights by action name, got " +
-                                     SceneReader::type_of(actions));
+        r.fail(key + ".actions",
+               "expected shared, random, or an object of weights by action name, got " + SceneReader::type_of(actions));
       }
     }
     if (entry.contains("action")) {
@@ -259,7 +266,8 @@ SceneFile load_scene_file(const std::string& path) {
       scene.layout.spacing = static_cast<float>(r.number(layout["spacing"], "layout.spacing", 0.001, 1e4));
     if (layout.contains("rows") && !(layout["rows"].is_string() && layout["rows"] == "auto"))
       scene.layout.rows = static_cast<size_t>(r.whole(layout["rows"], "layout.rows", 1, 10'000'000));
-    if (layout.contains("jitter")) scene.layout.jitter = static_cast<float>(r.number(layout["jitter"], "layout.jitter", 0, 1e4));
+    if (layout.contains("jitter"))
+      scene.layout.jitter = static_cast<float>(r.number(layout["jitter"], "layout.jitter", 0, 1e4));
     if (layout.contains("seed"))
       scene.layout.jitter_seed = static_cast<uint32_t>(r.whole(layout["seed"], "layout.seed", 0, 0xffffffffLL));
   }
@@ -277,16 +285,20 @@ SceneFile load_scene_file(const std::string& path) {
     }
     if (placed) {
       if (!camera.contains("eye") || !camera.contains("target"))
-        r.fail(camera.contains("eye") ? "camera.target" : "camera.eye", "missing: an eye needs a target and the other way round");
+        r.fail(camera.contains("eye") ? "camera.target" : "camera.eye",
+               "missing: an eye needs a target and the other way round");
       glm::vec3 eye = r.point(camera["eye"], "camera.eye"), target = r.point(camera["target"], "camera.target");
       if (glm::length(eye - target) < 1e-6f) r.fail("camera.target", "the same point as the eye");
       char spec[256];
-      std::snprintf(spec, sizeof spec, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", eye.x, eye.y, eye.z, target.x, target.y, target.z);
+      std::snprintf(spec, sizeof spec, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", eye.x, eye.y, eye.z, target.x, target.y,
+                    target.z);
       scene.camera = spec;
     }
-    if (camera.contains("lens_mm")) scene.lens.focal_mm = static_cast<float>(r.number(camera["lens_mm"], "camera.lens_mm", 1, 5000));
+    if (camera.contains("lens_mm"))
+      scene.lens.focal_mm = static_cast<float>(r.number(camera["lens_mm"], "camera.lens_mm", 1, 5000));
     if (camera.contains("sensor_width_mm"))
-      scene.lens.sensor_width_mm = static_cast<float>(r.number(camera["sensor_width_mm"], "camera.sensor_width_mm", 1, 1000));
+      scene.lens.sensor_width_mm =
+          static_cast<float>(r.number(camera["sensor_width_mm"], "camera.sensor_width_mm", 1, 1000));
     if (camera.contains("sensor_height_mm"))
       scene.lens.sensor_height_mm =
           static_cast<float>(r.number(camera["sensor_height_mm"], "camera.sensor_height_mm", 1, 1000));

@@ -35,7 +35,7 @@ struct SceneCharacter {
   std::optional<GeneratedCharacter> generate;
   size_t count = 0;
   ActionChoice actions = ActionChoice::Shared;
-  std::string action;  // with Shared: the action's name; empty: the first
+  std::string action;                                   // with Shared: the action's name; empty: the first
   std::vector<std::pair<std::string, double>> weights;  // with Weighted: by action name
   // "transitions" and "blend_in": the group's own, over --transitions and
   // --blend-in (a mean of 0 keeps its actions while others change).

@@ -24,8 +24,7 @@ float ActionClock::local_time(const Action& action, double t) const {
   return action.start + static_cast<float>(local);
 }
 
-TransitionSchedule::TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd,
-                                       uint32_t seed)
+TransitionSchedule::TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd, uint32_t seed)
     : TransitionSchedule(characters, crowd, TransitionTiming{}, seed) {
   if (!crowd.transitions.empty()) timing_ = crowd.transitions;
   schedule_first_changes();

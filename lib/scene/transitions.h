@@ -38,7 +38,7 @@ struct ActionClock {
 struct CopyAction {
   ActionClock now, before;
   double changed_at = -std::numeric_limits<double>::infinity();  // the last change
-  float weight = 1.0f;  // of `now`; < 1 while fading from `before`
+  float weight = 1.0f;                                           // of `now`; < 1 while fading from `before`
   uint32_t changes = 0;
 
   bool fading() const { return weight < 1.0f; }

@@ -35,7 +35,8 @@ bool BakeDeviationJob::Run() const {
       run_job(BakedPaletteJob{baked, joints, position, interpolated}, "BakedPaletteJob");
       run_job(SkinningJob{exact, plan, 0, vertices, exact_positions, normals}, "SkinningJob");
       run_job(SkinningJob{interpolated, plan, 0, vertices, baked_positions, normals}, "SkinningJob");
-      for (size_t v = 0; v < vertices; ++v) worst = std::max(worst, glm::distance(exact_positions[v], baked_positions[v]));
+      for (size_t v = 0; v < vertices; ++v)
+        worst = std::max(worst, glm::distance(exact_positions[v], baked_positions[v]));
     }
   *max_deviation = worst;
   return true;
@@ -56,10 +57,10 @@ BakeDeviation measure_bake_deviation(const Character& character, std::span<const
   for (size_t a = 0; a < character.actions.size() && a < targets.size(); ++a) {
     const Action& action = character.actions[a];
     reset_cursor(action, &cursor);
-    run_job(BakeDeviationJob{&skeleton, &action, targets[a], baked.action(a), baked.intervals[a], &plan, &cursor, &pose,
-                             model, exact, interpolated, exact_positions, baked_positions, normals,
-                             &result.model_units},
-            "BakeDeviationJob");
+    run_job(
+        BakeDeviationJob{&skeleton, &action, targets[a], baked.action(a), baked.intervals[a], &plan, &cursor, &pose,
+                         model, exact, interpolated, exact_positions, baked_positions, normals, &result.model_units},
+        "BakeDeviationJob");
   }
   return result;
 }

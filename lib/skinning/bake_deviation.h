@@ -24,7 +24,7 @@ inline constexpr int kDeviationProbes = 3;
 struct BakeDeviationJob {
   const Skeleton* skeleton = nullptr;
   const Action* action = nullptr;
-  std::span<const int32_t> targets;  // joint of each channel
+  std::span<const int32_t> targets;   // joint of each channel
   std::span<const SkinMatrix> baked;  // the action's samples, as BakeJob wrote them
   size_t intervals = 0;               // baked_intervals(action, rate)
   const SkinningPlan* plan = nullptr;

@@ -9,7 +9,9 @@ namespace {
 
 constexpr size_t kHugePage = size_t{2} << 20;
 
-std::align_val_t alignment(size_t bytes) { return std::align_val_t{bytes >= kHugePage ? kHugePage : 64}; }
+std::align_val_t alignment(size_t bytes) {
+  return std::align_val_t{bytes >= kHugePage ? kHugePage : 64};
+}
 
 }  // namespace
 
@@ -23,6 +25,8 @@ void* allocate_output(size_t bytes) {
   return p;
 }
 
-void free_output(void* p, size_t bytes) { ::operator delete(p, alignment(bytes)); }
+void free_output(void* p, size_t bytes) {
+  ::operator delete(p, alignment(bytes));
+}
 
 }  // namespace crowdprof

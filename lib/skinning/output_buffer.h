@@ -26,7 +26,9 @@ struct CacheLineAllocator {
   T* allocate(size_t n) { return static_cast<T*>(allocate_output(n * sizeof(T))); }
   void deallocate(T* p, size_t n) { free_output(p, n * sizeof(T)); }
   template <typename U>
-  bool operator==(const CacheLineAllocator<U>&) const { return true; }
+  bool operator==(const CacheLineAllocator<U>&) const {
+    return true;
+  }
 };
 
 }  // namespace crowdprof

@@ -17,22 +17,30 @@ bool equals_lowercase(std::string_view a, std::string_view b) {
 
 }  // namespace
 
-OutputStores output_stores() { return g_stores.load(std::memory_order_relaxed); }
+OutputStores output_stores() {
+  return g_stores.load(std::memory_order_relaxed);
+}
 
 bool stream_skinned_output(uint64_t frame_output_bytes) {
   switch (output_stores()) {
-    case OutputStores::Regular: return false;
-    case OutputStores::Streaming: return true;
-    case OutputStores::Auto: break;
+    case OutputStores::Regular:
+      return false;
+    case OutputStores::Streaming:
+      return true;
+    case OutputStores::Auto:
+      break;
   }
   return frame_output_bytes > kStreamOutputBytes;
 }
 
 const char* to_string(OutputStores stores) {
   switch (stores) {
-    case OutputStores::Regular: return "regular";
-    case OutputStores::Streaming: return "streaming";
-    case OutputStores::Auto: break;
+    case OutputStores::Regular:
+      return "regular";
+    case OutputStores::Streaming:
+      return "streaming";
+    case OutputStores::Auto:
+      break;
   }
   return "auto";
 }

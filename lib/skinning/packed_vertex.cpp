@@ -10,7 +10,9 @@ namespace {
 
 // Round to nearest, ties to even, as the SIMD kernels' NearestInt does (the
 // default rounding mode), for values well inside int32's range.
-int32_t nearest(float x) { return static_cast<int32_t>(std::nearbyint(x)); }
+int32_t nearest(float x) {
+  return static_cast<int32_t>(std::nearbyint(x));
+}
 
 }  // namespace
 

@@ -11,7 +11,9 @@ namespace {
 // Targets this build compiled the kernels for (HWY_TARGETS is the same in
 // skinning_kernels.cpp: same flags) and the CPU supports, as Highway bits;
 // lower bits are better targets.
-int64_t runnable() { return hwy::SupportedTargets() & HWY_TARGETS; }
+int64_t runnable() {
+  return hwy::SupportedTargets() & HWY_TARGETS;
+}
 
 // Highway's names of the targets in `targets`, best (the lowest bit) first.
 std::vector<std::string> names_of(int64_t targets) {
@@ -52,9 +54,13 @@ std::string active_simd_target() {
   return hwy::TargetName(bits & -bits);
 }
 
-std::vector<std::string> available_simd_targets() { return names_of(runnable()); }
+std::vector<std::string> available_simd_targets() {
+  return names_of(runnable());
+}
 
-std::vector<std::string> compiled_simd_targets() { return names_of(HWY_TARGETS); }
+std::vector<std::string> compiled_simd_targets() {
+  return names_of(HWY_TARGETS);
+}
 
 std::string force_simd_target(std::string_view name) {
   const int64_t before = g_forced;
@@ -68,8 +74,8 @@ std::string force_simd_target(std::string_view name) {
     const std::string can = joined(available_simd_targets());
     allow(before);
     return "SIMD target \"" + std::string(name) + "\" " +
-           (wanted == 0 ? "is not compiled into this build" : "is not supported by this CPU") + " (choose from " +
-           can + ")";
+           (wanted == 0 ? "is not compiled into this build" : "is not supported by this CPU") + " (choose from " + can +
+           ")";
   }
   allow(hwy::SupportedTargets() & ~(wanted - 1));  // every better target (a lower bit) off
   return {};

@@ -26,8 +26,8 @@ bool valid_range(const SkinningPlan* plan, size_t first_vertex, size_t vertex_co
 // The kernel's arguments common to both formats. A handful of joints (those of
 // the single-influence batches) are checked for scale, cheaper than the
 // renormalisation it saves on their vertices.
-SkinKernelArgs kernel_args(std::span<const SkinMatrix> skinning_matrices, const SkinningPlan* plan,
-                           size_t first_vertex, size_t vertex_count) {
+SkinKernelArgs kernel_args(std::span<const SkinMatrix> skinning_matrices, const SkinningPlan* plan, size_t first_vertex,
+                           size_t vertex_count) {
   bool keep = true;
   for (uint16_t joint : plan->single_joints)
     if (!is_rigid(skinning_matrices[joint])) {

@@ -246,10 +246,10 @@ HWY_INLINE void TransformPosition(D d, const V (&a)[4][3], const float* rows, si
   for (int r = 0; r < 3; ++r)
     // Fused, the translation starts the chain; separate, it comes last (the
     // order these kernels always had: SSE4's digests did not change).
-    position[r] = kFusedMultiplyAdd
-                      ? MulAdd(a[2][r], pz, MulAdd(a[1][r], py, MulAdd(a[0][r], px, a[3][r])))
-                      : hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)),
-                                a[3][r]);
+    position[r] =
+        kFusedMultiplyAdd
+            ? MulAdd(a[2][r], pz, MulAdd(a[1][r], py, MulAdd(a[0][r], px, a[3][r])))
+            : hn::Add(hn::Add(hn::Add(hn::Mul(a[0][r], px), hn::Mul(a[1][r], py)), hn::Mul(a[2][r], pz)), a[3][r]);
 }
 
 // The normal by the 3x3 part, not yet renormalised.
@@ -379,7 +379,7 @@ void SkinBatches(const SkinKernelArgs& args) {
                                   : PackedOut{scratch_codes, scratch_words};
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
         SkinLanesPacked<kTable>(d, rows, lane, joints, batch.joint_count, palette, normalise, args,
-                        PackedOut{out.positions + 3 * lane, out.normals + lane});
+                                PackedOut{out.positions + 3 * lane, out.normals + lane});
     } else {
       float* positions = whole ? args.positions + 3 * at : scratch_positions;
       float* normals = whole ? args.normals + 3 * at : scratch_normals;
@@ -392,7 +392,7 @@ void SkinBatches(const SkinKernelArgs& args) {
       float* skin_normals = staged ? stage.normals : normals;
       for (size_t lane = 0; lane < kSkinBatch; lane += lanes)
         SkinLanesFloat<kTable>(d, rows, lane, joints, batch.joint_count, palette, normalise, stream && !staged,
-                       skin_positions + 3 * lane, skin_normals + 3 * lane, pending);
+                               skin_positions + 3 * lane, skin_normals + 3 * lane, pending);
       if (staged) {
         StreamBatchLines(d, stage.positions, positions);
         pending.stream_batch_to = normals;  // the last group's normal is still pending
@@ -422,7 +422,9 @@ void SkinBatches(const SkinKernelArgs& args) {
   if (!kPacked && args.stream) hwy::FlushStream();
 }
 
-bool FusesMultiplyAdd() { return kFusedMultiplyAdd; }
+bool FusesMultiplyAdd() {
+  return kFusedMultiplyAdd;
+}
 
 void SkinVertices(const SkinKernelArgs& args) {
   if constexpr (kBroadcastTable) {
@@ -445,9 +447,13 @@ namespace crowdprof {
 HWY_EXPORT(SkinVertices);
 HWY_EXPORT(FusesMultiplyAdd);
 
-void run_skinning_kernel(const SkinKernelArgs& args) { HWY_DYNAMIC_DISPATCH(SkinVertices)(args); }
+void run_skinning_kernel(const SkinKernelArgs& args) {
+  HWY_DYNAMIC_DISPATCH(SkinVertices)(args);
+}
 
-bool skinning_fuses_multiply_add() { return HWY_DYNAMIC_DISPATCH(FusesMultiplyAdd)(); }
+bool skinning_fuses_multiply_add() {
+  return HWY_DYNAMIC_DISPATCH(FusesMultiplyAdd)();
+}
 
 }  // namespace crowdprof
 #endif

@@ -65,7 +65,8 @@ std::string build_skinning_plan(const SkinnedMesh& mesh, size_t joint_count, Ski
       // A joint named twice by one vertex gets the sum of its weights.
       for (int k = 0; k < 4; ++k) {
         if (mesh.weights[v][k] == 0.0f) continue;
-        const size_t row = static_cast<size_t>(std::lower_bound(used.begin(), used.end(), mesh.joints[v][k]) - used.begin());
+        const size_t row =
+            static_cast<size_t>(std::lower_bound(used.begin(), used.end(), mesh.joints[v][k]) - used.begin());
         rows[(6 + row) * kSkinBatch + lane] += mesh.weights[v][k];
       }
     }

@@ -86,9 +86,8 @@ TEST(Bake, AFadeMixesTwoBakedPalettesByItsWeight) {
   ASSERT_TRUE(bake_character(c, targets_of(bindings), 2.0f, &baked));
   SkinMatrix now, from;
   auto fade = [&](float now_at, float from_at, float weight) {
-    return BakedFadeJob{{baked.matrices, 1, now_at, std::span(&now, 1)},
-                        {baked.matrices, 1, from_at, std::span(&from, 1)},
-                        weight};
+    return BakedFadeJob{
+        {baked.matrices, 1, now_at, std::span(&now, 1)}, {baked.matrices, 1, from_at, std::span(&from, 1)}, weight};
   };
   ASSERT_TRUE(fade(0.0f, 2.0f, 0.0f).Run());
   EXPECT_EQ(now, baked.matrices[0]);

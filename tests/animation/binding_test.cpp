@@ -26,8 +26,7 @@ Channel channel(int joint, ChannelPath path) {
 TEST(Binding, PathsNameBoneAndProperty) {
   const Skeleton s = skeleton_named({"Hips", "Spine"});
   EXPECT_EQ(channel_path(s, channel(0, ChannelPath::Translation)), "pose.bones[\"Hips\"].location");
-  EXPECT_EQ(channel_path(s, channel(1, ChannelPath::Rotation)),
-            "pose.bones[\"Spine\"].rotation_quaternion");
+  EXPECT_EQ(channel_path(s, channel(1, ChannelPath::Rotation)), "pose.bones[\"Spine\"].rotation_quaternion");
   EXPECT_EQ(channel_path(s, channel(1, ChannelPath::Scale)), "pose.bones[\"Spine\"].scale");
   EXPECT_EQ(channel_path(s, channel(2, ChannelPath::Scale)), "");  // no such joint
   EXPECT_EQ(channel_path(s, channel(-1, ChannelPath::Scale)), "");
@@ -62,8 +61,7 @@ TEST(Binding, UnknownBoneOrPropertyIsNotFound) {
 TEST(Binding, MalformedPathsAreNotFound) {
   const Skeleton s = skeleton_named({"Hips", ""});
   for (const char* path : {
-           "",
-           "pose.bones",
+           "", "pose.bones",
            "pose.bones[\"Hips",                // no closing quote
            "pose.bones[\"Hips\"",              // no closing bracket
            "pose.bones[\"Hips\"]",             // no property
@@ -85,8 +83,7 @@ TEST(Binding, MalformedPathsAreNotFound) {
 }
 
 TEST(Binding, NamesWithQuotesBracketsAndBackslashesRoundTrip) {
-  const Skeleton s = skeleton_named(
-      {"Arm\"L", "a]b[\"c", "back\\slash", "\\\"", "x\"].location", "Arm", "ünïcödé 名"});
+  const Skeleton s = skeleton_named({"Arm\"L", "a]b[\"c", "back\\slash", "\\\"", "x\"].location", "Arm", "ünïcödé 名"});
   for (int j = 0; j < static_cast<int>(s.names.size()); ++j) {
     for (ChannelPath path : {ChannelPath::Translation, ChannelPath::Rotation, ChannelPath::Scale}) {
       const std::string text = channel_path(s, channel(j, path));

@@ -51,8 +51,8 @@ LocalPose reference_blend(std::span<const BlendLayer> layers, const LocalPose& r
     out.translations[j] = glm::vec3(t / total);
     out.scales[j] = glm::vec3(s / total);
     const glm::dvec4 n = q / glm::length(q);
-    out.rotations[j] = glm::quat(static_cast<float>(n.w), static_cast<float>(n.x), static_cast<float>(n.y),
-                                 static_cast<float>(n.z));
+    out.rotations[j] =
+        glm::quat(static_cast<float>(n.w), static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z));
   }
   return out;
 }
@@ -86,9 +86,9 @@ struct BlendSimd : ::testing::Test {
 
 // Weight sets: a crossfade's two, one alone, 0 and 1, three layers, and
 // some that add up to less than the threshold (the rest pose fills in).
-const std::vector<std::vector<float>> kBlendWeightSets = {
-    {0.3f, 0.7f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {1.0f}, {0.2f, 0.5f, 0.9f},
-    {0.03f, 0.04f}, {0.0f, 0.0f}, {0.05f}, {0.5f, 0.0f, 0.5f}};
+const std::vector<std::vector<float>> kBlendWeightSets = {{0.3f, 0.7f},       {1.0f, 0.0f},   {0.0f, 1.0f}, {1.0f},
+                                                          {0.2f, 0.5f, 0.9f}, {0.03f, 0.04f}, {0.0f, 0.0f}, {0.05f},
+                                                          {0.5f, 0.0f, 0.5f}};
 
 TEST_F(BlendSimd, EveryTargetIsWithinAMillionthOfTheReferenceAndGivesTheSameBits) {
   const float threshold = 0.1f;
@@ -108,8 +108,8 @@ TEST_F(BlendSimd, EveryTargetIsWithinAMillionthOfTheReferenceAndGivesTheSameBits
         ASSERT_EQ("", force_simd_target(target));
         LocalPose out = rest;
         ASSERT_TRUE((BlendingJob{layers, &rest, threshold, &out}.Run()));
-        const std::string where = target + ", " + std::to_string(joints) + " joints, weights " +
-                                  testing::PrintToString(weights);
+        const std::string where =
+            target + ", " + std::to_string(joints) + " joints, weights " + testing::PrintToString(weights);
         EXPECT_LT(largest_blend_gap(out, expected), 1e-6f) << where;
         if (first.joint_count() == 0)
           first = out;

@@ -24,7 +24,9 @@ LocalPose pose_of(std::initializer_list<glm::vec3> translations, std::initialize
   return p;
 }
 
-glm::quat about_y(float degrees) { return glm::angleAxis(glm::radians(degrees), glm::vec3(0, 1, 0)); }
+glm::quat about_y(float degrees) {
+  return glm::angleAxis(glm::radians(degrees), glm::vec3(0, 1, 0));
+}
 
 // The angle between two rotations, whatever their quaternions' signs (by the
 // difference's axis part: acos of a dot near 1 would lose the small angles).
@@ -34,7 +36,8 @@ float degrees_between(const glm::quat& a, const glm::quat& b) {
 }
 
 struct Poses {
-  LocalPose rest = pose_of({{0, 0, 0}, {0, 1, 0}}, {glm::quat(1, 0, 0, 0), glm::quat(1, 0, 0, 0)}, {{1, 1, 1}, {1, 1, 1}});
+  LocalPose rest =
+      pose_of({{0, 0, 0}, {0, 1, 0}}, {glm::quat(1, 0, 0, 0), glm::quat(1, 0, 0, 0)}, {{1, 1, 1}, {1, 1, 1}});
   LocalPose a = pose_of({{1, 0, 0}, {0, 2, 0}}, {about_y(10), about_y(-40)}, {{1, 1, 1}, {2, 2, 2}});
   LocalPose b = pose_of({{3, 0, 0}, {0, 2, 4}}, {about_y(70), about_y(50)}, {{1, 1, 1}, {1, 1, 1}});
   LocalPose out = rest;

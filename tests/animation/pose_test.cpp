@@ -16,8 +16,7 @@ namespace {
 
 void expect_matrix(const glm::mat4& actual, const glm::mat4& expected) {
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      EXPECT_NEAR(actual[c][r], expected[c][r], 1e-6f) << "column " << c << " row " << r;
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(actual[c][r], expected[c][r], 1e-6f) << "column " << c << " row " << r;
 }
 
 // Columns as written on paper: x axis, y axis, z axis, origin.
@@ -25,7 +24,9 @@ glm::mat4 columns(glm::vec3 x, glm::vec3 y, glm::vec3 z, glm::vec3 origin) {
   return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(origin, 1));
 }
 
-glm::quat about(float degrees, glm::vec3 axis) { return glm::angleAxis(glm::radians(degrees), axis); }
+glm::quat about(float degrees, glm::vec3 axis) {
+  return glm::angleAxis(glm::radians(degrees), axis);
+}
 
 // A chain root -> child -> grandchild; the child sits under a non-joint node that
 // moves it 3 along z (its parent offset).
@@ -234,8 +235,8 @@ TEST(Pose, LocalToModelIsGlmsArithmeticBitForBit) {
     const glm::vec3& sc = pose.scales[j];
     if (s.parents[j] < 0 && identity) {
       const glm::mat3 r = glm::mat3_cast(q);
-      expected[j] = glm::mat4(glm::vec4(r[0] * sc.x, 0.0f), glm::vec4(r[1] * sc.y, 0.0f),
-                              glm::vec4(r[2] * sc.z, 0.0f), glm::vec4(t, 1.0f));
+      expected[j] = glm::mat4(glm::vec4(r[0] * sc.x, 0.0f), glm::vec4(r[1] * sc.y, 0.0f), glm::vec4(r[2] * sc.z, 0.0f),
+                              glm::vec4(t, 1.0f));
     } else {
       glm::mat4 p = s.parents[j] < 0 ? glm::mat4(1.0f) : expected[static_cast<size_t>(s.parents[j])];
       p = s.parents[j] < 0 ? s.parent_offsets[j] : identity ? p : p * s.parent_offsets[j];

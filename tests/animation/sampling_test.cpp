@@ -79,8 +79,8 @@ const float kC22 = std::cos(glm::radians(22.5f));
 const float kHalf = std::sqrt(0.5f);
 
 TEST(Sampling, StepHoldsEachKeyUntilTheNext) {
-  Sampler s(action_of({channel(0, ChannelPath::Translation, Interpolation::Step, {0, 1, 2},
-                               {0, 0, 0, 10, 20, 30, 5, 5, 5})}));
+  Sampler s(action_of(
+      {channel(0, ChannelPath::Translation, Interpolation::Step, {0, 1, 2}, {0, 0, 0, 10, 20, 30, 5, 5, 5})}));
   expect_near(s.translation(0.0f), {0, 0, 0});
   expect_near(s.translation(0.99f), {0, 0, 0});
   expect_near(s.translation(1.0f), {10, 20, 30});
@@ -89,9 +89,8 @@ TEST(Sampling, StepHoldsEachKeyUntilTheNext) {
 }
 
 TEST(Sampling, LinearTranslationAndScale) {
-  Sampler s(action_of(
-      {channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 2}, {0, 0, 0, 10, 20, 30}),
-       channel(1, ChannelPath::Scale, Interpolation::Linear, {0, 2}, {1, 1, 1, 3, 5, 1})}));
+  Sampler s(action_of({channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 2}, {0, 0, 0, 10, 20, 30}),
+                       channel(1, ChannelPath::Scale, Interpolation::Linear, {0, 2}, {1, 1, 1, 3, 5, 1})}));
   expect_near(s.translation(0.5f), {2.5f, 5.0f, 7.5f});
   expect_near(s.pose.scales[1], {1.5f, 2.0f, 1.0f});
   expect_near(s.translation(2.0f), {10, 20, 30});
@@ -99,8 +98,8 @@ TEST(Sampling, LinearTranslationAndScale) {
 
 TEST(Sampling, LinearRotationIsSlerp) {
   // Identity to 90 degrees about z: halfway is 45 degrees, (0, 0, sin 22.5, cos 22.5).
-  Sampler s(action_of({channel(0, ChannelPath::Rotation, Interpolation::Linear, {0, 1},
-                               {0, 0, 0, 1, 0, 0, kHalf, kHalf})}));
+  Sampler s(
+      action_of({channel(0, ChannelPath::Rotation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, kHalf, kHalf})}));
   expect_near(s.rotation(0.5f), {0, 0, kS22, kC22});
   // A quarter of the way is 22.5 degrees: slerp, not a normalised lerp, gets this.
   const float s11 = std::sin(glm::radians(11.25f)), c11 = std::cos(glm::radians(11.25f));
@@ -109,8 +108,8 @@ TEST(Sampling, LinearRotationIsSlerp) {
 
 TEST(Sampling, LinearRotationTakesTheShorterArc) {
   // The second key stored as -q: the same rotation, the far side of the sphere.
-  Sampler s(action_of({channel(0, ChannelPath::Rotation, Interpolation::Linear, {0, 1},
-                               {0, 0, 0, 1, 0, 0, -kHalf, -kHalf})}));
+  Sampler s(action_of(
+      {channel(0, ChannelPath::Rotation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, -kHalf, -kHalf})}));
   expect_near(s.rotation(0.5f), {0, 0, kS22, kC22});
 }
 
@@ -167,16 +166,15 @@ TEST(Sampling, CubicSplineRotationIsNormalised) {
   // Zero tangents, identity to 90 degrees about z: at s = 0.5 the spline gives
   // (0, 0, 0.5 sin 45, 0.5 + 0.5 cos 45), which normalises to exactly 45 degrees.
   Sampler s(action_of({channel(0, ChannelPath::Rotation, Interpolation::CubicSpline, {0, 1},
-                               {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0,  //
+                               {0, 0, 0, 0, 0, 0, 0,     1,     0, 0, 0, 0,  //
                                 0, 0, 0, 0, 0, 0, kHalf, kHalf, 0, 0, 0, 0})}));
   expect_near(s.rotation(0.5f), {0, 0, kS22, kC22}, 1e-6f);
 }
 
 TEST(Sampling, FirstValueBeforeFirstKeyAndLastAfterLast) {
   // The action runs 0..4 but this channel's keys run 1..3.
-  Action a = action_of(
-      {channel(0, ChannelPath::Translation, Interpolation::Linear, {1, 3}, {1, 1, 1, 3, 3, 3}),
-       channel(1, ChannelPath::Scale, Interpolation::Linear, {0, 4}, {0, 0, 0, 4, 4, 4})});
+  Action a = action_of({channel(0, ChannelPath::Translation, Interpolation::Linear, {1, 3}, {1, 1, 1, 3, 3, 3}),
+                        channel(1, ChannelPath::Scale, Interpolation::Linear, {0, 4}, {0, 0, 0, 4, 4, 4})});
   Sampler s(a);
   expect_near(s.translation(0.5f), glm::vec3(1.0f));
   expect_near(s.translation(3.5f), glm::vec3(3.0f));
@@ -188,16 +186,15 @@ TEST(Sampling, FirstValueBeforeFirstKeyAndLastAfterLast) {
 }
 
 TEST(Sampling, SingleKeyHoldsItsValue) {
-  Sampler s(action_of({channel(0, ChannelPath::Translation, Interpolation::CubicSpline, {0.5f},
-                               {9, 9, 9, 1, 2, 3, 9, 9, 9})}));
+  Sampler s(action_of(
+      {channel(0, ChannelPath::Translation, Interpolation::CubicSpline, {0.5f}, {9, 9, 9, 1, 2, 3, 9, 9, 9})}));
   expect_near(s.translation(0.0f), {1, 2, 3});
   expect_near(s.translation(1.0f), {1, 2, 3});
 }
 
 TEST(Sampling, UnboundChannelsAndUnanimatedJointsKeepTheirValues) {
-  Sampler s(action_of(
-      {channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1}),
-       channel(1, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1})}));
+  Sampler s(action_of({channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1}),
+                       channel(1, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1})}));
   s.targets[1] = -1;
   s.pose.translations[1] = glm::vec3(7.0f);
   s.pose.scales[0] = glm::vec3(5.0f);
@@ -224,7 +221,7 @@ TEST(Sampling, CursorGivesTheSameValuesAsAFreshSearch) {
   std::vector<float> times;
   for (float t = 0.0f; t < end; t += 1.0f / 60.0f) times.push_back(t);  // playback
   for (float t = end; t > 0.0f; t -= 0.07f) times.push_back(t);         // backwards
-  for (int loop = 0; loop < 3; ++loop)                                   // looping
+  for (int loop = 0; loop < 3; ++loop)                                  // looping
     for (float t = 0.0f; t < end; t += 0.11f) times.push_back(t);
   times.insert(times.end(), {0.0f, end, 0.0f, end * 0.9f, end * 0.1f, end});  // jumps
   std::mt19937 rng(3);
@@ -242,8 +239,7 @@ TEST(Sampling, CursorGivesTheSameValuesAsAFreshSearch) {
 }
 
 TEST(Sampling, ValidateRefusesInconsistentInput) {
-  Sampler s(action_of(
-      {channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1})}));
+  Sampler s(action_of({channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1})}));
   EXPECT_TRUE(s.at(0.5f));
   EXPECT_FALSE(s.at(std::nanf("")));
   EXPECT_FALSE((SamplingJob{&s.action, 0.5f, {}, &s.cursor, &s.pose}.Run()));
@@ -324,19 +320,16 @@ TEST_F(InterpolationTest, Rotation) {
   const float s11 = std::sin(glm::radians(11.25f)), c11 = std::cos(glm::radians(11.25f));
   expect_near(rotation("Linear Rotation", mid), {0, 0, -s11, c11}, 1e-5f);
   // On a key the spline is the key's value, whatever its tangents.
-  expect_near(rotation("CubicSpline Rotation", 21.0f / 24), {0, 0, -kHalf, kHalf},
-              1e-5f);
+  expect_near(rotation("CubicSpline Rotation", 21.0f / 24), {0, 0, -kHalf, kHalf}, 1e-5f);
 }
 
 TEST_F(InterpolationTest, Translation) {
   // Step: keys at 0, 11/24, 20/24, ... with y = 6.66523, 10, 6, 10, 6.
   expect_near(translation("Step Translation", 0.5f), {0, 10, 0}, 1e-5f);
   // Linear: keys at 0 and 10/24 with y = 6.62101 and 10; x stays -3.29758.
-  expect_near(translation("Linear Translation", 5.0f / 24),
-              {-3.29758f, (6.62101f + 10.0f) / 2, 0}, 1e-4f);
+  expect_near(translation("Linear Translation", 5.0f / 24), {-3.29758f, (6.62101f + 10.0f) / 2, 0}, 1e-4f);
   // Cubic, zero tangents: keys at 0 and 10/24 with y = 6.64012 and 10.
-  expect_near(translation("CubicSpline Translation", 5.0f / 24),
-              {3.30518f, (6.64012f + 10.0f) / 2, 0}, 1e-4f);
+  expect_near(translation("CubicSpline Translation", 5.0f / 24), {3.30518f, (6.64012f + 10.0f) / 2, 0}, 1e-4f);
 }
 
 }  // namespace

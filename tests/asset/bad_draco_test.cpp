@@ -78,7 +78,8 @@ TEST(BadDraco, RandomDamageNeverCrashes) {
   for (int round = 0; round < 60; ++round) {
     DracoFixture f = clean;
     std::uniform_int_distribution<size_t> at(0, f.draco_size() - 1);
-    for (int flips = 0; flips < 1 + round % 4; ++flips) f.draco_bytes()[at(random)] ^= static_cast<unsigned char>(1 + random() % 255);
+    for (int flips = 0; flips < 1 + round % 4; ++flips)
+      f.draco_bytes()[at(random)] ^= static_cast<unsigned char>(1 + random() % 255);
     std::string file = write(f, "draco_random");
     try {
       load_gltf(file);

@@ -15,7 +15,9 @@ namespace crowdprof::test {
 namespace {
 namespace fs = std::filesystem;
 
-std::string path_in(const std::string& test, const std::string& name) { return (scratch_dir(test) / name).string(); }
+std::string path_in(const std::string& test, const std::string& name) {
+  return (scratch_dir(test) / name).string();
+}
 
 TEST(BadInput, MissingFile) {
   std::string file = (scratch_dir("missing") / "nowhere.glb").string();

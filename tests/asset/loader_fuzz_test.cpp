@@ -50,7 +50,8 @@ void fuzz_bytes(const GltfFixture& fixture, const std::string& name, int rounds)
     if (round % 5 == 4) {
       bytes.resize(random() % bytes.size());
     } else {
-      for (auto flips = 1 + random() % 8; flips > 0; --flips) bytes[random() % bytes.size()] ^= static_cast<unsigned char>(1 + random() % 255);
+      for (auto flips = 1 + random() % 8; flips > 0; --flips)
+        bytes[random() % bytes.size()] ^= static_cast<unsigned char>(1 + random() % 255);
     }
     fs::path file = dir / "damaged.glb";
     write_file(file, bytes.data(), bytes.size());
@@ -71,10 +72,34 @@ void leaves(const json& value, const json::json_pointer& at, std::vector<json::j
 // Structured damage: JSON values (indices, counts, offsets, names) replaced by
 // the values that break loaders, one to three at a time; the BIN chunk intact.
 void fuzz_json(const GltfFixture& fixture, const std::string& name, int rounds) {
-  static const json hostile[] = {-1, 0, 1, 2, 3, 7, 255, 65536, int64_t(1) << 31, int64_t(1) << 32,
-                                 uint64_t(1) << 63, UINT64_MAX, -9007199254740993LL, 0.5, 1e308, -1e308,
-                                 "", "x", "CUBICSPLINE", "weights", "VEC2", "MAT4", nullptr, true,
-                                 json::array(), json::object(), json::array({0, 0}), json::array({1e39, 0, 0})};
+  static const json hostile[] = {-1,
+                                 0,
+                                 1,
+                                 2,
+                                 3,
+                                 7,
+                                 255,
+                                 65536,
+                                 int64_t(1) << 31,
+                                 int64_t(1) << 32,
+                                 uint64_t(1) << 63,
+                                 UINT64_MAX,
+                                 -9007199254740993LL,
+                                 0.5,
+                                 1e308,
+                                 -1e308,
+                                 "",
+                                 "x",
+                                 "CUBICSPLINE",
+                                 "weights",
+                                 "VEC2",
+                                 "MAT4",
+                                 nullptr,
+                                 true,
+                                 json::array(),
+                                 json::object(),
+                                 json::array({0, 0}),
+                                 json::array({1e39, 0, 0})};
   std::vector<json::json_pointer> paths;
   leaves(fixture.json, json::json_pointer(), paths);
   fs::path dir = scratch_dir("fuzz_json_" + name);
@@ -92,7 +117,10 @@ void fuzz_json(const GltfFixture& fixture, const std::string& name, int rounds) 
       } else {
         const json& value = hostile[random() % std::size(hostile)];
         damaged.json[at] = value;
-        what.append(" ").append(at.to_string()).append("=").append(value.dump());  // not "+": GCC 12 -Wrestrict false alarm
+        what.append(" ")
+            .append(at.to_string())
+            .append("=")
+            .append(value.dump());  // not "+": GCC 12 -Wrestrict false alarm
       }
     }
     fs::path file = dir / "damaged.glb";

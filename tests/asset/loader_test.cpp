@@ -92,7 +92,8 @@ TEST(Loader, NonIndexedPrimitive) {
 TEST(Loader, NormalisedIntegerWeightsAndByteJoints) {
   SkinnedFixture f;
   std::vector<uint8_t> joints8 = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 2, 1, 0, 0, 2, 1, 0, 0};
-  std::vector<uint8_t> weights8 = {255, 0, 0, 0, 255, 0, 0, 0, 128, 127, 0, 0, 128, 127, 0, 0, 192, 63, 0, 0, 192, 63, 0, 0};
+  std::vector<uint8_t> weights8 = {255, 0,   0, 0, 255, 0,  0, 0, 128, 127, 0, 0,
+                                   128, 127, 0, 0, 192, 63, 0, 0, 192, 63,  0, 0};
   auto& attributes = f.json["meshes"][0]["primitives"][0]["attributes"];
   attributes["JOINTS_0"] = f.add_accessor(joints8, kUByte, "VEC4", 4);
   attributes["WEIGHTS_0"] = f.add_accessor(weights8, kUByte, "VEC4", 4, /*normalized=*/true);
@@ -101,7 +102,7 @@ TEST(Loader, NormalisedIntegerWeightsAndByteJoints) {
   expect_near(c.mesh.weights[2], {128 / 255.0f, 127 / 255.0f, 0, 0});
   EXPECT_EQ(c.fixups.total(), 0u);
 
-  std::vector<uint16_t> weights16 = {65535, 0, 0, 0, 65535, 0, 0, 0, 32768, 32767, 0, 0,
+  std::vector<uint16_t> weights16 = {65535, 0,     0, 0, 65535, 0,     0, 0, 32768, 32767, 0, 0,
                                      32768, 32767, 0, 0, 49152, 16383, 0, 0, 49152, 16383, 0, 0};
   attributes["WEIGHTS_0"] = f.add_accessor(weights16, kUShort, "VEC4", 4, /*normalized=*/true);
   Character d = load_one(f, "unorm16");
@@ -132,8 +133,8 @@ TEST(Loader, MoreThanFourInfluencesKeepsTheLargest) {
 
 TEST(Loader, WeightsNotSummingToOneAreRenormalised) {
   SkinnedFixture f;
-  f.set<float>(f.weights, 0, 0.5f);       // vertex 0: 0.5
-  f.set<float>(f.weights, 8, 2.0f);       // vertex 2: 2 + 0.5
+  f.set<float>(f.weights, 0, 0.5f);  // vertex 0: 0.5
+  f.set<float>(f.weights, 8, 2.0f);  // vertex 2: 2 + 0.5
   Character c = load_one(f, "renormalise");
   EXPECT_EQ(c.fixups.weights_renormalised, 2u);
   expect_near(c.mesh.weights[0], {1, 0, 0, 0});
@@ -183,7 +184,8 @@ std::string two_skins(const std::string& test) {
   primitive["attributes"]["JOINTS_0"] = f.add_accessor(joints, kUShort, "VEC4", 4);
   primitive["attributes"]["WEIGHTS_0"] = f.add_accessor(weights, kFloat, "VEC4", 4);
   f.json["meshes"].push_back({{"name", "tail"}, {"primitives", {primitive}}});
-  f.json["skins"].push_back({{"name", "tail"}, {"joints", {2, 3}}, {"inverseBindMatrices", f.add_accessor(ibm, kFloat, "MAT4", 16)}});
+  f.json["skins"].push_back(
+      {{"name", "tail"}, {"joints", {2, 3}}, {"inverseBindMatrices", f.add_accessor(ibm, kFloat, "MAT4", 16)}});
   f.json["nodes"].push_back({{"name", "tail"}, {"mesh", 1}, {"skin", 1}});
   f.json["scenes"][0]["nodes"].push_back(4);
   std::string file = (scratch_dir(test) / "pair.glb").string();

@@ -23,7 +23,8 @@ TEST(MeshLod, TheHumanoidGetsThreeCoarserLevelsOfItsOwnVertices) {
     EXPECT_LT(m.triangle_count(), triangles);
     EXPECT_LT(m.vertex_count(), vertices);
     // The share asked for, within what the error limit let the simplifier reach.
-    EXPECT_LE(m.triangle_count(), static_cast<size_t>(static_cast<double>(full.triangle_count()) * level.target_share * 1.1) + 1);
+    EXPECT_LE(m.triangle_count(),
+              static_cast<size_t>(static_cast<double>(full.triangle_count()) * level.target_share * 1.1) + 1);
     EXPECT_TRUE(std::isfinite(level.error));
     EXPECT_GE(level.error, error);
     triangles = m.triangle_count();

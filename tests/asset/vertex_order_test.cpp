@@ -50,7 +50,7 @@ SkinnedMesh two_primitives() {
   SkinnedMesh m;
   const glm::u16vec4 joints[7] = {{3, 0, 0, 0}, {1, 3, 0, 0}, {2, 0, 0, 0}, {3, 1, 0, 0},
                                   {5, 0, 0, 0}, {0, 0, 0, 0}, {4, 5, 0, 0}};
-  const glm::vec4 weights[7] = {{1, 0, 0, 0}, {0.5f, 0.5f, 0, 0}, {1, 0, 0, 0}, {0.7f, 0.3f, 0, 0},
+  const glm::vec4 weights[7] = {{1, 0, 0, 0}, {0.5f, 0.5f, 0, 0}, {1, 0, 0, 0},      {0.7f, 0.3f, 0, 0},
                                 {1, 0, 0, 0}, {1, 0, 0, 0},       {0.6f, 0.4f, 0, 0}};
   for (int v = 0; v < 7; ++v) {
     m.positions.push_back({float(v), 0, 0});

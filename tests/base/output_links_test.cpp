@@ -83,7 +83,8 @@ TEST(OutputLinks, APipeIsWrittenInPlace) {
 TEST(OutputLinks, StdoutThroughALinkFollowsWhatWasPrinted) {
   auto dir = crowdprof::test::scratch_dir("links_stdout");
   fs::create_symlink("/proc/self/fd/1", dir / "stdout");  // as /dev/stdout is
-  auto r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 --csv " + shell_quoted(dir / "stdout"));
+  auto r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 --csv " +
+                   shell_quoted(dir / "stdout"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(dir / "stdout")) << "the link was replaced by a file";
   // The CSV alone: the profile yields stdout to an output written there.
@@ -102,11 +103,13 @@ TEST(OutputLinks, DashIsStandardOutput) {
   // for /dev/stdout: a build that replaced links would replace only it).
   auto dir = crowdprof::test::scratch_dir("links_dash");
   fs::create_symlink("/proc/self/fd/1", dir / "stdout");
-  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --csv - --json " + shell_quoted(dir / "stdout"));
+  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --csv - --json " +
+              shell_quoted(dir / "stdout"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("both write"), std::string::npos) << r.err;
   // The report reads the screenshot back: stdout cannot be read back.
-  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --screenshot - --html " + shell_quoted(dir / "r.html"));
+  r = run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --screenshot - --html " +
+              shell_quoted(dir / "r.html"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("give --screenshot a file"), std::string::npos) << r.err;
 }
@@ -116,14 +119,15 @@ TEST(OutputLinks, AnOutputLinkedToAnInputIsRefused) {
   fs::copy_file(crowdprof::test::source_dir() / "scenes" / "humanoid.glb", dir / "scene.glb");
   fs::create_symlink("scene.glb", dir / "link.csv");
   std::string before = read_file(dir / "scene.glb");
-  auto r = run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "link.csv"));
+  auto r =
+      run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "link.csv"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("is the character file"), std::string::npos) << r.err;
   EXPECT_EQ(read_file(dir / "scene.glb"), before);
   // A dangling link leads to the file it would create: the same as another output.
   fs::create_symlink("t.json", dir / "a.csv");
-  r = run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "a.csv") + " --json " +
-              shell_quoted(dir / "t.json"));
+  r = run_cli("bench " + shell_quoted(dir / "scene.glb") + " -n 2 --frames 2 --csv " + shell_quoted(dir / "a.csv") +
+              " --json " + shell_quoted(dir / "t.json"));
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("both write"), std::string::npos) << r.err;
 }

@@ -145,7 +145,8 @@ TEST(SafeOutput, AWriteThatFailsLeavesTheEarlierFileAsItWas) {
   // A good write replaces the file by renaming a new one over it (another
   // inode), keeping its permissions.
   fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
-  struct stat before {}, after {};
+  struct stat before {
+  }, after{};
   ASSERT_EQ(stat(path.c_str(), &before), 0);
   crowdprof::write_file(path.string(), "JSON", "new");
   ASSERT_EQ(stat(path.c_str(), &after), 0);

@@ -26,13 +26,27 @@ TEST(SwitchTable, EveryPresetSurvivesTextAndJson) {
 TEST(SwitchTable, EverySwitchChangesTheSwitches) {
   // A switch whose setter wrote nothing (or the wrong field) would leave
   // ModeSwitches as it was for one of these values.
-  const std::map<std::string, std::string> other = {
-      {"lookups", "string"},  {"culling", "on"},         {"pose", "shared"},      {"parallel", "on"},
-      {"skinning", "gpu"},    {"palettes", "buffer"},    {"draw", "instanced"},   {"vertex_format", "packed"},
-      {"share", "on"},        {"share_quantum", "1/30"}, {"update_lod", "on"},    {"lod_thresholds", "0.5,0.25,0.1"},
-      {"anim_budget", "2"},   {"passes", "3"},           {"frustum", "gpu"},      {"mesh_lod", "on"},
-      {"mesh_lod_thresholds", "0.5,0.25,0.1"}, {"index_order", "file"},
-      {"transitions", "2"}, {"blend_in", "0.5"}, {"crossfade", "frozen"}};
+  const std::map<std::string, std::string> other = {{"lookups", "string"},
+                                                    {"culling", "on"},
+                                                    {"pose", "shared"},
+                                                    {"parallel", "on"},
+                                                    {"skinning", "gpu"},
+                                                    {"palettes", "buffer"},
+                                                    {"draw", "instanced"},
+                                                    {"vertex_format", "packed"},
+                                                    {"share", "on"},
+                                                    {"share_quantum", "1/30"},
+                                                    {"update_lod", "on"},
+                                                    {"lod_thresholds", "0.5,0.25,0.1"},
+                                                    {"anim_budget", "2"},
+                                                    {"passes", "3"},
+                                                    {"frustum", "gpu"},
+                                                    {"mesh_lod", "on"},
+                                                    {"mesh_lod_thresholds", "0.5,0.25,0.1"},
+                                                    {"index_order", "file"},
+                                                    {"transitions", "2"},
+                                                    {"blend_in", "0.5"},
+                                                    {"crossfade", "frozen"}};
   ASSERT_EQ(other.size(), switch_table().size());
   for (const SwitchSpec& spec : switch_table()) {
     ModeSwitches s;
@@ -40,7 +54,7 @@ TEST(SwitchTable, EverySwitchChangesTheSwitches) {
     EXPECT_EQ(spec.set(s, other.at(std::string(spec.name))), "") << spec.name;
     EXPECT_FALSE(s == ModeSwitches{}) << spec.name;
     EXPECT_EQ(switch_text(spec, s), other.at(std::string(spec.name)) == "1/30" ? switch_text(json(1.0 / 30))
-                                                                                 : other.at(std::string(spec.name)));
+                                                                               : other.at(std::string(spec.name)));
   }
 }
 
@@ -71,7 +85,8 @@ TEST(SwitchTable, ResultsRecordLaterSwitchesOnlyWhenSet) {
 
 TEST(SwitchTable, AnOlderResultReadsWithTheDefaults) {
   // A result from before palettes and draw were recorded.
-  json old = {{"lookups", "bundled"}, {"culling", true}, {"pose", "per-copy"}, {"parallel", true}, {"skinning", "animations"}};
+  json old = {
+      {"lookups", "bundled"}, {"culling", true}, {"pose", "per-copy"}, {"parallel", true}, {"skinning", "animations"}};
   ModeSwitches s;
   ASSERT_EQ(switches_from_json(old, s), "");
   // It drew the file's triangles in the file's order: the default then.

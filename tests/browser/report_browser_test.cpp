@@ -19,11 +19,11 @@
 #include "measuring/category_clock.h"
 #include "test_support.h"
 
-using nlohmann::json;
 using crowdprof::Category;
-using crowdprof::kCategoryCount;
 using crowdprof::category_name;
+using crowdprof::kCategoryCount;
 using crowdprof::series_name;
+using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
@@ -44,18 +44,19 @@ std::string find_chromium() {
   return "";
 }
 
-#define REQUIRE_CHROMIUM()                                                                                \
-  do {                                                                                                    \
-    if (find_chromium().empty())                                                                          \
+#define REQUIRE_CHROMIUM()                                                                                 \
+  do {                                                                                                     \
+    if (find_chromium().empty())                                                                           \
       GTEST_SKIP() << "chromium not found on PATH (or CROWDPROF_CHROMIUM): the HTML report is not loaded " \
-                      "in a browser; ./setup.sh test installs it (apt-get install chromium)";               \
+                      "in a browser; ./setup.sh test installs it (apt-get install chromium)";              \
   } while (0)
 
 // The page's DOM after its scripts ran, as headless chromium serialises it.
 std::string dump_dom(const fs::path& page) {
   fs::path dir = page.parent_path();
   fs::path out = dir / (page.filename().string() + ".dom"), err = dir / (page.filename().string() + ".err");
-  std::string command = "timeout 120 '" + find_chromium() + "' --headless --disable-gpu --no-sandbox --no-first-run --window-size=1280,2000 " +
+  std::string command = "timeout 120 '" + find_chromium() +
+                        "' --headless --disable-gpu --no-sandbox --no-first-run --window-size=1280,2000 " +
                         "--user-data-dir='" + (dir / "chromium-profile").string() + "' --dump-dom 'file://" +
                         fs::absolute(page).string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
   int raw = std::system(command.c_str());
@@ -85,7 +86,8 @@ std::vector<DrawnChart> drawn_charts(const std::string& dom) {
     std::string part = dom.substr(at, next == std::string::npos ? std::string::npos : next - at);
     std::string tag = part.substr(0, part.find('>'));
     DrawnChart chart{attribute(tag, "data-chart"), attribute(tag, "data-drawn-series"), {}, {}};
-    for (size_t s = part.find("<g class=\"series\""); s != std::string::npos; s = part.find("<g class=\"series\"", s + 1)) {
+    for (size_t s = part.find("<g class=\"series\""); s != std::string::npos;
+         s = part.find("<g class=\"series\"", s + 1)) {
       std::string series = part.substr(s, part.find('>', s) - s);
       chart.series.push_back({attribute(series, "data-name"), attribute(series, "data-drawn-points")});
     }
@@ -108,7 +110,8 @@ std::vector<const DrawnChart*> charts_named(const std::vector<DrawnChart>& chart
 void expect_clean_page(const std::string& dom, const std::string& what) {
   std::smatch m;
   EXPECT_FALSE(std::regex_search(dom, m, std::regex("data-js-errors=\"([^\"]*)\""))) << what << ": " << m[1].str();
-  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\""))) << what << ": the page's script never ran";
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\"")))
+      << what << ": the page's script never ran";
   EXPECT_EQ(m[1].str().rfind("ok ", 0), 0u) << what << ": " << m[1].str();
 }
 
@@ -199,8 +202,9 @@ TEST(ReportInBrowser, ACompareReportWithASweep) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_compare")};
   // Five modes: more than fit side by side (the page must stay within 1280 px).
-  f.run("compare '" + f.scene + "' " + f.small + " --modes master,culled,threaded,shared,budget --sweep n=1,2,4 --json '" +
-        f.path("c.json") + "' --html '" + f.path("c.html") + "'");
+  f.run("compare '" + f.scene + "' " + f.small +
+        " --modes master,culled,threaded,shared,budget --sweep n=1,2,4 --json '" + f.path("c.json") + "' --html '" +
+        f.path("c.html") + "'");
   json doc = json::parse(std::ifstream(f.path("c.json")));
   // The page compare wrote and the one report makes of its JSON.
   f.run("report '" + f.path("c.json") + "' -o '" + f.path("c2.html") + "'");
@@ -229,8 +233,9 @@ TEST(ReportInBrowser, ACheckReport) {
   json planted = json::parse(std::ifstream(f.path("base.json")));
   planted["counters"]["poses_updated"] = planted["counters"]["poses_updated"].get<uint64_t>() + 1;
   std::ofstream(f.path("changed.json")) << planted.dump();
-  auto r = crowdprof::test::run_cli("check --result '" + f.path("changed.json") + "' --baseline '" + f.path("base.json") +
-                                    "' --metric frame,Animations,Rasterizer --html '" + f.path("check.html") + "'");
+  auto r =
+      crowdprof::test::run_cli("check --result '" + f.path("changed.json") + "' --baseline '" + f.path("base.json") +
+                               "' --metric frame,Animations,Rasterizer --html '" + f.path("check.html") + "'");
   EXPECT_EQ(r.status, 1) << r.err << "a changed counter is a regression";
   std::string dom = dump_dom(f.path("check.html"));
   expect_clean_page(dom, "check");
@@ -264,8 +269,10 @@ TEST(ReportInBrowser, ADiffReport) {
 TEST(ReportInBrowser, AScreenshotIsShown) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_screenshot")};
-  auto r = crowdprof::test::run_cli("bench '" + f.scene + "' " + f.small + " --backend osmesa --resolution 320x180 "
-                                    "--screenshot '" + f.path("shot.png") + "' --html '" + f.path("s.html") + "'");
+  auto r = crowdprof::test::run_cli("bench '" + f.scene + "' " + f.small +
+                                    " --backend osmesa --resolution 320x180 "
+                                    "--screenshot '" +
+                                    f.path("shot.png") + "' --html '" + f.path("s.html") + "'");
   if (r.status == 4) GTEST_SKIP() << "no OSMesa here: " << r.err;
   ASSERT_EQ(r.status, 0) << r.err;
   std::string dom = dump_dom(f.path("s.html"));
@@ -301,5 +308,6 @@ TEST(ReportInBrowser, ABrokenPageIsCaught) {
   size_t chart = cut.find("<svg", cut.find("id=\"categories\""));
   cut.erase(chart, cut.find("</svg>", chart) + 6 - chart);
   std::ofstream(f.path("cut.html")) << cut;
-  EXPECT_NE(dump_dom(f.path("cut.html")).find("data-report-check=\"failed: 1 charts drawn, 2 made\""), std::string::npos);
+  EXPECT_NE(dump_dom(f.path("cut.html")).find("data-report-check=\"failed: 1 charts drawn, 2 made\""),
+            std::string::npos);
 }

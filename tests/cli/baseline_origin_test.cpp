@@ -25,7 +25,8 @@ TEST(BaselineOrigin, TheSceneIsFoundFromTheBaselinesFolderFromAnywhere) {
   // Recorded from the top folder with a relative scene path.
   std::string cd = "cd '" + dir.string() + "' && '" + CROWDPROF_CLI + "' ";
   ASSERT_EQ(std::system((cd + "check --spread 0 assets/hero.glb -n 4 --frames 10 --warmup 1 --mode culled --attempts 1 "
-                               "--baseline ci/perf/base.json --update-baseline -q").c_str()),
+                              "--baseline ci/perf/base.json --update-baseline -q")
+                            .c_str()),
             0);
   json recorded = json::parse(std::ifstream(base));
   EXPECT_EQ(recorded["scene"]["file"], "../../assets/hero.glb");
@@ -38,7 +39,8 @@ TEST(BaselineOrigin, TheSceneIsFoundFromTheBaselinesFolderFromAnywhere) {
   r = run_cli("check --spread 0 --baseline '" + base + "'");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + base + ": its scene file: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find("the path the baseline recorded, resolved from the baseline's folder"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the path the baseline recorded, resolved from the baseline's folder"), std::string::npos)
+      << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
@@ -61,17 +63,21 @@ TEST(BaselineOrigin, AnotherMachineOrBuildIsOneWarningLine) {
   auto dir = crowdprof::test::scratch_dir("baseline_machine");
   std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  ASSERT_EQ(run_cli("bench '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --calibrate -q --json '" + base + "'").status, 0);
+  ASSERT_EQ(
+      run_cli("bench '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --calibrate -q --json '" + base + "'")
+          .status,
+      0);
   json other = json::parse(std::ifstream(base));
   other["environment"]["cpu"] = "Another CPU";
   other["environment"]["build_type"] = "Another build type";
   std::ofstream(dir / "other.json") << other.dump();
   auto r = run_cli("check --result '" + base + "' --baseline '" + (dir / "other.json").string() + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
-  EXPECT_EQ(r.err.rfind("crowdprof: warning: the baseline was measured on another machine or build (cpu \"Another CPU\" "
-                        "there, ",
-                        0),
-            0u)
+  EXPECT_EQ(
+      r.err.rfind("crowdprof: warning: the baseline was measured on another machine or build (cpu \"Another CPU\" "
+                  "there, ",
+                  0),
+      0u)
       << r.err;
   EXPECT_NE(r.err.find("build_type \"Another build type\" there, "), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -98,9 +98,10 @@ TEST(BenchCli, OutputsThatCannotBeWritten) {
   auto dir = crowdprof::test::scratch_dir("bench_outputs");
   std::string missing = (dir / "no" / "frames.csv").string();
   expect_bench_usage_error("-n 2 --frames 1 --csv '" + missing + "'",
-                     "cannot write CSV file '" + missing + "': no folder " + (dir / "no").string());
+                           "cannot write CSV file '" + missing + "': no folder " + (dir / "no").string());
   expect_bench_usage_error("-n 2 --frames 1 --json '" + dir.string() + "'",
-                     "cannot write JSON file '" + dir.string() + "': it is a directory");
+                           "cannot write JSON file '" + dir.string() + "': it is a directory");
   if (std::filesystem::is_character_file("/dev/full"))
-    expect_bench_usage_error("-n 2 --frames 1 -q --trace /dev/full", "cannot write trace file '/dev/full': No space left on device");
+    expect_bench_usage_error("-n 2 --frames 1 -q --trace /dev/full",
+                             "cannot write trace file '/dev/full': No space left on device");
 }

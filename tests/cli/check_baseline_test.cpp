@@ -24,8 +24,10 @@ namespace {
 // and so other copies culled).
 std::string unusual_baseline(const std::filesystem::path& dir) {
   std::string base = (dir / "base.json").string();
-  auto r = run_cli("bench '" + humanoid_glb() + "' -n 12 --frames 8 --warmup 1 --mode threaded --lookups string --threads 1 "
-                   "--action walk --resolution 600x600 --fps 30 -q --json '" + base + "'");
+  auto r = run_cli("bench '" + humanoid_glb() +
+                   "' -n 12 --frames 8 --warmup 1 --mode threaded --lookups string --threads 1 "
+                   "--action walk --resolution 600x600 --fps 30 -q --json '" +
+                   base + "'");
   EXPECT_EQ(r.status, 0) << r.err;
   return base;
 }
@@ -160,7 +162,8 @@ TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   std::string fast_base = write_json(dir / "fast.json", fast);
   r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + fast_base + "' --runs 2 -q");
   EXPECT_EQ(r.status, 1) << r.err;
-  EXPECT_NE(r.err.find("with the same work: measuring again to confirm (1 of 1, --confirm)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("with the same work: measuring again to confirm (1 of 1, --confirm)"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("confirmed: slower again (calibrated +"), std::string::npos) << r.err;
   r = run_cli("check --spread 0 --baseline '" + fast_base + "' --runs 2 --confirm 0 -q");
   EXPECT_EQ(r.status, 1) << r.err;
@@ -171,7 +174,8 @@ TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   // Other work is never measured again: it is not a slow moment.
   json more = read_json(base);
   more["counters"]["vertices_skinned"] = more["counters"]["vertices_skinned"].get<uint64_t>() + 1;
-  r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + write_json(dir / "more.json", more) + "' --runs 2 -q");
+  r = run_cli("check --spread 0 --confirm-spread 0 --baseline '" + write_json(dir / "more.json", more) +
+              "' --runs 2 -q");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.find("measuring again"), std::string::npos) << r.err;
 }

@@ -56,7 +56,8 @@ TEST(CliErrors, AnUnknownOptionNamesTheNearestAndTheCommandsHelp) {
                {"bench: unknown option --frame; did you mean --frames?", "(see crowdprof bench --help)"});
   expect_usage("compare " + character() + " --mode master", {"did you mean --modes?", "see crowdprof compare --help"});
   expect_usage("bench " + character() + " --frobnicate", {"unknown option --frobnicate", "see crowdprof bench --help"});
-  expect_usage("info " + character() + " extra.glb", {"info: unexpected argument 'extra.glb'", "see crowdprof info --help"});
+  expect_usage("info " + character() + " extra.glb",
+               {"info: unexpected argument 'extra.glb'", "see crowdprof info --help"});
 }
 
 TEST(CliErrors, ANumberThatIsNotOneIsNamedInWords) {
@@ -88,7 +89,8 @@ TEST(CliErrors, AListOptionTakesOneValueAndLeavesTheFile) {
   auto r = run_cli("compare --modes master,culled " + character() + " -n 2 --frames 2 --warmup 0 --block 1");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("culled"), std::string::npos) << r.out;
-  r = run_cli("capacity --modes master " + character() + " --budget 1000 --start 1 --max-characters 2 --frames 2 "
+  r = run_cli("capacity --modes master " + character() +
+              " --budget 1000 --start 1 --max-characters 2 --frames 2 "
               "--warmup 0 -q");
   EXPECT_EQ(r.status, 0) << r.err;
 }

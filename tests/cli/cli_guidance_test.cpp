@@ -31,7 +31,10 @@ TEST(CliGuidance, OtherFormatsAreRefusedWithHowToConvert) {
 TEST(CliGuidance, AResultGivenAsASceneSaysWhichCommandReadsIt) {
   auto dir = crowdprof::test::scratch_dir("guidance_result");
   fs::path result = dir / "run.json";
-  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result)).status, 0);
+  ASSERT_EQ(
+      run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result))
+          .status,
+      0);
   auto r = run_cli("bench " + shell_quoted(result));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("run.json: this is a crowdprof result, not a scene file: use report, or check --result"),
@@ -42,7 +45,10 @@ TEST(CliGuidance, AResultGivenAsASceneSaysWhichCommandReadsIt) {
 TEST(CliGuidance, ReportSaysWhereItWrote) {
   auto dir = crowdprof::test::scratch_dir("guidance_report");
   fs::path result = dir / "run.json", page = dir / "run.html";
-  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result)).status, 0);
+  ASSERT_EQ(
+      run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 2 --warmup 0 -q --json " + shell_quoted(result))
+          .status,
+      0);
   auto r = run_cli("report " + shell_quoted(result) + " -o " + shell_quoted(page));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "wrote " + page.string() + ": 1 result\n");
@@ -52,20 +58,26 @@ TEST(CliGuidance, ReportSaysWhereItWrote) {
 TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
   auto dir = crowdprof::test::scratch_dir("guidance_summary");
   fs::path bench = dir / "bench.csv", compare = dir / "compare.csv";
-  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 -q --summary-csv " + shell_quoted(bench)).status, 0);
+  ASSERT_EQ(run_cli("bench " + shell_quoted(humanoid_glb()) + " -n 2 --frames 3 --warmup 0 -q --summary-csv " +
+                    shell_quoted(bench))
+                .status,
+            0);
   std::ifstream in(bench);
   std::string header, row, extra;
   std::getline(in, header);
   std::getline(in, row);
-  EXPECT_EQ(header, "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,"
-                    "cpu_median_ms,cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes,index_order,"
-                    "colour_invocations_per_vertex,prepass_invocations_per_vertex,shadows_invocations_per_vertex,"
-                    "palette_bytes_per_copy_on_screen,record_bytes_per_copy_on_screen");
+  EXPECT_EQ(header,
+            "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,"
+            "cpu_median_ms,cpu_p95_ms,cpu_p99_ms,cpu_fps,partial,passes,index_order,"
+            "colour_invocations_per_vertex,prepass_invocations_per_vertex,shadows_invocations_per_vertex,"
+            "palette_bytes_per_copy_on_screen,record_bytes_per_copy_on_screen");
   EXPECT_EQ(row.rfind("threaded,2,", 0), 0u) << row;
   EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ',')) << row;
   EXPECT_FALSE(std::getline(in, extra)) << "one row for one run";
-  auto r = run_cli("compare " + shell_quoted(humanoid_glb()) + " --modes master,culled -n 2 --frames 2 --warmup 0 --block 1 -q "
-                   "--summary-csv " + shell_quoted(compare));
+  auto r = run_cli("compare " + shell_quoted(humanoid_glb()) +
+                   " --modes master,culled -n 2 --frames 2 --warmup 0 --block 1 -q "
+                   "--summary-csv " +
+                   shell_quoted(compare));
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream rows(compare);
   std::vector<std::string> lines;

@@ -19,7 +19,9 @@ std::string read_doc() {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+std::string first_line(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
 
 std::string quoted_path(const std::filesystem::path& path) {
   std::string text = "'";
@@ -71,8 +73,9 @@ TEST(ErrorsDoc, QuotesWhatTheBinaryPrints) {
     std::string line = first_line(r.err);
     if (!q.machine_part.empty()) line = line.substr(0, line.find(q.machine_part));
     ASSERT_FALSE(line.empty()) << q.args;
-    EXPECT_NE(doc.find(line), std::string::npos) << "docs/errors.md does not quote what `crowdprof " << q.args
-                                                 << "` prints:\n" << line;
+    EXPECT_NE(doc.find(line), std::string::npos)
+        << "docs/errors.md does not quote what `crowdprof " << q.args << "` prints:\n"
+        << line;
   }
 }
 

@@ -54,7 +54,8 @@ TEST(GenCli, FormatFollowsTheExtension) {
 TEST(GenCli, BadOptionsExit2AndBadPathsExit3) {
   auto dir = test::scratch_dir("gen_cli_bad");
   const std::string file = (dir / "x.glb").string();
-  for (std::string args : {"--bones 19", "--bones 5000", "--vertices 10", "--vertices 2500001", "--bones many", "--gltf"}) {
+  for (std::string args :
+       {"--bones 19", "--bones 5000", "--vertices 10", "--vertices 2500001", "--bones many", "--gltf"}) {
     test::CliResult r = test::run_cli("gen -o '" + file + "' " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_NE(r.err, "") << args;
@@ -64,5 +65,6 @@ TEST(GenCli, BadOptionsExit2AndBadPathsExit3) {
   const std::string nowhere = (dir / "no" / "such" / "dir.glb").string();
   test::CliResult r = test::run_cli("gen -o '" + nowhere + "'");
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err, "crowdprof: cannot write GLB file '" + nowhere + "': no folder " + (dir / "no" / "such").string() + "\n");
+  EXPECT_EQ(r.err,
+            "crowdprof: cannot write GLB file '" + nowhere + "': no folder " + (dir / "no" / "such").string() + "\n");
 }

@@ -19,8 +19,10 @@ using crowdprof::test::run_cli;
 TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   auto result_file = crowdprof::test::scratch_dir("gpu_skinning_cli") / "baked.json";
-  auto r = run_cli("bench '" + humanoid_glb() + "' -n 12 --mode baked --backend auto --resolution 160x90 --frames 2 --warmup 0 "
-                   "--bake-rate 15 --json '" + result_file.string() + "'");
+  auto r = run_cli("bench '" + humanoid_glb() +
+                   "' -n 12 --mode baked --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--bake-rate 15 --json '" +
+                   result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("skinning baked |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("baked at 15 Hz"), std::string::npos) << r.out;
@@ -48,8 +50,10 @@ TEST(GpuSkinningCli, BakedReportsItsBakeAndDeviation) {
 TEST(GpuSkinningCli, ComputeReportsItsGpuMemory) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   auto result_file = crowdprof::test::scratch_dir("gpu_skinning_cli") / "compute.json";
-  auto r = run_cli("bench '" + humanoid_glb() + "' -n 6 --mode compute --backend auto --resolution 160x90 --frames 2 --warmup 0 "
-                   "--json '" + result_file.string() + "'");
+  auto r = run_cli("bench '" + humanoid_glb() +
+                   "' -n 6 --mode compute --backend auto --resolution 160x90 --frames 2 --warmup 0 "
+                   "--json '" +
+                   result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   nlohmann::json j = read_json(result_file);
   EXPECT_EQ(j.at("gpu_skinning").at("skinning"), "compute");
@@ -64,15 +68,18 @@ TEST(GpuSkinningCli, RefusesWhatCannotRun) {
     EXPECT_NE(r.err.find("needs a GL backend"), std::string::npos) << r.err;
   }
   // The switch on its own, over another preset: parsed, then refused for want of GL.
-  auto r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode hwskin --skinning baked --palettes buffer --draw instanced "
+  auto r = run_cli("bench '" + humanoid_glb() +
+                   "' -n 2 --mode hwskin --skinning baked --palettes buffer --draw instanced "
                    "--backend none --frames 1");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("skinning baked) needs a GL backend"), std::string::npos) << r.err;
   r = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode threaded --skinning compute --backend none --frames 1");
   EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_NE(r.err.find("--skinning compute reads its matrices from shader storage buffers"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--skinning compute reads its matrices from shader storage buffers"), std::string::npos)
+      << r.err;
   for (const char* rate : {"0", "-3", "nan", "20000"}) {
-    auto bad = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " + std::string(rate));
+    auto bad = run_cli("bench '" + humanoid_glb() + "' -n 2 --mode baked --backend none --frames 1 --bake-rate " +
+                       std::string(rate));
     EXPECT_EQ(bad.status, 2) << rate << ": " << bad.err;
     EXPECT_NE(bad.err.find("--bake-rate"), std::string::npos) << bad.err;
   }

@@ -44,15 +44,18 @@ CliResult run_shell(const std::string& command, const fs::path& dir) {
   return result;
 }
 
-std::string cli() { return std::string("'") + CROWDPROF_CLI + "'"; }
+std::string cli() {
+  return std::string("'") + CROWDPROF_CLI + "'";
+}
 
 // A small bench result to compare against.
 std::string bench_result(const fs::path& dir) {
   std::string character = (dir / "character.glb").string();
   SkinnedFixture().write_glb(character);
   std::string result = (dir / "result.json").string();
-  CliResult r = run_cli("bench " + crowdprof::test::shell_quoted(character) + " -n 2 --frames 3 --warmup 0 --backend none -q --json " +
-                        crowdprof::test::shell_quoted(result));
+  CliResult r =
+      run_cli("bench " + crowdprof::test::shell_quoted(character) +
+              " -n 2 --frames 3 --warmup 0 --backend none -q --json " + crowdprof::test::shell_quoted(result));
   EXPECT_EQ(r.status, 0) << r.err;
   return result;
 }
@@ -76,11 +79,13 @@ TEST(HostileInput, ANumberTooLargeForADoubleInABaselineOrResultIsABadFile) {
   std::string good = bench_result(dir);
   std::string bad = (dir / "bad.json").string();
   write_file(bad, replaced(read_file(good), "{", "{\"fps\": 1e400, "));
-  CliResult r = run_cli("check --baseline " + crowdprof::test::shell_quoted(bad) + " --result " + crowdprof::test::shell_quoted(good));
+  CliResult r = run_cli("check --baseline " + crowdprof::test::shell_quoted(bad) + " --result " +
+                        crowdprof::test::shell_quoted(good));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + bad + ": a number too large for a double: ", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  r = run_cli("check --baseline " + crowdprof::test::shell_quoted(good) + " --result " + crowdprof::test::shell_quoted(bad));
+  r = run_cli("check --baseline " + crowdprof::test::shell_quoted(good) + " --result " +
+              crowdprof::test::shell_quoted(bad));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err.rfind("crowdprof: " + bad + ": a number too large for a double: ", 0), 0u) << r.err;
 }
@@ -88,7 +93,8 @@ TEST(HostileInput, ANumberTooLargeForADoubleInABaselineOrResultIsABadFile) {
 TEST(HostileInput, ADracoAttributeOfAnotherTypeThanItsAccessorIsRefused) {
   fs::path dir = scratch_dir("draco_type");
   DracoFixture fixture;
-  auto& attributes = fixture.json["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"];
+  auto& attributes =
+      fixture.json["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"];
   // WEIGHTS_0 (a float accessor) mapped to Draco's 16-bit JOINTS_0 data: the
   // same four components, so only the type tells them apart.
   attributes["WEIGHTS_0"] = attributes["JOINTS_0"];
@@ -137,11 +143,13 @@ TEST(HostileInput, AFileIsJudgedByItsFirstBytesBeforeItIsReadWhole) {
   }
   std::string good = bench_result(dir);
   const std::string limit = "ulimit -v 600000; ";
-  CliResult r = run_shell(limit + cli() + " info " + crowdprof::test::shell_quoted((dir / "big.glb").string()) + " >/dev/null", dir);
+  CliResult r = run_shell(
+      limit + cli() + " info " + crowdprof::test::shell_quoted((dir / "big.glb").string()) + " >/dev/null", dir);
   EXPECT_EQ(r.status, 3) << r.err;
-  EXPECT_EQ(r.err, "crowdprof: " + (dir / "big.glb").string() + ": is not a glTF file (neither GLB nor a JSON object)\n");
-  r = run_shell(limit + cli() + " check -q --baseline " + crowdprof::test::shell_quoted((dir / "big.json").string()) + " --result " +
-                    crowdprof::test::shell_quoted(good),
+  EXPECT_EQ(r.err,
+            "crowdprof: " + (dir / "big.glb").string() + ": is not a glTF file (neither GLB nor a JSON object)\n");
+  r = run_shell(limit + cli() + " check -q --baseline " + crowdprof::test::shell_quoted((dir / "big.json").string()) +
+                    " --result " + crowdprof::test::shell_quoted(good),
                 dir);
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_EQ(r.err, "crowdprof: " + (dir / "big.json").string() + ": not a crowdprof result (not a JSON object)\n");
@@ -170,8 +178,7 @@ TEST(HostileInput, ATraceThatWillPassItsLimitIsWarnedAboutBeforeTheRun) {
   EXPECT_TRUE(trace_length_warning(1000, kMaxTraceSpans).empty());
   // 100,000 frames (the 1.7 GB trace of the issue) pass a million spans.
   std::string warning = trace_length_warning(100'000, kMaxTraceSpans).str();
-  EXPECT_NE(warning.find("trace keeps 1000000 spans, about the first 90909 of these 100000 frames"),
-            std::string::npos)
+  EXPECT_NE(warning.find("trace keeps 1000000 spans, about the first 90909 of these 100000 frames"), std::string::npos)
       << warning;
 }
 
@@ -188,8 +195,8 @@ TEST(HostileInput, ASkinBoundToNoMeshSkinsNothing) {
   EXPECT_TRUE((SkinningJob{palette, &plan, 0, 0, {}, {}}.Validate()));
   EXPECT_TRUE((SkinningJob{palette, &plan, 0, 0, {}, {}}.Run()));
   EXPECT_FALSE((SkinningJob{palette, &plan, 0, 1, {}, {}}.Validate()));
-  Character character = load_gltf((source_dir() / "tests/fuzz/regressions/gltf_loader/skin_without_mesh.glb").string())
-                            .characters.at(0);
+  Character character =
+      load_gltf((source_dir() / "tests/fuzz/regressions/gltf_loader/skin_without_mesh.glb").string()).characters.at(0);
   EXPECT_EQ(character.mesh.vertex_count(), 0u);
   EXPECT_EQ(character.skeleton.joint_count(), 3u);
 }

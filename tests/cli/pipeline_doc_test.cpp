@@ -66,8 +66,9 @@ TEST(PipelineDoc, EveryCommandOfTheWorkedExampleRuns) {
       std::string command = line;
       const bool crowdprof = command.rfind("crowdprof ", 0) == 0;
       if (crowdprof) command = shell_quoted(CROWDPROF_CLI) + command.substr(9);
-      const int raw = std::system(("cd " + shell_quoted(dir.string()) + " && " + command + " >" + shell_quoted((dir / "out").string()) +
-                                   " 2>" + shell_quoted((dir / "err").string()) + " </dev/null")
+      const int raw = std::system(("cd " + shell_quoted(dir.string()) + " && " + command + " >" +
+                                   shell_quoted((dir / "out").string()) + " 2>" + shell_quoted((dir / "err").string()) +
+                                   " </dev/null")
                                       .c_str());
       const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
       std::ifstream err_file(dir / "err");
@@ -84,9 +85,9 @@ TEST(PipelineDoc, EveryCommandOfTheWorkedExampleRuns) {
   }
   EXPECT_EQ(files, 1u);
   EXPECT_GE(commands, 7u);
-  for (const char* output : {"results/bench.json", "results/frames.csv", "results/compare.json", "ci/crowd-baseline.json",
-                             "results/check.json", "results/crowd-gate.xml", "results/crowd-gate.md",
-                             "results/report.html"})
+  for (const char* output :
+       {"results/bench.json", "results/frames.csv", "results/compare.json", "ci/crowd-baseline.json",
+        "results/check.json", "results/crowd-gate.xml", "results/crowd-gate.md", "results/report.html"})
     EXPECT_TRUE(fs::is_regular_file(dir / output)) << output;
 }
 

@@ -45,7 +45,8 @@ TEST(RenderCli, WritesTheFrameAsAPng) {
   REQUIRE_GL();
   auto dir = crowdprof::test::scratch_dir("render_cli_png");
   auto png = dir / "frame.png";
-  auto r = run_cli("render '" + humanoid_glb() + "' -n 4 --mode hwskin --frame 3 --resolution 160x90 -o '" + png.string() + "'");
+  auto r = run_cli("render '" + humanoid_glb() + "' -n 4 --mode hwskin --frame 3 --resolution 160x90 -o '" +
+                   png.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(is_png_of(png, 160, 90));
   EXPECT_NE(r.out.find("frame 3"), std::string::npos) << r.out;
@@ -84,8 +85,10 @@ TEST(RenderCli, BenchDrawsReportsAndTakesAScreenshot) {
   auto dir = crowdprof::test::scratch_dir("render_cli_bench");
   auto png = dir / "last.png";
   auto result_file = dir / "run.json";
-  auto r = run_cli("bench '" + humanoid_glb() + "' -n 8 --frames 2 --warmup 0 --mode hwskin --backend auto --resolution 160x90"
-                   " --screenshot '" + png.string() + "' --json '" + result_file.string() + "'");
+  auto r = run_cli("bench '" + humanoid_glb() +
+                   "' -n 8 --frames 2 --warmup 0 --mode hwskin --backend auto --resolution 160x90"
+                   " --screenshot '" +
+                   png.string() + "' --json '" + result_file.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(is_png_of(png, 160, 90));
   EXPECT_NE(r.out.find("renderer "), std::string::npos) << r.out;
@@ -96,7 +99,8 @@ TEST(RenderCli, BenchDrawsReportsAndTakesAScreenshot) {
   EXPECT_TRUE(backend == "egl" || backend == "osmesa") << backend;
   EXPECT_NE(j["environment"]["renderer"], "none");
   EXPECT_GT(j["counters"]["draw_calls"].get<uint64_t>(), 0u);
-  EXPECT_EQ(j["counters"]["bytes_uploaded"].get<uint64_t>(), j["counters"]["draw_calls"].get<uint64_t>() * (69 * 48 + 64));
+  EXPECT_EQ(j["counters"]["bytes_uploaded"].get<uint64_t>(),
+            j["counters"]["draw_calls"].get<uint64_t>() * (69 * 48 + 64));
   EXPECT_EQ(j["counters"]["copies_fallback"].get<uint64_t>(), 0u);
 }
 
@@ -119,7 +123,8 @@ TEST(RenderCli, WithoutEglAutoTakesOsMesaAndEglByNameExits4) {
   // glvnd finds no EGL vendor library: EGL fails, OSMesa does not need it.
   ::setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json", 1);
   auto by_name = run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend egl --resolution 64x36");
-  auto automatic = run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend auto --resolution 64x36");
+  auto automatic =
+      run_cli("bench '" + humanoid_glb() + "' -n 2 --frames 1 --warmup 0 --backend auto --resolution 64x36");
   ::unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
   EXPECT_EQ(by_name.status, 4) << by_name.err;
   EXPECT_NE(by_name.err.find("crowdprof: EGL"), std::string::npos) << by_name.err;

@@ -27,8 +27,12 @@ BenchConfig config_of(const std::string& mode, double transitions_s, int threads
   return config;
 }
 
-double stage(const FrameRecord& f, AnimationStage s) { return f.animation_stages.ms[static_cast<size_t>(s)]; }
-double animations(const FrameRecord& f) { return f.times[Category::Animations]; }
+double stage(const FrameRecord& f, AnimationStage s) {
+  return f.animation_stages.ms[static_cast<size_t>(s)];
+}
+double animations(const FrameRecord& f) {
+  return f.times[Category::Animations];
+}
 
 }  // namespace
 
@@ -96,8 +100,9 @@ TEST(AnimationStages, TheSplitReachesTheResultTheReportAndTheCsv) {
   std::string header, row;
   std::getline(lines, header);
   std::getline(lines, row);
-  EXPECT_NE(header.find(",animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms"),
-            std::string::npos);
+  EXPECT_NE(
+      header.find(",animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms"),
+      std::string::npos);
   EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
 }
 

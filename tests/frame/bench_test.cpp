@@ -115,12 +115,12 @@ TEST(Culling, BoxesAgainstAKnownCamera) {
   camera.far_plane = 100.0f;
   Frustum f = frustum_of(camera.view_projection());
   auto box = [](glm::vec3 c) { return Aabb{c - glm::vec3(0.5f), c + glm::vec3(0.5f)}; };
-  EXPECT_TRUE(intersects(f, box({0, 0, -10})));      // straight ahead
-  EXPECT_FALSE(intersects(f, box({0, 0, 10})));      // behind
-  EXPECT_FALSE(intersects(f, box({-20, 0, -10})));   // left of a 90 degree view at 10 m (edge at x = -10)
+  EXPECT_TRUE(intersects(f, box({0, 0, -10})));       // straight ahead
+  EXPECT_FALSE(intersects(f, box({0, 0, 10})));       // behind
+  EXPECT_FALSE(intersects(f, box({-20, 0, -10})));    // left of a 90 degree view at 10 m (edge at x = -10)
   EXPECT_TRUE(intersects(f, box({-10.4f, 0, -10})));  // straddles the left edge
-  EXPECT_FALSE(intersects(f, box({0, 0, -101})));    // past the far plane
-  EXPECT_FALSE(intersects(f, box({0, 12, -10})));    // above
+  EXPECT_FALSE(intersects(f, box({0, 0, -101})));     // past the far plane
+  EXPECT_FALSE(intersects(f, box({0, 12, -10})));     // above
 }
 
 TEST(Culling, CrowdCopiesOutsideACustomCameraAreSkipped) {
@@ -173,8 +173,9 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   size_t columns = std::count(line.begin(), line.end(), ',') + 1;
   // then gpu_ms, cpu_ms and Animations by stage
   EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 2 + kAnimationStageCount);
-  EXPECT_TRUE(line.ends_with(",gpu_ms,cpu_ms,animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,"
-                             "animation_skinning_ms"))
+  EXPECT_TRUE(
+      line.ends_with(",gpu_ms,cpu_ms,animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,"
+                     "animation_skinning_ms"))
       << line;
   EXPECT_EQ(line.rfind("frame,mode,characters,threads,frame_ms,physics_ms", 0), 0u);
   int rows = 0;
@@ -214,8 +215,7 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
 }
 
 TEST(Bench, RefusesACrowdThatCannotFit) {
-  EXPECT_THROW(check_fits_in_memory(small_humanoid(), 9'000'000'000ull, find_mode("threaded")->switches),
-               UsageError);
+  EXPECT_THROW(check_fits_in_memory(small_humanoid(), 9'000'000'000ull, find_mode("threaded")->switches), UsageError);
   EXPECT_NO_THROW(check_fits_in_memory(small_humanoid(), 10, find_mode("threaded")->switches));
 }
 

@@ -49,7 +49,6 @@ TEST(BenchThreads, TheArenaGoesWithItsLastHolder) {
   EXPECT_NE(bench_threads(4), nullptr);
 }
 
-
 // Arenas of different sizes alive together each get their threads: oneTBB
 // applies the smallest live worker limit, so they share one control set to the
 // largest, in whichever order they are made.

@@ -61,7 +61,8 @@ TEST(CapacitySearch, FindsTheExactSizeOfALinearCost) {
   // 0.125 ms a character (exact in binary): 160 characters take 20 ms.
   CapacityRule rule = rule_of(20.0, 10, 100'000, 0.0);
   std::vector<CapacityPoint> tried;
-  std::vector<size_t> order = search(rule, [](size_t n) { return 0.125 * static_cast<double>(n); }, tried);
+  std::vector<size_t> order = search(
+      rule, [](size_t n) { return 0.125 * static_cast<double>(n); }, tried);
   EXPECT_EQ(order, (std::vector<size_t>{10, 20, 40, 80, 160, 320, 240, 200, 180, 170, 165, 162, 161}));
   CapacityResult result = capacity_result(rule, tried);
   ASSERT_TRUE(result.fit && result.fail);
@@ -92,7 +93,9 @@ TEST(CapacitySearch, StopsWithinTheResolution) {
 TEST(CapacitySearch, CapAndNothingFitting) {
   CapacityRule rule = rule_of(16.6, 10, 100, 0.05);
   std::vector<CapacityPoint> tried;
-  EXPECT_EQ(search(rule, [](size_t) { return 1.0; }, tried), (std::vector<size_t>{10, 20, 40, 80, 100}));
+  EXPECT_EQ(search(
+                rule, [](size_t) { return 1.0; }, tried),
+            (std::vector<size_t>{10, 20, 40, 80, 100}));
   CapacityResult result = capacity_result(rule, tried);
   EXPECT_TRUE(result.capped);
   ASSERT_TRUE(result.fit);
@@ -101,7 +104,9 @@ TEST(CapacitySearch, CapAndNothingFitting) {
 
   // Not even one character: bisection down to 1.
   tried.clear();
-  EXPECT_EQ(search(rule, [](size_t n) { return 20.0 + static_cast<double>(n); }, tried), (std::vector<size_t>{10, 5, 2, 1}));
+  EXPECT_EQ(search(
+                rule, [](size_t n) { return 20.0 + static_cast<double>(n); }, tried),
+            (std::vector<size_t>{10, 5, 2, 1}));
   result = capacity_result(rule, tried);
   EXPECT_FALSE(result.fit);
   ASSERT_TRUE(result.fail);
@@ -110,7 +115,9 @@ TEST(CapacitySearch, CapAndNothingFitting) {
 
   // The start above the cap starts at the cap.
   tried.clear();
-  EXPECT_EQ(search(rule_of(16.6, 500, 100, 0.05), [](size_t) { return 1.0; }, tried), (std::vector<size_t>{100}));
+  EXPECT_EQ(search(
+                rule_of(16.6, 500, 100, 0.05), [](size_t) { return 1.0; }, tried),
+            (std::vector<size_t>{100}));
 }
 
 TEST(CapacitySearch, ACostThatDoesNotGrowWithTheCrowd) {
@@ -118,7 +125,8 @@ TEST(CapacitySearch, ACostThatDoesNotGrowWithTheCrowd) {
   // finds the boundary as before and says the medians were not monotonic.
   CapacityRule rule = rule_of(20.0, 10, 100'000, 0.0);
   std::vector<CapacityPoint> tried;
-  search(rule, [](size_t n) { return n == 20 ? 15.0 : 0.125 * static_cast<double>(n); }, tried);
+  search(
+      rule, [](size_t n) { return n == 20 ? 15.0 : 0.125 * static_cast<double>(n); }, tried);
   CapacityResult result = capacity_result(rule, tried);
   ASSERT_TRUE(result.fit && result.fail);
   EXPECT_EQ(result.fit->n, 160u);
@@ -127,7 +135,8 @@ TEST(CapacitySearch, ACostThatDoesNotGrowWithTheCrowd) {
 
   // A spike over the budget: the search ends on the first boundary it brackets.
   tried.clear();
-  search(rule, [](size_t n) { return n >= 18 && n <= 25 ? 50.0 : 0.125 * static_cast<double>(n); }, tried);
+  search(
+      rule, [](size_t n) { return n >= 18 && n <= 25 ? 50.0 : 0.125 * static_cast<double>(n); }, tried);
   result = capacity_result(rule, tried);
   ASSERT_TRUE(result.fit && result.fail);
   EXPECT_EQ(result.fit->n, 17u);
@@ -186,7 +195,8 @@ TEST(CapacityRun, RoundsMeasureEveryModeStillSearchingSideBySide) {
     rounds.emplace_back(ns.begin(), ns.end());
     for (size_t k = 0; k < active.size(); ++k) {
       double per = active[k] == 0 ? 2.0 : 0.5;  // frame ms per character; Animations gets half
-      reports.push_back(test::fake_run(modes[active[k]].mode, ns[k], {per * static_cast<double>(ns[k]), 1e6, 0.0}, 0.5));
+      reports.push_back(
+          test::fake_run(modes[active[k]].mode, ns[k], {per * static_cast<double>(ns[k]), 1e6, 0.0}, 0.5));
     }
     return reports;
   };
@@ -241,7 +251,8 @@ TEST(CapacityReport, TableJsonAndChart) {
   a.mode = "master";
   a.rule = rule_of(20.0, 10, 1000, 0.0);
   std::vector<CapacityPoint> tried;
-  search(a.rule, [](size_t n) { return 0.125 * static_cast<double>(n); }, tried);
+  search(
+      a.rule, [](size_t n) { return 0.125 * static_cast<double>(n); }, tried);
   a.tried = tried;
   a.result = capacity_result(a.rule, a.tried);
   ModeCapacity b;
@@ -254,8 +265,12 @@ TEST(CapacityReport, TableJsonAndChart) {
 
   std::string table = format_capacity(run);
   EXPECT_EQ(table.rfind("mode      threads  fits_n  fits_frame_ms  over_n  over_frame_ms  points\n", 0), 0u) << table;
-  EXPECT_NE(table.find("\nmaster          1     160         20.000     161         20.125      13\n"), std::string::npos) << table;
-  EXPECT_NE(table.find("\nthreaded        2      40          4.000       -              -       3\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("\nmaster          1     160         20.000     161         20.125      13\n"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("\nthreaded        2      40          4.000       -              -       3\n"),
+            std::string::npos)
+      << table;
   EXPECT_NE(table.find("threaded: the cap of 40 characters fits"), std::string::npos) << table;
 
   json j = capacity_to_json(run);
@@ -285,9 +300,10 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   auto dir = test::scratch_dir("capacity_cli");
   std::string js = (dir / "c.json").string(), svg = (dir / "c.svg").string(), html = (dir / "c.html").string();
   // A budget nothing reaches: every mode is capped at 16 (4, 8, 16).
-  auto r = test::run_cli("capacity '" + test::humanoid_glb() + "' --budget 100000 --modes master,threaded --threads 2 --start 4 "
-                         "--max-characters 16 --frames 2 --warmup 0 --block 1 --json '" + js + "' --svg '" + svg +
-                         "' --html '" + html + "'");
+  auto r = test::run_cli("capacity '" + test::humanoid_glb() +
+                         "' --budget 100000 --modes master,threaded --threads 2 --start 4 "
+                         "--max-characters 16 --frames 2 --warmup 0 --block 1 --json '" +
+                         js + "' --svg '" + svg + "' --html '" + html + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.rfind("mode ", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
@@ -339,8 +355,10 @@ TEST(CapacityCli, SearchesATinyCrowdAndWritesItsResults) {
   EXPECT_NE(test::read_file(again).find("data-chart=\"sweep\""), std::string::npos);
 
   // A budget nothing fits: bisection down to one character, then no fit.
-  r = test::run_cli("capacity '" + test::humanoid_glb() + "' --budget 0.000001 --modes threaded --start 4 --frames 1 --warmup 0 "
-                    "--metric Animations --json '" + js + "'");
+  r = test::run_cli("capacity '" + test::humanoid_glb() +
+                    "' --budget 0.000001 --modes threaded --start 4 --frames 1 --warmup 0 "
+                    "--metric Animations --json '" +
+                    js + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   j = json::parse(test::read_file(js));
   EXPECT_EQ(j["metric"], "Animations");
@@ -372,7 +390,8 @@ TEST(CapacityCli, RefusesBadInputWithOneLine) {
 // (issue 50: one run's median read 6.985 ms in one table and 6.94 in another,
 // the mean of the two middle frames against the lower of them).
 TEST(CapacityReport, APointsMedianIsTheProfileTablesMedianFrame) {
-  for (const std::vector<double>& frames : {std::vector<double>{1.0, 2.0, 3.0, 10.0}, std::vector<double>{5.0, 4.0, 9.0}}) {
+  for (const std::vector<double>& frames :
+       {std::vector<double>{1.0, 2.0, 3.0, 10.0}, std::vector<double>{5.0, 4.0, 9.0}}) {
     const Result report = test::fake_run("threaded", 40, frames, 0.5);
     const CapacityPoint p = capacity_point(report, CapacityMetric{}, 40, 1);
     const double median_frame_ms = report.frame_records[median_frame(report.frame_records)].times.total_ms();

@@ -30,11 +30,11 @@ BenchConfig compare_config(const std::string& mode, int threads = 1) {
   return config;
 }
 
-
 }  // namespace
 
 TEST(Compare, ModesRunInBlocksAndEachGetsItsFrames) {
-  std::vector<BenchConfig> configs = {compare_config("master"), compare_config("culled"), compare_config("threaded", 2)};
+  std::vector<BenchConfig> configs = {compare_config("master"), compare_config("culled"),
+                                      compare_config("threaded", 2)};
   Tracer tracer;
   std::vector<std::unique_ptr<CrowdBench>> owned;
   std::vector<CrowdBench*> benches;
@@ -69,8 +69,10 @@ TEST(Compare, ModesRunInBlocksAndEachGetsItsFrames) {
   // threaded, then again; the last block is what is left of 9.
   std::vector<TraceSpan> spans = tracer.spans();
   std::vector<TraceSpan> frames;
-  std::copy_if(spans.begin(), spans.end(), std::back_inserter(frames), [](const TraceSpan& s) { return s.category == "frame"; });
-  std::sort(frames.begin(), frames.end(), [](const TraceSpan& a, const TraceSpan& b) { return a.start_ns < b.start_ns; });
+  std::copy_if(spans.begin(), spans.end(), std::back_inserter(frames),
+               [](const TraceSpan& s) { return s.category == "frame"; });
+  std::sort(frames.begin(), frames.end(),
+            [](const TraceSpan& a, const TraceSpan& b) { return a.start_ns < b.start_ns; });
   std::string order;
   for (const TraceSpan& s : frames) order += static_cast<char>('0' + s.pid);
   EXPECT_EQ(order, "111222333111222333111222333");
@@ -94,7 +96,8 @@ TEST(Compare, MediansAndSpeedups) {
   std::istringstream lines(table);
   std::string header;
   std::getline(lines, header);
-  for (const char* column : {"mode", "characters", "threads", "frame_ms", "animations_ms", "speedup_x", "copies_culled", "digest"})
+  for (const char* column :
+       {"mode", "characters", "threads", "frame_ms", "animations_ms", "speedup_x", "copies_culled", "digest"})
     EXPECT_NE(header.find(column), std::string::npos) << column << "\n" << table;
   EXPECT_EQ(header.find("physics_ms"), std::string::npos) << "zero categories are left out\n" << table;
   EXPECT_NE(table.find("4.00"), std::string::npos) << table;
@@ -125,8 +128,10 @@ TEST(Compare, MediansAndSpeedups) {
 TEST(CompareCli, PrintsATableAndRefusesBadModes) {
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   auto dir = test::scratch_dir("compare_cli");
-  auto r = test::run_cli("compare '" + scene + "' -n 4 --frames 4 --warmup 1 --modes master,threaded --threads 2 "
-                         "--sweep n=2,4 --json '" + (dir / "c.json").string() + "'");
+  auto r = test::run_cli("compare '" + scene +
+                         "' -n 4 --frames 4 --warmup 1 --modes master,threaded --threads 2 "
+                         "--sweep n=2,4 --json '" +
+                         (dir / "c.json").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.rfind("mode ", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
@@ -155,9 +160,10 @@ TEST(CompareCli, SweepsPassesWhereTheGlAllows) {
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   auto dir = test::scratch_dir("compare_passes");
   std::string json_path = (dir / "c.json").string(), csv = (dir / "s.csv").string(), html = (dir / "c.html").string();
-  auto r = test::run_cli("compare '" + scene + "' -n 4 --frames 2 --warmup 0 --block 1 --backend egl "
-                         "--modes hwskin,compute --sweep passes=1,3 --json '" + json_path + "' --summary-csv '" + csv +
-                         "' --html '" + html + "'");
+  auto r = test::run_cli("compare '" + scene +
+                         "' -n 4 --frames 2 --warmup 0 --block 1 --backend egl "
+                         "--modes hwskin,compute --sweep passes=1,3 --json '" +
+                         json_path + "' --summary-csv '" + csv + "' --html '" + html + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("sweep: median frame time by passes"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n     3  compute  "), std::string::npos) << r.out;

@@ -32,10 +32,9 @@ using test::small_humanoid;
 // mesh 2 units tall bound rigidly to it: every vertex is displaced by exactly
 // the joint's translation, so deviations can be worked out by hand.
 const Character& slider() {
-  static const Character character =
-      test::one_joint_character("slider", {{0, 0, 0}, {0, 2, 0}, {0.5f, 0, 0}, {0, 1, 0.5f}},
-                                std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)), {0, 1, 2, 0, 2, 3},
-                                ChannelPath::Translation, {0, 0, 0, 1, 0, 0});
+  static const Character character = test::one_joint_character(
+      "slider", {{0, 0, 0}, {0, 2, 0}, {0.5f, 0, 0}, {0, 1, 0.5f}}, std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)),
+      {0, 1, 2, 0, 2, 3}, ChannelPath::Translation, {0, 0, 0, 1, 0, 0});
   return character;
 }
 
@@ -76,7 +75,7 @@ TEST(PoseSharing, CopiesInOneStateShareOneStorage) {
   uint32_t other = sharing.take(2, b, &evaluate);
   EXPECT_TRUE(evaluate);
   EXPECT_NE(other, first);
-  EXPECT_LT(other, 3u);  // a storage of the same character
+  EXPECT_LT(other, 3u);                          // a storage of the same character
   EXPECT_EQ(sharing.take(3, c, &evaluate), 3u);  // the only storage of character 1
   EXPECT_TRUE(evaluate);
 
@@ -185,11 +184,11 @@ TEST(UpdateRates, LodShiftByThresholds) {
 }
 
 TEST(UpdateRates, DueOnItsTurnAndNeverLaterThanItsPeriod) {
-  EXPECT_TRUE(update_due(5, -1, 3, 0));   // never updated
-  EXPECT_TRUE(update_due(8, 4, 3, 0));    // its turn: 8 + 0 is a multiple of 8
+  EXPECT_TRUE(update_due(5, -1, 3, 0));  // never updated
+  EXPECT_TRUE(update_due(8, 4, 3, 0));   // its turn: 8 + 0 is a multiple of 8
   EXPECT_FALSE(update_due(9, 8, 3, 0));
-  EXPECT_TRUE(update_due(7, 6, 3, 1));    // 7 + 1
-  EXPECT_TRUE(update_due(20, 12, 3, 5));  // not its turn, but 8 frames since the last
+  EXPECT_TRUE(update_due(7, 6, 3, 1));     // 7 + 1
+  EXPECT_TRUE(update_due(20, 12, 3, 5));   // not its turn, but 8 frames since the last
   EXPECT_FALSE(update_due(18, 12, 3, 5));  // 18 + 5 is not a multiple of 8, 6 frames since
 }
 
@@ -328,7 +327,8 @@ TEST(CrowdScale, QuantumGroupsRandomCopiesIntoDistinctStates) {
   for (size_t i = 0; i < crowd.size(); ++i) {
     const Action& action = character.actions[crowd.action[i]];
     float local = action.start + static_cast<float>(std::fmod(static_cast<double>(crowd.phase[i]), action.duration()));
-    float snapped = std::min(action.end, action.start + static_cast<float>(std::nearbyint((local - action.start) / 0.25) * 0.25));
+    float snapped =
+        std::min(action.end, action.start + static_cast<float>(std::nearbyint((local - action.start) / 0.25) * 0.25));
     states.insert({crowd.action[i], snapped});
   }
   EXPECT_EQ(first.counters.poses_updated, states.size());
@@ -489,12 +489,11 @@ TEST(CrowdScale, RunReportsTheSchedule) {
 
 // --- from the command line ------------------------------------------------------
 
-
 TEST(CrowdScaleCli, SharedPresetOnTheThesisScene) {
   auto dir = crowdprof::test::scratch_dir("crowd_scale_cli");
   auto json_path = (dir / "shared.json").string();
-  auto r = crowdprof::test::run_cli("bench '" + humanoid_glb() + "' -n 40 --mode shared --frames 2 --warmup 0 -q --json '" +
-                                    json_path + "'");
+  auto r = crowdprof::test::run_cli("bench '" + humanoid_glb() +
+                                    "' -n 40 --mode shared --frames 2 --warmup 0 -q --json '" + json_path + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(json_path);
   nlohmann::json j = nlohmann::json::parse(in);
@@ -506,7 +505,8 @@ TEST(CrowdScaleCli, SharedPresetOnTheThesisScene) {
   // A switch away from the preset makes the mode custom and is recorded.
   r = crowdprof::test::run_cli("bench '" + humanoid_glb() +
                                "' -n 40 --actions random --mode shared --share-quantum 1/30 --update-lod on "
-                               "--lod-thresholds 0.5,0.2,0.1 --frames 2 --warmup 0 -q --json '" + json_path + "'");
+                               "--lod-thresholds 0.5,0.2,0.1 --frames 2 --warmup 0 -q --json '" +
+                               json_path + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream again(json_path);
   j = nlohmann::json::parse(again);
@@ -521,13 +521,13 @@ TEST(CrowdScaleCli, BadValuesAreUsageErrors) {
     const char* args;
     const char* words;
   };
-  for (const Bad& bad : {Bad{"--share maybe", "--share"}, Bad{"--share-quantum soon", "--share-quantum"},
-                         Bad{"--mode shared --share-quantum -1", "--share-quantum"},
-                         Bad{"--mode shared --share-quantum 1/0", "--share-quantum"},
-                         Bad{"--share-quantum 1/30", "needs --share on"}, Bad{"--update-lod yes", "--update-lod"},
-                         Bad{"--lod-thresholds 0.1,0.2,0.3", "--lod-thresholds"},
-                         Bad{"--lod-thresholds 0.5,0.2", "--lod-thresholds"}, Bad{"--anim-budget -2", "--anim-budget"},
-                         Bad{"--anim-budget 2ms", "--anim-budget"}}) {
+  for (const Bad& bad :
+       {Bad{"--share maybe", "--share"}, Bad{"--share-quantum soon", "--share-quantum"},
+        Bad{"--mode shared --share-quantum -1", "--share-quantum"},
+        Bad{"--mode shared --share-quantum 1/0", "--share-quantum"}, Bad{"--share-quantum 1/30", "needs --share on"},
+        Bad{"--update-lod yes", "--update-lod"}, Bad{"--lod-thresholds 0.1,0.2,0.3", "--lod-thresholds"},
+        Bad{"--lod-thresholds 0.5,0.2", "--lod-thresholds"}, Bad{"--anim-budget -2", "--anim-budget"},
+        Bad{"--anim-budget 2ms", "--anim-budget"}}) {
     auto r = crowdprof::test::run_cli("bench '" + humanoid_glb() + "' -n 4 --frames 1 --warmup 0 " + bad.args);
     EXPECT_EQ(r.status, 2) << bad.args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

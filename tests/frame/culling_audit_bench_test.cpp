@@ -21,7 +21,9 @@ BenchConfig audit_config(const std::string& mode, size_t copies) {
   return config;
 }
 
-const CullBoxAudit& box(const CullingAudit& audit, CullBox b) { return audit.boxes[static_cast<size_t>(b)]; }
+const CullBoxAudit& box(const CullingAudit& audit, CullBox b) {
+  return audit.boxes[static_cast<size_t>(b)];
+}
 
 }  // namespace
 

@@ -179,5 +179,6 @@ TEST(DrawnError, RateSwitchesAreTheMeasuredFramesInBenchAndCompareAlike) {
   EXPECT_DOUBLE_EQ(compared[1].drawn_error->switches_per_second, report.drawn_error->switches_per_second);
   // Both texts print that one figure.
   const std::string figure = fixed(report.drawn_error->switches_per_second, 1) + " rate switches/s";
-  EXPECT_NE(format_drawn_error(*report.drawn_error).find(figure), std::string::npos) << format_drawn_error(*report.drawn_error);
+  EXPECT_NE(format_drawn_error(*report.drawn_error).find(figure), std::string::npos)
+      << format_drawn_error(*report.drawn_error);
 }

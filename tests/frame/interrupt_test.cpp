@@ -63,9 +63,9 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
   auto dir = crowdprof::test::scratch_dir("interrupt_bench");
   std::string result = (dir / "r.json").string(), csv = (dir / "r.csv").string();
   for (int signal_number : {SIGINT, SIGTERM}) {
-    Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--json",
-                                   result, "--csv", csv},
-                                  dir, signal_number, std::chrono::milliseconds(2500));
+    Interrupted r = interrupt_cli(
+        {"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--json", result, "--csv", csv},
+        dir, signal_number, std::chrono::milliseconds(2500));
     ASSERT_EQ(r.status, 130) << r.err;
     EXPECT_NE(r.out.find("Frametime :"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\npartial: interrupted after "), std::string::npos) << r.out;
@@ -85,8 +85,8 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
 
 TEST(Interrupt, WithoutOutputFilesNothingClaimsToBeWritten) {
   auto dir = crowdprof::test::scratch_dir("interrupt_no_outputs");
-  Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir, SIGINT,
-                                std::chrono::milliseconds(1500));
+  Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir,
+                                SIGINT, std::chrono::milliseconds(1500));
   ASSERT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: "), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("written"), std::string::npos) << "no file was asked for:\n" << r.err;
@@ -96,8 +96,8 @@ TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
   auto dir = crowdprof::test::scratch_dir("interrupt_check");
   std::string base = (dir / "base.json").string();
   std::ofstream(base) << "the earlier baseline";
-  Interrupted r = interrupt_cli({"check", "--spread", "0", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--baseline",
-                                 base, "--update-baseline"},
+  Interrupted r = interrupt_cli({"check", "--spread", "0", humanoid_glb(), "-n", "8", "--frames", "10000000",
+                                 "--warmup", "0", "--baseline", base, "--update-baseline"},
                                 dir, SIGINT, std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("the baseline is not updated from a partial run"), std::string::npos) << r.err;
@@ -109,13 +109,15 @@ TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {
   // can stop it (the signal goes to check alone, as a terminal's ^C would).
   auto dir = crowdprof::test::scratch_dir("interrupt_check_run");
   std::string base = (dir / "base.json").string();
-  ASSERT_EQ(crowdprof::test::run_cli("check --spread 0 '" + humanoid_glb() + "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base +
-                                     "' --update-baseline -q")
-                .status,
-            0);
+  ASSERT_EQ(
+      crowdprof::test::run_cli("check --spread 0 '" + humanoid_glb() +
+                               "' -n 2 --frames 5 --warmup 0 --runs 1 --baseline '" + base + "' --update-baseline -q")
+          .status,
+      0);
   std::string result = (dir / "partial.json").string();
-  Interrupted r = interrupt_cli({"check", "--spread", "0", "--baseline", base, "--frames", "10000000", "--json", result}, dir, SIGINT,
-                                std::chrono::milliseconds(2500));
+  Interrupted r =
+      interrupt_cli({"check", "--spread", "0", "--baseline", base, "--frames", "10000000", "--json", result}, dir,
+                    SIGINT, std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: a partial run is not compared"), std::string::npos) << r.err;
   json j = json::parse(std::ifstream(result));
@@ -142,8 +144,8 @@ TEST(Interrupt, TheSecondSignalEndsTheProcessAtOnce) {
 TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
   auto dir = crowdprof::test::scratch_dir("interrupt_capacity");
   std::string result = (dir / "c.json").string();
-  Interrupted r = interrupt_cli({"capacity", humanoid_glb(), "--budget", "100000", "--modes", "master,threaded", "--start", "2",
-                                 "--frames", "10000000", "--warmup", "0", "--json", result},
+  Interrupted r = interrupt_cli({"capacity", humanoid_glb(), "--budget", "100000", "--modes", "master,threaded",
+                                 "--start", "2", "--frames", "10000000", "--warmup", "0", "--json", result},
                                 // Long enough for both modes' first blocks under ASan on a busy
                                 // 2-core machine (2.5 s was not: a mode had measured no frame).
                                 dir, SIGINT, std::chrono::milliseconds(6000));

@@ -127,7 +127,8 @@ TEST(MeshLodBench, TheRunRecordsEachLevelsCopiesAndError) {
   EXPECT_EQ(m.levels[0].error, 0.0);
   for (size_t l = 1; l < 4; ++l) {
     EXPECT_GT(m.levels[l].error, m.levels[l - 1].error) << l;
-    EXPECT_NEAR(m.levels[l].error_fraction, m.levels[l].error / standing_of(test::default_humanoid()).height, 1e-9) << l;
+    EXPECT_NEAR(m.levels[l].error_fraction, m.levels[l].error / standing_of(test::default_humanoid()).height, 1e-9)
+        << l;
     EXPECT_EQ(m.levels[l].error_px > 0, m.levels[l].copies > 0) << l;
   }
   // 1,000 humanoids from the default camera are a few dozen pixels tall: under a pixel of error.

@@ -90,8 +90,8 @@ TEST(MixedCrowd, WeightedActionsPickOnlyWhatHasWeight) {
 
 TEST(MixedCrowd, GroupsScaleToTheCrowdSize) {
   CrowdOptions options;
-  options.groups = {{0, 80, ActionChoice::Shared, 0, {}}, {1, 40, ActionChoice::Shared, 0, {}},
-                    {2, 40, ActionChoice::Shared, 0, {}}};
+  options.groups = {
+      {0, 80, ActionChoice::Shared, 0, {}}, {1, 40, ActionChoice::Shared, 0, {}}, {2, 40, ActionChoice::Shared, 0, {}}};
   options.copies = 160;
   EXPECT_EQ(crowd_groups(options)[0].copies, 80u);
   options.copies = 16;

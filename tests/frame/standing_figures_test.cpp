@@ -31,7 +31,9 @@ namespace {
 // X) and scaled from centimetres to metres.
 constexpr float kCentimetre = 0.01f;
 const glm::quat kUpright = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0));
-glm::mat4 to_world() { return glm::mat4_cast(kUpright) * glm::scale(glm::mat4(1.0f), glm::vec3(kCentimetre)); }
+glm::mat4 to_world() {
+  return glm::mat4_cast(kUpright) * glm::scale(glm::mat4(1.0f), glm::vec3(kCentimetre));
+}
 
 // `c` (Y-up, metres) as an exporter writes it from a Z-up scene in
 // centimetres: every joint, key and vertex in that space, and one node above
@@ -62,8 +64,8 @@ Character z_up_centimetres(const Character& c) {
           const glm::quat q = rotation(glm::quat(v[3], v[0], v[1], v[2]));
           v[0] = q.x, v[1] = q.y, v[2] = q.z, v[3] = q.w;
         } else {
-          const glm::vec3 turned = channel.path == ChannelPath::Translation ? point({v[0], v[1], v[2]})
-                                                                            : scale({v[0], v[1], v[2]});
+          const glm::vec3 turned =
+              channel.path == ChannelPath::Translation ? point({v[0], v[1], v[2]}) : scale({v[0], v[1], v[2]});
           v[0] = turned.x, v[1] = turned.y, v[2] = turned.z;
         }
       }
@@ -86,7 +88,9 @@ const Character& z_up_humanoid() {
   return loaded;
 }
 
-bool within_percent(double value, double expected) { return std::abs(value - expected) <= 0.01 * std::abs(expected); }
+bool within_percent(double value, double expected) {
+  return std::abs(value - expected) <= 0.01 * std::abs(expected);
+}
 
 BenchConfig config_of(const std::string& mode, size_t copies) {
   BenchConfig config;

@@ -49,8 +49,10 @@ TEST(Thesis, CompareTakesPresetsWithSwitches) {
   auto dir = test::scratch_dir("compare_specs");
   auto out = dir / "c.json";
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
-  auto r = test::run_cli("compare '" + scene + "' -n 4 --frames 2 --warmup 0 -q --modes master,master+lookups=bundled "
-                         "--json '" + out.string() + "'");
+  auto r = test::run_cli("compare '" + scene +
+                         "' -n 4 --frames 2 --warmup 0 -q --modes master,master+lookups=bundled "
+                         "--json '" +
+                         out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(out);
   nlohmann::json j = nlohmann::json::parse(in);

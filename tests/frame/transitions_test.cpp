@@ -195,7 +195,8 @@ TEST(Transitions, AFadeMovesNoJointFurtherThanItsActionsAndTheFadeAllow) {
 // as one evaluation.
 TEST(Transitions, SharedPosesFadeAsTheCopiesAloneWould) {
   for (ActionChoice actions : {ActionChoice::Shared, ActionChoice::Random}) {
-    BenchConfig alone_config = fading("threaded", Crossfade::Sampled), shared_config = fading("shared", Crossfade::Sampled);
+    BenchConfig alone_config = fading("threaded", Crossfade::Sampled),
+                shared_config = fading("shared", Crossfade::Sampled);
     alone_config.crowd.actions = shared_config.crowd.actions = actions;
     shared_config.mode.share_quantum_s = 0.0;
     CrowdBench alone(test::default_humanoid(), alone_config), shared(test::default_humanoid(), shared_config);

@@ -32,7 +32,8 @@ void require(bool ok, const char* job) {
 
 // One pose of `character` skinned, as a frame of the bench does it.
 void pose_and_skin(const Character& character, const SkinningPlan& plan, LocalPose& pose, std::vector<glm::mat4>& model,
-                   std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+                   std::vector<SkinMatrix>& palette, std::vector<glm::vec3>& positions,
+                   std::vector<glm::vec3>& normals) {
   require(LocalToModelJob{&character.skeleton, &pose, model}.Run(), "LocalToModelJob");
   require(SkinningMatricesJob{&character.skeleton, model, palette}.Run(), "SkinningMatricesJob");
   require(SkinningJob{palette, &plan, 0, character.mesh.vertex_count(), positions, normals}.Run(), "SkinningJob");

@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
 
     const fs::path scenes = argv[2];
     fs::create_directories(scenes);
-    test::write_file(scenes / "shared.json", R"({"characters": [{"file": "character.glb", "count": 3, "actions": "shared", "action": "bend"}]})");
+    test::write_file(
+        scenes / "shared.json",
+        R"({"characters": [{"file": "character.glb", "count": 3, "actions": "shared", "action": "bend"}]})");
     test::write_file(scenes / "everything.json", R"({
   "characters": [
     {"file": "character.glb", "count": 4, "actions": "random", "transitions": 2, "blend_in": 0.5},

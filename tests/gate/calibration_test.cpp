@@ -21,7 +21,9 @@ using nlohmann::json;
 
 namespace {
 
-std::string humanoid() { return (test::source_dir() / "scenes" / "humanoid.glb").string(); }
+std::string humanoid() {
+  return (test::source_dir() / "scenes" / "humanoid.glb").string();
+}
 
 TEST(Calibration, TheProbeDoesTheSameWorkEveryRunOnAnyThreadCount) {
   CalibrationProbe one(1), two(2);
@@ -112,7 +114,8 @@ TEST(Calibration, TheFloorOfTheRatioIsAShareOfItsOwnMedian) {
 TEST(Calibration, CheckFallsBackToCpuTimeForAResultWithoutTheProbe) {
   auto dir = test::scratch_dir("calibration_fallback");
   std::string plain = (dir / "plain.json").string();
-  ASSERT_EQ(test::run_cli("bench '" + humanoid() + "' -n 2 --frames 10 --warmup 0 -q --json '" + plain + "'").status, 0);
+  ASSERT_EQ(test::run_cli("bench '" + humanoid() + "' -n 2 --frames 10 --warmup 0 -q --json '" + plain + "'").status,
+            0);
   auto r = test::run_cli("check --result '" + plain + "' --baseline '" + plain + "'");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("has no calibrated frame time (recorded by an older crowdprof or by bench without "
@@ -160,7 +163,8 @@ TEST(Calibration, APairThatCannotCompareTheCalibratedFrameFallsBackAndSaysWhy) {
 }
 
 TEST(Calibration, TheAbRefusesTheCalibratedMetricBeforeAnythingRuns) {
-  auto r = test::run_cli("check '" + humanoid() + "' -n 2 --frames 2 --against /nonexistent/crowdprof --metric calibrated");
+  auto r =
+      test::run_cli("check '" + humanoid() + "' -n 2 --frames 2 --against /nonexistent/crowdprof --metric calibrated");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("--metric calibrated is for a stored baseline"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -33,8 +33,9 @@ TEST(CheckRun, ACountedMetricWritesNoTimedFiles) {
   request.plan.metrics = {"instructions"};
   request.baseline = "base.json";
   request.given = {"--csv"};
-  EXPECT_EQ(usage_error_of(request), "--csv is not written by --metric instructions (its runs are counted, not "
-                                     "timed); --json, --junit and --markdown are");
+  EXPECT_EQ(usage_error_of(request),
+            "--csv is not written by --metric instructions (its runs are counted, not "
+            "timed); --json, --junit and --markdown are");
 }
 
 TEST(CheckRun, AnAbRefusesWhatOnlyAStoredBaselineHas) {

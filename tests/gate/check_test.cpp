@@ -200,9 +200,10 @@ TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
   CheckResult reordered = check_results(file_order, joint_order, options);
   EXPECT_FALSE(reordered.digest_differs());
   EXPECT_FALSE(reordered.regressed());
-  EXPECT_NE(format_check(reordered, options)
-                .find("not compared: the baseline hashed its vertices in the file's order, this run ordered by their joints"),
-            std::string::npos)
+  EXPECT_NE(
+      format_check(reordered, options)
+          .find("not compared: the baseline hashed its vertices in the file's order, this run ordered by their joints"),
+      std::string::npos)
       << format_check(reordered, options);
   EXPECT_NE(format_check(reordered, options).find("counters match, digest not compared (other vertex order)"),
             std::string::npos)
@@ -273,14 +274,14 @@ TEST(Check, BrokenBaselinesAreInputErrors) {
   json counter_text = good;
   counter_text["counters"]["draw_calls"] = "none";
   for (const auto& [name, doc] : std::vector<std::pair<std::string, json>>{{"future", future},
-                                                                         {"short", short_samples},
-                                                                         {"negative", negative},
-                                                                         {"no_digest", no_digest},
-                                                                         {"counter_text", counter_text},
-                                                                         {"array", json::array({1, 2})}})
+                                                                           {"short", short_samples},
+                                                                           {"negative", negative},
+                                                                           {"no_digest", no_digest},
+                                                                           {"counter_text", counter_text},
+                                                                           {"array", json::array({1, 2})}})
     test::write_json(dir / (name + ".json"), doc);
-  for (const char* name : {"truncated", "words", "empty", "future", "short", "negative", "no_digest", "counter_text",
-                           "array", "missing"})
+  for (const char* name :
+       {"truncated", "words", "empty", "future", "short", "negative", "no_digest", "counter_text", "array", "missing"})
     EXPECT_THROW(read_result((dir / (std::string(name) + ".json")).string()), InputError) << name;
   EXPECT_NO_THROW(read_result(test::write_json(dir / "good.json", good)));
 }
@@ -289,8 +290,8 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   auto dir = test::scratch_dir("check_cli");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
-                         "' --update-baseline");
+  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" +
+                         base + "' --update-baseline");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("baseline written"), std::string::npos) << r.out;
   // A baseline's luck counts against every later check: 20 runs by default.

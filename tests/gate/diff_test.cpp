@@ -30,8 +30,8 @@ json scaled(json doc, double factor) {
 TEST(Diff, SideBySideWithTheGateRule) {
   auto dir = test::scratch_dir("diff_cli");
   std::string a = (dir / "a.json").string();
-  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 20 --warmup 1 --mode culled --calibrate -q --json '" +
-                    a + "'")
+  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() +
+                    "' -n 6 --frames 20 --warmup 1 --mode culled --calibrate -q --json '" + a + "'")
                 .status,
             0);
   // Against itself: every metric the same, counters and digest the same.
@@ -74,13 +74,15 @@ TEST(Diff, SideBySideWithTheGateRule) {
     (*doc)["samples"].erase("probe_ms");
     doc->erase("calibration");
   }
-  const std::string pa = test::write_json(dir / "plain_a.json", plain_a), pb = test::write_json(dir / "plain_b.json", plain_b);
+  const std::string pa = test::write_json(dir / "plain_a.json", plain_a),
+                    pb = test::write_json(dir / "plain_b.json", plain_b);
   r = run_cli("diff '" + pa + "' '" + pb + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(r.out.find("SLOWER"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("tolerance"), std::string::npos) << r.out;
-  for (const char* words : {"not tested: A and B ran apart, not interleaved", "crowdprof compare",
-                            "crowdprof check --against BASE_BINARY", "ok: B does the same work as A (its timings are not tested)"})
+  for (const char* words :
+       {"not tested: A and B ran apart, not interleaved", "crowdprof compare", "crowdprof check --against BASE_BINARY",
+        "ok: B does the same work as A (its timings are not tested)"})
     EXPECT_NE(r.out.find(words), std::string::npos) << words << " in\n" << r.out;
   // A floor above any change passes the slowdown.
   r = run_cli("diff '" + a + "' '" + b + "' --floor 10s -q");
@@ -113,10 +115,14 @@ TEST(Diff, SideBySideWithTheGateRule) {
 TEST(Diff, CompareResultsArePairedByMode) {
   auto dir = test::scratch_dir("diff_compare");
   std::string c = (dir / "c.json").string(), t = (dir / "t.json").string();
-  ASSERT_EQ(run_cli("compare '" + test::humanoid_glb() + "' -n 6 --frames 10 --warmup 1 --modes master,threaded -q --json '" + c + "'")
+  ASSERT_EQ(run_cli("compare '" + test::humanoid_glb() +
+                    "' -n 6 --frames 10 --warmup 1 --modes master,threaded -q --json '" + c + "'")
                 .status,
             0);
-  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 10 --warmup 1 --mode threaded -q --json '" + t + "'").status, 0);
+  ASSERT_EQ(
+      run_cli("bench '" + test::humanoid_glb() + "' -n 6 --frames 10 --warmup 1 --mode threaded -q --json '" + t + "'")
+          .status,
+      0);
   auto r = run_cli("diff '" + c + "' '" + c + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\nmaster, 6 characters"), std::string::npos) << r.out;
@@ -127,7 +133,10 @@ TEST(Diff, CompareResultsArePairedByMode) {
   // Two single results of the character: compared whatever their modes and
   // sizes, with what differs said, and other work is other work.
   std::string m = (dir / "m.json").string();
-  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'").status, 0);
+  ASSERT_EQ(
+      run_cli("bench '" + test::humanoid_glb() + "' -n 7 --frames 10 --warmup 1 --mode master -q --json '" + m + "'")
+          .status,
+      0);
   r = run_cli("diff '" + t + "' '" + m + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("\nthreaded (A) against master (B), 6 characters"), std::string::npos) << r.out;
@@ -152,7 +161,10 @@ TEST(Diff, CompareResultsArePairedByMode) {
 TEST(Diff, BadFilesAndOutputs) {
   auto dir = test::scratch_dir("diff_bad");
   std::string a = (dir / "a.json").string();
-  ASSERT_EQ(run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 8 --warmup 0 --mode culled -q --json '" + a + "'").status, 0);
+  ASSERT_EQ(
+      run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 8 --warmup 0 --mode culled -q --json '" + a + "'")
+          .status,
+      0);
   std::ofstream(dir / "cut.json") << test::read_json(a).dump().substr(0, 100);
   auto r = run_cli("diff '" + a + "' '" + (dir / "cut.json").string() + "'");
   EXPECT_EQ(r.status, 3) << r.err;
@@ -172,7 +184,8 @@ TEST(Diff, BadFilesAndOutputs) {
 // file is the same character, an edited one another whatever its name.
 TEST(Diff, TheSameCharacterIsTheSameFileContent) {
   const auto dir = test::scratch_dir("diff_content");
-  auto r = run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 3 --warmup 0 -q --json '" + (dir / "a.json").string() + "'");
+  auto r = run_cli("bench '" + test::humanoid_glb() + "' -n 4 --frames 3 --warmup 0 -q --json '" +
+                   (dir / "a.json").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json a = test::read_json((dir / "a.json").string());
   ASSERT_TRUE(a["crowd"][0].contains("asset_hash")) << a["crowd"];

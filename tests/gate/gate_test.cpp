@@ -120,8 +120,8 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   auto dir = test::scratch_dir("gate_runs");
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string base = (dir / "base.json").string();
-  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" + base +
-                         "' --update-baseline --runs 8");
+  auto r = test::run_cli("check --spread 0 '" + scene + "' -n 4 --frames 10 --warmup 1 --mode culled --baseline '" +
+                         base + "' --update-baseline --runs 8");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("the median of 8 runs by calibrated"), std::string::npos) << r.out;
   json recorded = json::parse(std::ifstream(base));
@@ -215,7 +215,8 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
   r = test::run_cli("check --spread 0 --baseline '" + (dir / "broken.json").string() + "' --runs 1");
   EXPECT_EQ(r.status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find("runs.median_ms.cpu_ms"), std::string::npos) << r.err;
-  for (const char* bad : {"--spread -1", "--spread 5000", "--runs 0", "--runs 101", "--attempts 0", "--floor 5", "--floor -1ms", "--metric nothing"}) {
+  for (const char* bad : {"--spread -1", "--spread 5000", "--runs 0", "--runs 101", "--attempts 0", "--floor 5",
+                          "--floor -1ms", "--metric nothing"}) {
     r = test::run_cli("check --spread 0 --baseline '" + base + "' " + bad);
     EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
   }

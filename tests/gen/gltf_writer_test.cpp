@@ -147,7 +147,8 @@ void expect_draco_round_trip(const Character& original, const Character& back) {
       hits[match]++;
       worst_position = std::max(worst_position, best);
       worst_normal = std::max(worst_normal, glm::length(a.normals[match] - b.normals[v]));
-      std::map<int, float> wa = influences(a.joints[match], a.weights[match]), wb = influences(b.joints[v], b.weights[v]);
+      std::map<int, float> wa = influences(a.joints[match], a.weights[match]),
+                           wb = influences(b.joints[v], b.weights[v]);
       for (auto [j, w] : wa) worst_weight = std::max(worst_weight, std::abs(w - wb[j]));
       for (auto [j, w] : wb) worst_weight = std::max(worst_weight, std::abs(w - wa[j]));
     }
@@ -156,7 +157,8 @@ void expect_draco_round_trip(const Character& original, const Character& back) {
   EXPECT_LT(worst_normal, 0.01f);
   EXPECT_LT(worst_weight, 1e-3f) << "a weight moved, or a joint index changed";
   std::vector<std::array<uint32_t, 3>> ta, tb;
-  for (size_t i = 0; i < a.indices.size(); i += 3) ta.push_back(canonical(a.indices[i], a.indices[i + 1], a.indices[i + 2]));
+  for (size_t i = 0; i < a.indices.size(); i += 3)
+    ta.push_back(canonical(a.indices[i], a.indices[i + 1], a.indices[i + 2]));
   for (size_t i = 0; i < b.indices.size(); i += 3)
     tb.push_back(canonical(to_original[b.indices[i]], to_original[b.indices[i + 1]], to_original[b.indices[i + 2]]));
   std::sort(ta.begin(), ta.end());
@@ -228,7 +230,8 @@ TEST(GltfWriter, TinygltfReadsTheGlb) {
   EXPECT_EQ(bytes_of(read<glm::vec3>(model, prim.attributes.at("POSITION"))), bytes_of(c.mesh.positions));
   EXPECT_EQ(bytes_of(read<glm::vec3>(model, prim.attributes.at("NORMAL"))), bytes_of(c.mesh.normals));
   EXPECT_EQ(bytes_of(read<glm::vec4>(model, prim.attributes.at("WEIGHTS_0"))), bytes_of(c.mesh.weights));
-  EXPECT_EQ(model.accessors[size_t(prim.attributes.at("JOINTS_0"))].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  EXPECT_EQ(model.accessors[size_t(prim.attributes.at("JOINTS_0"))].componentType,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
   std::vector<glm::u8vec4> joints = read<glm::u8vec4>(model, prim.attributes.at("JOINTS_0"));
   EXPECT_TRUE(std::equal(joints.begin(), joints.end(), c.mesh.joints.begin(),
                          [](glm::u8vec4 x, glm::u16vec4 y) { return glm::u16vec4(x) == y; }));
@@ -267,7 +270,8 @@ TEST(GltfWriter, JsonGltfEmbedsTheSameBuffer) {
 TEST(GltfWriter, RoundTripIsExact) {
   for (bool binary : {true, false}) {
     for (auto [bones, vertices] : {std::pair{69, 4951}, std::pair{300, 3000}, std::pair{40, 70000}}) {
-      SCOPED_TRACE(std::to_string(bones) + " bones, " + std::to_string(vertices) + " vertices, " + (binary ? "glb" : "gltf"));
+      SCOPED_TRACE(std::to_string(bones) + " bones, " + std::to_string(vertices) + " vertices, " +
+                   (binary ? "glb" : "gltf"));
       Character c = generate_humanoid({bones, vertices, 5});
       Character back = load_character(write(c, binary ? "h.glb" : "h.gltf", {binary, false}).string());
       expect_exact_round_trip(c, back);
@@ -279,7 +283,8 @@ TEST(GltfWriter, WideJointsAndIndicesWhenNeeded) {
   Character c = generate_humanoid({300, 70000, 1});
   tinygltf::Model model = parse(encode_gltf(c), true);
   const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
-  EXPECT_EQ(model.accessors[size_t(prim.attributes.at("JOINTS_0"))].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  EXPECT_EQ(model.accessors[size_t(prim.attributes.at("JOINTS_0"))].componentType,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   EXPECT_EQ(model.accessors[size_t(prim.indices)].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
   EXPECT_EQ(read<uint32_t>(model, prim.indices), c.mesh.indices);
 }

@@ -40,7 +40,9 @@ std::vector<glm::mat4> pose(const Character& c, const Action* action, size_t key
   return model;
 }
 
-glm::vec3 where(const std::vector<glm::mat4>& model, int j) { return glm::vec3(model[size_t(j)][3]); }
+glm::vec3 where(const std::vector<glm::mat4>& model, int j) {
+  return glm::vec3(model[size_t(j)][3]);
+}
 
 const Action& action(const Character& c, const std::string& name) {
   for (const Action& a : c.actions)
@@ -105,9 +107,9 @@ TEST(Humanoid, DefaultIsTheThesisCharacter) {
   EXPECT_EQ(c.name, "humanoid");
   EXPECT_EQ(c.fixups.total(), 0u);
   EXPECT_FALSE(c.draco_decoded);
-  for (const char* name : {"hips", "spine_01", "neck_01", "head", "jaw", "clavicle_l", "upperarm_r", "lowerarm_l",
-                           "hand_r", "thumb_03_l", "pinky_01_r", "metacarpal_index_l", "thigh_r", "calf_l", "foot_r",
-                           "ball_l"})
+  for (const char* name :
+       {"hips", "spine_01", "neck_01", "head", "jaw", "clavicle_l", "upperarm_r", "lowerarm_l", "hand_r", "thumb_03_l",
+        "pinky_01_r", "metacarpal_index_l", "thigh_r", "calf_l", "foot_r", "ball_l"})
     EXPECT_GE(joint(c.skeleton, name), 0) << name;
   int fingers = 0;
   for (const std::string& n : c.skeleton.names)
@@ -117,9 +119,8 @@ TEST(Humanoid, DefaultIsTheThesisCharacter) {
 }
 
 TEST(Humanoid, AnyCountInRangeIsExact) {
-  const std::pair<int, int> sizes[] = {{20, 500},   {21, 777},   {22, 1000},  {23, 1501}, {47, 3001},
-                                       {68, 4950},  {70, 4952},  {100, 12345}, {129, 8000}, {257, 2000},
-                                       {1024, 500}, {1024, 60001}};
+  const std::pair<int, int> sizes[] = {{20, 500},  {21, 777},    {22, 1000},  {23, 1501},  {47, 3001},  {68, 4950},
+                                       {70, 4952}, {100, 12345}, {129, 8000}, {257, 2000}, {1024, 500}, {1024, 60001}};
   for (auto [bones, vertices] : sizes) {
     SCOPED_TRACE(std::to_string(bones) + " bones, " + std::to_string(vertices) + " vertices");
     expect_valid(generate_humanoid({bones, vertices, 1}), bones, vertices);
@@ -175,8 +176,9 @@ TEST(Humanoid, IsAnUprightPersonFacingPlusZ) {
   double volume = 0.0;
   const auto& m = c.mesh;
   for (size_t i = 0; i < m.indices.size(); i += 3)
-    volume += glm::dot(glm::dvec3(m.positions[m.indices[i]]),
-                       glm::cross(glm::dvec3(m.positions[m.indices[i + 1]]), glm::dvec3(m.positions[m.indices[i + 2]]))) / 6.0;
+    volume += glm::dot(glm::dvec3(m.positions[m.indices[i]]), glm::cross(glm::dvec3(m.positions[m.indices[i + 1]]),
+                                                                         glm::dvec3(m.positions[m.indices[i + 2]]))) /
+              6.0;
   EXPECT_GT(volume, 0.04);
   EXPECT_LT(volume, 0.15);
   size_t outward = 0;
@@ -286,7 +288,9 @@ TEST(Humanoid, ActionsDoWhatTheirNamesSay) {
 
 TEST(Humanoid, SameOptionsSameCharacter) {
   auto same = [](const Character& a, const Character& b) {
-    auto bytes = [](const auto& v) { return std::vector<char>((const char*)v.data(), (const char*)(v.data() + v.size())); };
+    auto bytes = [](const auto& v) {
+      return std::vector<char>((const char*)v.data(), (const char*)(v.data() + v.size()));
+    };
     bool eq = a.skeleton.names == b.skeleton.names && a.skeleton.parents == b.skeleton.parents &&
               bytes(a.skeleton.rest_translations) == bytes(b.skeleton.rest_translations) &&
               bytes(a.skeleton.rest_rotations) == bytes(b.skeleton.rest_rotations) &&

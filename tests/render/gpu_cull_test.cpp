@@ -33,7 +33,9 @@ TEST(GpuCull, FindsTheCopiesTheCpuFindsAndDrawsTheSameImage) {
   const std::vector<CullCase> cases = {
       {"humanoid, shared action", {&default_humanoid()}, ActionChoice::Shared, 1},
       {"two characters, random actions", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random, 1},
-      {"two characters, prepass and a shadow cascade", {&default_humanoid(), &thirty_bone_humanoid()}, ActionChoice::Random,
+      {"two characters, prepass and a shadow cascade",
+       {&default_humanoid(), &thirty_bone_humanoid()},
+       ActionChoice::Random,
        3},
   };
   for (const CullCase& c : cases) {

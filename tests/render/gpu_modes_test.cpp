@@ -234,8 +234,10 @@ TEST(GpuModesCli, AMissingFeatureIsOneLineAndExit4) {
   if (!have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   std::string scene = (source_dir() / "scenes" / "humanoid.glb").string();
   setenv("CROWDPROF_GL_HIDE", "vertex-ssbo", 1);
-  auto refused = run_cli("bench '" + scene + "' -n 2 --mode instanced --backend auto --resolution 160x90 --frames 1 --warmup 0");
-  auto hwskin = run_cli("bench '" + scene + "' -n 2 --mode hwskin --backend auto --resolution 160x90 --frames 1 --warmup 0");
+  auto refused =
+      run_cli("bench '" + scene + "' -n 2 --mode instanced --backend auto --resolution 160x90 --frames 1 --warmup 0");
+  auto hwskin =
+      run_cli("bench '" + scene + "' -n 2 --mode hwskin --backend auto --resolution 160x90 --frames 1 --warmup 0");
   unsetenv("CROWDPROF_GL_HIDE");
   EXPECT_EQ(refused.status, 4) << refused.err;
   EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;

@@ -43,7 +43,8 @@ struct Subject {
 };
 
 std::vector<Subject> subjects(std::vector<Character>& loaded) {
-  std::vector<Subject> list = {{"humanoid", &default_humanoid()}, {"300 bones", &bony()}, {"random actions", &default_humanoid(), true}};
+  std::vector<Subject> list = {
+      {"humanoid", &default_humanoid()}, {"300 bones", &bony()}, {"random actions", &default_humanoid(), true}};
   if (test::have_samples()) {
     loaded.push_back(load_character(test::sample("Fox/glTF-Binary/Fox.glb")));
     loaded.push_back(load_character(test::sample("CesiumMan/glTF-Binary/CesiumMan.glb")));

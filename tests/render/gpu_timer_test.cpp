@@ -92,13 +92,14 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   std::getline(csv, header);
   EXPECT_NE(header.find(",gpu_latency_ms,poses_updated,"), std::string::npos) << "earlier columns never move";
   // gpu_ms follows the last counter (issue 13 appended counters after gpu_palette_bytes).
-  EXPECT_TRUE(header.ends_with(",gpu_palette_bytes,copies_updated,copies_held,updates_every_1,updates_every_2,"
-                               "updates_every_4,updates_every_8,updates_every_16,updates_every_32,updates_every_64,"
-                               "lod0_copies,lod1_copies,lod2_copies,lod3_copies,lod0_vertices,lod1_vertices,"
-                               "lod2_vertices,lod3_vertices,lod0_triangles,lod1_triangles,lod2_triangles,"
-                               "lod3_triangles,vertices_drawn,actions_sampled,fades,joints_blended,"
-                               "palette_bytes_uploaded,record_bytes_uploaded,gpu_ms,cpu_ms,animation_sampling_ms,"
-                               "animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms"))
+  EXPECT_TRUE(
+      header.ends_with(",gpu_palette_bytes,copies_updated,copies_held,updates_every_1,updates_every_2,"
+                       "updates_every_4,updates_every_8,updates_every_16,updates_every_32,updates_every_64,"
+                       "lod0_copies,lod1_copies,lod2_copies,lod3_copies,lod0_vertices,lod1_vertices,"
+                       "lod2_vertices,lod3_vertices,lod0_triangles,lod1_triangles,lod2_triangles,"
+                       "lod3_triangles,vertices_drawn,actions_sampled,fades,joints_blended,"
+                       "palette_bytes_uploaded,record_bytes_uploaded,gpu_ms,cpu_ms,animation_sampling_ms,"
+                       "animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms"))
       << header;
   std::string row;
   std::getline(csv, row);
@@ -106,7 +107,8 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
   HtmlReportInput page;
   add_document(page, result_document_from_json(j, "gpu.json"), "gpu.json");
   std::string html = html_report(page);
-  std::string cell = "GPU time (median)</td><td>" + report_number(j["gpu_time"]["median_ms"].get<double>(), 2) + "</td>";
+  std::string cell =
+      "GPU time (median)</td><td>" + report_number(j["gpu_time"]["median_ms"].get<double>(), 2) + "</td>";
   EXPECT_NE(html.find(cell), std::string::npos) << "the HTML report's table too";
 }
 
@@ -173,7 +175,8 @@ TEST(GpuTimer, ATimeBelowTheTimersResolutionIsNotShownAsMeasured) {
   report.run.gpu_timer_resolution_ms = 0.002;
   for (FrameRecord& f : report.frame_records) f.gpu_ms = 0.0004;
   std::string table = format_profile(report);
-  EXPECT_NE(table.find("GPU time   :        -     below the timer's resolution (0.002 ms)"), std::string::npos) << table;
+  EXPECT_NE(table.find("GPU time   :        -     below the timer's resolution (0.002 ms)"), std::string::npos)
+      << table;
   EXPECT_EQ(table.find("0.00ms   median"), std::string::npos) << table;
   record_samples(report);
   nlohmann::json j = result_to_json(report);

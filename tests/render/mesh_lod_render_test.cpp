@@ -36,7 +36,8 @@ TEST(MeshLodRender, GpuSkinningDrawsTheLevelsCpuSkinningDraws) {
   shot.mesh_lod = false;
   Frame full = render(*context, default_humanoid(), shot);
   const size_t covered_full = covered(full.rgba), covered_lod = covered(cpu.rgba);
-  EXPECT_NEAR(static_cast<double>(covered_lod), static_cast<double>(covered_full), 0.05 * static_cast<double>(covered_full));
+  EXPECT_NEAR(static_cast<double>(covered_lod), static_cast<double>(covered_full),
+              0.05 * static_cast<double>(covered_full));
 }
 
 // A character without actions is never skinned: its copies show the rest
@@ -79,7 +80,7 @@ TEST(MeshLodRender, TheGpuCullPicksTheLevelsTheCpuPicks) {
   EXPECT_EQ(gpu.counters.lod2_copies, cpu.counters.lod2_copies);
   EXPECT_EQ(gpu.counters.lod3_copies, cpu.counters.lod3_copies);
   EXPECT_EQ(gpu.counters.lod3_triangles, cpu.counters.lod3_triangles);
-  EXPECT_EQ(gpu.counters.draw_calls, 4u);  // every level of the one character, drawn or not
+  EXPECT_EQ(gpu.counters.draw_calls, 4u);            // every level of the one character, drawn or not
   EXPECT_EQ(gpu.counters.bytes_uploaded, 4u * 20u);  // its four commands, cleared
   const size_t pixels = cpu.rgba.size() / 4;
   ASSERT_GT(covered(cpu.rgba), pixels / 200);

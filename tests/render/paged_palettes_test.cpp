@@ -21,8 +21,8 @@ TEST(PagedPalettes, SmallBlocksDrawTheSameImage) {
   OPEN_GL_OR_SKIP(context);
   const Character* one[] = {&default_humanoid()};
   const Character* two[] = {&default_humanoid(), &thirty_bone_humanoid()};
-  for (std::span<const Character* const> characters : {std::span<const Character* const>(one),
-                                                       std::span<const Character* const>(two)}) {
+  for (std::span<const Character* const> characters :
+       {std::span<const Character* const>(one), std::span<const Character* const>(two)}) {
     for (const char* mode : {"buffer", "instanced"}) {
       const std::string what = std::string(mode) + ", " + std::to_string(characters.size()) + " character(s)";
       Shot shot;

@@ -51,8 +51,8 @@ TEST(Placements, RecordsAreAtMost16BytesACopyOnScreenAndPlacementsGoOnce) {
   OPEN_GL_OR_SKIP(context);
   static_assert(sizeof(GpuInstance) <= 16, "a copy on screen sends at most 16 bytes a frame");
   const size_t copies = 40;
-  for (const Case& c : {Case{"instanced", FrustumTest::Cpu}, Case{"baked", FrustumTest::Cpu},
-                        Case{"baked", FrustumTest::Gpu}}) {
+  for (const Case& c :
+       {Case{"instanced", FrustumTest::Cpu}, Case{"baked", FrustumTest::Cpu}, Case{"baked", FrustumTest::Gpu}}) {
     const bool gpu_cull = c.frustum == FrustumTest::Gpu;
     const std::string what = std::string(c.mode) + (gpu_cull ? ", frustum gpu" : "");
     const auto [first, second] = two_frames(*context, c, copies);

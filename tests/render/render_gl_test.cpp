@@ -20,7 +20,9 @@ using namespace crowdprof;
 
 namespace {
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 }  // namespace
 
@@ -49,8 +51,8 @@ TEST(RenderGl, DefinesKeepTheFilesLineNumbers) {
   std::string source = "// comment\n#version 430 core\nvoid main() {}\n";
   std::string out = with_defines(source, "#define MAX_BONES 12\n");
   EXPECT_EQ(out, "// comment\n#version 430 core\n#define MAX_BONES 12\n#line 3\nvoid main() {}\n");
-  EXPECT_EQ(first_log_line("0:12(5): error: syntax error\n"), 12);             // Mesa
-  EXPECT_EQ(first_log_line("0(7) : error C0000: syntax error\n"), 7);           // NVIDIA
+  EXPECT_EQ(first_log_line("0:12(5): error: syntax error\n"), 12);     // Mesa
+  EXPECT_EQ(first_log_line("0(7) : error C0000: syntax error\n"), 7);  // NVIDIA
   EXPECT_EQ(first_log_line("warning: something\n0:4(1): error: x\n"), 4);
   EXPECT_EQ(first_log_line("error: no line at all\n"), 0);
   EXPECT_EQ(first_log_line(""), 0);
@@ -86,8 +88,10 @@ TEST(RenderGl, EachBackendGivesA43CoreContext) {
 
 TEST(RenderGl, AShaderThatDoesNotCompileNamesItsFileLineAndLog) {
   OPEN_GL_OR_SKIP(context);
-  std::string broken = "#version 430 core\nout vec4 colour;\nvoid main() {\n  colour = vec4(1.0) * undefined_thing;\n}\n";
-  std::vector<ShaderStage> stages = {{GL_FRAGMENT_SHADER, "shaders/broken.frag", with_defines(broken, "#define X 1\n")}};
+  std::string broken =
+      "#version 430 core\nout vec4 colour;\nvoid main() {\n  colour = vec4(1.0) * undefined_thing;\n}\n";
+  std::vector<ShaderStage> stages = {
+      {GL_FRAGMENT_SHADER, "shaders/broken.frag", with_defines(broken, "#define X 1\n")}};
   try {
     build_program(stages);
     FAIL() << "a broken shader compiled";

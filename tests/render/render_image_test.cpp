@@ -90,8 +90,9 @@ TEST(RenderImage, SoftwareAndHardwareSkinningDrawTheSameFrame) {
   ASSERT_TRUE(hardware.gpu_skinned);
   size_t pixels = software.rgba.size() / 4;
   ASSERT_GT(covered(software.rgba), pixels / 50);
-  std::cout << "[ info ] of " << covered(software.rgba) << " pixels drawn, " << pixels_differing(software.rgba, hardware.rgba, 0)
-            << " differ, " << pixels_differing(software.rgba, hardware.rgba, 4) << " by more than 4\n";
+  std::cout << "[ info ] of " << covered(software.rgba) << " pixels drawn, "
+            << pixels_differing(software.rgba, hardware.rgba, 0) << " differ, "
+            << pixels_differing(software.rgba, hardware.rgba, 4) << " by more than 4\n";
   // The two sum the same matrices in different orders: edges may move by a
   // pixel, shading by a shade.
   size_t drawn = covered(software.rgba);
@@ -114,8 +115,9 @@ TEST(RenderImage, PackedVerticesDrawTheFloatFrame) {
   Frame packed = render(*context, default_humanoid(), shot);
   size_t pixels = floats.rgba.size() / 4;
   ASSERT_GT(covered(floats.rgba), pixels / 50);
-  std::cout << "[ info ] of " << covered(floats.rgba) << " pixels drawn, " << pixels_differing(floats.rgba, packed.rgba, 0)
-            << " differ, " << pixels_differing(floats.rgba, packed.rgba, 4) << " by more than 4\n";
+  std::cout << "[ info ] of " << covered(floats.rgba) << " pixels drawn, "
+            << pixels_differing(floats.rgba, packed.rgba, 0) << " differ, "
+            << pixels_differing(floats.rgba, packed.rgba, 4) << " by more than 4\n";
   EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 4), pixels * 5 / 10000);
   EXPECT_LE(pixels_differing(floats.rgba, packed.rgba, 0), covered(floats.rgba) / 10);
   EXPECT_EQ(floats.counters.draw_calls, packed.counters.draw_calls);
@@ -208,8 +210,10 @@ TEST(RenderImage, ACharacterOverTheBoneLimitFallsBackToTheCpu) {
   EXPECT_FALSE(fallback.gpu_skinned);
   EXPECT_GT(fallback.counters.copies_fallback, 0u);
   EXPECT_EQ(fallback.counters.copies_fallback, fallback.counters.poses_updated);
-  EXPECT_EQ(fallback.counters.vertices_skinned, fallback.counters.poses_updated * default_humanoid().mesh.vertex_count());
-  EXPECT_EQ(fallback.counters.bytes_uploaded, fallback.counters.draw_calls * (default_humanoid().mesh.vertex_count() * 24 + 64));
+  EXPECT_EQ(fallback.counters.vertices_skinned,
+            fallback.counters.poses_updated * default_humanoid().mesh.vertex_count());
+  EXPECT_EQ(fallback.counters.bytes_uploaded,
+            fallback.counters.draw_calls * (default_humanoid().mesh.vertex_count() * 24 + 64));
   // Skinned by the same code as threaded: the same image, bit for bit.
   EXPECT_EQ(pixels_differing(reference.rgba, fallback.rgba, 0), 0u);
 }

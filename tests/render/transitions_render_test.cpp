@@ -60,7 +60,8 @@ std::vector<glm::vec3> skin_positions(const SkinnedMesh& mesh, std::span<const S
   std::vector<glm::vec3> out(mesh.vertex_count());
   for (size_t v = 0; v < out.size(); ++v) {
     glm::vec4 p(0.0f);
-    for (int k = 0; k < 4; ++k) p += mesh.weights[v][k] * (palette[mesh.joints[v][k]] * glm::vec4(mesh.positions[v], 1));
+    for (int k = 0; k < 4; ++k)
+      p += mesh.weights[v][k] * (palette[mesh.joints[v][k]] * glm::vec4(mesh.positions[v], 1));
     out[v] = glm::vec3(p);
   }
   return out;
@@ -98,13 +99,15 @@ std::vector<SkinMatrix> baked_drawn_palette(const FrameView& view, size_t copy, 
   const BakedCharacter& baked = baked_humanoid();
   std::vector<SkinMatrix> palette(baked.joints), from(baked.joints);
   const BakedInstance& now = view.baked[copy];
-  const BakedPaletteJob now_job{samples_of(baked, now.first_sample, now.intervals), baked.joints, now.position, palette};
+  const BakedPaletteJob now_job{samples_of(baked, now.first_sample, now.intervals), baked.joints, now.position,
+                                palette};
   const BakedFade& fade = view.baked_fades[copy];
   if (!fade.fading() || ignore_fade) {
     EXPECT_TRUE(now_job.Run());
     return palette;
   }
-  const BakedPaletteJob from_job{samples_of(baked, fade.first_sample, fade.intervals), baked.joints, fade.position, from};
+  const BakedPaletteJob from_job{samples_of(baked, fade.first_sample, fade.intervals), baked.joints, fade.position,
+                                 from};
   EXPECT_TRUE((BakedFadeJob{now_job, from_job, fade.weight}.Run()));
   return palette;
 }
@@ -185,7 +188,8 @@ TEST(TransitionsOnTheGpu, BakedMixesTwoRecordsAsBakedFadeJobDoes) {
     FrameView view = bench.view();
     std::vector<SkinMatrix> all(view.palettes.begin(), view.palettes.end());
     for (size_t i = 0; i < view.copies(); ++i)
-      std::copy(palettes[i].begin(), palettes[i].end(), all.begin() + static_cast<std::ptrdiff_t>(view.joint_offset[i]));
+      std::copy(palettes[i].begin(), palettes[i].end(),
+                all.begin() + static_cast<std::ptrdiff_t>(view.joint_offset[i]));
     view.palettes = all;
     Counters unused;
     renderer.draw(view, unused);
@@ -216,8 +220,7 @@ TEST(TransitionsOnTheGpu, BakedFadingCopiesSend32Bytes) {
   const size_t fading = fading_on_screen(bench.view());
   ASSERT_GT(fading, 0u);
   ASSERT_LT(fading, counters.copies_visible);
-  EXPECT_EQ(counters.record_bytes_uploaded,
-            counters.copies_visible * sizeof(GpuInstance) + fading * sizeof(GpuFade));
+  EXPECT_EQ(counters.record_bytes_uploaded, counters.copies_visible * sizeof(GpuInstance) + fading * sizeof(GpuFade));
   const double per_copy = static_cast<double>(counters.record_bytes_uploaded) / counters.copies_visible;
   EXPECT_GT(per_copy, 16.0);
   EXPECT_LT(per_copy, 32.0);
@@ -246,8 +249,8 @@ TEST(TransitionsOnTheGpu, TheDrawnErrorAuditMeasuresBakedFadingCopies) {
       if (!view.visible[i] || !view.baked_fades[i].fading()) continue;
       const std::vector<glm::vec3> reference = skin_positions(humanoid.mesh, exact.skinning_matrices(i));
       right = std::max(right, largest_distance(skin_positions(humanoid.mesh, baked_drawn_palette(view, i)), reference));
-      wrong =
-          std::max(wrong, largest_distance(skin_positions(humanoid.mesh, baked_drawn_palette(view, i, true)), reference));
+      wrong = std::max(wrong,
+                       largest_distance(skin_positions(humanoid.mesh, baked_drawn_palette(view, i, true)), reference));
     }
     std::cout << "[ info ] " << to_string(crossfade) << ": baked fading copies stray up to " << right
               << " units from their exact blend (audit: " << error.max << ", RMS " << error.rms

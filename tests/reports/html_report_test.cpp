@@ -39,7 +39,8 @@ json fake_result(const std::string& mode, size_t characters, const std::vector<d
 // The fill colour of the series (or legend entry) named `name` in a chart.
 std::string series_colour(const std::string& html, const std::string& name) {
   std::smatch m;
-  std::regex pattern("data-name=\"" + name + "\" data-geometry=\"line\" data-points=\"[0-9]+\" fill=\"(#[0-9A-Fa-f]{6})\"");
+  std::regex pattern("data-name=\"" + name +
+                     "\" data-geometry=\"line\" data-points=\"[0-9]+\" fill=\"(#[0-9A-Fa-f]{6})\"");
   return std::regex_search(html, m, pattern) ? m[1].str() : "";
 }
 
@@ -59,10 +60,12 @@ TEST(HtmlReport, AHeadlineLeadsAndMoreRunsThanFitGetARowEach) {
   EXPECT_NE(html.find("<table class=\"counters\">"), std::string::npos) << "counters as a table";
   HtmlReportInput six;
   for (const char* mode : {"master", "culled", "threaded", "shared", "budget", "hwskin"})
-    add_document(six, result_document_from_json(fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json"), std::string(mode) + ".json");
+    add_document(six, result_document_from_json(fake_result(mode, 40, {1, 2, 3}), std::string(mode) + ".json"),
+                 std::string(mode) + ".json");
   html = html_report(six);
   EXPECT_NE(html.find("class=\"by-run\""), std::string::npos) << "six runs: a row each";
-  EXPECT_EQ(test::occurrences(html, "<tr><td class=\"name\">shared</td>"), 5u) << "headline, profile, runs, counters, side by side";
+  EXPECT_EQ(test::occurrences(html, "<tr><td class=\"name\">shared</td>"), 5u)
+      << "headline, profile, runs, counters, side by side";
 }
 
 TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
@@ -96,7 +99,8 @@ TEST(HtmlReport, GpuTimeByPassWithStatisticsOrWhyNot) {
 
 TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   HtmlReportInput input;
-  add_document(input, result_document_from_json(fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json"), "a.json");
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {1, 2, 3, 4, 5, 6, 7, 8, 9, 20}), "a.json"),
+               "a.json");
   input.screenshot_png = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) + std::string(20, '\0');
   std::string html = html_report(input);
   for (const char* section : {"id=\"profile\"", "id=\"frame-time\"", "id=\"categories\"", "id=\"environment\"",
@@ -164,7 +168,8 @@ TEST(ChartColours, OneColourPerCategoryAndPerModeInEveryChart) {
   Comparison comparison;
   comparison.runs = {test::fake_run("hwskin", 40, {3, 3}, 0.5), test::fake_run("master", 40, {9, 9}, 1.0)};
   std::string svg = comparison_svg(comparison);
-  EXPECT_NE(svg.find("data-name=\"hwskin\" data-geometry=\"line\" data-points=\"2\" fill=\"#009E73\""), std::string::npos);
+  EXPECT_NE(svg.find("data-name=\"hwskin\" data-geometry=\"line\" data-points=\"2\" fill=\"#009E73\""),
+            std::string::npos);
   EXPECT_NE(svg.find("fill=\"" + std::string(category_colour(Category::Rasterizer)) + "\"><title>Rasterizer"),
             std::string::npos);
   EXPECT_NE(svg.find("fill=\"" + std::string(category_colour(Category::Animations)) + "\"><title>Animations"),
@@ -179,8 +184,9 @@ TEST(HtmlReport, ACheckShowsItsVerdictPerMetricAgainstTheTolerance) {
   options.metrics = {"frame_ms", "animations_ms", "rasterizer_ms"};
   HtmlReportInput input;
   add_document(input, result_document_from_json(current, "current"), "current");
-  input.check = CheckSection{check_results(result_from_json(base, "base.json"), result_from_json(current, "current"), options),
-                             options, "base.json"};
+  input.check =
+      CheckSection{check_results(result_from_json(base, "base.json"), result_from_json(current, "current"), options),
+                   options, "base.json"};
   std::string html = html_report(input);
   EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"3\""), std::string::npos);
   EXPECT_EQ(test::occurrences(html, "data-verdict=\"REGRESSION\""), 3u);
@@ -220,9 +226,10 @@ TEST(HtmlReport, ResultFilesOfEveryKindAreReadAndBadOnesRefused) {
     json doc;
     const char* says;
   };
-  for (const Bad& bad : {Bad{"older", older, "result format 0"}, Bad{"no_samples", no_samples, "samples"},
-                         Bad{"other_kind", other_kind, "'spreadsheet'"}, Bad{"array", json::array({1}), "not a crowdprof result"},
-                         Bad{"bad_sweep", bad_sweep, "sweep"}}) {
+  for (const Bad& bad :
+       {Bad{"older", older, "result format 0"}, Bad{"no_samples", no_samples, "samples"},
+        Bad{"other_kind", other_kind, "'spreadsheet'"}, Bad{"array", json::array({1}), "not a crowdprof result"},
+        Bad{"bad_sweep", bad_sweep, "sweep"}}) {
     HtmlReportInput fresh;
     try {
       add_result_file(fresh, test::write_json(dir / (std::string(bad.name) + ".json"), bad.doc));
@@ -278,7 +285,8 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   std::string scene = (test::source_dir() / "scenes" / "humanoid.glb").string();
   std::string small = "-n 4 --frames 6 --warmup 1 -q";
   std::string bench = (dir / "bench.html").string(), json_path = (dir / "bench.json").string();
-  auto r = test::run_cli("bench '" + scene + "' " + small + " --mode culled --json '" + json_path + "' --html '" + bench + "'");
+  auto r = test::run_cli("bench '" + scene + "' " + small + " --mode culled --json '" + json_path + "' --html '" +
+                         bench + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   std::string html = test::read_file(bench);
   EXPECT_NE(html.find("data-name=\"culled\" data-geometry=\"line\" data-points=\"6\""), std::string::npos);
@@ -291,15 +299,20 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   EXPECT_EQ(from_profile(test::read_file(again)), from_profile(html));
 
   std::string compare = (dir / "compare.html").string();
-  r = test::run_cli("compare '" + scene + "' " + small + " --modes master,threaded --sweep n=2,4 --html '" + compare + "'");
+  r = test::run_cli("compare '" + scene + "' " + small + " --modes master,threaded --sweep n=2,4 --html '" + compare +
+                    "'");
   ASSERT_EQ(r.status, 0) << r.err;
   html = test::read_file(compare);
   EXPECT_NE(html.find("data-chart=\"modes\" data-series=\"2\""), std::string::npos);
   EXPECT_NE(html.find("data-chart=\"sweep\" data-series=\"2\""), std::string::npos);
 
   std::string base = (dir / "base.json").string(), check = (dir / "check.html").string();
-  ASSERT_EQ(test::run_cli("check --spread 0 '" + scene + "' " + small + " --baseline '" + base + "' --update-baseline --runs 2").status, 0);
-  r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric frame,Animations --html '" + check + "'");
+  ASSERT_EQ(test::run_cli("check --spread 0 '" + scene + "' " + small + " --baseline '" + base +
+                          "' --update-baseline --runs 2")
+                .status,
+            0);
+  r = test::run_cli("check --result '" + base + "' --baseline '" + base + "' --metric frame,Animations --html '" +
+                    check + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   html = test::read_file(check);
   EXPECT_NE(html.find("data-chart=\"verdict\" data-series=\"2\""), std::string::npos);
@@ -319,9 +332,18 @@ TEST(HtmlReport, SavingsAreDrawnAsCostAgainstErrorWithTheirFront) {
   json exact = fake_result("threaded", 40, {3, 3, 3}), lod = fake_result("threaded+update_lod=on", 40, {1, 1, 1}),
        slow = fake_result("master", 40, {9, 9, 9}), bent = fake_result("budget", 40, {0.5, 0.5, 0.5});
   auto error = [](double px) {
-    return json{{"copies_checked", 40}, {"copies_deviating", px > 0 ? 30 : 0}, {"vertices", 400}, {"copy_stride", 1},
-                {"max", px / 100}, {"rms", px / 300}, {"max_fraction", px / 200}, {"rms_fraction", px / 600},
-                {"max_px", px},   {"rms_px", px / 3}, {"mesh_max", 0},     {"switches_per_second", 0}};
+    return json{{"copies_checked", 40},
+                {"copies_deviating", px > 0 ? 30 : 0},
+                {"vertices", 400},
+                {"copy_stride", 1},
+                {"max", px / 100},
+                {"rms", px / 300},
+                {"max_fraction", px / 200},
+                {"rms_fraction", px / 600},
+                {"max_px", px},
+                {"rms_px", px / 3},
+                {"mesh_max", 0},
+                {"switches_per_second", 0}};
   };
   exact["drawn_error"] = error(0);
   lod["drawn_error"] = error(0.5);

@@ -15,8 +15,7 @@ TEST(Percentiles, TheTableShowsTheSlowFramesInOneLine) {
   Result report = test::fake_run("threaded", 10, ms, 0.75);
   std::string table = format_profile(report);
   // Interpolated between order statistics: p95 at position 94.05, p99 at 98.01.
-  EXPECT_NE(table.find("\nSlow frames: p95 95.05 | p99 99.01 | max 100.00 ms\n"), std::string::npos)
-      << table;
+  EXPECT_NE(table.find("\nSlow frames: p95 95.05 | p99 99.01 | max 100.00 ms\n"), std::string::npos) << table;
   nlohmann::json j = result_to_json(report);
   // The median is a frame: of 100, the lower middle one (measuring/stats.h).
   EXPECT_DOUBLE_EQ(j["frame"]["p50_ms"].get<double>(), 50.0);

@@ -34,7 +34,9 @@ std::string xml_problem(const std::string& xml) {
     }
     return {};
   };
-  auto is_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == ':' || c == '.'; };
+  auto is_name = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == ':' || c == '.';
+  };
   if (xml.rfind("<?xml", 0) == 0) i = xml.find("?>") + 2;
   while (i < xml.size()) {
     size_t lt = xml.find('<', i);
@@ -44,7 +46,8 @@ std::string xml_problem(const std::string& xml) {
       if (open.empty() && xml.find_first_not_of(" \t\r\n", i) == std::string::npos) break;
       return fail("text outside the root element");
     }
-    if (open.empty() && lt > i && xml.find_first_not_of(" \t\r\n", i) < lt) return fail("text outside the root element");
+    if (open.empty() && lt > i && xml.find_first_not_of(" \t\r\n", i) < lt)
+      return fail("text outside the root element");
     i = lt + 1;
     bool closing = i < xml.size() && xml[i] == '/';
     if (closing) ++i;
@@ -118,7 +121,7 @@ TEST(Svg, AComparisonHasOneSeriesPerModeInEveryChart) {
     EXPECT_NE(svg.find("<g class=\"series\" data-name=\"" + std::string(mode) + "\""), std::string::npos) << mode;
   EXPECT_EQ(test::occurrences(svg, "<polyline"), 3u);
 
-  comparison.sweep = {svg_run("master", 10, {2}), svg_run("culled", 10, {1.8}), svg_run("threaded", 10, {1}),
+  comparison.sweep = {svg_run("master", 10, {2}),  svg_run("culled", 10, {1.8}), svg_run("threaded", 10, {1}),
                       svg_run("master", 40, {10}), svg_run("culled", 40, {7.5}), svg_run("threaded", 40, {3})};
   svg = comparison_svg(comparison);
   EXPECT_EQ(xml_problem(svg), "");

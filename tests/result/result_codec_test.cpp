@@ -17,7 +17,9 @@ namespace {
 
 using nlohmann::json;
 
-std::filesystem::path results_dir() { return test::source_dir() / "tests" / "data" / "results"; }
+std::filesystem::path results_dir() {
+  return test::source_dir() / "tests" / "data" / "results";
+}
 
 std::string refusal(const json& doc) {
   try {
@@ -35,7 +37,8 @@ TEST(ResultCodec, WhatItWritesItReadsBackToTheSameDocument) {
   report.run.lens = LensRecord{35.0, 32.0, 18.0, "auto"};
   report.run.gpu_skinning = GpuSkinningRecord{"baked", 4096, BakeRecord{30.0, 120, 1.5, 0.01, 0.002}};
   report.animation = AnimationRecord{{40, 0, 0, 0, 0, 0, 0}, 1, 0, 0.25, 0.01, 40, 3};
-  report.mesh_lod = MeshLodRecord{{{2, 0, 0, 0}, {10, 0.001, 0.0005, 0.1}, {20, 0.003, 0.0015, 0.2}, {8, 0.006, 0.0035, 0.3}}};
+  report.mesh_lod =
+      MeshLodRecord{{{2, 0, 0, 0}, {10, 0.001, 0.0005, 0.1}, {20, 0.003, 0.0015, 0.2}, {8, 0.006, 0.0035, 0.3}}};
   report.culling_audit = CullingAudit{16, 160, 1, 1800, 700, 60, {}, 0};
   for (size_t b = 0; b < kCullBoxes; ++b)
     report.culling_audit->boxes[b] = CullBoxAudit{2000, 3 + b, 130, 1, 12, 4.5, 9.0};
@@ -78,10 +81,13 @@ TEST(ResultCodec, GpuPassesAndPipelineStatisticsReadBack) {
     frame.gpu_ms = 1.0 + 0.1 * static_cast<double>(f);
     frame.gpu_passes.ms = {0.1, 0.2, 0.3, 0.35};
     for (size_t p = 0; p < kGpuPassCount; ++p)
-      for (size_t s = 0; s < kPipelineStatCount; ++s) frame.gpu_passes.stats[p][s] = static_cast<double>(100 * p + s + f);
+      for (size_t s = 0; s < kPipelineStatCount; ++s)
+        frame.gpu_passes.stats[p][s] = static_cast<double>(100 * p + s + f);
   }
   report.frame_records[0].gpu_passes.ms[3] = std::nan("");
-  report.run.gpu_memory = GpuMemoryRecord{"NVX_gpu_memory_info", uint64_t{80} << 30, std::nullopt, uint64_t{2} << 30};  // read back without its colour pass: impossible, kept as null
+  report.run.gpu_memory =
+      GpuMemoryRecord{"NVX_gpu_memory_info", uint64_t{80} << 30, std::nullopt,
+                      uint64_t{2} << 30};  // read back without its colour pass: impossible, kept as null
   record_samples(report);
   json written = result_to_json(report);
   ASSERT_TRUE(written["gpu_time"].contains("passes"));
@@ -120,8 +126,8 @@ TEST(GpuPassMedians, EachDrawnPassOverTheFramesThatTimedIt) {
   std::array<std::vector<double>, kGpuPassCount> ms = {
       std::vector<double>{1.0, none, 3.0, 2.0},  // skinning: a frame not timed is left out
       {0.5, 0.5, 0.5, 0.5},                      // prepass: not drawn at 1 pass
-      {},                                         // shadows: not drawn
-      {none, none, none, none}};                  // colour: drawn, never timed
+      {},                                        // shadows: not drawn
+      {none, none, none, none}};                 // colour: drawn, never timed
   GpuPassMedians one = gpu_pass_medians(ms, 1);
   EXPECT_EQ(one.median[0], 2.0);
   EXPECT_FALSE(one.median[1]);
@@ -187,21 +193,48 @@ TEST(ResultCodec, ABadFieldIsNamed) {
       {"/scene/lens", json("wide"), "\"scene.lens\" should be an object"},
       {"/instructions", json::object({{"per_frame", "many"}}), "\"instructions.per_frame\" should be a number"},
       {"/switches/culling", json(7), "culling '7'"},
-      {"/mesh_lod", json::object({{"copies", {1, 2}}, {"error", {0.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
+      {"/mesh_lod",
+       json::object({{"copies", {1, 2}}, {"error", {0.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
        "\"mesh_lod\" should be arrays of one to four levels, all as long"},
       {"/mesh_lod", json::object({{"copies", {1}}, {"error", {-1.0}}, {"error_fraction", {0.0}}, {"error_px", {0.0}}}),
        "\"mesh_lod.error\" should be an array of distances"},
-      {"/culling_audit", json::object({{"frames", 1}, {"copies", 1}, {"copy_stride", 1}, {"in_view", 1}, {"outside", 0},
-                                       {"undecided", 0}, {"boxes", {{"a/b", json::object()}}}}),
+      {"/culling_audit",
+       json::object({{"frames", 1},
+                     {"copies", 1},
+                     {"copy_stride", 1},
+                     {"in_view", 1},
+                     {"outside", 0},
+                     {"undecided", 0},
+                     {"boxes", {{"a/b", json::object()}}}}),
        "\"culling_audit.boxes\" should be an object of bind_pose"},
       {"/culling_audit", json::object({{"frames", -1}}), "\"culling_audit.frames\" should be a whole number"},
-      {"/drawn_error", json::object({{"copies_checked", 1}, {"copies_deviating", 0}, {"vertices", 3}, {"copy_stride", 0},
-                                     {"max", 0}, {"rms", 0}, {"max_fraction", 0}, {"rms_fraction", 0}, {"max_px", 0},
-                                     {"rms_px", 0}, {"mesh_max", 0}, {"switches_per_second", 0}}),
+      {"/drawn_error",
+       json::object({{"copies_checked", 1},
+                     {"copies_deviating", 0},
+                     {"vertices", 3},
+                     {"copy_stride", 0},
+                     {"max", 0},
+                     {"rms", 0},
+                     {"max_fraction", 0},
+                     {"rms_fraction", 0},
+                     {"max_px", 0},
+                     {"rms_px", 0},
+                     {"mesh_max", 0},
+                     {"switches_per_second", 0}}),
        "\"drawn_error.copy_stride\" should be a whole number, 1 or more"},
-      {"/drawn_error", json::object({{"copies_checked", 1}, {"copies_deviating", 0}, {"vertices", 3}, {"copy_stride", 1},
-                                     {"max", -1.0}, {"rms", 0}, {"max_fraction", 0}, {"rms_fraction", 0}, {"max_px", 0},
-                                     {"rms_px", 0}, {"mesh_max", 0}, {"switches_per_second", 0}}),
+      {"/drawn_error",
+       json::object({{"copies_checked", 1},
+                     {"copies_deviating", 0},
+                     {"vertices", 3},
+                     {"copy_stride", 1},
+                     {"max", -1.0},
+                     {"rms", 0},
+                     {"max_fraction", 0},
+                     {"rms_fraction", 0},
+                     {"max_px", 0},
+                     {"rms_px", 0},
+                     {"mesh_max", 0},
+                     {"switches_per_second", 0}}),
        "\"drawn_error.max\" should be a number, 0 or more"},
   };
   for (const Case& c : cases) {
@@ -354,7 +387,7 @@ TEST(ResultCodec, MetricsAreFoundByTheirSampleKeys) {
   Result r = result_from_json(result_to_json(test::fake_run("culled", 4, {1.0, 3.0, 2.0}, 0.5)), "r.json");
   ASSERT_NE(metric_samples(r, "frame_ms"), nullptr);
   ASSERT_NE(metric_samples(r, "animations_ms"), nullptr);
-  EXPECT_EQ(metric_samples(r, "gpu_ms"), nullptr);  // nothing timed on the GPU
+  EXPECT_EQ(metric_samples(r, "gpu_ms"), nullptr);      // nothing timed on the GPU
   EXPECT_EQ(metric_samples(r, "Animations"), nullptr);  // series, not the names users type
   EXPECT_DOUBLE_EQ(metric_median(r, "frame_ms"), 2.0);
   EXPECT_DOUBLE_EQ(metric_median(r, "animations_ms"), 1.0);

@@ -21,7 +21,8 @@ Comparison two_modes_and_a_sweep() {
   Comparison c;
   c.runs = {test::fake_run("master", 40, {10, 11, 9}, 0.5), test::fake_run("threaded", 40, {5, 5, 6}, 0.5)};
   c.runs[1].frame_records[1].counters.copies_visible = 31;
-  c.sweep = {c.runs[0], c.runs[1], test::fake_run("master", 80, {20, 21, 19}), test::fake_run("threaded", 80, {8, 9, 8})};
+  c.sweep = {c.runs[0], c.runs[1], test::fake_run("master", 80, {20, 21, 19}),
+             test::fake_run("threaded", 80, {8, 9, 8})};
   record_samples(c.runs[1]);
   c.block = 5;
   return c;
@@ -128,10 +129,11 @@ TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
     json value;
     const char* says;
   };
-  for (const Case& c : {Case{"summary", "threads", "two", "a \"summary\" row whose \"threads\""},
-                        Case{"summary", "speedup", -1.0, "a \"summary\" row whose \"speedup\""},
-                        Case{"sweep", "frame_median_ms", nullptr, "a \"sweep\" row without mode, characters and frame_median_ms"},
-                        Case{"sweep", "counters", json::array(), "a \"sweep\" row whose \"counters\""}}) {
+  for (const Case& c :
+       {Case{"summary", "threads", "two", "a \"summary\" row whose \"threads\""},
+        Case{"summary", "speedup", -1.0, "a \"summary\" row whose \"speedup\""},
+        Case{"sweep", "frame_median_ms", nullptr, "a \"sweep\" row without mode, characters and frame_median_ms"},
+        Case{"sweep", "counters", json::array(), "a \"sweep\" row whose \"counters\""}}) {
     json doc = good;
     doc[c.list][0][c.field] = c.value;
     try {

@@ -189,7 +189,8 @@ std::string read_with_every_reader(const json& doc, const json& intact, const st
       wrong += std::string(name) + ": an unguarded read reached nlohmann's JSON_ASSERT: " + e.what() + "; ";
     } catch (const InputError& e) {
       std::string what = e.what();
-      if (what.find('\n') != std::string::npos) wrong += std::string(name) + ": a message of several lines: " + what + "; ";
+      if (what.find('\n') != std::string::npos)
+        wrong += std::string(name) + ": a message of several lines: " + what + "; ";
     } catch (const std::exception& e) {
       wrong += std::string(name) + ": not an InputError (exit 4, not 3): " + e.what() + "; ";
     }
@@ -212,11 +213,21 @@ void every_reader_survives_every_damage(const std::string& kind) {
   EXPECT_GT(all.size(), 100u) << "a real " << kind << " result has more fields than that";
 }
 
-TEST(UntrustedResults, BenchResultsDamagedAnywhere) { every_reader_survives_every_damage("bench"); }
-TEST(UntrustedResults, CompareResultsDamagedAnywhere) { every_reader_survives_every_damage("compare"); }
-TEST(UntrustedResults, CheckResultsDamagedAnywhere) { every_reader_survives_every_damage("check"); }
-TEST(UntrustedResults, CapacityResultsDamagedAnywhere) { every_reader_survives_every_damage("capacity"); }
-TEST(UntrustedResults, DiffResultsDamagedAnywhere) { every_reader_survives_every_damage("diff"); }
+TEST(UntrustedResults, BenchResultsDamagedAnywhere) {
+  every_reader_survives_every_damage("bench");
+}
+TEST(UntrustedResults, CompareResultsDamagedAnywhere) {
+  every_reader_survives_every_damage("compare");
+}
+TEST(UntrustedResults, CheckResultsDamagedAnywhere) {
+  every_reader_survives_every_damage("check");
+}
+TEST(UntrustedResults, CapacityResultsDamagedAnywhere) {
+  every_reader_survives_every_damage("capacity");
+}
+TEST(UntrustedResults, DiffResultsDamagedAnywhere) {
+  every_reader_survives_every_damage("diff");
+}
 
 // nlohmann's JSON_ASSERT is crowdprof's (force-included by lib/CMakeLists.txt):
 // a read it forbids throws, in a Release build too, instead of reading past the end.
@@ -267,7 +278,8 @@ TEST(UntrustedResults, TheCliReadsDamagedResultsWithExit0Or3) {
       // must not be read.
       {"check" + bench_options + " --baseline " + write("baseline_no_environment.json", no_environment), -1},
       {"check --result " + write("no_frame.json", no_frame) + " --baseline '" + (dir / "new_baseline.json").string() +
-           "' --update-baseline", 0},
+           "' --update-baseline",
+       0},
       {"report " + write("runs_as_text.json", runs_as_text) + " -o " + html, 3},
   };
   for (const Case& c : cases) {

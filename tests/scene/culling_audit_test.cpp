@@ -23,8 +23,7 @@ Character slide(bool flat) {
     indices.insert(indices.end(), {0, 1, 3, 0, 3, 2, 1, 2, 3});
   }
   std::vector<glm::vec3> normals(positions.size(), glm::vec3(0, 0, 1));
-  return test::one_joint_character("slide", positions, normals, indices, ChannelPath::Translation,
-                                   {0, 0, 0, 10, 0, 0});
+  return test::one_joint_character("slide", positions, normals, indices, ChannelPath::Translation, {0, 0, 0, 10, 0, 0});
 }
 
 struct AuditCase {

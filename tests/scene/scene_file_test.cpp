@@ -19,7 +19,9 @@ using nlohmann::json;
 
 namespace {
 
-std::string scenes(const std::string& name) { return (crowdprof::test::source_dir() / "scenes" / name).string(); }
+std::string scenes(const std::string& name) {
+  return (crowdprof::test::source_dir() / "scenes" / name).string();
+}
 // The build's copy of the scenes, the folder cmake --install ships.
 std::string built_scenes(const std::string& name) {
   return (std::filesystem::path(CROWDPROF_BUILT_SCENES_DIR) / name).string();
@@ -30,9 +32,11 @@ std::string built_scenes(const std::string& name) {
 TEST(SceneFile, TheThesisSceneIsTheDefaultBench) {
   auto dir = crowdprof::test::scratch_dir("scene_thesis");
   auto a = dir / "scene.json", b = dir / "glb.json";
-  auto from_scene = run_cli("bench '" + scenes("thesis.json") + "' --frames 2 --warmup 0 -q --json '" + a.string() + "'");
+  auto from_scene =
+      run_cli("bench '" + scenes("thesis.json") + "' --frames 2 --warmup 0 -q --json '" + a.string() + "'");
   ASSERT_EQ(from_scene.status, 0) << from_scene.err;
-  auto from_glb = run_cli("bench '" + scenes("humanoid.glb") + "' -n 160 --frames 2 --warmup 0 -q --json '" + b.string() + "'");
+  auto from_glb =
+      run_cli("bench '" + scenes("humanoid.glb") + "' -n 160 --frames 2 --warmup 0 -q --json '" + b.string() + "'");
   ASSERT_EQ(from_glb.status, 0) << from_glb.err;
   json scene = read_json(a), glb = read_json(b);
   EXPECT_EQ(scene["digest"], glb["digest"]);
@@ -83,15 +87,19 @@ TEST(SceneFile, AMixedSceneShowsEachCharacter) {
   // The same scene gives the same bits again.
   auto again = dir / "again.json";
   ASSERT_EQ(run_cli("bench '" + built_scenes("mixed.json") + "' --frames 2 --warmup 1 -q --threads 1 --json '" +
-                    again.string() + "'").status, 0);
+                    again.string() + "'")
+                .status,
+            0);
   EXPECT_EQ(read_json(again)["digest"], j["digest"]);
 }
 
 TEST(SceneFile, TheCommandLineOverridesTheScene) {
   auto dir = crowdprof::test::scratch_dir("scene_override");
   auto out = dir / "r.json";
-  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' -n 16 --camera all --seed 5 --lens 50 --resolution 640x480 "
-                   "--actions random --frames 1 --warmup 0 -q --json '" + out.string() + "'");
+  auto r = run_cli("bench '" + built_scenes("mixed.json") +
+                   "' -n 16 --camera all --seed 5 --lens 50 --resolution 640x480 "
+                   "--actions random --frames 1 --warmup 0 -q --json '" +
+                   out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
   EXPECT_EQ(j["scene"]["characters"], 16);
@@ -110,7 +118,9 @@ TEST(SceneFile, CheckRerunsASceneBaselineWithItsOverrides) {
   auto dir = crowdprof::test::scratch_dir("scene_check");
   auto base = dir / "base.json";
   ASSERT_EQ(run_cli("bench '" + built_scenes("mixed.json") + "' -n 12 --seed 9 --frames 6 --warmup 0 -q --json '" +
-                    base.string() + "'").status, 0);
+                    base.string() + "'")
+                .status,
+            0);
   auto r = run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000%");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("counters and digest match"), std::string::npos) << r.out;  // the same work
@@ -120,8 +130,10 @@ TEST(SceneFile, HardwareSkinningFallsBackPerCharacter) {
   if (!crowdprof::test::have_gl()) GTEST_SKIP() << "no GL backend on this machine";
   auto dir = crowdprof::test::scratch_dir("scene_hwskin");
   auto out = dir / "r.json";
-  auto r = run_cli("bench '" + built_scenes("mixed.json") + "' -n 12 --mode hwskin --backend auto --resolution 320x180 "
-                   "--frames 1 --warmup 0 -q --json '" + out.string() + "'");
+  auto r = run_cli("bench '" + built_scenes("mixed.json") +
+                   "' -n 12 --mode hwskin --backend auto --resolution 320x180 "
+                   "--frames 1 --warmup 0 -q --json '" +
+                   out.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json j = read_json(out);
   // The 300-bone character is over the 128-bone limit: skinned on the CPU.
@@ -183,8 +195,7 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
        "characters[0].transitions"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": \"often\"}]}",
        "characters[0].transitions"},
-      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"blend_in\": 0.5}]}",
-       "characters[0].blend_in"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"blend_in\": 0.5}]}", "characters[0].blend_in"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": 2, \"blend_in\": 1.5}]}",
        "characters[0].blend_in"},
       {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"transitions\": 0.3}]}",
@@ -199,8 +210,7 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
     auto r = run_cli("bench '" + path.string() + "' --frames 1 --warmup 0 -q");
     EXPECT_EQ(r.status, 3) << cases[i].text << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(path.string() + ": " + cases[i].key), std::string::npos)
-        << cases[i].text << "\n" << r.err;
+    EXPECT_NE(r.err.find(path.string() + ": " + cases[i].key), std::string::npos) << cases[i].text << "\n" << r.err;
   }
 }
 
@@ -212,10 +222,12 @@ TEST(SceneFile, EachGroupFadesOnItsOwnTiming) {
   auto scene = dir / "fading.json";
   std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb
                        << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, \"blend_in\": 0.2},"
-                          " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0}]}";
+                          " {\"file\": \""
+                       << glb << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0}]}";
   auto alone = dir / "alone.json", over = dir / "over.json", plain = dir / "plain.json";
   // No --transitions: the first group's own still fade.
-  auto r = run_cli("bench '" + scene.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + alone.string() + "'");
+  auto r =
+      run_cli("bench '" + scene.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + alone.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   json a = read_json(alone);
   EXPECT_GT(a["counters"]["fades"].get<int>(), 0);
@@ -224,9 +236,12 @@ TEST(SceneFile, EachGroupFadesOnItsOwnTiming) {
   auto both = dir / "both.json", both_result = dir / "both_result.json";
   std::ofstream(both) << "{\"characters\": [{\"file\": \"" << glb
                       << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, \"blend_in\": 0.2},"
-                         " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, "
+                         " {\"file\": \""
+                      << glb
+                      << "\", \"count\": 30, \"actions\": \"random\", \"transitions\": 0.5, "
                          "\"blend_in\": 0.2}]}";
-  r = run_cli("bench '" + both.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + both_result.string() + "'");
+  r = run_cli("bench '" + both.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + both_result.string() +
+              "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const int fades_alone = a["counters"]["fades"].get<int>(), fades_both = read_json(both_result)["counters"]["fades"];
   EXPECT_LE(fades_alone, 20);
@@ -238,9 +253,12 @@ TEST(SceneFile, EachGroupFadesOnItsOwnTiming) {
   EXPECT_EQ(read_json(over)["digest"], a["digest"]);
   // Without the groups' timings, a scene of the same crowd loops its actions.
   auto looping = dir / "looping.json";
-  std::ofstream(looping) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\"},"
-                            " {\"file\": \"" << glb << "\", \"count\": 30, \"actions\": \"random\"}]}";
-  r = run_cli("bench '" + looping.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + plain.string() + "'");
+  std::ofstream(looping) << "{\"characters\": [{\"file\": \"" << glb
+                         << "\", \"count\": 30, \"actions\": \"random\"},"
+                            " {\"file\": \""
+                         << glb << "\", \"count\": 30, \"actions\": \"random\"}]}";
+  r = run_cli("bench '" + looping.string() + "' --camera all --frames 60 --warmup 0 -q --json '" + plain.string() +
+              "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(read_json(plain)["counters"]["fades"], 0);
   EXPECT_NE(read_json(plain)["digest"], a["digest"]);
@@ -251,7 +269,8 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
   auto scene = dir / "s.json", base = dir / "base.json";
   std::string glb = scenes("humanoid.glb");
   std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 6}]}";
-  ASSERT_EQ(run_cli("bench '" + scene.string() + "' --frames 4 --warmup 0 -q --json '" + base.string() + "'").status, 0);
+  ASSERT_EQ(run_cli("bench '" + scene.string() + "' --frames 4 --warmup 0 -q --json '" + base.string() + "'").status,
+            0);
   std::ofstream(scene) << "{\"characters\": [{\"file\": \"" << glb << "\", \"count\": 6, \"action\": \"walk\"}]}";
   auto r = run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000%");
   EXPECT_EQ(r.status, 1) << r.out << r.err;  // they play another action: another digest
@@ -261,7 +280,8 @@ TEST(SceneFile, CheckSaysWhenTheSceneFileChanged) {
 TEST(SceneFile, InfoDescribesEachCharacterOfAScene) {
   auto r = run_cli("info '" + built_scenes("mixed.json") + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("characters[1]: gen --bones 300 --vertices 12000 --seed 3, 40 copies"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("characters[1]: gen --bones 300 --vertices 12000 --seed 3, 40 copies"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("joints:      300"), std::string::npos) << r.out;
   auto j = run_cli("info '" + built_scenes("mixed.json") + "' --json");
   ASSERT_EQ(j.status, 0) << j.err;
@@ -302,8 +322,9 @@ TEST(SceneFile, AGeneratedCharacterIsTheFileGenWouldWrite) {
   // info describes it as it describes the file.
   auto info = run_cli("info '" + generated.string() + "'");
   ASSERT_EQ(info.status, 0) << info.err;
-  EXPECT_NE(info.out.find("characters[0]: gen --bones 30 --vertices 800 --seed 4 --actions locomotion --draco, 6 copies"),
-            std::string::npos)
+  EXPECT_NE(
+      info.out.find("characters[0]: gen --bones 30 --vertices 800 --seed 4 --actions locomotion --draco, 6 copies"),
+      std::string::npos)
       << info.out;
   EXPECT_NE(info.out.find("joints:      30 "), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("(Draco decoded)"), std::string::npos) << info.out;

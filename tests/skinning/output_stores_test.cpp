@@ -39,7 +39,9 @@ BenchConfig threaded(size_t copies, int threads) {
   return config;
 }
 
-bool on_cache_line(const void* p) { return reinterpret_cast<uintptr_t>(p) % 64 == 0; }
+bool on_cache_line(const void* p) {
+  return reinterpret_cast<uintptr_t>(p) % 64 == 0;
+}
 
 // Puts the policy and the SIMD target back whatever a test forced.
 struct OutputStoresTest : ::testing::Test {

@@ -71,7 +71,7 @@ TEST(PackedVertex, HandComputedCodes) {
   EXPECT_FLOAT_EQ(307.0f / 511.0f, back.x);
   EXPECT_FLOAT_EQ(0.0f, back.y);
   EXPECT_FLOAT_EQ(-409.0f / 511.0f, back.z);
-  EXPECT_FLOAT_EQ(-1.0f, unpack_normal(0x200u).x);  // -512 decodes as -1, as GL does
+  EXPECT_FLOAT_EQ(-1.0f, unpack_normal(0x200u).x);    // -512 decodes as -1, as GL does
   EXPECT_EQ(0x000001ffu, pack_normal({1.5f, 0, 0}));  // clamped
 }
 
@@ -223,8 +223,7 @@ TEST(PackedVertex, ACrowdsPackedVerticesAreItsFloatVerticesWithinTheStatedError)
             << "; largest position error " << worst.x << ", " << worst.y << ", " << worst.z << " (bound "
             << q.max_error().x << ", " << q.max_error().y << ", " << q.max_error().z << "), "
             << std::max({worst.x, worst.y, worst.z}) / height << " of the character's height " << height
-            << "; largest normal error "
-            << worst_degrees << " degrees\n";
+            << "; largest normal error " << worst_degrees << " degrees\n";
   for (int a = 0; a < 3; ++a) EXPECT_LE(worst[a], q.max_error()[a]) << a;
   EXPECT_LE(worst_degrees, kPackedNormalMaxErrorDegrees);
   EXPECT_NE(floats.digest(), packed.digest());
@@ -233,13 +232,15 @@ TEST(PackedVertex, ACrowdsPackedVerticesAreItsFloatVerticesWithinTheStatedError)
 TEST(PackedVertex, TheSwitchIsRecordedOnlyWhenPackedAndBadValuesAreRefused) {
   const std::string scene = (test::source_dir() / "scenes/humanoid.glb").string();
   const std::string result_file = (test::scratch_dir("packed_cli") / "run.json").string();
-  auto r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format packed --json '" + result_file + "'");
+  auto r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format packed --json '" +
+                         result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
   nlohmann::json doc = nlohmann::json::parse(std::ifstream(result_file));
   EXPECT_EQ("packed", doc["switches"]["vertex_format"]);
   EXPECT_EQ("threaded+custom", doc["mode"]);
   const std::string packed_digest = doc["digest"];
-  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format float --json '" + result_file + "'");
+  r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format float --json '" + result_file +
+                    "'");
   ASSERT_EQ(0, r.status) << r.err;
   doc = nlohmann::json::parse(std::ifstream(result_file));
   EXPECT_FALSE(doc["switches"].contains("vertex_format"));
@@ -247,5 +248,6 @@ TEST(PackedVertex, TheSwitchIsRecordedOnlyWhenPackedAndBadValuesAreRefused) {
   EXPECT_NE(packed_digest, doc["digest"]);
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1 --vertex-format half");
   EXPECT_EQ(2, r.status);
-  EXPECT_EQ("crowdprof: bench: --vertex-format 'half': expected one of float, packed (see crowdprof bench --help)\n", r.err);
+  EXPECT_EQ("crowdprof: bench: --vertex-format 'half': expected one of float, packed (see crowdprof bench --help)\n",
+            r.err);
 }

@@ -117,12 +117,15 @@ TEST_F(SimdTargetTest, EveryTargetAndThreadCountGivesTheSameDigest) {
 TEST_F(SimdTargetTest, ForcingAnUnknownTargetChangesNothing) {
   const std::vector<std::string> targets = available_simd_targets();
   ASSERT_EQ("", force_simd_target(targets.back()));
-  EXPECT_EQ("SIMD target \"NEON\" is not compiled into this build (choose from " + [&] {
-              std::string all;
-              for (const std::string& t : targets) all += (all.empty() ? "" : ", ") + t;
-              return all;
-            }() + ")",
-            force_simd_target("NEON"));
+  EXPECT_EQ(
+      "SIMD target \"NEON\" is not compiled into this build (choose from " +
+          [&] {
+            std::string all;
+            for (const std::string& t : targets) all += (all.empty() ? "" : ", ") + t;
+            return all;
+          }() +
+          ")",
+      force_simd_target("NEON"));
   EXPECT_EQ(targets.back(), active_simd_target());
   ASSERT_EQ("", force_simd_target("ssse3"));  // any case
   EXPECT_EQ("SSSE3", active_simd_target());
@@ -170,7 +173,8 @@ TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {
   const std::string scene = (test::source_dir() / "scenes/humanoid.glb").string();
   const std::string result_file = (test::scratch_dir("simd_cli") / "run.json").string();
   const std::string lowest = available_simd_targets().back();
-  auto r = test::run_cli("--simd " + lowest + " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" + result_file + "'");
+  auto r = test::run_cli("--simd " + lowest + " bench '" + scene + "' -n 4 --frames 2 --warmup 1 --json '" +
+                         result_file + "'");
   ASSERT_EQ(0, r.status) << r.err;
   EXPECT_EQ(lowest, nlohmann::json::parse(std::ifstream(result_file))["environment"]["simd"]);
 

@@ -40,8 +40,7 @@ Skinned skin(const SkinnedMesh& mesh, const std::vector<SkinMatrix>& palette) {
   return out;
 }
 
-void add_vertex(SkinnedMesh* mesh, glm::vec3 position, glm::vec3 normal, glm::u16vec4 joints,
-                glm::vec4 weights) {
+void add_vertex(SkinnedMesh* mesh, glm::vec3 position, glm::vec3 normal, glm::u16vec4 joints, glm::vec4 weights) {
   mesh->positions.push_back(position);
   mesh->normals.push_back(normal);
   mesh->joints.push_back(joints);
@@ -55,8 +54,8 @@ TEST(Skinning, ThesisWorkedExample) {
   // 0.85255, an arithmetic slip: the correct value is tested.
   SkinnedMesh mesh;
   add_vertex(&mesh, {0, 0, 1}, {0, 0, 1}, {0, 1, 0, 0}, {0.5f, 0.5f, 0, 0});
-  const std::vector<SkinMatrix> palette = {
-      glm::mat4(1), glm::rotate(glm::mat4(1), glm::radians(45.0f), glm::vec3(1, 0, 0))};
+  const std::vector<SkinMatrix> palette = {glm::mat4(1),
+                                           glm::rotate(glm::mat4(1), glm::radians(45.0f), glm::vec3(1, 0, 0))};
   const Skinned out = skin(mesh, palette);
   EXPECT_NEAR(out.positions[0].z, 0.85355339f, 1e-6f);
   EXPECT_NEAR(out.positions[0].y, -0.35355339f, 1e-6f);  // 0.5 * -sin 45
@@ -67,8 +66,7 @@ TEST(Skinning, ThesisWorkedExample) {
 }
 
 // sum_i w_i (M_i p) in double: equation 1 without any cleverness.
-glm::dvec3 reference_point(const std::vector<SkinMatrix>& palette, glm::u16vec4 j, glm::vec4 w,
-                           glm::vec3 p, double h) {
+glm::dvec3 reference_point(const std::vector<SkinMatrix>& palette, glm::u16vec4 j, glm::vec4 w, glm::vec3 p, double h) {
   glm::dvec4 sum(0.0);
   for (int k = 0; k < 4; ++k) sum += double(w[k]) * (glm::dmat4(palette[j[k]]) * glm::dvec4(p, h));
   return glm::dvec3(sum);
@@ -144,12 +142,11 @@ TEST(Skinning, NormalThatBlendsToNothingComesOutZero) {
   // Half at rest, half turned 180 degrees about y: the normal (0,0,1) cancels.
   SkinnedMesh mesh;
   add_vertex(&mesh, {0, 0, 1}, {0, 0, 1}, {0, 1, 0, 0}, {0.5f, 0.5f, 0, 0});
-  const std::vector<SkinMatrix> palette = {
-      glm::mat4(1), glm::scale(glm::mat4(1), glm::vec3(-1, 1, -1))};  // exactly 180 degrees
+  const std::vector<SkinMatrix> palette = {glm::mat4(1),
+                                           glm::scale(glm::mat4(1), glm::vec3(-1, 1, -1))};  // exactly 180 degrees
   const Skinned out = skin(mesh, palette);
   EXPECT_EQ(out.positions[0], glm::vec3(0));
-  EXPECT_FALSE(std::isnan(out.normals[0].x) || std::isnan(out.normals[0].y) ||
-               std::isnan(out.normals[0].z));
+  EXPECT_FALSE(std::isnan(out.normals[0].x) || std::isnan(out.normals[0].y) || std::isnan(out.normals[0].z));
   EXPECT_EQ(glm::length(out.normals[0]), 0.0f);
 }
 
@@ -165,16 +162,14 @@ TEST(Skinning, AnySplitIntoRangesGivesTheSameBits) {
     parts.normals.assign(mesh.vertex_count(), glm::vec3(-1));
     for (size_t first = 0; first < mesh.vertex_count(); first += chunk) {
       const size_t count = std::min(chunk, mesh.vertex_count() - first);
-      ASSERT_TRUE((SkinningJob{palette, &plan, first, count,
-                               std::span(parts.positions).subspan(first, count),
+      ASSERT_TRUE((SkinningJob{palette, &plan, first, count, std::span(parts.positions).subspan(first, count),
                                std::span(parts.normals).subspan(first, count)}
                        .Run()));
     }
-    EXPECT_EQ(0, std::memcmp(parts.positions.data(), whole.positions.data(),
-                             whole.positions.size() * sizeof(glm::vec3)))
+    EXPECT_EQ(0,
+              std::memcmp(parts.positions.data(), whole.positions.data(), whole.positions.size() * sizeof(glm::vec3)))
         << "chunks of " << chunk;
-    EXPECT_EQ(0, std::memcmp(parts.normals.data(), whole.normals.data(),
-                             whole.normals.size() * sizeof(glm::vec3)))
+    EXPECT_EQ(0, std::memcmp(parts.normals.data(), whole.normals.data(), whole.normals.size() * sizeof(glm::vec3)))
         << "chunks of " << chunk;
   }
 }
@@ -197,11 +192,10 @@ TEST_F(SkinningOnEveryTarget, SkeletonsBelowAtAndAboveTheTableLimitInTurn) {
   const SkinnedMesh small = random_mesh(200, 4, &rng), bound = random_mesh(600, 128, &rng),
                     large = random_mesh(500, 300, &rng);
   ASSERT_EQ(127, plan_of(bound, 128).skin_joints.back());
-  const std::vector<std::pair<const SkinnedMesh*, std::vector<SkinMatrix>>> runs = {
-      {&small, random_palette(4, &rng)},
-      {&bound, random_palette(128, &rng)},
-      {&large, random_palette(300, &rng)},
-      {&small, random_palette(4, &rng)}};
+  const std::vector<std::pair<const SkinnedMesh*, std::vector<SkinMatrix>>> runs = {{&small, random_palette(4, &rng)},
+                                                                                    {&bound, random_palette(128, &rng)},
+                                                                                    {&large, random_palette(300, &rng)},
+                                                                                    {&small, random_palette(4, &rng)}};
   std::map<bool, std::vector<Skinned>> by_arithmetic;
   for (const std::string& target : available_simd_targets()) {
     ASSERT_EQ("", force_simd_target(target));
@@ -237,7 +231,7 @@ TEST(Skinning, ValidateRefusesBadRanges) {
   EXPECT_TRUE((SkinningJob{palette, &plan, 4, 6, ps.subspan(4), ns.subspan(4)}.Run()));
   EXPECT_TRUE((SkinningJob{palette, &plan, 10, 0, {}, {}}.Run()));
   EXPECT_FALSE((SkinningJob{palette, &plan, 4, 7, ps.subspan(3), ns.subspan(3)}.Run()));  // past the end
-  EXPECT_FALSE((SkinningJob{palette, &plan, 4, 6, ps, ns}.Run()));      // outputs not sized to the range
+  EXPECT_FALSE((SkinningJob{palette, &plan, 4, 6, ps, ns}.Run()));  // outputs not sized to the range
   EXPECT_FALSE((SkinningJob{palette, nullptr, 0, 10, ps, ns}.Run()));
   EXPECT_FALSE((SkinningJob{std::span(palette).first(3), &plan, 0, 10, ps, ns}.Run()));  // palette too short
 }
@@ -263,8 +257,9 @@ TEST(SkinningPlan, BatchesHoldTheUnionOfTheirJointsWithNonZeroWeight) {
   const SkinningPlan plan = plan_of(mesh, 8);
   ASSERT_EQ(2u, plan.batch_count());
   const SkinBatch& first = plan.batches[0];
-  EXPECT_EQ(std::vector<uint16_t>({5, 7}), std::vector<uint16_t>(plan.joints.begin() + first.first_joint,
-                                                                   plan.joints.begin() + first.first_joint + first.joint_count));
+  EXPECT_EQ(std::vector<uint16_t>({5, 7}),
+            std::vector<uint16_t>(plan.joints.begin() + first.first_joint,
+                                  plan.joints.begin() + first.first_joint + first.joint_count));
   EXPECT_EQ(0, first.single_influence);  // vertex 3 has two influences
   const SkinBatch& second = plan.batches[1];
   EXPECT_EQ(1, second.joint_count);

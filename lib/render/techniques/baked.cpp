@@ -16,10 +16,10 @@ namespace {
 // mixes in the action left; the other copies draw with the plain one, as
 // without transitions.
 std::vector<ShaderStage> baked_stages(PlacementBlock block, const GlFeatures& gl, bool fading = false) {
-  return lit_stages("shaders/baked.vert",
-                    std::string(fading ? "#define FADING\n" : "") + copy_colours_define() +
-                        GpuPlacements::shader_source(block, gl),
-                    "#define INSTANCED\n");
+  return lit_stages(
+      "shaders/baked.vert",
+      std::string(fading ? "#define FADING\n" : "") + copy_colours_define() + GpuPlacements::shader_source(block, gl),
+      "#define INSTANCED\n");
 }
 
 }  // namespace
@@ -29,7 +29,9 @@ BakedSkinning::BakedSkinning(const GlFeatures& gl) : gl_(gl) {
   joint_count_ = program_.uniform("joint_count");
 }
 
-BakedSkinning::~BakedSkinning() { glDeleteBuffers(static_cast<GLsizei>(tables_.size()), tables_.data()); }
+BakedSkinning::~BakedSkinning() {
+  glDeleteBuffers(static_cast<GLsizei>(tables_.size()), tables_.data());
+}
 
 void BakedSkinning::prepare(const FrameView& view, CharacterMeshes& meshes) {
   tables_.resize(meshes.size(), 0);
@@ -122,7 +124,8 @@ void BakedSkinning::upload(const FrameView& view, const CharacterMeshes& meshes,
   counters.bytes_uploaded += placements_.update(view, gl_);  // nothing once the crowd is placed
   counters.gpu_palette_bytes = gpu_bytes_;
   if (GpuCull* cull = cull_for(view)) return cull->run(view, buffers_.instance_buffer(), counters);
-  if (view.mode.frustum == FrustumTest::Gpu) throw GlError("frustum gpu asked of a renderer not prepared for this bench");
+  if (view.mode.frustum == FrustumTest::Gpu)
+    throw GlError("frustum gpu asked of a renderer not prepared for this bench");
   for (size_t k = 0; k < meshes.size(); ++k)
     if (view.characters[k].site == SkinningSite::Baked && (k >= tables_.size() || !tables_[k]))
       throw GlError("baked skinning asked of a renderer not prepared for it");
@@ -173,8 +176,8 @@ void BakedSkinning::draw(const FrameView& view, const CharacterMeshes& meshes, c
     glUniform1ui(joints_at, static_cast<GLuint>(meshes[k].joints));
   };
   if (!gpu_cull) {
-    draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order,
-                       [&](size_t k) { bind_table(k, joint_count); }, counters);
+    draw_instance_runs(
+        buffers_, placements_, meshes, view.mode.index_order, [&](size_t k) { bind_table(k, joint_count); }, counters);
     if (fading_records_ == 0) return;
     glUseProgram(fading_program_.id());
     set_frame_uniforms(fading_program_, pass);

@@ -23,15 +23,15 @@ bool palette_copy(const FrameView& view, size_t copy) {
 }  // namespace
 
 std::vector<ShaderStage> buffer_palette_stages(bool instanced, const GlFeatures& gl) {
-  std::string defines =
-      instanced ? "#define INSTANCED\n" + copy_colours_define() + GpuPlacements::shader_source(PlacementBlock::Uniform, gl)
-                : "";
+  std::string defines = instanced ? "#define INSTANCED\n" + copy_colours_define() +
+                                        GpuPlacements::shader_source(PlacementBlock::Uniform, gl)
+                                  : "";
   defines += std::string(embedded_shader("shaders/instances.glsl"));
   return lit_stages("shaders/buffer_skin.vert", defines, instanced ? "#define INSTANCED\n" : "");
 }
 
 SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
+                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced) {
   size_t copies = 0, rows = 0, largest = 0;
   on_screen.assign(meshes.size() * kMeshLevels, 0);
   for (size_t i = 0; i < view.copies(); ++i) {

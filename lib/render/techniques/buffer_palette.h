@@ -30,7 +30,7 @@ inline size_t draw_group(const FrameView& view, size_t copy) {
 // exceed one storage block (`max_block_bytes`).
 // `on_screen` is scratch, kept by the caller so that frames allocate nothing.
 SentBytes send_palettes(const FrameView& view, const CharacterMeshes& meshes, GpuFrameBuffers& buffers,
-                       std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced);
+                        std::vector<uint32_t>& on_screen, const GlFeatures& gl, bool instanced);
 
 class BufferPalette final : public Technique {
  public:

@@ -108,7 +108,8 @@ void ComputeSkinning::draw(const FrameView& view, const CharacterMeshes& meshes,
     if (view.characters[k].site == SkinningSite::Compute) {
       // Without mesh LOD every copy is level 0: one scan of the crowd, not four.
       const size_t levels = view.mesh_level.empty() ? 1 : kMeshLevels;
-      for (size_t level = 0; level < levels; ++level) draw_kind(view, meshes[k], k, level, passes, begin_pass, counters);
+      for (size_t level = 0; level < levels; ++level)
+        draw_kind(view, meshes[k], k, level, passes, begin_pass, counters);
       counters.gpu_palette_bytes = gpu_bytes_;
     }
 }
@@ -141,8 +142,8 @@ void ComputeSkinning::draw_kind(const FrameView& view, const CharacterMesh& mesh
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * mesh.joints * 3 * sizeof(glm::vec4)),
                     rows_.data());
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, skinned_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * vertices_ * 2 * sizeof(glm::vec4)),
-                 nullptr, GL_STREAM_COPY);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * vertices_ * 2 * sizeof(glm::vec4)), nullptr,
+                 GL_STREAM_COPY);
     glUseProgram(skin_program_.id());
     glUniform1ui(vertex_count_, vertices);
     glUniform1ui(joint_count_, static_cast<GLuint>(mesh.joints));

@@ -54,8 +54,8 @@ class ComputeSkinning final {
   std::vector<GLuint> rest_storage_;
   size_t batch_ = 0, vertices_ = 0, joints_ = 0;  // sizes the batch buffers hold
   uint64_t gpu_bytes_ = 0;
-  std::vector<glm::vec4> rows_;      // scratch: a batch's palettes
-  std::vector<size_t> copies_;       // scratch: a character's copies on screen
+  std::vector<glm::vec4> rows_;  // scratch: a batch's palettes
+  std::vector<size_t> copies_;   // scratch: a character's copies on screen
 };
 
 }  // namespace crowdprof

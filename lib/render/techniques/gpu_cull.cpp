@@ -50,8 +50,16 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
     const auto levels = static_cast<uint32_t>(
         view.mode.mesh_lod ? std::min(view.character_of(i).mesh_lods.size() + 1, kMeshLevels) : 1);
     const auto first_row = static_cast<uint32_t>(3 * clock.first_sample * meshes[view.kind[i]].joints);
-    copies[i] = {glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f), view.kind[i], first_row,
-                 clock.intervals, clock.phase, clock.start, clock.end, clock.duration, levels};
+    copies[i] = {glm::vec4(box.min, 0.0f),
+                 glm::vec4(box.max, 0.0f),
+                 view.kind[i],
+                 first_row,
+                 clock.intervals,
+                 clock.phase,
+                 clock.start,
+                 clock.end,
+                 clock.duration,
+                 levels};
   }
   copies_ = make_buffer(GL_SHADER_STORAGE_BUFFER, copies.size() * sizeof(CullCopy), copies.data(), GL_STATIC_DRAW);
   // One command per character, or with mesh LOD per character and level, even
@@ -66,8 +74,8 @@ GpuCull::GpuCull(const FrameView& view, const CharacterMeshes& meshes, std::span
                         static_cast<uint32_t>(reinterpret_cast<uintptr_t>(d.first_index) / sizeof(uint32_t)),
                         d.base_vertex, static_cast<uint32_t>(first_record[g])});
   }
-  commands_ = make_buffer(GL_SHADER_STORAGE_BUFFER, cleared_.size() * sizeof(Command), cleared_.data(),
-                          GL_DYNAMIC_DRAW);
+  commands_ =
+      make_buffer(GL_SHADER_STORAGE_BUFFER, cleared_.size() * sizeof(Command), cleared_.data(), GL_DYNAMIC_DRAW);
   gpu_bytes_ = copies.size() * sizeof(CullCopy) + cleared_.size() * sizeof(Command);
 }
 
@@ -81,8 +89,9 @@ void GpuCull::check_record_stride() {
     glGetProgramResourceiv(program_.id(), GL_BUFFER_VARIABLE, variable, 1, &property, 1, nullptr, &stride);
   record_bytes_ = static_cast<uint64_t>(std::max(stride, 0));
   if (record_bytes_ != sizeof(GpuInstance))
-    throw GlError("shaders/cull.comp writes records " + std::to_string(record_bytes_) + " bytes apart; the draws read them " +
-                  std::to_string(sizeof(GpuInstance)) + " bytes apart (GpuInstance)");
+    throw GlError("shaders/cull.comp writes records " + std::to_string(record_bytes_) +
+                  " bytes apart; the draws read them " + std::to_string(sizeof(GpuInstance)) +
+                  " bytes apart (GpuInstance)");
 }
 
 GpuCull::~GpuCull() {

@@ -28,12 +28,13 @@ void Instanced::draw(const FrameView& view, const CharacterMeshes& meshes, const
   glUseProgram(program_.id());
   set_frame_uniforms(program_, pass);
   set_copy_colours(program_);
-  draw_instance_runs(buffers_, placements_, meshes, view.mode.index_order, [](size_t) {}, counters);
+  draw_instance_runs(
+      buffers_, placements_, meshes, view.mode.index_order, [](size_t) {}, counters);
 }
 
 void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
-                        IndexOrder order,
-                        const std::function<void(size_t)>& bind_character, Counters& counters, RecordRuns runs) {
+                        IndexOrder order, const std::function<void(size_t)>& bind_character, Counters& counters,
+                        RecordRuns runs) {
   const GLsizei stride = static_cast<GLsizei>(runs.slots * sizeof(GpuInstance));
   size_t bound = SIZE_MAX;
   for (size_t group = 0; group < meshes.size() * kMeshLevels; ++group) {
@@ -64,10 +65,11 @@ void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& pla
 }
 
 void set_copy_colours(const GlProgram& program) {
-  glUniform3fv(program.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()),
-               glm::value_ptr(kCopyColours[0]));
+  glUniform3fv(program.uniform("colours"), static_cast<GLsizei>(kCopyColours.size()), glm::value_ptr(kCopyColours[0]));
 }
 
-std::string copy_colours_define() { return "#define COLOURS " + std::to_string(kCopyColours.size()) + "\n"; }
+std::string copy_colours_define() {
+  return "#define COLOURS " + std::to_string(kCopyColours.size()) + "\n";
+}
 
 }  // namespace crowdprof

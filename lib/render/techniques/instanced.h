@@ -35,8 +35,7 @@ struct RecordRuns {
 // bound; `bind_character(k)` binds what character k's draws read besides
 // (baked: its table and joint count), before its first draw.
 void draw_instance_runs(const GpuFrameBuffers& buffers, const GpuPlacements& placements, const CharacterMeshes& meshes,
-                        IndexOrder order,
-                        const std::function<void(size_t)>& bind_character, Counters& counters,
+                        IndexOrder order, const std::function<void(size_t)>& bind_character, Counters& counters,
                         RecordRuns runs = {});
 
 // kCopyColours into `program`'s uniform `colours`, which a record's colour

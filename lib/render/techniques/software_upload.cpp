@@ -104,8 +104,7 @@ void SoftwareUpload::draw(const FrameView& view, const CharacterMeshes& meshes, 
   }
 }
 
-SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, size_t i, size_t drawn,
-                                                   Counters& counters) {
+SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, size_t i, size_t drawn, Counters& counters) {
   auto half = static_cast<GLsizeiptr>(view.vertices_of(i) * sizeof(glm::vec3));
   // Animation sharing: a copy in the state the last draw uploaded draws that
   // mesh again with its own transform (the thesis scene: one upload a frame).
@@ -124,8 +123,7 @@ SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, size_t
   return {i, buffer, half, true};
 }
 
-SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, size_t i, size_t drawn,
-                                                    Counters& counters) {
+SoftwareUpload::Placed SoftwareUpload::place_packed(const FrameView& view, size_t i, size_t drawn, Counters& counters) {
   auto positions = static_cast<GLsizeiptr>(view.vertices_of(i) * kPackedPositionBytes);
   auto normals = static_cast<GLsizeiptr>(view.vertices_of(i) * kPackedNormalBytes);
   GLuint buffer = stream_buffer(drawn, view.mode.passes > 1);

@@ -20,9 +20,11 @@ void put_rows(const SkinMatrix& m, glm::vec4* rows) {
   for (int r = 0; r < 3; ++r) rows[r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
 }
 
-std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defines, const std::string& fragment_defines) {
-  return {{GL_VERTEX_SHADER, vertex, with_defines(embedded_shader(vertex), defines)},
-          {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
+std::vector<ShaderStage> lit_stages(const char* vertex, const std::string& defines,
+                                    const std::string& fragment_defines) {
+  return {
+      {GL_VERTEX_SHADER, vertex, with_defines(embedded_shader(vertex), defines)},
+      {GL_FRAGMENT_SHADER, "shaders/lit.frag", with_defines(embedded_shader("shaders/lit.frag"), fragment_defines)}};
 }
 
 void set_frame_uniforms(const GlProgram& program, const DrawPass& pass) {

@@ -36,7 +36,9 @@ inline constexpr std::array<glm::vec3, 6> kCopyColours = {{{0.80f, 0.45f, 0.30f}
                                                            {0.65f, 0.45f, 0.75f},
                                                            {0.75f, 0.75f, 0.75f}}};
 
-inline const glm::vec3& copy_colour(size_t copy) { return kCopyColours[copy % kCopyColours.size()]; }
+inline const glm::vec3& copy_colour(size_t copy) {
+  return kCopyColours[copy % kCopyColours.size()];
+}
 
 // A new buffer bound at `target`, of `bytes` (from `data` when not null).
 GLuint make_buffer(GLenum target, size_t bytes, const void* data, GLenum usage);
@@ -76,8 +78,7 @@ class Technique {
   // Draws this frame's copies on screen that use the technique into the
   // target bound, as `pass` sees them; adds draws (and what each sends) to
   // `counters`.
-  virtual void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass,
-                    Counters& counters) = 0;
+  virtual void draw(const FrameView& view, const CharacterMeshes& meshes, const DrawPass& pass, Counters& counters) = 0;
 };
 
 }  // namespace crowdprof
