@@ -25,11 +25,12 @@ case "$action" in
 esac
 
 # valgrind is built against too: its callgrind.h lets the frames toggle
-# callgrind's counting (check --metric instructions).
+# callgrind's counting (check --metric instructions). clang-format: the test
+# suite checks the layout (.clang-format, tests/ci/format_test.sh).
 packages=(build-essential cmake ninja-build git pkg-config
   libtinygltf-dev nlohmann-json3-dev libglm-dev libdraco-dev libtbb-dev libcli11-dev libgtest-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libstb-dev libhwy-dev libmeshoptimizer-dev
-  libbenchmark-dev help2man valgrind)
+  libbenchmark-dev help2man valgrind clang-format)
 # The sanitizer actions build with clang (libFuzzer and the sanitizer runtimes
 # are in libclang-rt); dpkg-dev unpacks oneTBB's source package for TSan.
 case "$action" in
