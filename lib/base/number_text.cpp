@@ -51,6 +51,12 @@ std::string duration_text(double ms) {
   return ms < 1.0 ? significant(ms * 1000.0, 3) + " µs" : significant(ms, 3) + " ms";
 }
 
+std::string p_value_text(double p) {
+  char text[32];
+  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
+  return text;
+}
+
 std::string with_thousands(uint64_t count) {
   std::string digits = std::to_string(count), out;
   for (size_t i = 0; i < digits.size(); ++i) {

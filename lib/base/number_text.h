@@ -26,6 +26,9 @@ std::string duration_text(double ms);
 // A count with thousands separated by commas: 168334 -> "168,334".
 std::string with_thousands(uint64_t count);
 
+// A test's p-value as reports print it: 4 decimals, or "1.2e-05" below 1e-4.
+std::string p_value_text(double p);
+
 // A finite number that is the whole text ("0.05", "1e3"; not "5ms" or ""),
 // else nullopt.
 std::optional<double> parse_number(std::string_view text);

@@ -19,12 +19,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string p_value(double p) {
-  char text[32];
-  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
-  return text;
-}
-
 // A value as the notes show it: strings quoted, numbers bare.
 template <typename T>
 std::string shown(const T& value) {
@@ -167,8 +161,8 @@ std::string format_diff(const Diff& diff, const CheckOptions& options) {
       std::snprintf(line, sizeof line, "%-12s %12s %12s %9s %9s %9s  %s\n", m.metric.c_str(),
                     (metric_value_text(m, m.baseline.median) + (m.value_unit == "ms" ? " ms" : "")).c_str(),
                     (metric_value_text(m, m.current.median) + (m.value_unit == "ms" ? " ms" : "")).c_str(),
-                    percent(m.change).c_str(), m.tested ? p_value(m.test.p).c_str() : "-",
-                    m.tested ? p_value(m.p_adjusted).c_str() : "-", verdict(m, options));
+                    percent(m.change).c_str(), m.tested ? p_value_text(m.test.p).c_str() : "-",
+                    m.tested ? p_value_text(m.p_adjusted).c_str() : "-", verdict(m, options));
       out << line;
     }
     if (std::any_of(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return !m.tested; }))

@@ -13,12 +13,6 @@ namespace crowdprof {
 
 namespace {
 
-std::string p_value(double p) {
-  char text[32];
-  std::snprintf(text, sizeof text, p < 1e-4 ? "%.1e" : "%.4f", p);
-  return text;
-}
-
 std::vector<double> samples_of(const Result& result, const std::string& key) {
   const std::vector<double>* values = metric_samples(result, key);
   if (!values) throw std::invalid_argument("a result has no samples of " + key);
@@ -184,9 +178,9 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
     out << verdict << " " << m.metric << ": median " << metric_value_text(m, m.baseline.median) << unit << " -> "
         << metric_value_text(m, m.current.median) << unit << " (" << percent(m.change) << ", tolerance " << tolerance
         << ", floor " << metric_value_text(m, m.floor_ms) << unit << "), IQR " << metric_value_text(m, m.baseline_iqr)
-        << " -> " << metric_value_text(m, m.current_iqr) << unit << ", p = " << p_value(m.test.p);
+        << " -> " << metric_value_text(m, m.current_iqr) << unit << ", p = " << p_value_text(m.test.p);
     if (corrected)
-      out << " (Holm-corrected " << p_value(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
+      out << " (Holm-corrected " << p_value_text(m.p_adjusted) << " over " << result.metrics.size() << " metrics)";
     out << " (Mann-Whitney U, " << m.test.n2 << " vs " << m.test.n1 << " " << m.unit
         << (m.unit == "runs" ? ", the median of each" : "")
         << (m.too_few_samples ? "; too few for the test, decided on the tolerance and floor" : "") << ")\n";
@@ -209,7 +203,7 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   for (const MetricCheck& m : result.metrics) {
     out << " " << m.metric << " " << metric_value_text(m, m.baseline.median) << " -> "
         << metric_value_text(m, m.current.median) << " " << m.value_unit << " (" << percent(m.change)
-        << ", p = " << p_value(m.p_adjusted);
+        << ", p = " << p_value_text(m.p_adjusted);
     if (m.beyond_tolerance && !m.beyond_floor)
       out << ", beyond " << tolerance << " but under the floor of " << metric_value_text(m, m.floor_ms) << " "
           << m.value_unit;
