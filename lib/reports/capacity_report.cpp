@@ -116,7 +116,7 @@ std::string capacity_svg(const CapacityRun& run) {
   if (!run.modes.empty()) {
     double budget = run.modes.front().rule.budget_ms;
     chart.guides.push_back({budget, fixed(budget, 1) + " ms budget (" + fixed(1000.0 / budget, 0) + " fps)", "#B00020",
-                            "8,4", "budget", true, false});
+                            "8,4", "budget", true});
   }
   SvgDocument svg;
   svg.add(chart);

@@ -10,22 +10,26 @@ namespace crowdprof {
 namespace {
 
 // Okabe-Ito: told apart with every common colour-vision deficiency. The first
-// four are the four presets (master, culled, threaded, hwskin).
-constexpr std::array<const char*, 8> kModeColours = {"#D55E00", "#E69F00", "#0072B2", "#009E73",
-                                                     "#CC79A7", "#56B4E9", "#000000", "#F0E442"};
+// four are the four presets (master, culled, threaded, hwskin). Its light
+// colours (orange, sky blue, yellow) are darkened, or a purple takes the sky
+// blue's place, so that every colour has 3:1 or more against the white page
+// (WCAG 2.1 for graphics; the page's self-check holds charts to it).
+constexpr std::array<const char*, 8> kModeColours = {"#D55E00", "#A66A00", "#0072B2", "#009E73",
+                                                     "#B8568F", "#6A3D9A", "#000000", "#8C7A00"};
 // Tableau 10, in the BGE's category order: Animations and Rasterizer, the two
-// that carry most frames, get the two most distinct hues.
+// that carry most frames, get the two most distinct hues. Its light colours
+// darkened to 3:1 or more against white, their hues kept.
 constexpr std::array<const char*, kCategoryCount> kCategoryColours = {
-    "#9C755F",  // Physics
-    "#B07AA1",  // Logic
-    "#4E79A7",  // Animations
-    "#BAB0AC",  // Network
-    "#59A14F",  // Scenegraph
-    "#F28E2B",  // Rasterizer
-    "#76B7B2",  // Services
-    "#EDC948",  // Overhead
-    "#FF9DA7",  // Outside
-    "#E15759",  // GPU Latency
+    "#9C755F",  // Physics (4.1:1 against white)
+    "#B07AA1",  // Logic (3.4:1)
+    "#4E79A7",  // Animations (4.6:1)
+    "#7F7F7F",  // Network (4.0:1)
+    "#59A14F",  // Scenegraph (3.2:1)
+    "#C9650A",  // Rasterizer (3.9:1)
+    "#2F8F89",  // Services (3.9:1)
+    "#9E8200",  // Overhead (3.7:1)
+    "#C4587E",  // Outside (4.2:1)
+    "#E15759",  // GPU Latency (3.7:1)
 };
 
 }  // namespace

@@ -68,7 +68,7 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
       double value = mark.q == 0.5 ? median_frame_ms(ms) : quantile(ms, mark.q);
       std::string label =
           std::string(mark.name) + (runs.size() > 1 ? " " + run.label : "") + " " + report_number(value, 2) + " ms";
-      chart.guides.push_back({value, label, colour, mark.dash, std::string("percentile ") + mark.name, true, true});
+      chart.guides.push_back({value, label, colour, mark.dash, std::string("percentile ") + mark.name, true});
     }
     chart.series.push_back({run.label, frame_numbers(ms.size()), std::move(ms), colour});
   }
@@ -77,12 +77,17 @@ LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colo
   for (double budget : kBudgetsMs)
     chart.guides.push_back({budget,
                             report_number(budget, 1) + " ms budget (" + report_number(1000.0 / budget, 0) + " fps)",
-                            "#B00020", "8,4", "budget", highest >= 0.4 * budget, false});
-  // Several runs: labels of every percentile would pile up; the table below the
-  // chart gives them, the lines keep their tooltips.
-  if (runs.size() > 2)
+                            "#B00020", "8,4", "budget", highest >= 0.4 * budget});
+  // Several runs: a label for every percentile would fill the margin; the
+  // legend names each kind of line by its dash (the colour is the run's), the
+  // table below the chart gives the values, the lines keep their tooltips.
+  if (runs.size() > 2) {
     for (Guide& guide : chart.guides)
       if (guide.kind != "budget") guide.label.clear();
+    chart.keys = {{"percentile median", "median (each run's colour)", "2,3"},
+                  {"percentile p95", "p95 (each run's colour)", "6,3"},
+                  {"percentile p99", "p99 (each run's colour)", "12,3"}};
+  }
   return chart;
 }
 
@@ -125,7 +130,7 @@ std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& poi
   for (const CostErrorPoint& p : points)
     if (p.front) front.push_back(&p);
   std::sort(front.begin(), front.end(), [](auto* a, auto* b) { return a->frame_ms < b->frame_ms; });
-  LineSeries line{"Pareto front", {}, {}, "#999"};
+  LineSeries line{"Pareto front", {}, {}, "#767676"};
   for (const CostErrorPoint* p : front) {
     line.x.push_back(p->frame_ms);
     line.y.push_back(p->error.max_px);
@@ -199,7 +204,7 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, con
   if (budget_ms)
     chart.guides.push_back(
         {*budget_ms, report_number(*budget_ms, 1) + " ms budget (" + report_number(1000.0 / *budget_ms, 0) + " fps)",
-         "#B00020", "8,4", "budget", true, false});
+         "#B00020", "8,4", "budget", true});
   return chart;
 }
 
@@ -214,7 +219,7 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
                           : m.beyond_tolerance                                            ? "slower, not significant"
                           : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";
-    std::string colour = !m.tested ? "#767676" : m.regressed ? "#B00020" : m.beyond_tolerance ? "#E69F00" : "#1B7F3B";
+    std::string colour = !m.tested ? "#767676" : m.regressed ? "#B00020" : m.beyond_tolerance ? "#A66A00" : "#1B7F3B";
     const std::string unit = " " + m.value_unit;
     std::string detail = m.metric + ": median " + metric_value_text(m, m.baseline.median) + " -> " +
                          metric_value_text(m, m.current.median) + unit +

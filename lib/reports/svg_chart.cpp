@@ -9,15 +9,18 @@ namespace crowdprof {
 
 namespace {
 
-// Okabe-Ito, for series given no colour (chart_colours.h gives modes theirs).
-constexpr std::array<const char*, 8> kSeriesColours = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                       "#E69F00", "#56B4E9", "#F0E442", "#000000"};
-// For stacked segments given no colour.
-constexpr std::array<const char*, 10> kSegmentColours = {"#4E79A7", "#F28E2B", "#E15759", "#76B7B2", "#59A14F",
-                                                         "#EDC948", "#B07AA1", "#FF9DA7", "#9C755F", "#BAB0AC"};
+// For series given no colour (chart_colours.h gives modes theirs): Okabe-Ito,
+// its light colours darkened to 3:1 or more against white (WCAG 2.1 for
+// graphics), as the page's self-check requires.
+constexpr std::array<const char*, 8> kSeriesColours = {"#0072B2", "#D55E00", "#009E73", "#B8568F",
+                                                       "#A66A00", "#6A3D9A", "#8C7A00", "#000000"};
+// For stacked segments given no colour: Tableau 10, darkened likewise.
+constexpr std::array<const char*, 10> kSegmentColours = {"#4E79A7", "#C9650A", "#E15759", "#2F8F89", "#59A14F",
+                                                         "#9E8200", "#B07AA1", "#C4587E", "#9C755F", "#7F7F7F"};
 
 constexpr int kPanelHeight = 380;
-constexpr double kLeft = 80, kRight = 170, kTop = 44, kBottom = 56;
+// The right margin holds the legend and the guides' labels ("p95 master 0.27 ms").
+constexpr double kLeft = 80, kRight = 230, kTop = 44, kBottom = 56;
 
 std::string num(double value) {
   char text[32];
@@ -116,7 +119,8 @@ void frame(std::string& out, const Panel& p, const std::string& title, const std
       if (x->log)
         out += "<line x1=\"" + num(p.px(*x, v)) + "\" x2=\"" + num(p.px(*x, v)) + "\" y1=\"" + num(p.top + kTop) +
                "\" y2=\"" + num(p.bottom()) + "\" stroke=\"#eee\"/>\n";
-      out += "<text x=\"" + num(p.px(*x, v)) + "\" y=\"" + num(p.bottom() + 16) + "\" text-anchor=\"middle\">" +
+      // Low enough to clear the y axis's lowest label at the corner.
+      out += "<text x=\"" + num(p.px(*x, v)) + "\" y=\"" + num(p.bottom() + 20) + "\" text-anchor=\"middle\">" +
              label(v) + "</text>\n";
     }
   }
@@ -129,10 +133,34 @@ void frame(std::string& out, const Panel& p, const std::string& title, const std
          xml_escape(y_label) + "</text>\n";
 }
 
+// Margin labels one under another: 12 px text with its descent, and a pixel
+// or two between.
+constexpr double kMarginStep = 16;
+
+double legend_baseline(const Panel& p, size_t row) {
+  return p.top + kTop + 8 + kMarginStep * static_cast<double>(row);
+}
+
 void legend_entry(std::string& out, const Panel& p, size_t index, const std::string& name, const std::string& colour) {
-  double x = kLeft + p.plot_w() + 16, y = p.top + kTop + 8 + 20 * static_cast<double>(index);
-  out += "<rect x=\"" + num(x) + "\" y=\"" + num(y - 9) + "\" width=\"14\" height=\"10\" fill=\"" + colour +
-         "\"/><text x=\"" + num(x + 20) + "\" y=\"" + num(y) + "\">" + xml_escape(name) + "</text>\n";
+  double x = kLeft + p.plot_w() + 16, y = legend_baseline(p, index);
+  out += "<g class=\"legend\"" + attr("data-for", name) + "><rect x=\"" + num(x) + "\" y=\"" + num(y - 9) +
+         "\" width=\"14\" height=\"10\" fill=\"" + colour + "\"/><text x=\"" + num(x + 20) + "\" y=\"" + num(y) +
+         "\">" + xml_escape(name) + "</text></g>\n";
+}
+
+// Baselines for margin labels wanted at `wanted`: each at least kMarginStep
+// below the one above it and within [top, bottom], as near its wish as that
+// allows (a sweep down from the top, then one up from the bottom).
+std::vector<double> spread_labels(const std::vector<double>& wanted, double top, double bottom) {
+  std::vector<size_t> order(wanted.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return wanted[a] < wanted[b]; });
+  std::vector<double> at(wanted.size());
+  double previous = top - kMarginStep;
+  for (size_t i : order) previous = at[i] = std::max(wanted[i], previous + kMarginStep);
+  double next = std::max(bottom, top + kMarginStep * static_cast<double>(order.size())) + kMarginStep;
+  for (auto i = order.rbegin(); i != order.rend(); ++i) next = at[*i] = std::min(at[*i], next - kMarginStep);
+  return at;
 }
 
 std::string chart_open(const char* kind, const std::string& id, size_t series) {
@@ -188,51 +216,56 @@ void SvgDocument::add(const LineChart& chart) {
   std::string& out = body_;
   out += chart_open("line-chart", chart.id, chart.series.size());
   frame(out, p, chart.title, chart.x_label, chart.y_label, y, &x);
-  // Where each guide's label sits: just above its line, moved up where it
-  // would touch the label below it on the same side (p95 and p99 of a steady
-  // run are a few pixels apart).
-  std::vector<double> label_y(chart.guides.size(), 0);
-  for (bool left : {true, false}) {
-    std::vector<size_t> order;
-    for (size_t i = 0; i < chart.guides.size(); ++i) {
-      const Guide& g = chart.guides[i];
-      if (std::isfinite(g.y) && g.y <= y.hi && !g.label.empty() && g.label_left == left) order.push_back(i);
-    }
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return chart.guides[a].y < chart.guides[b].y; });
-    constexpr double kLineHeight = 13;
-    double previous = 1e9;
-    for (size_t i : order) {
-      label_y[i] = std::min(p.py(y, chart.guides[i].y) - 3, previous - kLineHeight);
-      previous = label_y[i];
-    }
-    // Stacked past the plot's top (into the title): pushed back down, each a
-    // line below the one above it.
-    const double highest = p.top + kTop + 12;
-    previous = highest - kLineHeight;
-    for (auto i = order.rbegin(); i != order.rend(); ++i) {
-      label_y[*i] = std::max(label_y[*i], previous + kLineHeight);
-      previous = label_y[*i];
-    }
+  // The legend first in the margin: the series, then the keys of guides
+  // labelled by kind.
+  size_t legend_rows = 0;
+  for (size_t k = 0; k < chart.series.size(); ++k) {
+    const LineSeries& s = chart.series[k];
+    legend_entry(out, p, legend_rows++, s.name,
+                 s.colour.empty() ? kSeriesColours[k % kSeriesColours.size()] : s.colour);
   }
-  size_t above = 0;
+  for (const LegendKey& key : chart.keys) {
+    double lx = kLeft + p.plot_w() + 16, ly = legend_baseline(p, legend_rows++);
+    out += "<g class=\"legend\"" + attr("data-for", key.kind) + "><line x1=\"" + num(lx) + "\" x2=\"" + num(lx + 14) +
+           "\" y1=\"" + num(ly - 4) + "\" y2=\"" + num(ly - 4) + "\" stroke=\"#444\" stroke-width=\"1.5\"" +
+           attr("stroke-dasharray", key.dash) + "/><text x=\"" + num(lx + 20) + "\" y=\"" + num(ly) + "\">" +
+           xml_escape(key.text) + "</text></g>\n";
+  }
+  // Then each guide's label (or, off the scale, its note) as near its line
+  // as the labels above and below it allow, joined to the line's end.
+  std::vector<size_t> labelled;
+  std::vector<double> wanted;
+  for (size_t i = 0; i < chart.guides.size(); ++i) {
+    const Guide& g = chart.guides[i];
+    if (!std::isfinite(g.y) || g.label.empty()) continue;
+    labelled.push_back(i);
+    wanted.push_back(g.y > y.hi ? 0.0 : p.py(y, g.y) + 4);
+  }
+  // Within the plot's height, so that no stroke joining a label to its line
+  // runs through the x axis's last label.
+  std::vector<double> placed = spread_labels(wanted, legend_baseline(p, legend_rows), p.bottom() + 4);
+  std::vector<double> label_y(chart.guides.size(), 0);
+  for (size_t j = 0; j < labelled.size(); ++j) label_y[labelled[j]] = placed[j];
+  const double right = kLeft + p.plot_w();
   for (size_t i = 0; i < chart.guides.size(); ++i) {
     const Guide& g = chart.guides[i];
     if (!std::isfinite(g.y)) continue;
     std::string tip = "<title>" + xml_escape(g.label) + "</title>";
-    if (g.y > y.hi) {  // off the scale: say so at the top, one line per guide
-      out += "<text class=\"" + xml_escape(g.kind) + " above\"" + attr("data-value", label(g.y)) + " x=\"" +
-             num(kLeft + p.plot_w() - 4) + "\" y=\"" + num(p.top + kTop + 14 + 14 * static_cast<double>(above++)) +
-             "\" text-anchor=\"end\" fill=\"" + g.colour + "\">&#8593; " + xml_escape(g.label) + " (above)</text>\n";
+    if (g.y > y.hi) {  // off the scale: said in the margin, no line
+      if (!g.label.empty())
+        out += "<text class=\"" + xml_escape(g.kind) + " above\"" + attr("data-value", label(g.y)) + " x=\"" +
+               num(right + 12) + "\" y=\"" + num(label_y[i]) + "\" fill=\"" + g.colour + "\">&#8593; " +
+               xml_escape(g.label) + " (above)</text>\n";
       continue;
     }
     double gy = p.py(y, g.y);
-    out += "<g class=\"" + xml_escape(g.kind) + "\"" + attr("data-value", label(g.y)) + "><line x1=\"" + num(kLeft) +
-           "\" x2=\"" + num(kLeft + p.plot_w()) + "\" y1=\"" + num(gy) + "\" y2=\"" + num(gy) + "\" stroke=\"" +
-           g.colour + "\" stroke-dasharray=\"" + g.dash + "\">" + tip + "</line>";
+    out += "<g class=\"" + xml_escape(g.kind) + "\"" + attr("data-value", label(g.y)) + attr("data-guide", g.kind) +
+           "><line x1=\"" + num(kLeft) + "\" x2=\"" + num(right) + "\" y1=\"" + num(gy) + "\" y2=\"" + num(gy) +
+           "\" stroke=\"" + g.colour + "\" stroke-dasharray=\"" + g.dash + "\">" + tip + "</line>";
     if (!g.label.empty())
-      out += "<text x=\"" + num(g.label_left ? kLeft + 4 : kLeft + p.plot_w() - 4) + "\" y=\"" + num(label_y[i]) +
-             "\" text-anchor=\"" + (g.label_left ? "start" : "end") + "\" fill=\"" + g.colour + "\">" +
-             xml_escape(g.label) + "</text>";
+      out += "<line x1=\"" + num(right) + "\" x2=\"" + num(right + 8) + "\" y1=\"" + num(gy) + "\" y2=\"" +
+             num(label_y[i] - 4) + "\" stroke=\"" + g.colour + "\"/><text x=\"" + num(right + 12) + "\" y=\"" +
+             num(label_y[i]) + "\" fill=\"" + g.colour + "\">" + xml_escape(g.label) + "</text>";
     out += "</g>\n";
   }
   for (size_t k = 0; k < chart.series.size(); ++k) {
@@ -251,7 +284,6 @@ void SvgDocument::add(const LineChart& chart) {
     out += "<g class=\"series\"" + attr("data-name", s.name) + " data-geometry=\"line\" data-points=\"" +
            std::to_string(drawn) + "\" fill=\"" + colour + "\">\n<polyline points=\"" + points +
            "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>" + dots + "\n</g>\n";
-    legend_entry(out, p, k, s.name, colour);
   }
   out += "</g>\n";
   height_ += kPanelHeight;

@@ -19,14 +19,23 @@ struct LineSeries {
 // A horizontal line across a line chart at `y`: a frame budget, a percentile.
 struct Guide {
   double y = 0;
-  std::string label;  // in the right margin; empty: only a tooltip
+  // In the right margin beside the line's end, clear of the data; empty: the
+  // line is named by the chart's legend key for its kind (LineChart::keys).
+  std::string label;
   std::string colour = "#444";
   std::string dash = "6,4";
-  std::string kind = "guide";  // the element's class, for readers and tests
+  std::string kind = "guide";  // the element's class and legend key, for readers and tests
   // True: the y axis stretches to show it. False: when it is above the data's
-  // scale, a note at the top says so instead of squashing the data flat.
+  // scale, a note in the margin says so instead of squashing the data flat.
   bool fit = true;
-  bool label_left = false;  // the label at the left end (percentiles), else the right (budgets)
+};
+
+// A legend entry for a kind of guide line ("percentile p95"): a sample of its
+// dash and words, for guides too many to label one by one.
+struct LegendKey {
+  std::string kind;  // the guides' kind it names
+  std::string text;  // "p95 (each run's colour)"
+  std::string dash;
 };
 
 struct LineChart {
@@ -35,7 +44,8 @@ struct LineChart {
   bool markers = false;                 // a dot on every point (for few points)
   bool log_x = false;                   // a log-scaled x axis (crowd sizes); x <= 0 not drawn
   std::vector<Guide> guides = {};
-  std::string id = {};  // data-chart, to find the chart in a page
+  std::string id = {};               // data-chart, to find the chart in a page
+  std::vector<LegendKey> keys = {};  // under the series' legend
 };
 
 struct StackedBars {
@@ -77,9 +87,12 @@ struct VerdictChart {
 // Charts stacked top to bottom in one <svg>. Every chart is a
 // <g class="chart ..." data-chart="ID" data-series="N">, every series a
 // <g class="series" data-name="..." data-geometry="line|area|dots"
-// data-points="N"> and every bar a <g class="bar" data-segments="N">, so
-// scripts (and tests) can find them and count what the browser drew; names
-// are escaped.
+// data-points="N">, every bar a <g class="bar" data-segments="N">, every guide
+// line a <g class="KIND" data-guide="KIND" data-value="Y"> and every legend
+// entry a <g class="legend" data-for="NAME or KIND">, so scripts (and tests)
+// can find them, count what the browser drew and see that each is named;
+// names are escaped. Labels sit in the right margin, one below another, never
+// over the plotted data.
 class SvgDocument {
  public:
   explicit SvgDocument(int width = 960) : width_(width) {}

@@ -148,6 +148,13 @@ void expect_runs_drawn(const std::vector<DrawnChart>& charts, const std::vector<
   }
 }
 
+// What the page's check said, "ok ..." or "failed: ...", as the DOM holds it
+// (quotes as &quot;).
+std::string page_check(const std::string& dom) {
+  std::smatch m;
+  return std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\"")) ? m[1].str() : "";
+}
+
 struct Fixture {
   fs::path dir;
   std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
@@ -310,4 +317,54 @@ TEST(ReportInBrowser, ABrokenPageIsCaught) {
   std::ofstream(f.path("cut.html")) << cut;
   EXPECT_NE(dump_dom(f.path("cut.html")).find("data-report-check=\"failed: 1 charts drawn, 2 made\""),
             std::string::npos);
+}
+
+// A chart a reader cannot read is caught: a label over another, a label
+// struck through by a line, a series no legend names, a colour too pale for
+// the page.
+TEST(ReportInBrowser, AnIllegibleChartIsCaught) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_illegible")};
+  f.run("bench '" + f.scene + "' " + f.small + " --mode threaded --html '" + f.path("b.html") + "'");
+  const std::string page = crowdprof::test::read_file(f.path("b.html"));
+  expect_clean_page(dump_dom(f.path("b.html")), "as made");
+  auto label_of = [&](const std::string& guide) {  // the label of a guide line: {its x, its y} as written
+    std::smatch m;
+    std::regex pattern("<g class=\"" + guide + "\"[^\n]*?<text x=\"([0-9.]+)\" y=\"([0-9.]+)\"");
+    EXPECT_TRUE(std::regex_search(page, m, pattern)) << guide;
+    return std::pair<std::string, std::string>{m[1].str(), m[2].str()};
+  };
+  auto rewritten = [&](const std::string& name, const std::string& from, const std::string& to) {
+    size_t at = page.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    std::string changed = page;
+    if (at != std::string::npos) changed.replace(at, from.size(), to);
+    std::ofstream(f.path(name)) << changed;
+    return page_check(dump_dom(f.path(name)));
+  };
+  auto [median_x, median_y] = label_of("percentile median");
+  auto [p95_x, p95_y] = label_of("percentile p95");
+  // p95's label moved onto median's.
+  std::string check = rewritten("overlap.html", "<text x=\"" + p95_x + "\" y=\"" + p95_y + "\"",
+                                "<text x=\"" + median_x + "\" y=\"" + median_y + "\"");
+  EXPECT_NE(check.find("frame-time: labels overlap: &quot;median "), std::string::npos) << check;
+  // median's label moved into the plot, onto its own line (the plot starts at x = 80).
+  std::smatch line;
+  ASSERT_TRUE(
+      std::regex_search(page, line, std::regex("<g class=\"percentile median\"[^>]*><line [^>]*y1=\"([0-9.]+)\"")));
+  check = rewritten("struck.html", "<text x=\"" + median_x + "\" y=\"" + median_y + "\"",
+                    "<text x=\"90\" y=\"" + std::to_string(std::stod(line[1].str()) + 4) + "\"");
+  EXPECT_NE(check.find("crosses the label &quot;median "), std::string::npos) << check;
+  // The series' legend entry gone.
+  const std::string legend = "<g class=\"legend\" data-for=\"threaded\">";
+  size_t entry = page.find(legend);
+  ASSERT_NE(entry, std::string::npos);
+  std::string whole = page.substr(entry, page.find("</g>", entry) + 4 - entry);
+  check = rewritten("unnamed.html", whole, "");
+  EXPECT_NE(check.find("frame-time/threaded: a series no label or legend names"), std::string::npos) << check;
+  // The series drawn in Okabe-Ito's yellow, 1.3:1 on white.
+  check = rewritten("pale.html", "fill=\"none\" stroke=\"#0072B2\"", "fill=\"none\" stroke=\"#F0E442\"");
+  EXPECT_NE(check.find("frame-time/threaded: colour #f0e442 has contrast 1.32:1 against the background #ffffff"),
+            std::string::npos)
+      << check;
 }
