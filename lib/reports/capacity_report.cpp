@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "reports/chart_colours.h"
+#include "reports/report_charts.h"
 #include "base/number_text.h"
 #include "reports/text_table.h"
 #include "reports/svg_chart.h"
@@ -93,7 +94,7 @@ nlohmann::json capacity_to_json(const CapacityRun& run) {
 std::string capacity_svg(const CapacityRun& run) {
   ModeColours colours;
   std::string scene;
-  if (run.first) scene = ": " + run.first->run.character + ", backend " + run.first->run.backend;
+  if (run.first) scene = ": " + scene_file_name(*run.first) + ", backend " + run.first->run.backend;
   LineChart chart{"Median " + run.metric.name() + " time against crowd size" + scene,
                   "characters (log scale)",
                   "median " + run.metric.name() + " time (ms)",

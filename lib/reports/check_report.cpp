@@ -146,6 +146,8 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
     add_result(input, ab.last_current, ab.current_binary);
     input.runs[0].label = "base";
     input.runs[1].label = "current";
+    // The verdict leads the page, the last process of each build under it.
+    input.gate = GateSection{table, ab.gate.tolerance, ab.gate.confidence, ab.base_binary};
     write_html_report(r.outputs.html, input);
   }
   if (r.files.prints_on_stdout(r.quiet)) out << verdict_text(table);

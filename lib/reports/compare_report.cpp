@@ -174,9 +174,10 @@ std::string comparison_svg(const Comparison& comparison) {
   std::string scene, sweep_scene, warmup = "0";
   if (!comparison.runs.empty()) {
     const RunDescription& run = comparison.runs.front().run;
-    scene = ": " + run.character + " x " + std::to_string(run.characters) + " (" + std::to_string(run.joints) +
+    const std::string file = scene_file_name(comparison.runs.front());  // the file, not the root node
+    scene = ": " + file + " \u00d7 " + std::to_string(run.characters) + " (" + std::to_string(run.joints) +
             " joints, " + std::to_string(run.vertices) + " vertices), backend " + run.backend;
-    sweep_scene = ": " + run.character + ", backend " + run.backend;
+    sweep_scene = ": " + file + ", backend " + run.backend;
     warmup = std::to_string(run.warmup);
   }
   LineChart frames{"Frame time per frame" + scene,

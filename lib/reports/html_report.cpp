@@ -149,13 +149,15 @@ std::string environment_section(const std::vector<ReportRun>& runs) {
   for (const std::string& key : keys) {
     out += "<tr><td class=\"name\">" + h(key) + "</td>";
     if (alike && (key == "mode" || key == "threads")) {
-      std::set<std::string> values;
+      // Each run's, in the runs' order, a line each (a value once).
+      std::vector<std::string> values;
       for (const auto& table : tables)
         for (const auto& row : table)
-          if (row.first == key) values.insert(row.second);
+          if (row.first == key && std::find(values.begin(), values.end(), row.second) == values.end())
+            values.push_back(row.second);
       std::string joined;
-      for (const std::string& v : values) joined += (joined.empty() ? "" : "; ") + v;
-      out += "<td class=\"name\">" + h(joined) + "</td>";
+      for (const std::string& v : values) joined += (joined.empty() ? "" : "<br>") + h(v);
+      out += "<td class=\"name\">" + joined + "</td>";
     } else {
       for (size_t c = 0; c < columns; ++c) {
         std::string value;
@@ -169,13 +171,9 @@ std::string environment_section(const std::vector<ReportRun>& runs) {
   return out + "</table></section>\n";
 }
 
-// Every counter the runs recorded, a row each in the counters' own order, a
-// column per run (blank where a run did not record it).
-std::string counters_table(const std::vector<ReportRun>& runs) {
-  std::set<size_t> rows;  // fields
-  for (const ReportRun& run : runs)
-    for (size_t i = 0; i < kCounterFields.size(); ++i)
-      if (run.result.counters.present[i]) rows.insert(i);
+// The rows of counters: a row per counter, a column per run (blank where a
+// run did not record it).
+std::string counter_rows(const std::vector<ReportRun>& runs, const std::vector<size_t>& rows) {
   std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (last frame)</th>";
   for (const ReportRun& run : runs) out += "<th>" + h(run.label) + "</th>";
   out += "</tr>\n";
@@ -189,6 +187,30 @@ std::string counters_table(const std::vector<ReportRun>& runs) {
     out += "</tr>\n";
   }
   return out + "</table>\n";
+}
+
+// Every counter the runs recorded, in the counters' own order: those some run
+// counted above zero in a table, those at zero in every run folded away under
+// a line that says how many.
+std::string counters_section(const std::vector<ReportRun>& runs) {
+  std::vector<size_t> counted, zero;
+  for (size_t i = 0; i < kCounterFields.size(); ++i) {
+    bool present = false, above_zero = false;
+    for (const ReportRun& run : runs)
+      if (run.result.counters.present[i]) {
+        present = true;
+        above_zero = above_zero || run.result.counters.values.*kCounterFields[i].member != 0;
+      }
+    if (present) (above_zero ? counted : zero).push_back(i);
+  }
+  if (counted.empty() && zero.empty()) return {};
+  std::string out = "<section id=\"counters\"><h2>Counters (the last frame)</h2>\n";
+  if (!counted.empty()) out += counter_rows(runs, counted);
+  if (!zero.empty())
+    out += "<details class=\"zero-counters\"><summary>" + std::to_string(zero.size()) +
+           (zero.size() == 1 ? " counter was" : " counters were") + " zero in every run</summary>\n" +
+           counter_rows(runs, zero) + "</details>\n";
+  return out + "</section>\n";
 }
 
 // The headline a reader looks for first: per run the median frame, p95, p99
@@ -314,7 +336,7 @@ std::string profile_section(const std::vector<ReportRun>& runs) {
   const std::vector<FrameTimes> medians = median_frames(runs);
   return "<section id=\"profile\"><h2>Profile (the BGE's table, median frame)</h2>\n" +
          (runs.size() > kRunsSideBySide ? profile_by_run(runs, medians) : profile_by_category(runs, medians)) +
-         runs_table(runs) + counters_table(runs) + "</section>\n";
+         runs_table(runs) + "</section>\n";
 }
 
 // Each run's GPU time by pass (medians, and their sum against the frame's GPU
@@ -433,18 +455,100 @@ std::string html_p_text(double p) {
   return text;
 }
 
-std::string check_section(const CheckSection& check, std::string& charts) {
+std::string signed_percent(double fraction, int decimals) {
+  return std::isfinite(fraction) ? (fraction >= 0 ? "+" : "") + report_number(fraction * 100, decimals) + "%" : "n/a";
+}
+
+// The A/B's verdict, the page's first section: a row per metric that says
+// passed or FAILED, its change with its interval against the tolerance, then
+// the work and how the builds took turns.
+std::string gate_section(const GateSection& gate) {
+  const GateTable& t = gate.table;
+  std::string out = "<section id=\"verdict\"><h2>A/B against " + h(file_name(gate.base)) + ": " +
+                    (t.failed() ? "<span class=\"regression\">FAILED</span>" : "<span class=\"ok\">passed</span>") +
+                    "</h2>\n<table class=\"verdict\"><tr><th class=\"name\">metric</th><th class=\"name\">verdict</th>"
+                    "<th>change</th><th>interval (" +
+                    report_number(gate.confidence * 100, 0) +
+                    "%)</th><th>tolerance</th><th>base</th><th>current</th><th>p (Holm)</th></tr>\n";
+  for (const GateRow& row : t.metrics) {
+    out += "<tr><td class=\"name\">" + h(row.metric) + "</td><td class=\"name\">" +
+           (row.failed ? "<span class=\"regression\">FAILED</span>" : "<span class=\"ok\">passed</span>") + " (" +
+           h(row.verdict) + ")</td><td class=\"key\">" + signed_percent(row.change, 1) + "</td><td>" +
+           (row.has_interval ? "[" + signed_percent(row.change_low, 1) + ", " + signed_percent(row.change_high, 1) + "]"
+                             : std::string("-")) +
+           "</td><td>up to +" + report_number(gate.tolerance * 100, 1) + "%</td><td>" + report_number(row.base_ms, 3) +
+           " " + h(row.unit) + "</td><td>" + report_number(row.current_ms, 3) + " " + h(row.unit) + "</td><td>" +
+           (row.has_p ? html_p_text(row.p) : std::string("-")) + "</td></tr>\n";
+    if (!row.why.empty()) out += "<tr><td></td><td class=\"name\" colspan=\"7\">" + h(row.why) + "</td></tr>\n";
+  }
+  out += "</table>\n<p>Work: " +
+         std::string(!t.work_compared ? "not compared"
+                     : t.work_equal   ? "the same"
+                                      : "<span class=\"regression\">CHANGED</span>") +
+         (t.work_detail.empty() ? std::string() : " (" + h(t.work_detail) + ")") +
+         ". A change is current over base, of each group's paired medians; a metric fails when it is slower than the "
+         "tolerance and the floor, and significantly so.</p>\n";
+  if (!t.title.empty()) out += "<pre>" + h(t.title) + "</pre>\n";
+  if (!t.reproduce.empty()) out += "<p>Reproduce: <code>" + h(t.reproduce) + "</code></p>\n";
+  return out + "</section>\n";
+}
+
+// Each saving's price as a table (the scatter plot comes later): the same
+// points as the cost-against-error chart, empty when it has none.
+std::string cost_error_table(const std::vector<CostErrorPoint>& points) {
+  if (points.empty()) return {};
+  std::string out =
+      "<table class=\"cost-error\"><tr><th class=\"name\">mode</th><th>median frame ms</th><th>saved ms</th>"
+      "<th class=\"name\">against</th><th>largest error px</th><th>rms error px</th><th>largest error mm</th>"
+      "<th class=\"name\">front</th></tr>\n";
+  for (const CostErrorPoint& p : points) {
+    const bool base = p.mode == p.base;
+    out += "<tr><td class=\"name\">" + h(p.mode) + "</td><td>" + report_number(p.frame_ms, 3) + "</td><td>" +
+           (base ? "-" : report_number(p.saved_ms, 3) + (p.saved_ms < 0 ? " (slower)" : "")) +
+           "</td><td class=\"name\">" + (base ? "-" : h(p.base)) + "</td><td>" + report_number(p.error.max_px, 2) +
+           "</td><td>" + report_number(p.error.rms_px, 2) + "</td><td>" + report_number(p.error.max * 1000.0, 2) +
+           "</td><td class=\"name\">" +
+           (p.past_threshold ? "past " + report_number(kFrontMaxErrorPx, 0) + " px"
+            : p.front        ? "on the front"
+                             : "") +
+           "</td></tr>\n";
+  }
+  return out +
+         "</table><p>Error beside cost: the last frame's copies on screen as drawn against their exact pose; "
+         "saved ms against the mode named before '+', or the first; the front: no other mode as fast and as "
+         "exact on screen, among those within " +
+         report_number(kFrontMaxErrorPx, 0) + " px.</p>\n";
+}
+
+// Why a calibrated verdict and the raw frame times beside it disagree: the
+// calibration removes the machine's speed, the raw times keep it. Empty when
+// no metric is calibrated or the page does not hold both runs.
+std::string calibration_note(const CheckResult& r, const std::vector<ReportRun>& runs) {
+  if (runs.size() != 2 ||
+      std::none_of(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.value_unit == "probes"; }))
+    return {};
+  const double base = median_frame_ms(runs[0].result.samples.frame_ms);
+  const double current = median_frame_ms(runs[1].result.samples.frame_ms);
+  return "<p class=\"calibration\">The verdict compares <b>calibrated</b> frames, in <b>probes</b>: each frame's time "
+         "over the time of a fixed probe workload timed right after it. A machine that is faster or slower as a whole "
+         "at the moment of a run (other load, its clock, another machine) moves frame and probe alike, so the ratio "
+         "keeps the code's change and drops the machine's. The raw frame times on this page are not calibrated: "
+         "median " +
+         duration_text(base) + " in the baseline, " + duration_text(current) + " now (" +
+         signed_percent(base > 0 ? current / base - 1 : NAN, 1) +
+         "); what of that the calibrated change does not show is the machine's drift between the two runs, not "
+         "the code.</p>\n";
+}
+
+std::string check_section(const CheckSection& check, const std::vector<ReportRun>& runs, std::string& charts) {
   const CheckResult& r = check.result;
   std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
   std::string out = "<section id=\"check\"><h2>" +
                     std::string(check.command == "diff" ? "Diff against " : "Check against ") + h(check.baseline) +
                     ": " + verdict + "</h2>\n";
-  SvgDocument svg;
-  svg.add(verdict_chart(r, check.options));
-  charts += "v";
-  out += svg.inline_svg();
   out +=
-      "<table><tr><th class=\"name\">metric</th><th>baseline median</th><th>current median</th><th>change</th>"
+      "<table class=\"verdict\"><tr><th class=\"name\">metric</th><th>baseline median</th><th>current "
+      "median</th><th>change</th>"
       "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
   VerdictChart rows = verdict_chart(r, check.options);
   for (size_t m = 0; m < r.metrics.size(); ++m) {
@@ -463,7 +567,12 @@ std::string check_section(const CheckSection& check, std::string& charts) {
   out += "</table>\n<p>Tolerance " + report_number(check.options.tolerance * 100, 1) +
          "% and the floor (a slowdown must pass both; the green band is the larger), "
          "significance level " +
-         report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n<p>";
+         report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n" +
+         calibration_note(r, runs);
+  SvgDocument svg;
+  svg.add(rows);
+  charts += "v";
+  out += svg.inline_svg() + "<p>";
   const bool digests_equal = r.baseline_digest == r.current_digest;
   if (r.counters.empty() && r.counters_missing.empty() && digests_equal)
     out += "Counters and digest match the baseline.";
@@ -526,6 +635,8 @@ std::string html_report(const HtmlReportInput& given) {
   std::string title = "crowdprof report" + from + ": " + caption +
                       (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
                                             input.capacity->metric
+                       : input.gate ? ", A/B check against " + file_name(input.gate->base) + ": " +
+                                          (input.gate->table.failed() ? "FAILED" : "passed")
                        : input.check            ? ", " + input.check->command
                        : !input.command.empty() ? ", " + input.command
                        : input.runs.size() > 1  ? ", " + std::to_string(input.runs.size()) + " runs"
@@ -539,18 +650,25 @@ std::string html_report(const HtmlReportInput& given) {
     body += ". ";
   }
   body += "Made by crowdprof " + h(first.environment.version) + "; one file, no network needed.</p>\n";
+  // The answer first: the verdict, the capacities, the headline and, for
+  // several runs, the speedups and each saving's price; the charts after.
+  if (input.gate) body += gate_section(*input.gate);
   if (input.capacity) body += capacity_section(*input.capacity);
-  if (input.check) body += check_section(*input.check, charts);
+  if (input.check) body += check_section(*input.check, input.runs, charts);
   body += headline_section(input.runs);
-  body += profile_section(input.runs);
-  body += gpu_passes_section(input.runs);
-  body += animation_stages_section(input.runs);
+  const std::vector<CostErrorPoint> costs = run_costs(input.runs);
+  if (input.runs.size() > 1)
+    body += "<section id=\"speedups\"><h2>Modes side by side</h2>\n" + modes_table(input.runs) +
+            cost_error_table(costs) + "</section>\n";
 
   SvgDocument frame_svg;
   frame_svg.add(frame_time_chart(input.runs, colours));
   charts += "f";
   body += "<section id=\"frame-time\"><h2>Frame time per frame</h2>\n" + frame_svg.inline_svg() +
           percentile_table(input.runs) + "</section>\n";
+  body += profile_section(input.runs);
+  body += gpu_passes_section(input.runs);
+  body += animation_stages_section(input.runs);
 
   body += "<section id=\"categories\"><h2>Categories per frame</h2>\n";
   for (const ReportRun& run : input.runs) {
@@ -565,12 +683,11 @@ std::string html_report(const HtmlReportInput& given) {
     SvgDocument svg;
     svg.add(modes_chart(input.runs));
     charts += "m";
-    if (std::optional<LineChart> costs = cost_error_chart(input.runs, colours)) {
-      svg.add(*costs);
+    if (std::optional<LineChart> chart = cost_error_chart(costs, colours)) {
+      svg.add(*chart);
       charts += "e";
     }
-    body +=
-        "<section id=\"modes\"><h2>Side by side</h2>\n" + svg.inline_svg() + modes_table(input.runs) + "</section>\n";
+    body += "<section id=\"modes\"><h2>Modes side by side, charted</h2>\n" + svg.inline_svg() + "</section>\n";
   }
 
   std::vector<SweepPoint> sweep = input.sweep;
@@ -581,14 +698,14 @@ std::string html_report(const HtmlReportInput& given) {
       sweep.push_back({run.result.run.mode, run.result.run.characters, quantile(run.result.samples.frame_ms, 0.5)});
   if (!sweep.empty()) {
     SvgDocument svg;
-    std::string character = first.run.character;
-    svg.add(sweep_chart(sweep, input.sweep_axis, character, colours, input.sweep_budget_ms));
+    svg.add(sweep_chart(sweep, input.sweep_axis, scene_file_name(first), colours, input.sweep_budget_ms));
     charts += "s";
     body += std::string("<section id=\"sweep\"><h2>") +
             (input.sweep_axis == SweepAxis::Passes ? "Passes sweep" : "Crowd size sweep") + "</h2>\n" +
             svg.inline_svg() + "</section>\n";
   }
 
+  body += counters_section(input.runs);
   body += environment_section(input.runs);
   if (!input.screenshot_png.empty())
     body +=

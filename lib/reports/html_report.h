@@ -1,9 +1,12 @@
 // The HTML report: one self-contained page (inline SVG charts, inline CSS and
 // a small inline script, no network, no external font) that a person opens
-// from a CI artifact store or an e-mail. It holds the BGE table, frame time per
-// frame with the 16.7 and 33.3 ms budgets and p50/p95/p99, the categories
-// stacked per frame, the modes side by side and the sweep for several results,
-// check's verdict per metric, the environment and the screenshot (docs/report.md).
+// from a CI artifact store or an e-mail. It opens with its answer: check's
+// verdict per metric, capacity's capacities, the headline, and for several runs
+// the speedups and each saving's cost beside its error, as tables; then frame
+// time per frame with the 16.7 and 33.3 ms budgets and p50/p95/p99, the BGE
+// table, the categories stacked per frame, the modes side by side and the sweep,
+// the counters (those at zero folded away), the environment and the screenshot
+// (docs/report.md).
 #pragma once
 
 #include <optional>
@@ -13,6 +16,7 @@
 #include "gate/regression.h"
 #include "result/result_document.h"
 #include "reports/report_charts.h"
+#include "reports/verdict_report.h"
 
 namespace crowdprof {
 
@@ -23,6 +27,14 @@ struct CheckSection {
   std::string command = "check";  // what judged: "check", or "diff" (A as the baseline)
 };
 
+// An A/B of two builds (check --against): its verdict per metric leads the page.
+struct GateSection {
+  GateTable table;
+  double tolerance = 0;      // the slowdown a metric may show
+  double confidence = 0.95;  // of the change's interval
+  std::string base;          // the base build's binary, as given
+};
+
 struct HtmlReportInput {
   std::vector<std::string> sources;  // files the report was made from, named under the title
   std::vector<ReportRun> runs;       // bench results, in order; html_report labels those without
@@ -30,6 +42,7 @@ struct HtmlReportInput {
   SweepAxis sweep_axis = SweepAxis::Characters;
   std::optional<double> sweep_budget_ms;  // capacity's budget on the frame, drawn on the sweep chart
   std::optional<CheckSection> check;
+  std::optional<GateSection> gate;
   std::optional<CapacityRecord> capacity;
   std::string command;         // what made the page ("diff"), named in its title when no check or capacity is
   std::string screenshot_png;  // PNG bytes; empty when no screenshot was taken

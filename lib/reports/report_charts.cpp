@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "result/result_codec.h"
 #include "measuring/stats.h"
@@ -43,8 +44,15 @@ std::vector<double> result_samples(const Result& result, const std::string& key)
   return values ? *values : std::vector<double>{};
 }
 
+std::string scene_file_name(const Result& result) {
+  const std::string& path = !result.run.scene_file.empty() ? result.run.scene_file : result.run.file;
+  if (path.empty()) return result.run.character;
+  return std::filesystem::path(path).filename().string();
+}
+
 std::string scene_caption(const Result& result) {
-  return result.run.character + " x " + std::to_string(result.run.characters) + ", backend " + result.run.backend;
+  return scene_file_name(result) + " \u00d7 " + std::to_string(result.run.characters) + ", backend " +
+         result.run.backend;
 }
 
 LineChart frame_time_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
@@ -108,13 +116,13 @@ StackedArea categories_chart(const ReportRun& run) {
   return chart;
 }
 
-std::optional<LineChart> cost_error_chart(const std::vector<ReportRun>& runs, ModeColours& colours) {
+std::vector<CostErrorPoint> run_costs(const std::vector<ReportRun>& runs) {
   std::vector<CostErrorInput> inputs;
   for (const ReportRun& run : runs)
     inputs.push_back({run.label, quantile(result_samples(run.result, "frame_ms"), 0.5),
                       quantile(result_samples(run.result, series_name(Category::Animations)), 0.5),
                       run.result.drawn_error});
-  return cost_error_chart(cost_error_points(inputs), colours);
+  return cost_error_points(inputs);
 }
 
 std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours) {

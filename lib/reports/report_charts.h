@@ -40,7 +40,12 @@ std::string report_number(double value, int decimals);
 // The samples of one metric ("frame_ms", "animations_ms") of a result.
 std::vector<double> result_samples(const Result& result, const std::string& key);
 
-// "humanoid x 160, backend none": what every title names.
+// The file a run was of, without its folder: the scene file ("thesis.json"),
+// else the character's ("Fox.glb"); the character's name when neither is known.
+std::string scene_file_name(const Result& result);
+
+// "thesis.json × 160, backend none": what every title names (the file, not the
+// character's root node, which is "Armature" in every Blender export).
 std::string scene_caption(const Result& result);
 
 // Frame time per frame, a line per run, the budgets and each run's p50, p95
@@ -62,8 +67,11 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, con
 // Each run's median frame time against its largest drawn error (px), a dot
 // per run and the Pareto front as a line (reports/cost_error.h); nullopt when
 // fewer than two runs carry a drawn error.
-std::optional<LineChart> cost_error_chart(const std::vector<ReportRun>& runs, ModeColours& colours);
 std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours);
+
+// The runs' points of cost against error (reports/cost_error.h): empty when
+// fewer than two runs carry a drawn error.
+std::vector<CostErrorPoint> run_costs(const std::vector<ReportRun>& runs);
 
 // check's verdict per metric against the tolerance band.
 VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& options);

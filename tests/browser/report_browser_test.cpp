@@ -148,6 +148,19 @@ void expect_runs_drawn(const std::vector<DrawnChart>& charts, const std::vector<
   }
 }
 
+// Where `needle` first occurs in the DOM; npos-safe for comparisons in tests.
+size_t first_at(const std::string& dom, const std::string& needle) {
+  return dom.find(needle);
+}
+
+// The page's answer (a table found by `lead`) comes before its first chart.
+void expect_leads(const std::string& dom, const std::string& lead, const std::string& what) {
+  size_t at = first_at(dom, lead), chart = first_at(dom, "<svg");
+  ASSERT_NE(at, std::string::npos) << what << ": no " << lead;
+  ASSERT_NE(chart, std::string::npos) << what << ": no chart";
+  EXPECT_LT(at, chart) << what << ": " << lead << " after the first chart";
+}
+
 // What the page's check said, "ok ..." or "failed: ...", as the DOM holds it
 // (quotes as &quot;).
 std::string page_check(const std::string& dom) {
@@ -178,6 +191,16 @@ TEST(ReportInBrowser, ABenchReport) {
   auto charts = drawn_charts(dom);
   EXPECT_EQ(charts.size(), 2u);
   expect_runs_drawn(charts, {json::parse(std::ifstream(f.path("b.json")))}, "bench");
+  // The frame chart first, the counters after it with those at zero folded away.
+  size_t frame_chart = first_at(dom, "data-chart=\"frame-time\""), counters = first_at(dom, "id=\"counters\"");
+  ASSERT_NE(counters, std::string::npos);
+  EXPECT_LT(first_at(dom, "id=\"headline\""), frame_chart);
+  EXPECT_LT(frame_chart, counters) << "the frame chart before the counters";
+  EXPECT_LT(frame_chart, first_at(dom, "id=\"profile\""));
+  std::smatch zero;
+  ASSERT_TRUE(std::regex_search(dom, zero, std::regex("<summary>([0-9]+) counters were zero in every run</summary>")));
+  EXPECT_GT(std::stoi(zero[1].str()), 0);
+  EXPECT_NE(dom.find("humanoid.glb \u00d7 4, backend none"), std::string::npos) << "titles name the file";
 }
 
 TEST(ReportInBrowser, SeveralResultsSideBySideAndTheirSweep) {
@@ -218,6 +241,10 @@ TEST(ReportInBrowser, ACompareReportWithASweep) {
   for (const char* page : {"c.html", "c2.html"}) {
     std::string dom = dump_dom(f.path(page));
     expect_clean_page(dom, page);
+    // The speedups and each saving's price, as tables, before every chart.
+    expect_leads(dom, "id=\"speedups\"", page);
+    expect_leads(dom, "<table class=\"cost-error\">", page);
+    EXPECT_LT(first_at(dom, "id=\"headline\""), first_at(dom, "id=\"speedups\"")) << page;
     auto charts = drawn_charts(dom);
     expect_runs_drawn(charts, doc["runs"].get<std::vector<json>>(), page);
     auto modes = charts_named(charts, "modes");
@@ -231,6 +258,45 @@ TEST(ReportInBrowser, ACompareReportWithASweep) {
     for (const auto& [name, points] : sweep[0]->series)
       EXPECT_EQ(points, std::to_string(sizes_per_mode[name])) << page << ": " << name;
   }
+}
+
+TEST(ReportInBrowser, ACapacityReportLeadsWithTheCapacities) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_capacity")};
+  f.run("capacity '" + f.scene +
+        "' --budget 0.3 --modes master,threaded --frames 6 --warmup 1 --start 2 --max-characters 64 -q --json '" +
+        f.path("cap.json") + "' --html '" + f.path("cap.html") + "'");
+  std::string dom = dump_dom(f.path("cap.html"));
+  expect_clean_page(dom, "capacity");
+  expect_leads(dom, "id=\"capacity\"", "capacity");
+  EXPECT_EQ(charts_named(drawn_charts(dom), "sweep").size(), 1u);
+  EXPECT_NE(dom.find("<title>crowdprof report: humanoid.glb \u00d7 "), std::string::npos);
+}
+
+// check --against: the A/B's verdict per metric (passed or FAILED, change,
+// interval, tolerance) opens the page, named by the scene's file.
+TEST(ReportInBrowser, AnABCheckReportLeadsWithItsVerdict) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_ab")};
+  auto r = crowdprof::test::run_cli("check '" + f.scene + "' " + f.small + " --against '" + CROWDPROF_CLI +
+                                    "' --groups 6 --html '" + f.path("ab.html") + "'");
+  ASSERT_LE(r.status, 1) << r.err;  // one build against itself: the verdict is the timer's
+  std::string dom = dump_dom(f.path("ab.html"));
+  expect_clean_page(dom, "A/B");
+  expect_leads(dom, "<table class=\"verdict\">", "A/B");
+  const std::string verdict = r.status == 0 ? "passed" : "FAILED";
+  EXPECT_NE(dom.find("<title>crowdprof report: humanoid.glb \u00d7 4, backend none, A/B check against crowdprof: " +
+                     verdict + "</title>"),
+            std::string::npos);
+  std::smatch row;
+  ASSERT_TRUE(std::regex_search(
+      dom, row,
+      std::regex(
+          "<tr><td class=\"name\">frame</td><td class=\"name\"><span class=\"[a-z]+\">(passed|FAILED)</span>[^<]*"
+          "</td><td class=\"key\">[-+][0-9.]+%</td><td>\\[[-+][0-9.]+%, [-+][0-9.]+%\\]</td><td>up to "
+          "\\+5\\.0%</td>")))
+      << "a verdict, change, interval and tolerance for the frame";
+  EXPECT_EQ(row[1].str(), verdict);
 }
 
 TEST(ReportInBrowser, ACheckReport) {
@@ -253,6 +319,7 @@ TEST(ReportInBrowser, ACheckReport) {
   for (const auto& [name, points] : verdict[0]->series) EXPECT_EQ(points, "1") << name;
   expect_runs_drawn(charts, {json::parse(std::ifstream(f.path("base.json"))), planted}, "check");
   EXPECT_NE(dom.find("Counter poses_updated changed"), std::string::npos);
+  expect_leads(dom, "<table class=\"verdict\">", "check");
 }
 
 TEST(ReportInBrowser, ADiffReport) {

@@ -124,7 +124,8 @@ TEST(HtmlReport, ABenchReportHoldsEverySectionAndNeedsNoNetwork) {
   EXPECT_NE(html.find("data-chart=\"categories\" data-series=\"2\""), std::string::npos);
   EXPECT_EQ(test::occurrences(html, "data-geometry=\"area\" data-points=\"10\""), 2u);
   EXPECT_NE(html.find("frame (0 = the first measured, after 2 warm-up)"), std::string::npos);
-  EXPECT_NE(html.find("walker x 40, backend none"), std::string::npos) << "character and backend in titles";
+  EXPECT_NE(html.find("walker \u00d7 40, backend none"), std::string::npos)
+      << "the character (no file recorded) and backend in titles";
 }
 
 TEST(HtmlReport, FastFramesNameTheBudgetsInsteadOfSquashingTheChart) {
@@ -290,13 +291,16 @@ TEST(ReportCli, HtmlOnBenchCompareAndCheck) {
   ASSERT_EQ(r.status, 0) << r.err;
   std::string html = test::read_file(bench);
   EXPECT_NE(html.find("data-name=\"culled\" data-geometry=\"line\" data-points=\"6\""), std::string::npos);
-  EXPECT_NE(html.find("humanoid x 4, backend none"), std::string::npos);
+  EXPECT_NE(html.find("humanoid.glb \u00d7 4, backend none"), std::string::npos) << "the file, not the root node";
   // The page made by bench --html is the one report makes of its JSON.
   std::string again = (dir / "again.html").string();
   ASSERT_EQ(test::run_cli("report '" + json_path + "' -o '" + again + "'").status, 0);
-  // The same charts (the scene path is stored relative to the JSON, so the profile line differs).
-  auto from_profile = [](const std::string& page) { return page.substr(page.find("<section id=\"frame-time\">")); };
-  EXPECT_EQ(from_profile(test::read_file(again)), from_profile(html));
+  // The same charts (the scene path is stored relative to the JSON, so the profile's runs table differs).
+  auto charts = [](const std::string& page) {
+    size_t frame_time = page.find("<section id=\"frame-time\">"), profile = page.find("<section id=\"profile\">");
+    return page.substr(frame_time, profile - frame_time) + page.substr(page.find("<section id=\"categories\">"));
+  };
+  EXPECT_EQ(charts(test::read_file(again)), charts(html));
 
   std::string compare = (dir / "compare.html").string();
   r = test::run_cli("compare '" + scene + "' " + small + " --modes master,threaded --sweep n=2,4 --html '" + compare +
@@ -357,8 +361,65 @@ TEST(HtmlReport, SavingsAreDrawnAsCostAgainstErrorWithTheirFront) {
   EXPECT_NE(html.find("data-chart=\"cost-error\" data-series=\"4\""), std::string::npos) << html.substr(0, 400);
   EXPECT_NE(html.find("data-name=\"Pareto front\" data-geometry=\"line\" data-points=\"2\""), std::string::npos);
   EXPECT_NE(html.find("data-name=\"budget (past 1 px)\""), std::string::npos);
+  // The same points as a table, right after the speedups and before any chart.
+  const size_t table = html.find("<table class=\"cost-error\">");
+  ASSERT_NE(table, std::string::npos);
+  EXPECT_LT(html.find("id=\"speedups\""), table);
+  EXPECT_LT(table, html.find("<svg"));
+  EXPECT_EQ(test::occurrences(html.substr(table, html.find("</table>", table) - table), "<tr><td class=\"name\">"), 3u)
+      << "a row per run with a drawn error";
+  EXPECT_NE(html.find("<td class=\"name\">budget</td><td>0.500</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"name\">past 1 px</td>"), std::string::npos);
   HtmlReportInput one;
   add_document(one, result_document_from_json(exact, "t.json"), "t.json");
   add_document(one, result_document_from_json(slow, "m.json"), "m.json");
   EXPECT_EQ(html_report(one).find("cost-error"), std::string::npos) << "one point weighs nothing";
+}
+
+TEST(HtmlReport, AnABCheckLeadsWithItsVerdictPerMetric) {
+  HtmlReportInput input;
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {2, 2, 2}), "base"), "base");
+  add_document(input, result_document_from_json(fake_result("threaded", 40, {3, 3, 3}), "current"), "current");
+  GateTable table;
+  GateRow frame;
+  frame.metric = "frame";
+  frame.base_ms = 2;
+  frame.current_ms = 3;
+  frame.change = 0.5;
+  frame.has_interval = true;
+  frame.change_low = 0.4;
+  frame.change_high = 0.6;
+  frame.p = 0.001;
+  frame.verdict = "slower";
+  frame.failed = true;
+  frame.why = "slower by more than the 5% tolerance";
+  table.metrics = {frame};
+  table.work_compared = true;
+  input.gate = GateSection{table, 0.05, 0.95, "/builds/base/crowdprof"};
+  const std::string html = html_report(input);
+  const size_t verdict = html.find("<table class=\"verdict\">");
+  ASSERT_NE(verdict, std::string::npos);
+  EXPECT_LT(verdict, html.find("id=\"headline\"")) << "the verdict first";
+  EXPECT_NE(html.find("<title>crowdprof report: walker \u00d7 40, backend none, A/B check against crowdprof: FAILED"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td class=\"name\"><span class=\"regression\">FAILED</span> (slower)</td><td "
+                      "class=\"key\">+50.0%</td><td>[+40.0%, +60.0%]</td><td>up to +5.0%</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("slower by more than the 5% tolerance"), std::string::npos);
+}
+
+TEST(HtmlReport, CountersAtZeroAreFoldedAway) {
+  Result run = fake_bench("threaded", 40, {1, 2, 3});
+  run.counters.present.fill(true);
+  run.counters.values = {};
+  run.counters.values.poses_updated = 40;
+  HtmlReportInput input;
+  add_result(input, run, "a.json");
+  const std::string html = html_report(input);
+  const size_t counters = html.find("id=\"counters\""), folded = html.find("<details class=\"zero-counters\">");
+  ASSERT_NE(folded, std::string::npos);
+  EXPECT_LT(html.find("id=\"frame-time\""), counters) << "the frame chart before the counters";
+  EXPECT_LT(html.find(">poses_updated</td>"), folded) << "counted: in the table";
+  EXPECT_NE(html.find("<summary>" + std::to_string(kCounterFields.size() - 1) + " counters were zero in every run"),
+            std::string::npos);
 }
