@@ -14,8 +14,8 @@
 #   bench/measure_cpu.sh [NEW] [OLD]
 #     NEW  crowdprof to measure (default build/crowdprof)
 #     OLD  a crowdprof from before, run side by side (optional); e.g. one built
-#          from commit 3f0d03a (the last one before the SIMD kernels) with
-#          -DCROWDPROF_NATIVE=ON, its default then
+#          from before the change being measured, with the build options it
+#          defaulted to then
 #   REPS=3 (runs per configuration), COMPARES=9 (0: skip them), OUT=folder for the JSON (default a temp dir)
 #   NEW_ARGS, OLD_ARGS: global options for each binary, e.g. to compare store
 #          policies with one binary: OLD_ARGS="--stores regular" NEW_ARGS=

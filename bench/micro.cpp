@@ -185,8 +185,8 @@ BENCHMARK(BM_MemoryWriteStreaming)->Threads(1)->Threads(2)->UseRealTime()->Unit(
 // The time for one thread to signal another and see its answer, through one
 // shared cache line: what a frame pays at each hand-over between threads (a
 // worker taking a task, waiting for a pose, the join). It depends on where the
-// host puts the two vCPUs: measured 75-110 ns when they share a cache, about
-// 390 ns when they do not (docs/performance.md, crowd scale).
+// host puts the two vCPUs, several times longer when they share no cache
+// (docs/performance.md, crowd scale).
 void BM_CoreRoundTrip(benchmark::State& state) {
   alignas(64) static std::atomic<int64_t> flag{0};
   if (state.thread_index() == 0) flag.store(0);  // before the threads' common start

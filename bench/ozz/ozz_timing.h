@@ -20,9 +20,9 @@ inline double ms_since(std::chrono::steady_clock::time_point start) {
 }
 
 // Blocks of 10 frames, ozz's then crowdprof's over the same frames f, which
-// side goes first alternating. Alternating every frame cost crowdprof's side
-// about 1.2x (ratio 0.49 against 0.36-0.41 in blocks of 10 or 40): the
-// switch, not the work.
+// side goes first alternating. Alternating every frame charges the side that
+// runs second with the switch between the two, not its work
+// (docs/experiments.md).
 template <class OzzFrame, class CrowdprofFrame>
 InterleavedTimes time_interleaved(size_t warmup, size_t frames, OzzFrame&& ozz_frame,
                                   CrowdprofFrame&& crowdprof_frame) {

@@ -71,7 +71,7 @@ HWY_INLINE void AddWeighted(BlendTag d, const LocalPose& pose, float weight, siz
 
 size_t BlendJointGroups(const BlendKernelArgs& args) {
 #if HWY_TARGET == HWY_SCALAR
-  // One lane is the scalar loop with more steps (1.65x its time): leave
+  // One lane is the scalar loop with more steps, so slower than it: leave
   // every joint to it.
   (void)args;
   return 0;

@@ -43,8 +43,8 @@ glm::mat4 multiply(const glm::mat4& a, const glm::mat4& b) {
 // R(r) S(s) of up to four joints, lane i for joint i: axis[3 c + k] holds
 // element k of column c. The products and sums are glm::mat3_cast's, then each
 // column times its scale, in the same order (and no contraction:
-// -ffp-contract=off), so the same bits as one joint at a time with glm: the
-// job in 0.83x the time (docs/performance.md).
+// -ffp-contract=off), so the same bits as one joint at a time with glm, in
+// less time (docs/performance.md).
 struct ScaledAxes {
   Float4 axis[9];
 };
@@ -106,8 +106,8 @@ glm::vec3 axis(const ScaledAxes& axes, int c, int i) {
 // parent * TRS(t, r, s) without forming TRS as a 4x4 and without the products by
 // its constant bottom row: three scaled rotation columns (lane i of `axes`)
 // and a translation.
-// Inlined: as a call it returned its matrix through the stack (the job 0.86x
-// its old time instead of 0.83x).
+// Inlined: as a call it returns its matrix through the stack, which the
+// caller then reads back, where inlined it stays in registers.
 inline __attribute__((always_inline)) glm::mat4 times_trs(const glm::mat4& parent, const glm::vec3& t,
                                                           const ScaledAxes& axes, int i) {
   const Columns p = columns_of(parent);

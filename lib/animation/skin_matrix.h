@@ -9,9 +9,8 @@ namespace crowdprof {
 // (three rows) would be 48 bytes instead of 64, but the palette (69 joints:
 // 4.4 KiB) sits in L1 either way, and software skinning blends and transforms
 // whole columns as two 8-float halves with fewer instructions than rows that
-// need dot products: 4.4 against 6.0 ns a vertex, 4 influences, measured on the
-// development machine. A GPU upload may still pack rows; that is the renderer's
-// choice.
+// need dot products (docs/experiments.md). A GPU upload may still pack rows;
+// that is the renderer's choice.
 using SkinMatrix = glm::mat4;
 
 }  // namespace crowdprof

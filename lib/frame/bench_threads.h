@@ -24,9 +24,8 @@ struct BenchThreads {
 // a bench holds it. Shared, not one per bench: oneTBB's workers serve one arena
 // at a time and come to another only after it has asked for them for a while,
 // so with an arena per bench `compare` (modes interleaved in blocks of frames)
-// ran a mode's first frames after another's block on the calling thread alone
-// (measured with --trace: the shared mode's parts all on one thread for the
-// first 7 frames of each 10-frame block, 9.1 us a frame against 6.7 us alone).
+// would run a mode's first frames after another's block on the calling thread
+// alone, slower than the same frames with every thread (docs/experiments.md).
 // Thread-safe.
 std::shared_ptr<BenchThreads> bench_threads(size_t threads);
 

@@ -244,10 +244,14 @@ const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const Local
   }
   // Into the thread's scratch, not the copy's pose: a joint the new action
   // leaves alone must keep its rest value after the fade, as it would
-  // sampled from rest.
+  // sampled from rest. The blend writes every joint of its output: the
+  // scratch is only sized for this character (within the room reserved).
   const PreparedCharacter& prepared = context_.prepared[crowd_.kind[copy]];
   LocalPose& blended = blended_[worker_index()];
-  blended = prepared.rest_pose;  // sized for this character; reuses its storage
+  const size_t joints = prepared.rest_pose.joint_count();
+  blended.translations.resize(joints);
+  blended.rotations.resize(joints);
+  blended.scales.resize(joints);
   const BlendLayer layers[] = {{&from, 1.0f - weight}, {&pose, weight}};
   run_job(BlendingJob{layers, &prepared.rest_pose, 0.1f, &blended}, "BlendingJob");
   since = stage_done(AnimationStage::Blending, since);

@@ -423,9 +423,7 @@ CheckWay way_of(const CheckPlan& plan) {
   return {time_runs, judge_timings};
 }
 
-}  // namespace
-
-CheckOutcome run_check(const CheckRun& r) {
+CheckOutcome check_outcome(const CheckRun& r) {
   CheckRequest asked = r.plan;
   asked.ab = !r.against.empty();
   for (const char* option : {"--csv", "--html", "--svg", "--trace", "--screenshot"})
@@ -462,6 +460,15 @@ CheckOutcome run_check(const CheckRun& r) {
   confirming.spread_s = std::max(plan.spread_s, r.confirm_spread);
   if (r.result.empty()) remeasure = [&] { return measure(state, confirming, outcome.baseline, way.runs); };
   way.judge(r, outcome, remeasure);
+  return outcome;
+}
+
+}  // namespace
+
+CheckOutcome run_check(const CheckRun& request) {
+  const auto start = std::chrono::steady_clock::now();
+  CheckOutcome outcome = check_outcome(request);
+  outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
 }
 

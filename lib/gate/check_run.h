@@ -95,6 +95,7 @@ struct CheckOutcome {
   CheckResult result;       // Gated; Counted: the work alone
   CountCheck count;         // Counted
   std::optional<AbRun> ab;  // Ab
+  double wall_s = 0;        // seconds run_check took
 };
 
 // Runs the check: UsageError, SettingError or InputError for what cannot be

@@ -1,5 +1,5 @@
 // Lets valgrind run this binary on hosts whose CPU lacks RDTSCP (KVM guests
-// that hide it, as this project's 2-core AMD VMs do). Debian 12's libhwy
+// that hide it). Debian 12's libhwy
 // (1.0.3) measures its timer's resolution in a static initialiser, with
 // RDTSCP, before main: valgrind 3.19 then stops with SIGILL (exit 132), so
 // `check --metric instructions` and `./setup.sh valgrind` could not start.

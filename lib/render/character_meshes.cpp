@@ -94,7 +94,7 @@ void upload_rest_arrays(const SkinnedMesh& mesh, GLuint indices, GLuint (&buffer
 // The records of shaders/instances.glsl as a per-instance attribute of the
 // bound VAO (copy, palette offset and the source words, one uvec4): llvmpipe
 // fetches it once per instance, where reading it from a storage buffer costs
-// a gather per vertex (1.2x the CPU time, docs/rendering.md).
+// a gather per vertex (docs/rendering.md).
 void add_instance_attributes() {
   glEnableVertexAttribArray(kInstanceAttribute);
   glVertexAttribIFormat(kInstanceAttribute, 4, GL_UNSIGNED_INT, 0);

@@ -9,8 +9,8 @@
 // The vertex shader reads them as a uniform block, in pages of one block
 // (1,362 copies in 64 KiB): a record names its copy from its page's first, and
 // a draw binds its page (bind_page). On llvmpipe a storage block's element is
-// gathered per vertex, 1.06-1.22x the CPU time a frame, where a uniform
-// block's costs about nothing (docs/modes.md). frustum gpu's indirect draws
+// gathered per vertex, CPU time every frame, where a uniform block's costs
+// about nothing (docs/modes.md). frustum gpu's indirect draws
 // cannot change pages, so past one page its shader reads them as one storage
 // block (bind_storage).
 #pragma once

@@ -41,9 +41,11 @@ void write_check_svg(const std::string& path, const Result& baseline, const Resu
   write_text(path, "SVG", [&](std::ostream& out) { out << svg.str(); });
 }
 
-void write_verdict_files(const CheckRun& r, const GateTable& table, const std::string& suite) {
-  if (!r.junit.empty())
-    write_text(r.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table, suite); });
+// `ran`: the run the scene is named from.
+void write_verdict_files(const CheckRun& r, GateTable table, const Result& ran, double seconds) {
+  table.scene = verdict_scene(ran);
+  table.seconds = seconds;
+  if (!r.junit.empty()) write_text(r.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table); });
   if (!r.markdown.empty())
     write_text(r.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
 }
@@ -88,9 +90,10 @@ int report_count(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   row.failed = count.slower;
   if (count.slower) row.why = "more instructions per frame than the " + percent(tolerance).substr(1) + " tolerance";
   table.metrics = {row};
-  table.title = "instructions per measured frame, " + count.origin + ": stored baseline " + r.baseline;
+  table.title = "instructions per measured frame, " + count.origin + ": stored baseline " + r.baseline + ", " +
+                fixed(o.wall_s, 1) + " s";
   if (!r.outputs.json.empty()) write_result_file(r.outputs.json, "JSON", o.current);
-  write_verdict_files(r, table, "crowdprof check");
+  write_verdict_files(r, table, o.current, o.wall_s);
   if (r.files.prints_on_stdout(r.quiet)) {
     out << "instructions per frame: " << fixed(count.base, 0) << " -> " << fixed(count.current, 0) << " ("
         << percent(count.change) << "; tolerance " << percent(tolerance).substr(1) << "), "
@@ -121,8 +124,8 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   }
   if (!r.junit.empty() || !r.markdown.empty()) {
     GateTable table = check_verdict_table(o.result, options);
-    table.title = "stored baseline " + r.baseline + " against " + current_name;
-    write_verdict_files(r, table, "crowdprof check");
+    table.title = "stored baseline " + r.baseline + " against " + current_name + ", " + fixed(o.wall_s, 1) + " s";
+    write_verdict_files(r, table, current, o.wall_s);
   }
   if (r.files.prints_on_stdout(r.quiet)) out << format_check(o.result, options);
   return o.result.regressed() ? kExitRegression : kExitOk;
@@ -131,6 +134,7 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
 // check --against: the A/B of two builds.
 int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
   GateTable table = ab_verdict_table(ab.result, ab.gate);
+  table.command = "crowdprof check --against";
   std::ostringstream title;
   title << "A/B: " << r.groups << " groups (ABBA/BAAB), " << 4 * r.groups << " processes, " << std::fixed
         << std::setprecision(1) << ab.wall_s << " s\n  base:    " << ab.base_version
@@ -139,7 +143,7 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
   table.reproduce = ab.reproduce;
   if (!r.outputs.json.empty())
     write_text(r.outputs.json, "JSON", [&](std::ostream& file) { file << ab.document().dump(2) << "\n"; });
-  write_verdict_files(r, table, "crowdprof check --against");
+  write_verdict_files(r, table, ab.last_current, ab.wall_s);
   if (!r.outputs.html.empty()) {
     HtmlReportInput input;
     add_result(input, ab.last_base, ab.base_binary);

@@ -18,6 +18,17 @@ bool GateTable::failed() const {
   return false;
 }
 
+std::string GateTable::name() const {
+  return scene.empty() ? command : command + " (" + scene + ")";
+}
+
+std::string verdict_scene(const Result& result) {
+  const std::string& path = result.run.scene_file.empty() ? result.run.file : result.run.scene_file;
+  std::string text = path.substr(path.find_last_of('/') + 1) + " × " + std::to_string(result.run.characters);
+  if (!result.run.mode.empty()) text += ", " + result.run.mode;
+  return text;
+}
+
 namespace {
 
 std::string format(const char* pattern, double value) {
@@ -64,6 +75,21 @@ std::string markdown_cell(const std::string& text) {
   std::string out;
   for (char c : text) out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
   return out;
+}
+
+// An attribute's value: one line (CI systems show it as a heading), its
+// lines trimmed and joined by "; " and runs of spaces made one, escaped.
+std::string attribute(const std::string& text) {
+  std::string line;
+  std::istringstream lines(text);
+  for (std::string part; std::getline(lines, part);) {
+    std::string words;
+    for (char c : part)
+      if (!((c == ' ' || c == '\r') && (words.empty() || words.back() == ' '))) words += c == '\r' ? ' ' : c;
+    while (!words.empty() && words.back() == ' ') words.pop_back();
+    if (!words.empty()) line += (line.empty() ? "" : "; ") + words;
+  }
+  return xml_escape(line);
 }
 
 std::string failure_message(const GateRow& row) {
@@ -152,22 +178,28 @@ std::string verdict_text(const GateTable& table) {
   return out.str();
 }
 
-std::string verdict_junit(const GateTable& table, const std::string& suite) {
+std::string verdict_junit(const GateTable& table) {
   size_t cases = table.metrics.size() + 1, failures = 0;
   for (const GateRow& row : table.metrics) failures += row.failed;
   bool work_failed = table.work_compared && !table.work_equal;
   failures += work_failed;
+  const std::string suite = attribute(table.name());
+  const std::string time = " time=\"" + format("%.3f", table.seconds) + "\"";
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<testsuites name=\"crowdprof\" tests=\"" << cases << "\" failures=\"" << failures << "\">\n"
-      << "  <testsuite name=\"" << xml_escape(suite) << "\" tests=\"" << cases << "\" failures=\"" << failures
-      << "\" errors=\"0\" skipped=\"" << (table.work_compared ? 0 : 1) << "\">\n";
-  if (!table.title.empty())
-    out << "    <properties><property name=\"compared\" value=\"" << xml_escape(table.title) << "\"/></properties>\n";
+      << "<testsuites name=\"crowdprof\" tests=\"" << cases << "\" failures=\"" << failures << "\"" << time << ">\n"
+      << "  <testsuite name=\"" << suite << "\" tests=\"" << cases << "\" failures=\"" << failures
+      << "\" errors=\"0\" skipped=\"" << (table.work_compared ? 0 : 1) << "\"" << time << ">\n";
+  if (!table.scene.empty() || !table.title.empty()) {
+    out << "    <properties>";
+    if (!table.scene.empty()) out << "<property name=\"scene\" value=\"" << attribute(table.scene) << "\"/>";
+    if (!table.title.empty()) out << "<property name=\"compared\" value=\"" << attribute(table.title) << "\"/>";
+    out << "</properties>\n";
+  }
   for (const GateRow& row : table.metrics) {
-    out << "    <testcase classname=\"" << xml_escape(suite) << "\" name=\"" << xml_escape(row.metric) << "\">\n";
+    out << "    <testcase classname=\"" << suite << "\" name=\"" << attribute(row.metric) << "\"" << time << ">\n";
     if (row.failed)
-      out << "      <failure message=\"" << xml_escape(failure_message(row)) << "\" type=\"slower\">"
+      out << "      <failure message=\"" << attribute(failure_message(row)) << "\" type=\"slower\">"
           << xml_escape(table.reproduce.empty() ? "" : "reproduce: " + table.reproduce) << "</failure>\n";
     out << "      <system-out>"
         << xml_escape(row.verdict + ": " + value(row, row.base_ms) + " -> " + value(row, row.current_ms) + ", " +
@@ -175,21 +207,24 @@ std::string verdict_junit(const GateTable& table, const std::string& suite) {
         << "</system-out>\n"
         << "    </testcase>\n";
   }
-  out << "    <testcase classname=\"" << xml_escape(suite) << "\" name=\"work\">\n";
+  out << "    <testcase classname=\"" << suite << "\" name=\"work\"" << time << ">\n";
   if (!table.work_compared)
     out << "      <skipped message=\"not compared (--timings-only)\"/>\n";
   else if (work_failed)
-    out << "      <failure message=\"" << xml_escape("the work changed: " + table.work_detail)
-        << "\" type=\"work\"/>\n";
+    out << "      <failure message=\"" << attribute("the work changed: " + table.work_detail) << "\" type=\"work\">"
+        << xml_escape(table.work_detail) << "</failure>\n";
   else
     out << "      <system-out>" << xml_escape("the same: " + table.work_detail) << "</system-out>\n";
-  out << "    </testcase>\n  </testsuite>\n</testsuites>\n";
+  out << "    </testcase>\n";
+  // What was compared, its lines as lines.
+  if (!table.title.empty()) out << "    <system-out>" << xml_escape(table.title) << "</system-out>\n";
+  out << "  </testsuite>\n</testsuites>\n";
   return out.str();
 }
 
 std::string verdict_markdown(const GateTable& table) {
   std::ostringstream out;
-  out << "### crowdprof check: " << (table.failed() ? "FAILED" : "passed") << "\n\n";
+  out << "### " << markdown_cell(table.name()) << ": " << (table.failed() ? "FAILED" : "passed") << "\n\n";
   // The title's lines as lines (a hard break each), not one run-on paragraph.
   if (!table.title.empty()) {
     std::istringstream lines(table.title);

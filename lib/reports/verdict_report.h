@@ -10,6 +10,7 @@
 
 #include "gate/ab_check.h"
 #include "gate/regression.h"
+#include "result/result.h"
 
 namespace crowdprof {
 
@@ -28,13 +29,25 @@ struct GateRow {
 };
 
 struct GateTable {
-  std::string title;  // what was compared, one line
+  // The check ("crowdprof check", "crowdprof check --against") and its scene
+  // (verdict_scene): together they name the JUnit suite and the Markdown
+  // title, so that two gates in one pipeline read apart.
+  std::string command = "crowdprof check";
+  std::string scene;
+  double seconds = 0;  // the check's wall time: JUnit's `time`
+  std::string title;   // what was compared (lines)
   std::vector<GateRow> metrics;
   bool work_compared = false, work_equal = true;
   std::string work_detail;  // the digests, or what differs
   std::string reproduce;    // the command that reproduces the check
   bool failed() const;
+  // "crowdprof check (thesis.json × 160, threaded)": the command alone without a scene.
+  std::string name() const;
 };
+
+// The scene a gate ran, on one line: its file's name (the scene file's, else
+// the character's), the crowd and the mode, "thesis.json × 160, threaded".
+std::string verdict_scene(const Result& result);
 
 GateTable ab_verdict_table(const AbResult& result, const AbOptions& options);
 GateTable check_verdict_table(const CheckResult& result, const CheckOptions& options);
@@ -42,7 +55,10 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
 // Columns: metric, base, current, change, confidence interval, p, verdict;
 // then the work's line and, on a failure, the command that reproduces it.
 std::string verdict_text(const GateTable& table);
-std::string verdict_junit(const GateTable& table, const std::string& suite);
+// JUnit: one suite named table.name(), with the check's seconds as `time` on
+// it, on <testsuites> and on each case (the cases are judged from the same
+// runs); every attribute one line, what takes lines in elements' text.
+std::string verdict_junit(const GateTable& table);
 std::string verdict_markdown(const GateTable& table);
 
 }  // namespace crowdprof

@@ -18,10 +18,10 @@ uint64_t mix(uint64_t x) {
 
 }  // namespace
 
-float ActionClock::local_time(const Action& action, double t) const {
-  const double duration = action.duration();
+float ActionClock::local_time(const Action& clip, double t) const {
+  const double duration = clip.duration();
   const double local = duration > 0 ? std::fmod(static_cast<double>(phase) + (t - started), duration) : 0.0;
-  return action.start + static_cast<float>(local);
+  return clip.start + static_cast<float>(local);
 }
 
 TransitionSchedule::TransitionSchedule(std::span<const Character* const> characters, const Crowd& crowd, uint32_t seed)

@@ -28,8 +28,9 @@ struct ActionClock {
   float phase = 0.0f;
   double started = 0.0;
 
-  // Seconds on the action's own clock (from action.start) at time t.
-  float local_time(const Action& action, double t) const;
+  // Seconds on the clip's own clock (from clip.start) at time t; `clip` is
+  // the character's action numbered `action`.
+  float local_time(const Action& clip, double t) const;
 };
 
 // Where a copy stands at one moment: its action and, while it fades into it,

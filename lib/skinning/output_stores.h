@@ -14,10 +14,10 @@ namespace crowdprof {
 enum class OutputStores { Auto, Regular, Streaming };
 
 // Auto streams a frame whose skinned output (float format, every copy's
-// vertices x 24 bytes) is larger than this: measured on the development
-// machine (docs/performance.md, "Streaming stores"), output up to the caches'
-// size is read back (digest, GL upload) from cache and written fastest with
-// ordinary stores; beyond it, streaming wins.
+// vertices x 24 bytes) is larger than this (docs/performance.md, "Streaming
+// stores"): output up to the caches' size is read back (digest, GL upload)
+// from cache and written fastest with ordinary stores; beyond it, streaming
+// wins.
 constexpr uint64_t kStreamOutputBytes = uint64_t{64} << 20;
 
 // The policy in force: Auto unless forced (force_output_stores).

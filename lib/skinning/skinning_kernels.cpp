@@ -102,8 +102,7 @@ HWY_INLINE void StoreXyz(D d, V x, V y, V z, float* HWY_RESTRICT out) {
 // of 8 vertices, 96 bytes, ends mid-line): streamed straight, a line's parts
 // leave apart, and may leave as partial writes when other misses need the fill
 // buffers. So a streamed batch is skinned into L1 and streamed from there as
-// whole lines: 0.81-0.88x the time at AVX2 at 100,000 copies, the same at SSE4
-// (docs/performance.md).
+// whole lines (docs/performance.md).
 struct StageLines {
   alignas(64) float positions[3 * kSkinBatch];
   alignas(64) float normals[3 * kSkinBatch];
@@ -150,8 +149,7 @@ HWY_INLINE void StorePacked(D d, const V (&position)[3], const V (&normal)[3], c
 // a x b + c: fused, with one rounding, on the targets that have FMA (AVX2 and
 // up: Highway's AVX2 target requires it); a multiply, then an add, on the
 // others. Fused takes about a third of the kernel's floating-point operations
-// away: 0.80x the time at AVX2 and 0.81x at AVX3 (medians of 30 interleaved
-// pairs of BM_SkinningCrowd, docs/performance.md). Each target's bits are the
+// away (docs/performance.md). Each target's bits are the
 // same on every CPU, thread count and split into ranges, and the targets with
 // FMA agree with each other bit for bit (one rounding is one rounding); the two
 // arithmetics differ in the last places (tests/skinning/simd_test.cpp).
@@ -178,9 +176,8 @@ HWY_INLINE V MulAdd(V a, V b, V c) {
 // the kernel fills once a call (BroadcastPalette). Without AVX, broadcasting an
 // element from the palette is a load and a shuffle, and the shuffles share a
 // port with the interleaving; from the table it is a load folded into the
-// multiply: 0.86-0.89x the time at SSE4 and SSSE3. AVX2 broadcasts with a load
-// alone and would read 8 times the bytes from a table: 1.08x the time there, so
-// it does not (docs/performance.md).
+// multiply. AVX2 broadcasts with a load alone and would read 8 times the bytes
+// from a table, so it does not (docs/performance.md, docs/experiments.md).
 #if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX2 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
 constexpr bool kBroadcastTable = true;
 #else
@@ -289,7 +286,7 @@ HWY_INLINE void SkinLanesPacked(D d, const float* rows, size_t lane, const uint1
 // Float output is software-pipelined: a group of lanes' normal waits for its
 // square root and divide (about 36 cycles on AVX-512) while the next group's
 // matrices blend, instead of holding the out-of-order window until they end
-// (0.92-0.97x the time, docs/performance.md). Same steps, same bits.
+// (docs/performance.md). Same steps, same bits.
 template <class D>
 struct PendingNormal {
   hn::Vec<D> normal[3];

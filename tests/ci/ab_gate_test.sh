@@ -45,7 +45,7 @@ assert ab["work"]["equal"] and ab["work"]["base_digest"] == ab["work"]["current_
 assert ab["metrics"][0]["metric"] == "frame" and len(ab["metrics"][0]["ratios"]) == 6
 assert ab["wall_s"] > 0 and not ab["regressed"]
 summary = open(out + "/summary.md").read()
-assert summary.startswith("### crowdprof check: passed"), summary
+assert summary.startswith("### crowdprof check --against (humanoid.glb × 12, threaded): passed"), summary
 assert "| frame |" in summary and "Work: the same" in summary, summary
 html = open(out + "/report.html").read()
 assert "<html" in html and "base" in html and "current" in html
@@ -72,7 +72,7 @@ suites = ET.parse(sys.argv[1] + "/junit.xml").getroot()
 failed = [case.get("name") for case in suites.iter("testcase") if case.find("failure") is not None]
 assert failed == ["work"], failed
 assert "copies" in suites.find(".//failure").get("message") or "digest" in suites.find(".//failure").get("message")
-assert open(sys.argv[1] + "/summary.md").read().startswith("### crowdprof check: FAILED")
+assert open(sys.argv[1] + "/summary.md").read().startswith("### crowdprof check --against (humanoid.glb × 12, threaded): FAILED")
 PY
 
 # 3. Bad base builds: one line naming the binary, exit 3, before anything runs.
@@ -110,7 +110,7 @@ import sys, xml.etree.ElementTree as ET
 suites = ET.parse(sys.argv[1] + "/stored.xml").getroot()
 assert [case.get("name") for case in suites.iter("testcase")] == ["frame", "Animations", "work"]
 assert suites.get("failures") == "0"
-assert open(sys.argv[1] + "/stored.md").read().startswith("### crowdprof check: passed")
+assert open(sys.argv[1] + "/stored.md").read().startswith("### crowdprof check (humanoid.glb × 12, threaded): passed")
 PY
 
 # 5. The documented workflow parses, and calls this script as tested here.

@@ -29,10 +29,9 @@ TEST(Progress, OneLineOnATerminalOnlyForARunOfMoreThanASecond) {
   if (!std::filesystem::exists("/usr/bin/script")) GTEST_SKIP() << "script(1) (bsdutils) is not installed";
   std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
   // Well over the second after which progress shows, on any machine this
-  // runs on: 2.8 s on the fastest development machine so far (40 copies for
-  // 2500 frames took 1.0 s there, too close), about 6 s on the slowest.
-  // Under ASan a frame of this scene takes about 0.1 s: 300 frames are 30 s,
-  // still well over the second, where 1500 twice passed the test's 300 s limit.
+  // runs on, the fastest included (a lighter run came too close to it).
+  // Under ASan a frame of this scene is far slower: 300 frames are still well
+  // over the second, where 1500 would pass the test's 300 s limit.
   // An unoptimised build (./setup.sh coverage's -O0) is as slow.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || !defined(__OPTIMIZE__)
   const char* frames = "300";

@@ -147,7 +147,7 @@ TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
   Interrupted r = interrupt_cli({"capacity", humanoid_glb(), "--budget", "100000", "--modes", "master,threaded",
                                  "--start", "2", "--frames", "10000000", "--warmup", "0", "--json", result},
                                 // Long enough for both modes' first blocks under ASan on a busy
-                                // 2-core machine (2.5 s was not: a mode had measured no frame).
+                                // 2-core machine, so that each mode has measured a frame.
                                 dir, SIGINT, std::chrono::milliseconds(6000));
   ASSERT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: round 1 was cut short"), std::string::npos) << r.err;

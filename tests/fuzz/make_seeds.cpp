@@ -34,8 +34,8 @@ int main(int argc, char** argv) {
     small.vertices = kHumanoidMinVertices;
     Character humanoid = generate_humanoid(small);
     // One action of a few keys: a seed's cost per execution grows with its JSON
-    // and its keys (the full three actions made a 94 KB file that took 36 ms an
-    // execution under ASan), while the code that reads them is the same for one.
+    // and its keys (docs/fuzzing-and-sanitizers.md), while the code that reads
+    // them is the same for one.
     humanoid.actions.resize(1);
     Action& action = humanoid.actions[0];
     action.end = action.start;

@@ -192,16 +192,30 @@ TEST(AbGate, MetricsAreHolmCorrectedTogether) {
 TEST(VerdictReport, JUnitMarkdownAndText) {
   AbOptions options;
   GateTable table = ab_verdict_table(judge_ab(groups(1.10), options), options);
-  table.title = "A/B <of> two & builds";
+  table.command = "crowdprof check --against";
+  table.scene = "thesis.json × 160, threaded";
+  table.seconds = 12.25;
+  table.title = "A/B <of> two & builds\n  base:    crowdprof 1\n  current: crowdprof 2";
   table.reproduce = "crowdprof check scene.glb --against base";
-  std::string xml = verdict_junit(table, "crowdprof check --against");
-  EXPECT_NE(xml.find("<testsuites name=\"crowdprof\" tests=\"2\" failures=\"1\">"), std::string::npos) << xml;
-  EXPECT_NE(xml.find("<testcase classname=\"crowdprof check --against\" name=\"frame\">"), std::string::npos);
+  std::string xml = verdict_junit(table);
+  EXPECT_NE(xml.find("<testsuites name=\"crowdprof\" tests=\"2\" failures=\"1\" time=\"12.250\">"), std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testsuite name=\"crowdprof check --against (thesis.json × 160, threaded)\""), std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"crowdprof check --against (thesis.json × 160, threaded)\" name=\"frame\" "
+                     "time=\"12.250\">"),
+            std::string::npos)
+      << xml;
   EXPECT_NE(xml.find("<failure message=\"frame +"), std::string::npos) << xml;
-  EXPECT_NE(xml.find("A/B &lt;of&gt; two &amp; builds"), std::string::npos);
+  // The title's lines: one line in the property, as lines in the suite's text.
+  EXPECT_NE(xml.find("value=\"A/B &lt;of&gt; two &amp; builds; base: crowdprof 1; current: crowdprof 2\""),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<system-out>A/B &lt;of&gt; two &amp; builds\n  base:    crowdprof 1\n"), std::string::npos)
+      << xml;
   EXPECT_EQ(xml.find("<of>"), std::string::npos);
   std::string markdown = verdict_markdown(table);
-  EXPECT_EQ(markdown.rfind("### crowdprof check: FAILED", 0), 0u) << markdown;
+  EXPECT_EQ(markdown.rfind("### crowdprof check --against (thesis.json × 160, threaded): FAILED", 0), 0u) << markdown;
   EXPECT_NE(markdown.find("| frame |"), std::string::npos);
   EXPECT_NE(markdown.find("**slower**"), std::string::npos);
   EXPECT_NE(markdown.find("crowdprof check scene.glb --against base"), std::string::npos);
@@ -211,8 +225,31 @@ TEST(VerdictReport, JUnitMarkdownAndText) {
   EXPECT_NE(text.find("reproduce: crowdprof check"), std::string::npos);
 
   GateTable passed = ab_verdict_table(judge_ab(groups(1.0), options), options);
-  EXPECT_NE(verdict_junit(passed, "s").find("failures=\"0\""), std::string::npos);
+  EXPECT_NE(verdict_junit(passed).find("failures=\"0\""), std::string::npos);
+  EXPECT_EQ(verdict_markdown(passed).rfind("### crowdprof check: passed", 0), 0u) << "no scene: the command alone";
   EXPECT_EQ(verdict_text(passed).find("reproduce:"), std::string::npos);
+}
+
+// A work failure's detail takes lines: the message is one line, the detail
+// the failure's text.
+TEST(VerdictReport, JUnitAttributesAreOneLine) {
+  GateTable table;
+  table.scene = "a\nb.json × 2, master";
+  table.title = "line one\nline two";
+  table.work_compared = true;
+  table.work_equal = false;
+  table.work_detail = "digest 1 -> 2\n  the runs differ: frames";
+  const std::string xml = verdict_junit(table);
+  bool in_tag = false, in_value = false;
+  for (char c : xml) {
+    if (!in_value && c == '<') in_tag = true;
+    if (!in_value && c == '>') in_tag = false;
+    if (in_tag && c == '"') in_value = !in_value;
+    EXPECT_FALSE(in_value && c == '\n') << "a newline inside an attribute: " << xml;
+  }
+  EXPECT_NE(xml.find("message=\"the work changed: digest 1 -&gt; 2; the runs differ: frames\""), std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find(">digest 1 -&gt; 2\n  the runs differ: frames</failure>"), std::string::npos) << xml;
 }
 
 }  // namespace
@@ -248,7 +285,7 @@ TEST(AbGate, BaseCurrentAndChangeAgreeWhereTheMediansDrifted) {
   char base[32], current[32];  // as the reporters print milliseconds
   std::snprintf(base, sizeof base, row.base_ms < 1 ? "%.4f" : "%.3f", row.base_ms);
   std::snprintf(current, sizeof current, row.current_ms < 1 ? "%.4f" : "%.3f", row.current_ms);
-  for (const std::string& text : {verdict_text(table), verdict_markdown(table), verdict_junit(table, "frame")}) {
+  for (const std::string& text : {verdict_text(table), verdict_markdown(table), verdict_junit(table)}) {
     EXPECT_NE(text.find(base), std::string::npos) << text;
     EXPECT_NE(text.find(current), std::string::npos) << text;
   }

@@ -113,7 +113,7 @@ SoftwareUpload::Placed SoftwareUpload::place_float(const FrameView& view, size_t
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
   // Fresh storage (orphaning) before writing: writing into storage that a
   // draw may still read makes the driver wait for it. llvmpipe waits even
-  // for the last frame's finished draws: 2.5x the Rasterizer time without.
+  // for the last frame's finished draws, so without it every upload waits.
   glBufferData(GL_ARRAY_BUFFER, 2 * half, nullptr, GL_STREAM_DRAW);
   glBufferSubData(GL_ARRAY_BUFFER, 0, half, view.skinned_positions(i).data());
   glBufferSubData(GL_ARRAY_BUFFER, half, half, view.skinned_normals(i).data());
