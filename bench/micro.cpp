@@ -22,12 +22,15 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "animation/run_job.h"
 #include "animation/binding.h"
 #include "animation/blending.h"
+#include "animation/joint_mask.h"
 #include "animation/local_pose.h"
 #include "animation/pose.h"
 #include "animation/sampling.h"
@@ -223,7 +226,8 @@ void BM_Sampling(benchmark::State& state) {
 BENCHMARK(BM_Sampling);
 
 // A crossfade's blend (BlendingJob) of two sampled poses on one SIMD target:
-// the dance and the walk, 30% in.
+// the dance and the walk, 30% in; with the argument 1, the wave laid over
+// the spine's subtree (issue 56's masked layer, the fade masked by 1 - it).
 void BM_Blending(benchmark::State& state, std::string target) {
   if (std::string why = force_simd_target(target); !why.empty()) {
     state.SkipWithError(why.c_str());
@@ -236,9 +240,20 @@ void BM_Blending(benchmark::State& state, std::string target) {
   LocalPose rest, out;
   reset_to_rest(from.c.skeleton, &rest);
   reset_to_rest(from.c.skeleton, &out);
-  const BlendLayer layers[] = {{&from.pose, 0.7f}, {&to.pose, 0.3f}};
+  Copy over;
+  over.bindings = bind_action(over.c.skeleton, over.c.actions[2]);
+  reset_cursor(over.c.actions[2], &over.cursor);
+  run_job(SamplingJob{&over.c.actions[2], 0.5f, over.bindings.targets, &over.cursor, &over.pose}, "SamplingJob");
+  std::vector<float> upper, lower;
+  if (std::string why = joint_mask(from.c.skeleton, "spine_01", 0, &upper); !why.empty()) throw std::runtime_error(why);
+  for (float w : upper) lower.push_back(1.0f - w);
+  const bool masked = state.range(0) != 0;
+  const BlendLayer layers[] = {{&from.pose, 0.7f, masked ? std::span<const float>(lower) : std::span<const float>()},
+                               {&to.pose, 0.3f, masked ? std::span<const float>(lower) : std::span<const float>()},
+                               {&over.pose, 1.0f, upper}};
+  const std::span<const BlendLayer> used(layers, masked ? 3 : 2);
   for (auto _ : state) {
-    run_job(BlendingJob{layers, &rest, 0.1f, &out}, "BlendingJob");
+    run_job(BlendingJob{used, &rest, 0.1f, &out}, "BlendingJob");
     benchmark::DoNotOptimize(out.rotations.data());
   }
   force_simd_target("");
@@ -458,7 +473,10 @@ BENCHMARK(BM_PoseAndSkin)->Unit(benchmark::kMicrosecond);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   for (const std::string& target : crowdprof::available_simd_targets()) {
-    benchmark::RegisterBenchmark(("BM_Blending/" + target).c_str(), crowdprof::BM_Blending, target);
+    benchmark::RegisterBenchmark(("BM_Blending/" + target).c_str(), crowdprof::BM_Blending, target)
+        ->Arg(0)
+        ->Arg(1)
+        ->ArgName("masked");
     benchmark::RegisterBenchmark(("BM_Skinning/" + target).c_str(), crowdprof::BM_Skinning, target)
         ->DenseRange(0, 4)
         ->ArgName("influences");

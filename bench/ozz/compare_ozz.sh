@@ -27,7 +27,10 @@
 # lerp part ways, so its distance is printed, not held to that bound.
 # Needs ./setup.sh build done first.
 # WORK (default /tmp/crowdprof-ozz) holds the builds; FRAMES (120) per run.
-# PART=fades runs the crossfades only (and builds only the native and AVX2 ozz).
+# Then the same fades with a third action laid over half the body by a joint
+# mask (issue 56: ozz's partial blending, FADE layered), the mask's joint named.
+# PART=fades runs the crossfades only, PART=layers the layered ones only (both
+# build only the native and AVX2 ozz).
 set -euo pipefail
 ozz_source=$(realpath "${1:?usage: bench/ozz/compare_ozz.sh OZZ_SOURCE [PAIRS]}")
 pairs=${2:-8}
@@ -44,7 +47,7 @@ cmake --install "$root/build" --prefix "$work/prefix" --component development > 
 declare -A flags=([native]="-march=native" [avx2]="-mavx2 -mfma" [sse4]="-msse4.2")
 part=${PART:-all}
 variants="native avx2 sse4"
-[ "$part" = fades ] && variants="native avx2"
+[ "$part" = fades ] || [ "$part" = layers ] && variants="native avx2"
 for variant in $variants; do
   # Configured every time (cheap), so another OZZ_SOURCE is not ignored; built
   # incrementally: only the driver (and ozz) when they changed.
@@ -68,17 +71,20 @@ field() { python3 -c 'import json,sys; print(json.loads(sys.argv[1])[sys.argv[2]
 best=$("$crowdprof" --version | sed -n 's/.*SIMD \([A-Z0-9_]*\).*/\1/p')
 [ -n "$best" ] || { echo "compare_ozz.sh: no SIMD target in \`$crowdprof --version\`" >&2; exit 1; }
 
-fade_rows() {  # crossfades, one process a row: SCENE...
-  echo "Crossfades (sampled), 160 copies each fading every frame, one thread, sampling + blending +" \
+fade_rows() {  # crossfades, one process a row: sampled|layered SCENE...
+  local fade=$1
+  shift
+  echo "Crossfades ($fade), 160 copies each fading every frame, one thread, sampling + blending +" \
     "local-to-model, 2 x $frames frames in blocks of 10 alternating"
   for scene_file in "$@"; do
     for row in "$best native" "AVX2 avx2"; do
       read -r simd variant <<< "$row"
-      CROWDPROF_SIMD="$simd" "$work/$variant/ozz_driver" "$scene_file" 160 $((2 * frames)) 10 0 1 sampled |
+      CROWDPROF_SIMD="$simd" "$work/$variant/ozz_driver" "$scene_file" 160 $((2 * frames)) 10 0 1 "$fade" |
         python3 -c 'import json, sys
 r = json.load(sys.stdin)
 r.update(variant=sys.argv[1], scene=sys.argv[2], mm=1000 * r["max_delta"], share=100 * r["max_delta_of_height"])
-print("{scene}: crowdprof {simd} / ozz {variant}: ratio median {ratio_median:.2f} (quartiles {ratio_q1:.2f}-"
+r["over"] = " under " + r["mask"] + " layered" if r["mask"] else ""
+print("{scene}{over}: crowdprof {simd} / ozz {variant}: ratio median {ratio_median:.2f} (quartiles {ratio_q1:.2f}-"
       "{ratio_q3:.2f}); frame medians {crowdprof_median_ms:.3f} and {median_ms:.3f} ms; {poses_sampled} poses "
       "sampled, {joints_blended} joints blended a frame; ozz vertices within {mm:.3f} mm ({share:.4f}% of the "
       "height)".format(**r))
@@ -91,8 +97,9 @@ fade_scenes=("$work/locomotion.glb")
 "$crowdprof" gen -o "$work/locomotion.glb" --actions locomotion > /dev/null
 fox="$root/../shared/samples/Fox/glTF-Binary/Fox.glb"
 if [ -f "$fox" ]; then fade_scenes+=("$fox"); else echo "(no Fox at $fox: its crossfade rows skipped)"; fi
-if [ "$part" = fades ]; then
-  fade_rows "${fade_scenes[@]}"
+if [ "$part" = fades ] || [ "$part" = layers ]; then
+  [ "$part" = fades ] && fade_rows sampled "${fade_scenes[@]}"
+  fade_rows layered "${fade_scenes[@]}"
   exit 0
 fi
 
@@ -137,4 +144,5 @@ print(f"crowdprof {target} / ozz {variant}: ratio median {med:.2f} (quartiles {q
       f"frame medians {ours:.3f} and {theirs:.3f} ms")' "$variant"
 done
 
-fade_rows "${fade_scenes[@]}"
+fade_rows sampled "${fade_scenes[@]}"
+fade_rows layered "${fade_scenes[@]}"

@@ -115,10 +115,11 @@ int main(int argc, char** argv) {
   // processes changes both alike (docs/performance.md).
   const bool interleave = argc > 6 && std::stoul(argv[6]) != 0;
   // FADE sampled: every copy crossfading, sampling, blending and local-to-model
-  // only, both sides in one process (ozz_fades.h); none (the default): the
+  // only, both sides in one process (ozz_fades.h); layered: the same with a
+  // masked third action over half the body; none (the default): the
   // frame above.
   const std::string fade = argc > 7 ? argv[7] : "none";
-  if (fade != "none" && fade != "sampled") fail("FADE must be none or sampled");
+  if (fade != "none" && fade != "sampled" && fade != "layered") fail("FADE must be none, sampled or layered");
   if (copies == 0 || frames == 0) fail("COPIES and FRAMES must be at least 1");
   if (const char* simd = std::getenv(crowdprof::kSimdEnvironmentVariable); simd && *simd)
     if (std::string why = crowdprof::force_simd_target(simd); !why.empty()) fail(why);
@@ -128,10 +129,10 @@ int main(int argc, char** argv) {
   if (c.actions.empty()) fail("the character has no action");
   const crowdprof::Skeleton& s = c.skeleton;
   // The fades' vertex check compares the jobs on the keys ozz holds.
-  if (fade == "sampled") ozz_bench::round_like_ozz_storage(c);
+  if (fade != "none") ozz_bench::round_like_ozz_storage(c);
   const ozz_bench::OzzCharacter ozz_character = ozz_bench::make_ozz_character(c);
-  if (fade == "sampled") {
-    ozz_bench::run_sampled_fades(c, ozz_character, {copies, frames, warmup});
+  if (fade != "none") {
+    ozz_bench::run_sampled_fades(c, ozz_character, {copies, frames, warmup, fade == "layered"});
     return 0;
   }
   const oa::Skeleton* skeleton = ozz_character.skeleton.get();

@@ -18,8 +18,13 @@ struct FadeRun {
   size_t copies = 160;
   size_t frames = 240;
   size_t warmup = 10;
+  // Issue 56's layered work: a third action sampled per copy and laid over
+  // the subtree of the joint that holds closest to half the skeleton (both
+  // fading actions masked by 1 - that mask, ozz's partial blending).
+  bool layered = false;
 };
 
+// With run.layered, a masked layer over each fade (issue 56, item 5).
 // Prints one JSON line: both sides' median frames, the per-block ratios, the
 // work (poses sampled, joints blended a frame) and how far ozz's vertices
 // are from crowdprof's.

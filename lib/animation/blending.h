@@ -12,8 +12,16 @@ namespace crowdprof {
 
 // One pose of a blend and how much of it to take.
 struct BlendLayer {
+  BlendLayer() = default;
+  BlendLayer(const LocalPose* p, float w, std::span<const float> mask = {}) : pose(p), weight(w), joint_weights(mask) {}
+
   const LocalPose* pose = nullptr;
   float weight = 0.0f;  // >= 0; 0 leaves the layer out
+  // A mask: the share of `weight` each joint takes, one value per joint of the
+  // skeleton (empty: 1 everywhere). A joint whose share is 0 (or negative, or
+  // NaN) is left out of this layer as a weight 0 layer is, so the other layers
+  // give it the same bits as without this one.
+  std::span<const float> joint_weights;
 };
 
 // Per joint: translations and scales are the layers' weighted mean; rotations
@@ -39,17 +47,39 @@ struct BlendLayer {
 // same order either way and no fused multiply-add, so every target gives the
 // same bits: a digest with transitions does not depend on the blend's target.
 // Weights 0 and 1 are not special cases: 0 skips the layer, 1 divides by 1.
+//
+// Masks (a layer's joint_weights) make the weights, their sum and the rest
+// pose's share per joint, in the same operations and order, so a mask of all
+// ones gives the bits of no mask. To lay an action over the upper body only,
+// give it the mask m and the layers below it the mask 1 - m: where m is 1 the
+// action replaces them, where it is 0 they are untouched.
+//
+// Additive layers come after the blend, in order: each is a delta from a
+// reference pose (additive_delta below), added with its weight (and mask) as
+// ozz's additive layers are: translation += w * delta; rotation *= the delta
+// rotation taken a w of the way from identity (normalised lerp, on the
+// hemisphere of identity); scale *= 1 + w * (delta - 1). A delta of identity
+// changes nothing. Additive layers are blended one joint at a time.
 struct BlendingJob {
   std::span<const BlendLayer> layers;
-  const LocalPose* rest = nullptr;  // reset_to_rest's pose of the same skeleton
-  float threshold = 0.1f;           // > 0
-  LocalPose* output = nullptr;      // sized like `rest`; may be one of the layers' poses
+  const LocalPose* rest = nullptr;                   // reset_to_rest's pose of the same skeleton
+  float threshold = 0.1f;                            // > 0
+  LocalPose* output = nullptr;                       // sized like `rest`; may be one of the layers' poses
+  std::span<const BlendLayer> additive_layers = {};  // deltas; none may be `output`
 
   // Rest and output set and sized alike, threshold finite and > 0, at least one
-  // layer, each with a pose sized like rest and a finite weight >= 0.
+  // layer, each (additive ones too) with a pose sized like rest, a finite weight
+  // >= 0, and no mask or a mask of one value per joint; no additive layer's pose
+  // is the output.
   bool Validate() const;
   // False (and no output) when !Validate(). Allocates nothing.
   [[nodiscard]] bool Run() const;
 };
+
+// The delta that an additive layer adds: `pose` relative to `reference` (an
+// action's first frame, as glTF exporters and ozz's additive builder take it):
+// translation - reference's, conjugate(reference's rotation) * rotation, scale /
+// reference's. `delta` is sized like `pose` (allocating when it grows).
+void additive_delta(const LocalPose& pose, const LocalPose& reference, LocalPose* delta);
 
 }  // namespace crowdprof

@@ -18,6 +18,7 @@ struct BlendKernelArgs {
   float rest_weight = 0.0f;
   float inverse_total = 0.0f;  // 1 / (layers' weights + rest_weight)
   LocalPose* output = nullptr;
+  float threshold = 0.1f;  // the masked kernel's, per joint
 };
 
 // Blends joints [0, returned count): whole groups of four joints (none on
@@ -26,5 +27,10 @@ struct BlendKernelArgs {
 // operations in the same order as the scalar loop, no fused multiply-add, so
 // the same bits on every target.
 size_t blend_joint_groups(const BlendKernelArgs& args);
+
+// The same where some layer has a mask: weights, their sums and the rest
+// pose's share per joint (fill_rest, rest_weight and inverse_total unused),
+// as the scalar loop makes them.
+size_t blend_masked_joint_groups(const BlendKernelArgs& args);
 
 }  // namespace crowdprof

@@ -115,6 +115,29 @@ std::string vertex_cache_line(const nlohmann::json& models) {
   return line;
 }
 
+// Each joint's name and its parent's index (-1 for a root), in the skeleton's
+// order (parents first).
+nlohmann::json describe_joints(const Skeleton& skeleton) {
+  nlohmann::json joints = nlohmann::json::array();
+  for (size_t j = 0; j < skeleton.joint_count(); ++j)
+    joints.push_back({{"name", skeleton.names[j]}, {"parent", skeleton.parents[j]}});
+  return joints;
+}
+
+// The joints as an indented tree, a joint a line under its parent. Joints
+// come parents first, a subtree contiguous (gltf_convert.cpp's order), so
+// the skeleton's order is the tree's.
+std::string joint_tree(const Skeleton& skeleton) {
+  std::vector<size_t> depth(skeleton.joint_count(), 0);
+  std::string tree;
+  for (size_t j = 0; j < skeleton.joint_count(); ++j) {
+    const int parent = skeleton.parents[j];
+    if (parent >= 0) depth[j] = depth[static_cast<size_t>(parent)] + 1;
+    tree += "    " + std::string(2 * depth[j], ' ') + skeleton.names[j] + "\n";
+  }
+  return tree;
+}
+
 }  // namespace
 
 nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
@@ -131,6 +154,7 @@ nlohmann::json describe_asset(const GltfAsset& asset, int only_skin) {
          {"name", c.name},
          {"joints", c.skeleton.joint_count()},
          {"hierarchy_depth", c.skeleton.depth()},
+         {"joint_tree", describe_joints(c.skeleton)},
          {"vertices", c.mesh.vertex_count()},
          {"triangles", c.mesh.triangle_count()},
          {"primitives", c.mesh.primitives.size()},
@@ -213,6 +237,7 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
           << " channels, " << interpolations(a) << "\n";
     out << "  Draco:       " << (c.draco_decoded ? "decoded" : "no") << "\n";
     out << "  shared data: " << c.shared_bytes() << " bytes\n";
+    out << "  joint tree:  each joint under its parent\n" << joint_tree(c.skeleton);
   }
   return out.str();
 }

@@ -12,72 +12,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "animation/blend_poses.h"
 #include "animation/blending.h"
 #include "skinning/simd_target.h"
 
 namespace crowdprof {
 namespace {
-
-LocalPose random_blend_pose(size_t joints, std::mt19937& rng) {
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), scale(0.5f, 1.5f);
-  LocalPose p;
-  for (size_t j = 0; j < joints; ++j) {
-    p.translations.emplace_back(unit(rng), unit(rng), unit(rng));
-    p.scales.emplace_back(scale(rng), scale(rng), scale(rng));
-    glm::quat q(unit(rng), unit(rng), unit(rng), unit(rng));  // w, x, y, z; either sign
-    p.rotations.push_back(glm::normalize(q));
-  }
-  return p;
-}
-
-// The blend in double precision, written from blending.h's contract.
-LocalPose reference_blend(std::span<const BlendLayer> layers, const LocalPose& rest, float threshold) {
-  LocalPose out = rest;
-  for (size_t j = 0; j < rest.joint_count(); ++j) {
-    glm::dvec3 t(0.0), s(0.0);
-    glm::dvec4 q(0.0);  // x y z w
-    double total = 0.0;
-    auto add = [&](const LocalPose& pose, double w) {
-      t += w * glm::dvec3(pose.translations[j]);
-      s += w * glm::dvec3(pose.scales[j]);
-      const glm::quat& r = pose.rotations[j];
-      const glm::dvec4 v(r.x, r.y, r.z, r.w);
-      q += glm::dot(q, v) < 0.0 ? -w * v : w * v;
-      total += w;
-    };
-    for (const BlendLayer& layer : layers)
-      if (layer.weight > 0.0f) add(*layer.pose, layer.weight);
-    if (total < threshold) add(rest, threshold - total);
-    out.translations[j] = glm::vec3(t / total);
-    out.scales[j] = glm::vec3(s / total);
-    const glm::dvec4 n = q / glm::length(q);
-    out.rotations[j] =
-        glm::quat(static_cast<float>(n.w), static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z));
-  }
-  return out;
-}
-
-// Largest difference of any component.
-float largest_blend_gap(const LocalPose& a, const LocalPose& b) {
-  float gap = 0.0f;
-  for (size_t j = 0; j < a.joint_count(); ++j)
-    for (int c = 0; c < 4; ++c) {
-      if (c < 3) {
-        gap = std::max(gap, std::fabs(a.translations[j][c] - b.translations[j][c]));
-        gap = std::max(gap, std::fabs(a.scales[j][c] - b.scales[j][c]));
-      }
-      gap = std::max(gap, std::fabs(a.rotations[j][c] - b.rotations[j][c]));
-    }
-  return gap;
-}
-
-bool same_bits(const LocalPose& a, const LocalPose& b) {
-  const size_t n = a.joint_count();
-  return n == b.joint_count() &&
-         std::memcmp(a.translations.data(), b.translations.data(), n * sizeof(glm::vec3)) == 0 &&
-         std::memcmp(a.scales.data(), b.scales.data(), n * sizeof(glm::vec3)) == 0 &&
-         std::memcmp(a.rotations.data(), b.rotations.data(), n * sizeof(glm::quat)) == 0;
-}
 
 // Each test runs every target, then TearDown goes back to the best.
 struct BlendSimd : ::testing::Test {
