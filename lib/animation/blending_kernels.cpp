@@ -117,21 +117,26 @@ struct MaskedSums {
 
 // sums += weight * pose in the lanes whose weight is > 0; the others are left
 // as they were (the scalar loop skips those joints), so a joint outside every
-// mask but one gets the bits of that one alone.
+// mask but one gets the bits of that one alone. A mask's joints are
+// contiguous (parents first, subtrees together), so most groups lie wholly
+// outside a layer (skipped) or wholly inside it (no selects).
 HWY_INLINE void AddMasked(BlendTag d, const LocalPose& pose, BlendVec w, size_t first, MaskedSums& sums) {
   const auto on = hn::Gt(w, hn::Zero(d));
+  if (hn::AllFalse(d, on)) return;
+  const bool all = hn::AllTrue(d, on);
+  auto pick = [&](BlendVec added, BlendVec old) { return all ? added : hn::IfThenElse(on, added, old); };
   BlendVec t[3], s[3], q[4];
   hn::LoadInterleaved3(d, floats_of(pose.translations) + 3 * first, t[0], t[1], t[2]);
   hn::LoadInterleaved3(d, floats_of(pose.scales) + 3 * first, s[0], s[1], s[2]);
   hn::LoadInterleaved4(d, floats_of(pose.rotations) + 4 * first, q[0], q[1], q[2], q[3]);
   for (size_t k = 0; k < 3; ++k) {
-    sums.translation[k] = hn::IfThenElse(on, hn::Add(sums.translation[k], hn::Mul(w, t[k])), sums.translation[k]);
-    sums.scale[k] = hn::IfThenElse(on, hn::Add(sums.scale[k], hn::Mul(w, s[k])), sums.scale[k]);
+    sums.translation[k] = pick(hn::Add(sums.translation[k], hn::Mul(w, t[k])), sums.translation[k]);
+    sums.scale[k] = pick(hn::Add(sums.scale[k], hn::Mul(w, s[k])), sums.scale[k]);
   }
   const BlendVec signed_w = hn::IfThenElse(hn::Lt(QuatDot(sums.rotation, q), hn::Zero(d)), hn::Neg(w), w);
   for (size_t c = 0; c < 4; ++c)
-    sums.rotation[c] = hn::IfThenElse(on, hn::Add(sums.rotation[c], hn::Mul(signed_w, q[c])), sums.rotation[c]);
-  sums.total = hn::IfThenElse(on, hn::Add(sums.total, w), sums.total);
+    sums.rotation[c] = pick(hn::Add(sums.rotation[c], hn::Mul(signed_w, q[c])), sums.rotation[c]);
+  sums.total = pick(hn::Add(sums.total, w), sums.total);
 }
 
 size_t BlendMaskedJointGroups(const BlendKernelArgs& args) {
