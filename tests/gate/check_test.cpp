@@ -254,6 +254,21 @@ TEST(Check, ResultsOfAnotherRunAreRefused) {
   EXPECT_NO_THROW(require_same_run(older, newer, "base.json"));
   older.run.backend = newer.run.backend = "egl";
   EXPECT_THROW(require_same_run(older, newer, "base.json"), InputError);
+  // Other switches are named as options, those that differ alone (issue 55:
+  // it printed both "switches" objects as JSON).
+  Result culled = baseline;
+  culled.run.switches.animation_culling = !baseline.run.switches.animation_culling;
+  try {
+    require_same_run(baseline, culled, "base.json");
+    FAIL() << "other switches were accepted";
+  } catch (const InputError& e) {
+    const std::string on = baseline.run.switches.animation_culling ? "on" : "off";
+    const std::string off = baseline.run.switches.animation_culling ? "off" : "on";
+    EXPECT_NE(std::string(e.what()).find("mode switches --culling " + on + " there, --culling " + off + " here"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find('{'), std::string::npos) << e.what();
+  }
 }
 
 TEST(Check, BrokenBaselinesAreInputErrors) {
