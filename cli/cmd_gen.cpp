@@ -66,7 +66,8 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
       ->capture_default_str();
   cmd->add_option("--actions", args->actions,
                   "default: dance, walk, wave (scenes/humanoid.glb); locomotion: idle, walk, run, for --transitions")
-      ->check(CLI::IsMember({"default", "locomotion"}))
+      ->check(CLI::IsMember({"default", "locomotion"}).description(""))
+      ->type_name("default|locomotion")
       ->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
   cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -65,6 +66,12 @@ TEST(HelpText, EveryCommandReadsAsOneDocument) {
                                         << r.out;
       EXPECT_NE(s.heading, "Options") << command << ": a heading that says nothing:\n" << r.out;
     }
+    // Defaults as a reader reads them: no 0.03333333333333333.
+    std::smatch long_number;
+    EXPECT_FALSE(std::regex_search(r.out, long_number, std::regex("[0-9]\\.[0-9]{5,}")))
+        << command << ": " << long_number.str();
+    // No CLI11 set spelling such as "VALUE:{default,locomotion}".
+    EXPECT_EQ(r.out.find(":{"), std::string::npos) << command << ":\n" << r.out;
     EXPECT_EQ(heading_of(sections, "--help"), "General") << r.out;
     EXPECT_EQ(heading_of(sections, "--simd"), "General") << command << ": the global options are a command's too";
   }
