@@ -318,6 +318,18 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
   EXPECT_EQ(r.out.rfind("ok calibrated", 0), 0u) << r.out;
 
+  // Recording a baseline writes no verdict: --junit - leaves stdout to its
+  // line, while --json - takes stdout whole (the declared outputs decide).
+  r = test::run_cli("check --result '" + base + "' --baseline '" + (dir / "again.json").string() +
+                    "' --update-baseline --junit -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("baseline written: ", 0), 0u) << r.out;
+  r = test::run_cli("check --result '" + base + "' --baseline '" + (dir / "again.json").string() +
+                    "' --update-baseline --json -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("baseline written"), std::string::npos) << r.out;
+  EXPECT_NO_THROW((void)json::parse(r.out)) << r.out;
+
   // A fresh run with the baseline's options (taken from it): the counters and
   // digest must match exactly; the timing's tolerance is wide, as a loaded
   // machine may be slower now than a second ago.
