@@ -81,7 +81,7 @@ std::string CommandHelp::make_section(const std::string& heading, const std::vec
 std::string CommandHelp::make_groups_of(const CLI::App* app) const {
   // The top level's options are all general: its default group is that section.
   const std::string general_group = app->get_parent() ? kGeneralGroup : "Options";
-  std::vector<std::string> groups, listed;  // as declared; as listed
+  std::vector<std::string> groups;  // as declared, then as listed
   for (const std::string& group : app->get_groups())
     if (!group.empty() && group != general_group) groups.push_back(group);
   auto options_of = [&](const std::string& group) {
@@ -103,11 +103,10 @@ std::string CommandHelp::make_groups_of(const CLI::App* app) const {
       if (setting.group == group) return 2;
     return 1;
   };
-  listed = groups;
-  std::stable_sort(listed.begin(), listed.end(),
+  std::stable_sort(groups.begin(), groups.end(),
                    [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
   std::vector<std::string> sections;
-  for (const std::string& group : listed) sections.push_back(make_section(group, options_of(group), false));
+  for (const std::string& group : groups) sections.push_back(make_section(group, options_of(group), false));
   // General: -h, and the global options (the app's) a command also takes.
   std::vector<const CLI::Option*> general = options_of(general_group);
   if (app->get_help_ptr()) general.insert(general.begin(), app->get_help_ptr());
