@@ -64,7 +64,7 @@ void group_options(CLI::App& cmd, const std::string& group, std::initializer_lis
 void group_outputs(CLI::App& cmd) {
   group_options(cmd, kOutputsGroup,
                 {"--csv", "--summary-csv", "--json", "--gbench-json", "--trace", "--screenshot", "--svg", "--html",
-                 "--junit", "--markdown", "--count-instructions", "--calibrate", "--quiet"});
+                 "--junit", "--markdown", "--quiet"});
 }
 
 crowdprof::SpecLayer command_line_layer(const BenchCliOptions& o) {
@@ -84,10 +84,6 @@ void resolve_bench_spec(BenchCliOptions& o, const crowdprof::SpecLayer* baseline
   o.spec = crowdprof::resolve_run_spec(crowdprof::run_layers(command_line_layer(o), baseline, &o.defaults));
 }
 
-crowdprof::RunOutputs bench_outputs(const BenchCliOptions& o) {
-  return {o.csv, o.json, o.trace, o.screenshot, o.html};
-}
-
 void require_writable_outputs(const BenchCliOptions& o, const std::vector<crowdprof::NamedPath>& inputs) {
   std::vector<crowdprof::NamedPath> all = crowdprof::bench_input_files(o.spec.file);
   all.insert(all.end(), inputs.begin(), inputs.end());
@@ -96,19 +92,22 @@ void require_writable_outputs(const BenchCliOptions& o, const std::vector<crowdp
 
 namespace {
 struct OutputKind {
-  const char* option;
-  const char* what;  // in messages: "cannot write SVG file ..."
+  const char* option;  // in messages: "--json X.glb is the input file"
+  const char* what;    // in messages: "cannot write SVG file ..."
+  const char* flags;   // as declared, when more than the option
 };
 // By OutputOption.
-constexpr OutputKind kOutputKinds[] = {{"--csv", "CSV"},          {"--json", "JSON"},        {"--trace", "trace"},
-                                       {"--screenshot", "PNG"},   {"--html", "HTML"},        {"--svg", "SVG"},
-                                       {"--summary-csv", "CSV"},  {"--gbench-json", "JSON"}, {"--junit", "JUnit XML"},
-                                       {"--markdown", "Markdown"}};
+constexpr OutputKind kOutputKinds[] = {
+    {"--csv", "CSV", nullptr},           {"--json", "JSON", nullptr},        {"--trace", "trace", nullptr},
+    {"--screenshot", "PNG", nullptr},    {"--html", "HTML", nullptr},        {"--svg", "SVG", nullptr},
+    {"--summary-csv", "CSV", nullptr},   {"--gbench-json", "JSON", nullptr}, {"--junit", "JUnit XML", nullptr},
+    {"--markdown", "Markdown", nullptr}, {"-o", "PNG", "-o,--output"},       {"-o", "HTML", "-o,--output"}};
 }  // namespace
 
 CLI::Option* DeclaredOutputs::declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help) {
   declared_.emplace_back(output, &path);
-  return cmd.add_option(kOutputKinds[static_cast<size_t>(output)].option, path, help);
+  const OutputKind& kind = kOutputKinds[static_cast<size_t>(output)];
+  return cmd.add_option(kind.flags ? kind.flags : kind.option, path, help)->type_name("FILE")->group(kOutputsGroup);
 }
 
 crowdprof::OutputFiles DeclaredOutputs::files() const {

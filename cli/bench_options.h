@@ -23,7 +23,21 @@
 // The output options, each declared once: its option and what its file holds
 // come from one table (cli/bench_options.cpp), the help from the command that
 // opts into it. The table's order is the order the files are checked in.
-enum class OutputOption { Csv, Json, Trace, Screenshot, Html, Svg, SummaryCsv, GbenchJson, Junit, Markdown };
+// PngImage and HtmlPage are -o,--output: the file that render and report write.
+enum class OutputOption {
+  Csv,
+  Json,
+  Trace,
+  Screenshot,
+  Html,
+  Svg,
+  SummaryCsv,
+  GbenchJson,
+  Junit,
+  Markdown,
+  PngImage,
+  HtmlPage
+};
 
 // The outputs a command opts into (hyperfine's ExportManager): declared on the
 // command once each, then, as the command line gave them, the files that are
@@ -31,7 +45,8 @@ enum class OutputOption { Csv, Json, Trace, Screenshot, Html, Svg, SummaryCsv, G
 // (crowdprof::OutputFiles).
 class DeclaredOutputs {
  public:
-  // Declares `output` on `cmd` with the command's `help`, its path in `path`.
+  // Declares `output` on `cmd` with the command's `help`, its path in `path`,
+  // under Outputs, its value named FILE.
   CLI::Option* declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help);
   crowdprof::OutputFiles files() const;
 
@@ -77,6 +92,7 @@ std::string as_options(const crowdprof::SettingText& text);
 inline const std::string kModeSwitchesGroup = "Mode switches";
 inline const std::string kOutputsGroup = "Outputs";
 inline const std::string kGateGroup = "Gate";
+inline const std::string kMeasurementGroup = "Measurement";
 
 // Puts the options named (those the command has) under `group` in --help.
 void group_options(CLI::App& cmd, const std::string& group, std::initializer_list<const char*> names);
@@ -85,9 +101,6 @@ void group_options(CLI::App& cmd, const std::string& group, std::initializer_lis
 void group_outputs(CLI::App& cmd);
 
 void add_bench_options(CLI::App& cmd, BenchCliOptions& options);
-
-// --csv, --json, --trace, --screenshot and --html as the command line gave them.
-crowdprof::RunOutputs bench_outputs(const BenchCliOptions& options);
 
 // UsageError, before any work, when one of the command's declared outputs
 // cannot be written, is the character file or a character of the scene (or one

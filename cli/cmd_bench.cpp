@@ -145,5 +145,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
       "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "
       "opens in any browser");
   group_outputs(*cmd);
+  // What each frame records besides its time: choices of measurement, not files.
+  group_options(*cmd, kMeasurementGroup, {"--frames", "--warmup", "--calibrate", "--count-instructions"});
   cmd->callback([&run, options, outputs] { run = [options, outputs] { return bench(*options, *outputs); }; });
 }

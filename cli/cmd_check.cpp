@@ -10,6 +10,7 @@
 #include <memory>
 #include <string_view>
 
+#include "base/number_text.h"
 #include "base/switch_table.h"
 #include "cli/bench_options.h"
 #include "cli/commands.h"
@@ -72,11 +73,7 @@ CheckRun request_of(const CheckCliOptions& o) {
   r.command_line = command_line_layer(o.bench);
   r.defaults = o.bench.defaults;
   r.quiet = o.bench.quiet;
-  r.outputs = bench_outputs(o.bench);
   r.files = o.bench.outputs.files();
-  r.svg = o.svg;
-  r.junit = o.junit;
-  r.markdown = o.markdown;
   for (const CLI::Option* option : o.command->get_options())
     if (option->count() > 0) {
       for (const std::string& name : option->get_lnames()) r.given.insert("--" + name);
@@ -103,9 +100,16 @@ int check(const CheckCliOptions& o) {
 
 void add_check_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<CheckCliOptions>();
-  auto* cmd = app.add_subcommand("check",
-                                 "Run a bench (or read a result) and compare it with a baseline: exit 1 "
-                                 "when it got slower or its work changed (see docs/compare-and-check.md)");
+  auto* cmd = app.add_subcommand(
+      "check",
+      "Compare a run with a stored baseline (--baseline) or with a base build run beside this one (--against, an "
+      "A/B): exit 1 when it got slower or its work changed, 0 with a one-line summary otherwise. A stored baseline "
+      "is a result recorded earlier (--update-baseline); the run is a bench of this build, or a result given with "
+      "--result. The two modes differ in their defaults: a stored baseline gates on the calibrated frame (the "
+      "frame over a calibration probe timed beside it, in probes: 0.45 probes is a frame that took 0.45 times as "
+      "long as its probe) with a tolerance of " +
+          CheckRequest{}.tolerance + ", an A/B on the " + metric_display_name(AbOptions{}.metrics.front()) + " with " +
+          fixed(kAbTolerance * 100, 0) + "%. See docs/compare-and-check.md and docs/ci.md.");
   cmd->footer(
       "Examples:\n  crowdprof check scenes/thesis.json --baseline base.json --update-baseline\n"
       "  crowdprof check scenes/thesis.json --baseline base.json\n"
@@ -144,6 +148,7 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--metric", options->metrics,
                   "Timed metrics that must not regress: calibrated (the wall-clock frame over a fixed calibration "
                   "probe timed right after it on the same threads, so a change of the machine's speed falls on both; "
+                  "its unit is probes: 0.45 probes is a frame that took 0.45 times as long as the probe beside it; "
                   "a baseline or --result without it is checked on cpu; not with --against), cpu (CPU time of every "
                   "thread in the frame, waiting "
                   "workers' spinning included), frame (wall clock), categories such as Animations, Rasterizer, or all: "
@@ -152,10 +157,11 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "counter, else callgrind), tolerance 1%, one run")
       ->delimiter(',')
       ->allow_extra_args(false)  // one comma-separated value: a file after it stays the file
-      ->capture_default_str();
+      ->default_str(CheckRequest{}.metrics.front() + "; with --against, " +
+                    metric_display_name(AbOptions{}.metrics.front()));
   cmd->add_option("--tolerance", options->tolerance,
                   "Slowdown of the median allowed before a significant shift fails: 7% or 0.07")
-      ->capture_default_str();
+      ->default_str(CheckRequest{}.tolerance + "; with --against, " + fixed(kAbTolerance * 100, 0) + "%");
   cmd->add_option("--floor", options->floor,
                   "Smallest slowdown of a median that can fail, however significant: a time (0.05ms, 50us) or a share "
                   "of the baseline's median frame (2%)")
@@ -196,8 +202,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       *cmd, OutputOption::Html, options->bench.html,
       "Write an HTML report: the verdict per metric against the tolerance, baseline and current side by side");
   group_outputs(*cmd);
-  group_options(*cmd, kGateGroup,
-                {"--baseline", "--against", "--groups", "--result", "--metric", "--tolerance", "--floor", "--runs",
-                 "--spread", "--alpha", "--confirm", "--confirm-spread", "--timings-only", "--update-baseline"});
+  // Both modes' gate, then each mode's own options.
+  group_options(*cmd, kGateGroup, {"--metric", "--tolerance", "--floor", "--alpha", "--timings-only"});
+  group_options(*cmd, "Stored baseline",
+                {"--baseline", "--update-baseline", "--result", "--runs", "--spread", "--confirm", "--confirm-spread"});
+  group_options(*cmd, "A/B of two builds", {"--against", "--groups"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

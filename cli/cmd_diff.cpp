@@ -60,11 +60,11 @@ int diff(const DiffCliOptions& o) {
 void add_diff_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<DiffCliOptions>();
   auto* cmd = app.add_subcommand("diff",
-                                 "Two results (bench, check or compare JSON) side by side: per metric the "
-                                 "medians and change, untested (results run apart differ by the machine's "
-                                 "drift: use compare or check --against), but the calibrated frame where both "
-                                 "have it; exit 1 when B does other work or its calibrated frame is slower "
-                                 "(see docs/compare-and-check.md)");
+                                 "Two results (bench, check or compare JSON) side by side, metric by metric: exit 1 "
+                                 "when B does other work or its calibrated frame is slower. Only the calibrated "
+                                 "frame is tested, where both have it; the other medians and changes are shown "
+                                 "untested, since results run apart differ by the machine's drift (to test them, "
+                                 "use compare or check --against). See docs/compare-and-check.md.");
   cmd->footer("Examples:\n  crowdprof diff before.json after.json");
   cmd->add_option("a", options->a, "Result A, the reference (bench --json, check --json or compare --json)")
       ->required();
@@ -81,6 +81,8 @@ void add_diff_command(CLI::App& app, std::function<int()>& run) {
   options->outputs.declare(*cmd, OutputOption::Json, options->json, "Also write the comparison as JSON to this file");
   options->outputs.declare(*cmd, OutputOption::Html, options->html,
                            "Also write an HTML report of A and B side by side (docs/report.md)");
-  cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)");
+  cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on stdout (the exit status and --json still tell)")
+      ->group(kOutputsGroup);
+  group_options(*cmd, kGateGroup, {"--tolerance", "--floor", "--alpha"});
   cmd->callback([&run, options] { run = [options] { return diff(*options); }; });
 }

@@ -5,6 +5,7 @@
 #include "base/errors.h"
 #include "gen/gltf_writer.h"
 #include "gen/humanoid.h"
+#include "cli/bench_options.h"
 #include "cli/commands.h"
 #include "base/output_file.h"
 
@@ -50,7 +51,9 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
   cmd->footer(
       "Examples:\n  crowdprof gen -o big.glb --bones 300 --vertices 20000\n  crowdprof gen -o locomotion.glb --actions "
       "locomotion");
-  cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")->required();
+  cmd->add_option("-o,--output", args->output, "File to write; .gltf gives JSON glTF, anything else .glb")
+      ->required()
+      ->group("Output");
   cmd->add_option("--bones", args->humanoid.bones, "Joint count, 20 to 1024")->capture_default_str();
   cmd->add_option("--vertices", args->humanoid.vertices,
                   "Vertex count, 500 to 2,500,000 (the most the loader takes back)")
@@ -63,9 +66,12 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
       ->capture_default_str();
   cmd->add_option("--actions", args->actions,
                   "default: dance, walk, wave (scenes/humanoid.glb); locomotion: idle, walk, run, for --transitions")
-      ->check(CLI::IsMember({"default", "locomotion"}))
+      ->check(CLI::IsMember({"default", "locomotion"}).description(""))
+      ->type_name("default|locomotion")
       ->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
   cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");
+  group_options(*cmd, "Humanoid", {"--bones", "--vertices", "--seed", "--lods", "--actions"});
+  group_options(*cmd, "Output", {"--draco", "--gltf"});
   cmd->callback([&run, args] { run = [args] { return gen(*args); }; });
 }

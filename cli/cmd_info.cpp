@@ -3,6 +3,7 @@
 #include "asset/asset_report.h"
 #include "base/errors.h"
 #include "cli/commands.h"
+#include "cli/help_format.h"
 #include "cli/installed_data.h"
 #include "frame/bench_setup.h"
 #include "scene/scene_file.h"
@@ -31,7 +32,8 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
                   "glTF (.gltf) or binary glTF (.glb) file; FILE#skin=N describes only skin N; a scene file (.json): "
                   "each of its characters")
       ->required();
-  cmd->add_flag("--json", json, "Print the same as JSON, for scripts");
+  // info's one option of its own is with the options every command takes.
+  cmd->add_flag("--json", json, "Print the same as JSON, for scripts")->group(kGeneralGroup);
   cmd->callback([&run] {
     run = [] {
       file = with_installed_data(file);

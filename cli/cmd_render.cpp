@@ -30,8 +30,7 @@ int render(RenderCliOptions& options) {
   const RunSpec& spec = options.bench.spec;
   validate_run_spec(spec);
   if (spec.backend == "none") throw UsageError("--backend none draws nothing: use auto, egl or osmesa");
-  require_distinct_outputs(bench_input_files(spec.file), {{"-o", options.output}});
-  require_writable(options.output, "PNG");
+  require_writable_outputs(options.bench);
   BenchScene scene = load_bench_scene(spec);
   BenchConfig config = make_bench_config(spec, scene);
   check_fits_in_memory(scene.characters, config);
@@ -44,7 +43,7 @@ int render(RenderCliOptions& options) {
   for (long long k = 0; k <= options.frame; ++k) record = crowd.step();
   std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
   write_png(options.output, rendering.renderer->width(), rendering.renderer->height(), pixels);
-  if (prints_on_stdout(options.bench.quiet, {options.output}))
+  if (options.bench.outputs.files().prints_on_stdout(options.bench.quiet))
     std::cout << options.output << ": frame " << options.frame << ", " << rendering.renderer->width() << "x"
               << rendering.renderer->height() << ", " << record.counters.copies_visible << " of "
               << crowd.crowd().size() << " copies drawn, mode " << config.mode_name
@@ -63,7 +62,10 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   // One frame, not a measured run.
   cmd->remove_option(cmd->get_option("--frames"));
   cmd->remove_option(cmd->get_option("--warmup"));
-  cmd->add_option("--frame", options->frame, "The frame to draw: it shows time frame/fps")->capture_default_str();
-  cmd->add_option("-o,--output", options->output, "The PNG to write")->required();
+  cmd->add_option("--frame", options->frame, "The frame to draw: it shows time frame/fps")
+      ->capture_default_str()
+      ->group("Run");
+  options->bench.outputs.declare(*cmd, OutputOption::PngImage, options->output, "The PNG to write")->required();
+  group_outputs(*cmd);
   cmd->callback([&run, options] { run = [options] { return render(*options); }; });
 }

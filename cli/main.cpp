@@ -13,41 +13,12 @@
 #include "base/errors.h"
 #include "cli/usage_errors.h"
 #include "cli/commands.h"
+#include "cli/help_format.h"
 #include "measuring/environment.h"
 #include "skinning/output_stores.h"
 #include "skinning/simd_target.h"
 
 namespace {
-
-// One style in every --help: a value named by what it is (N, NUMBER, VALUE;
-// never CLI11's "INT:INT in [0 - 10]") and its default after the text,
-// "(default: X)", as the settings and switches print theirs.
-void one_style_of_help(CLI::App& app) {
-  for (CLI::Option* option : app.get_options()) {
-    if (option->get_type_size() == 0) continue;  // a flag
-    std::string value = option->get_type_name();
-    value = value.substr(0, value.find(':'));
-    if (value == "INT" || value == "UINT")
-      value = "N";
-    else if (value == "FLOAT")
-      value = "NUMBER";
-    else if (value == "TEXT") {
-      // Files: what a command writes, and the files it reads besides its positionals.
-      bool file = option->get_group() == "Outputs" || !option->nonpositional();  // every positional is a file
-      for (const char* name : {"--output", "--baseline", "--result", "--against", "--screenshot"})
-        file |= option->check_lname(std::string(name).substr(2));
-      value = file ? "FILE" : "VALUE";
-    }
-    option->type_name(value);
-    std::string fallback = option->get_default_str();
-    if (fallback.size() >= 2 && fallback.front() == '[' && fallback.back() == ']')
-      fallback = fallback.substr(1, fallback.size() - 2);
-    if (!fallback.empty() && option->get_description().find("(default:") == std::string::npos)
-      option->description(option->get_description() + " (default: " + fallback + ")");
-    option->default_str("");
-  }
-  for (CLI::App* command : app.get_subcommands({})) one_style_of_help(*command);
-}
 
 // What was printed must have reached stdout: a full disk (or /dev/full) fails
 // the command instead of leaving a cut output behind an exit status of 0.
@@ -103,7 +74,7 @@ int run_command(int argc, char** argv) {
   add_diff_command(app, run);
   add_render_command(app, run);
   add_report_command(app, run);
-  one_style_of_help(app);
+  style_help(app);
 
   std::vector<std::string> args(argv + 1, argv + argc);
   // `crowdprof help [COMMAND]` is `crowdprof [COMMAND] --help`.

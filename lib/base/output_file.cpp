@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -293,6 +294,19 @@ void OutputFiles::require_usable(const std::vector<NamedPath>& inputs) const {
   require_distinct_outputs(inputs, outputs);
   for (const OutputFile& file : files_)
     if (!file.path.empty()) require_writable(file.path, file.what);
+}
+
+std::string OutputFiles::path(std::string_view option) const {
+  for (const OutputFile& file : files_)
+    if (file.option == option) return file.path;
+  return {};
+}
+
+OutputFiles OutputFiles::without(std::initializer_list<std::string_view> options) const {
+  OutputFiles kept;
+  for (const OutputFile& file : files_)
+    if (std::find(options.begin(), options.end(), file.option) == options.end()) kept.files_.push_back(file);
+  return kept;
 }
 
 bool OutputFiles::prints_on_stdout(bool quiet) const {

@@ -76,6 +76,11 @@ class OutputFiles {
   // Whether the command prints its text on stdout: not `quiet`, and none of
   // the files is stdout (which then holds that file alone).
   bool prints_on_stdout(bool quiet) const;
+  // The path given for `option` ("--json"); empty when it was not declared or not given.
+  std::string path(std::string_view option) const;
+  // The same files but those of `options`: what a command writes when it
+  // leaves some out (check --update-baseline writes no verdict).
+  OutputFiles without(std::initializer_list<std::string_view> options) const;
   const std::vector<OutputFile>& files() const { return files_; }
 
  private:

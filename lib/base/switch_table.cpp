@@ -290,6 +290,27 @@ std::string switch_text(const json& value) {
   return value.dump();
 }
 
+std::string readable_switch_text(const json& value) {
+  if (!value.is_number_float() || value.get<double>() == std::floor(value.get<double>())) return switch_text(value);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value.get<double>());
+  return std::string(text).find('e') == std::string::npos ? text : switch_text(value);
+}
+
+std::pair<std::string, std::string> switch_differences(const ModeSwitches& a, const ModeSwitches& b) {
+  std::pair<std::string, std::string> texts;
+  for (const SwitchSpec& spec : kSwitches) {
+    json va = spec.get(a), vb = spec.get(b);
+    if (va == vb) continue;
+    std::string ta = readable_switch_text(va), tb = readable_switch_text(vb);
+    if (ta == tb) ta = switch_text(va), tb = switch_text(vb);  // apart beyond 3 digits
+    std::string option = option_spelling(spec.name);
+    texts.first += (texts.first.empty() ? "" : ", ") + option + " " + ta;
+    texts.second += (texts.second.empty() ? "" : ", ") + option + " " + tb;
+  }
+  return texts;
+}
+
 std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s) {
   return switch_text(spec.get(s));
 }
@@ -324,7 +345,7 @@ std::string preset_values(const SwitchSpec& spec) {
   // Presets grouped by value, the largest group last as "the others".
   std::vector<std::pair<std::string, std::string>> groups;  // value, presets
   for (const ModePreset& preset : mode_presets()) {
-    std::string value = switch_text(spec, preset.switches);
+    std::string value = readable_switch_text(spec.get(preset.switches));
     auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == value; });
     if (group == groups.end())
       groups.push_back({value, std::string(preset.name)});

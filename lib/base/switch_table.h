@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -53,6 +54,15 @@ std::string option_spelling(std::string_view name);
 // A recorded value back as users type it: strings as they are, booleans as
 // on/off, numbers in the shortest form that reads back the same.
 std::string switch_text(const nlohmann::json& value);
+
+// A recorded value for a reader: as switch_text, but a fraction to 3
+// significant digits (1/30 s as "0.0333", not "0.03333333333333333").
+std::string readable_switch_text(const nlohmann::json& value);
+
+// The switches whose values differ between `a` and `b`, in the table's order
+// and as a reader reads them: {"--culling on, --share-quantum 0.0333",
+// "--culling off, --share-quantum 0"}; both empty when none differs.
+std::pair<std::string, std::string> switch_differences(const ModeSwitches& a, const ModeSwitches& b);
 
 // The value of switch `spec` in `s` as users type it.
 std::string switch_text(const SwitchSpec& spec, const ModeSwitches& s);

@@ -60,14 +60,6 @@ std::pair<int, int> resolution_size(const std::string& resolution);
 // spec.allow_static).
 BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& scene);
 
-// The files a run writes, as the commands that run benches name them (--csv,
-// --json, --trace, --screenshot, --html); empty when not asked for.
-struct RunOutputs {
-  std::string csv, json, trace;
-  std::string screenshot;  // bench: the last frame as a PNG
-  std::string html;        // the HTML report of the run (docs/report.md)
-};
-
 // The files a bench reads: the character file, or a scene file and every
 // character it names (InputError when the scene file is malformed).
 std::vector<NamedPath> bench_input_files(const std::string& file);

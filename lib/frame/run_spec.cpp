@@ -114,7 +114,7 @@ const std::array kSettings = {
                   s.bake_rate = *v;
                   return {};
                 },
-                "GPU"},
+                "Run"},
     SettingSpec{"mode", "MODE", "Preset of switches (the first four are the thesis's; see docs/modes.md)", "threaded",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   if (!find_mode(t)) return "expected one of " + mode_names();
@@ -140,7 +140,7 @@ const std::array kSettings = {
                   s.camera = std::string(t);
                   return {};
                 },
-                "View"},
+                "Drawing"},
     SettingSpec{"lens", "MM",
                 "Focal length in mm on Blender's 32 mm sensor fitted to the larger side (35 is Blender's, 49.1 "
                 "degrees across)",
@@ -152,7 +152,7 @@ const std::array kSettings = {
                   s.lens = *v;
                   return {};
                 },
-                "View"},
+                "Drawing"},
     SettingSpec{"backend", "auto|egl|osmesa|none",
                 "Where frames are drawn: egl (a GPU, else Mesa's surfaceless llvmpipe), osmesa, auto (egl, then "
                 "osmesa, then none) or none (CPU only, nothing drawn)",
@@ -162,9 +162,9 @@ const std::array kSettings = {
                   s.backend = std::string(t);
                   return {};
                 },
-                "GPU"},
+                "Drawing"},
     SettingSpec{"resolution", "WxH", "Frame size in pixels, and the camera's aspect", "1600x900, or the scene's",
-                set_resolution, "View"},
+                set_resolution, "Drawing"},
     SettingSpec{"static", "on|off", "Accept a character without actions: a crowd in its rest pose", "off",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   if (t != "on" && t != "off") return "expected on or off";

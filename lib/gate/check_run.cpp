@@ -121,8 +121,9 @@ Result run_bench_report(const CheckState& s, const std::string& progress_label) 
 // overwrites what it compares against.
 void require_safe_outputs(const CheckRun& r, const std::string& file) {
   const bool update = r.plan.update_baseline;
-  if (!update && same_path(r.outputs.json, r.baseline))
-    throw UsageError("--json " + r.outputs.json + " is the baseline; to replace it, use --update-baseline");
+  const std::string json = r.files.path("--json");
+  if (!update && same_path(json, r.baseline))
+    throw UsageError("--json " + json + " is the baseline; to replace it, use --update-baseline");
   std::vector<NamedPath> inputs = bench_input_files(file);
   inputs.push_back({"--result file", r.result});
   if (!update) inputs.push_back({"baseline", r.baseline});
@@ -294,8 +295,8 @@ std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, cons
   }
   if (partial.is_object()) {
     partial = as_partial_result(std::move(partial));
-    if (!r.outputs.json.empty())
-      write_text(r.outputs.json, "JSON", [&](std::ostream& out) { out << partial.dump(2) << "\n"; });
+    if (const std::string json = r.files.path("--json"); !json.empty())
+      write_text(json, "JSON", [&](std::ostream& out) { out << partial.dump(2) << "\n"; });
   }
   std::cerr << "crowdprof: interrupted: "
             << (r.plan.update_baseline ? "the baseline is not updated from a partial run"

@@ -42,9 +42,9 @@ struct CheckRun {
   SpecLayer command_line;                                   // the settings given, the scene file among them
   SpecLayer defaults{SpecLayer::Source::Defaults, "", {}};  // the command's own
   bool quiet = false;
-  RunOutputs outputs;  // --csv, --json, --trace, --screenshot, --html
-  std::string svg, junit, markdown;
-  OutputFiles files;  // every output the command declared, as given: checked before any run
+  // Every output the command declared, as given ("--json", "--junit", ...;
+  // files.path("--csv")): checked before any run, written from here.
+  OutputFiles files;
   // The options given, as spelled ("--csv"): some cannot go with an A/B or a
   // counted metric.
   std::set<std::string> given;

@@ -290,11 +290,12 @@ static_assert(6ull * kHumanoidMaxVertices + 1000 < kMaxAccessorElements);
 
 Character generate_humanoid(const HumanoidOptions& options) {
   if (options.bones < kHumanoidMinBones || options.bones > kHumanoidMaxBones)
-    throw UsageError("humanoid bones must be in [" + std::to_string(kHumanoidMinBones) + ", " +
-                     std::to_string(kHumanoidMaxBones) + "], got " + std::to_string(options.bones));
+    throw SettingError("bones", std::to_string(options.bones),
+                       "expected " + std::to_string(kHumanoidMinBones) + " to " + std::to_string(kHumanoidMaxBones));
   if (options.vertices < kHumanoidMinVertices || options.vertices > kHumanoidMaxVertices)
-    throw UsageError("humanoid vertices must be in [" + std::to_string(kHumanoidMinVertices) + ", " +
-                     std::to_string(kHumanoidMaxVertices) + "], got " + std::to_string(options.vertices));
+    throw SettingError(
+        "vertices", std::to_string(options.vertices),
+        "expected " + std::to_string(kHumanoidMinVertices) + " to " + std::to_string(kHumanoidMaxVertices));
   humanoid::Random random(options.seed);
   humanoid::Build build;
   build.height = random.range(0.97, 1.03);
@@ -307,7 +308,7 @@ Character generate_humanoid(const HumanoidOptions& options) {
   character.skeleton = humanoid::make_skeleton(rig);
   character.mesh = humanoid::build_mesh(rig, options.vertices);
   if (options.lod_levels < 0 || options.lod_levels > 3)
-    throw UsageError("humanoid LOD levels must be in [0, 3], got " + std::to_string(options.lod_levels));
+    throw SettingError("lods", std::to_string(options.lod_levels), "expected 0 to 3");
   constexpr int kLevelDivisor[] = {2, 4, 10};
   int previous = options.vertices;
   for (int l = 0; l < options.lod_levels; ++l) {

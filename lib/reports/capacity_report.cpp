@@ -25,11 +25,16 @@ std::string format_capacity(const CapacityRun& run) {
   std::vector<std::vector<std::string>> rows = {
       {"mode", "threads", "fits_n", "fits_" + column + "_ms", "over_n", "over_" + column + "_ms", "points"}};
   std::string notes;
+  size_t cut_round = 0;  // the round a ^C cut short, whose points count for nothing
   for (const ModeCapacity& mode : run.modes) {
     const CapacityResult& r = mode.result;
+    const auto whole =
+        std::count_if(mode.tried.begin(), mode.tried.end(), [](const CapacityPoint& p) { return !p.partial; });
+    for (const CapacityPoint& p : mode.tried)
+      if (p.partial) cut_round = std::max(cut_round, p.round);
     rows.push_back({mode.mode, std::to_string(mode.threads), r.fit ? std::to_string(r.fit->n) : "0",
                     r.fit ? fixed(r.fit->median_ms, 3) : "-", r.fail ? std::to_string(r.fail->n) : "-",
-                    r.fail ? fixed(r.fail->median_ms, 3) : "-", std::to_string(mode.tried.size())});
+                    r.fail ? fixed(r.fail->median_ms, 3) : "-", std::to_string(whole)});
     if (r.capped)
       notes += mode.mode + ": the cap of " + std::to_string(mode.rule.cap) +
                " characters fits; the capacity may be higher\n";
@@ -42,6 +47,16 @@ std::string format_capacity(const CapacityRun& run) {
                "does not grow with the crowd): the boundary found is one of several\n";
   }
   std::string out = align_columns(rows, {0});
+  // Cut short: said before the table's notes and again at their end, so that
+  // neither a reader of the first lines nor of the last takes it as the answer.
+  std::string interrupted;
+  if (run.partial) {
+    const size_t rounds = cut_round > 0 ? cut_round - 1 : 0;
+    interrupted = "INTERRUPTED: partial search, not capacities: round " + std::to_string(cut_round) +
+                  " was cut short and left out; the table holds the " + std::to_string(rounds) + " whole round" +
+                  (rounds == 1 ? "" : "s") + " before it (points: those measured whole)\n";
+    out = interrupted + out;
+  }
   double budget = run.modes.empty() ? 0 : run.modes.front().rule.budget_ms;
   double resolution = run.modes.empty() ? 0 : run.modes.front().rule.resolution;
   size_t start = run.modes.empty() ? 0 : run.modes.front().rule.start;
@@ -52,7 +67,7 @@ std::string format_capacity(const CapacityRun& run) {
          fixed(resolution * 100, 1) + "% of fits_n); " + std::to_string(run.frames) + " frames per point after " +
          std::to_string(run.warmup) + " warm-up, modes interleaved in blocks of " + std::to_string(run.block) +
          " frames\n";
-  return out + notes;
+  return out + notes + interrupted;
 }
 
 ResultDocument capacity_document(const CapacityRun& run) {

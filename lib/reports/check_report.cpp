@@ -45,24 +45,25 @@ void write_check_svg(const std::string& path, const Result& baseline, const Resu
 void write_verdict_files(const CheckRun& r, GateTable table, const Result& ran, double seconds) {
   table.scene = verdict_scene(ran);
   table.seconds = seconds;
-  if (!r.junit.empty()) write_text(r.junit, "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table); });
-  if (!r.markdown.empty())
-    write_text(r.markdown, "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
+  if (!r.files.path("--junit").empty())
+    write_text(r.files.path("--junit"), "JUnit XML", [&](std::ostream& out) { out << verdict_junit(table); });
+  if (!r.files.path("--markdown").empty())
+    write_text(r.files.path("--markdown"), "Markdown", [&](std::ostream& out) { out << verdict_markdown(table); });
 }
 
 // --update-baseline: the result becomes the baseline.
 int report_baseline(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   const Result& current = o.current;
-  if (!r.outputs.json.empty()) write_result_file(r.outputs.json, "JSON", current);
+  if (!r.files.path("--json").empty()) write_result_file(r.files.path("--json"), "JSON", current);
   write_result_file(r.baseline, "baseline", current);
-  if (!r.outputs.html.empty()) {
+  if (!r.files.path("--html").empty()) {
     HtmlReportInput input;
     add_result(input, current, r.baseline);
-    write_html_report(r.outputs.html, input);
+    write_html_report(r.files.path("--html"), input);
   }
   // --junit and --markdown hold a verdict, which recording a baseline has not:
   // they are not written, and do not take stdout.
-  if (prints_on_stdout(r.quiet, {r.outputs.csv, r.outputs.json, r.svg, r.outputs.html}))
+  if (r.files.without({"--junit", "--markdown"}).prints_on_stdout(r.quiet))
     out << "baseline written: " << r.baseline << " (" << current.run.mode << ", " << current.run.characters
         << " characters, frame median " << summarize(current.samples.frame_ms).median << " ms"
         << (r.result.empty() && o.plan.runs > 1 ? ", the median of " + std::to_string(o.plan.runs) + " runs by " +
@@ -92,7 +93,7 @@ int report_count(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   table.metrics = {row};
   table.title = "instructions per measured frame, " + count.origin + ": stored baseline " + r.baseline + ", " +
                 fixed(o.wall_s, 1) + " s";
-  if (!r.outputs.json.empty()) write_result_file(r.outputs.json, "JSON", o.current);
+  if (!r.files.path("--json").empty()) write_result_file(r.files.path("--json"), "JSON", o.current);
   write_verdict_files(r, table, o.current, o.wall_s);
   if (r.files.prints_on_stdout(r.quiet)) {
     out << "instructions per frame: " << fixed(count.base, 0) << " -> " << fixed(count.current, 0) << " ("
@@ -110,9 +111,10 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   const Result& current = o.current;
   const CheckOptions& options = o.plan.gate;
   std::string current_name = r.result.empty() ? std::string("the run") : r.result;
-  if (!r.outputs.json.empty()) write_result_file(r.outputs.json, "JSON", current);
-  if (!r.svg.empty()) write_check_svg(r.svg, baseline, current, options.metrics.front());
-  if (!r.outputs.html.empty()) {
+  if (!r.files.path("--json").empty()) write_result_file(r.files.path("--json"), "JSON", current);
+  if (!r.files.path("--svg").empty())
+    write_check_svg(r.files.path("--svg"), baseline, current, options.metrics.front());
+  if (!r.files.path("--html").empty()) {
     // Both runs side by side under the verdict.
     HtmlReportInput input;
     add_result(input, baseline, r.baseline);
@@ -120,9 +122,9 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
     input.runs[0].label = "baseline";
     input.runs[1].label = "current";
     input.check = CheckSection{o.result, options, r.baseline};
-    write_html_report(r.outputs.html, input);
+    write_html_report(r.files.path("--html"), input);
   }
-  if (!r.junit.empty() || !r.markdown.empty()) {
+  if (!r.files.path("--junit").empty() || !r.files.path("--markdown").empty()) {
     GateTable table = check_verdict_table(o.result, options);
     table.title = "stored baseline " + r.baseline + " against " + current_name + ", " + fixed(o.wall_s, 1) + " s";
     write_verdict_files(r, table, current, o.wall_s);
@@ -141,10 +143,10 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
         << "\n  current: " << ab.current_version;
   table.title = title.str();
   table.reproduce = ab.reproduce;
-  if (!r.outputs.json.empty())
-    write_text(r.outputs.json, "JSON", [&](std::ostream& file) { file << ab.document().dump(2) << "\n"; });
+  if (!r.files.path("--json").empty())
+    write_text(r.files.path("--json"), "JSON", [&](std::ostream& file) { file << ab.document().dump(2) << "\n"; });
   write_verdict_files(r, table, ab.last_current, ab.wall_s);
-  if (!r.outputs.html.empty()) {
+  if (!r.files.path("--html").empty()) {
     HtmlReportInput input;
     add_result(input, ab.last_base, ab.base_binary);
     add_result(input, ab.last_current, ab.current_binary);
@@ -152,7 +154,7 @@ int report_ab(const CheckRun& r, const AbRun& ab, std::ostream& out) {
     input.runs[1].label = "current";
     // The verdict leads the page, the last process of each build under it.
     input.gate = GateSection{table, ab.gate.tolerance, ab.gate.confidence, ab.base_binary};
-    write_html_report(r.outputs.html, input);
+    write_html_report(r.files.path("--html"), input);
   }
   if (r.files.prints_on_stdout(r.quiet)) out << verdict_text(table);
   return ab.result.regressed() ? kExitRegression : kExitOk;
@@ -177,8 +179,8 @@ int report_check(const CheckRun& request, const CheckOutcome& outcome, std::ostr
 }
 
 int check_and_report(CheckRun request, std::ostream& out) {
-  if (!request.outputs.csv.empty())
-    request.each_run = [path = request.outputs.csv](const Result& run) {
+  if (!request.files.path("--csv").empty())
+    request.each_run = [path = request.files.path("--csv")](const Result& run) {
       write_text(path, "CSV", [&](std::ostream& file) { write_csv(run, file); });
     };
   return report_check(request, run_check(request), out);

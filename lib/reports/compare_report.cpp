@@ -68,6 +68,19 @@ std::vector<Category> shown_categories(const std::vector<ModeMedians>& medians) 
   return shown;
 }
 
+std::vector<Category> table_categories(const std::vector<Result>& runs) {
+  std::vector<Category> shown = {Category::Logic,      Category::Animations, Category::Scenegraph,
+                                 Category::Rasterizer, Category::Overhead,   Category::Outside};
+  // Drawn: a GL backend, or draw calls (a run not made by a command records none).
+  auto drew = [](const Result& run) {
+    return run.run.backend != "none" || std::any_of(run.frame_records.begin(), run.frame_records.end(),
+                                                    [](const FrameRecord& f) { return f.counters.draw_calls > 0; });
+  };
+  if (std::any_of(runs.begin(), runs.end(), drew))
+    shown.push_back(Category::GpuLatency);  // last, as bench's profile lists it
+  return shown;
+}
+
 namespace {
 
 // Each mode's medians and drawn error, for the cost/error table and chart.
@@ -84,7 +97,7 @@ std::vector<CostErrorPoint> comparison_costs(const Comparison& comparison, const
 
 std::string format_comparison(const Comparison& comparison) {
   std::vector<ModeMedians> medians = mode_medians(comparison.runs);
-  std::vector<Category> shown = shown_categories(medians);
+  std::vector<Category> shown = table_categories(comparison.runs);
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header = {"mode", "characters", "threads", "frame_ms"};
   for (Category c : shown) header.push_back(std::string(category_column(c)) + "_ms");

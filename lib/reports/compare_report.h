@@ -34,6 +34,14 @@ bool is_main_point(const Comparison& comparison, const Result& run);
 // printed) in some run.
 std::vector<Category> shown_categories(const std::vector<ModeMedians>& medians);
 
+// The categories the table for stdout shows: the same columns whatever the
+// values, so that two compares (two characters, two machines) line up and
+// none drops a column for a median that happened to print as 0.00. Those a
+// frame charges work to (Logic, Animations, Scenegraph, Rasterizer, Overhead,
+// Outside), and GPU Latency when a run drew with a GL backend; never Physics,
+// Network and Services, which hold no work in a crowd benchmark.
+std::vector<Category> table_categories(const std::vector<Result>& runs);
+
 // The table for stdout: a header with units, one row per mode, then (with a
 // sweep) one row per size and mode.
 std::string format_comparison(const Comparison& comparison);

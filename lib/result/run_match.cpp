@@ -51,7 +51,9 @@ std::vector<RunDifference> run_differences(const Result& baseline, const Result&
   // against a build from before the switch (file order) is of the same run.
   ModeSwitches bs = b.switches, cs = c.switches;
   if (b.backend == "none" && c.backend == "none") bs.index_order = cs.index_order;
-  differ("mode switches", switches_to_json(bs).dump(), switches_to_json(cs).dump());
+  // Only the switches that differ, in the table's order, as users type them.
+  const auto [switches_b, switches_c] = switch_differences(bs, cs);
+  differ("mode switches", switches_b, switches_c);
   differ("frames", shown(baseline.frames()), shown(current.frames()));
   differ("warmup", shown(b.warmup), shown(c.warmup));
   differ("fps", shown(b.fps), shown(c.fps));

@@ -78,6 +78,22 @@ TEST(SafeOutput, AnOutputOnACharacterOfTheSceneIsRefused) {
                  "is the character file of the scene");
 }
 
+// report's page is a declared output (issue 54 item 2): refused when it is one
+// of the results or cannot be written, and on stdout ("-o -") alone.
+TEST(SafeOutput, ReportsPageIsADeclaredOutput) {
+  auto dir = crowdprof::test::scratch_dir("safe_report_page");
+  fs::path x = character_copy(dir);
+  std::string result = (dir / "r.json").string();
+  ASSERT_EQ(run_cli("bench '" + x.string() + "' -n 2 --frames 3 --warmup 0 -q --json '" + result + "'").status, 0);
+  expect_refused("report '" + result + "' -o '" + result + "'", result, "-o " + result + " is the result file");
+  expect_refused("report '" + result + "' -o '" + (dir / "none" / "page.html").string() + "'", result,
+                 "cannot write HTML file");
+  auto r = run_cli("report '" + result + "' -o -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("<!DOCTYPE html>", 0), 0u) << r.out.substr(0, 200);
+  EXPECT_EQ(r.out.find("wrote -"), std::string::npos);
+}
+
 TEST(SafeOutput, TwoOutputsOnOnePathAreRefused) {
   auto dir = crowdprof::test::scratch_dir("safe_two_outputs");
   fs::path x = character_copy(dir);

@@ -129,6 +129,29 @@ TEST(SwitchTable, HelpNamesEveryPresetsValue) {
   EXPECT_EQ(values, "off in master; on in the others");
   EXPECT_EQ(preset_values(*find_switch("share")), "on in shared, budget; off in the others");
   EXPECT_EQ(preset_values(*find_switch("update_lod")), "off in every mode");
+  // A fraction as a reader reads it (issue 55): 1/30 s, not 0.03333333333333333.
+  EXPECT_EQ(preset_values(*find_switch("share_quantum")), "0.0333 in budget; 0 in the others");
+  EXPECT_EQ(preset_values(*find_switch("anim_budget")), "2 in budget; 0 in the others");
+}
+
+// Two runs' switches as a message names them (issue 55): only those that
+// differ, in the table's order, as options with readable values; not the
+// whole "switches" object as JSON in alphabetical order.
+TEST(SwitchTable, DifferencesAreTheSwitchesThatDifferInTheTablesOrder) {
+  ModeSwitches a, b;
+  EXPECT_EQ(switch_differences(a, b), (std::pair<std::string, std::string>{}));
+  ASSERT_EQ(find_switch("share_quantum")->set(a, "1/30"), "");
+  ASSERT_EQ(find_switch("culling")->set(a, "on"), "");
+  ASSERT_EQ(find_switch("culling")->set(b, "off"), "");
+  auto [ta, tb] = switch_differences(a, b);
+  EXPECT_EQ(ta, "--culling on, --share-quantum 0.0333");
+  EXPECT_EQ(tb, "--culling off, --share-quantum 0");
+  // Apart only beyond three digits: the exact values, so that the two differ.
+  ASSERT_EQ(find_switch("share_quantum")->set(b, "0.033334"), "");
+  ASSERT_EQ(find_switch("culling")->set(b, "on"), "");
+  std::tie(ta, tb) = switch_differences(a, b);
+  EXPECT_EQ(ta, "--share-quantum 0.03333333333333333");
+  EXPECT_EQ(tb, "--share-quantum 0.033334");
 }
 
 }  // namespace

@@ -89,7 +89,8 @@ TEST(CliGuidance, SummaryCsvHasOneRowPerRun) {
 
 // --help lists options under headings (issue 24 item 2, issue 27 item 3): the
 // settings by the group their table gives, every switch under Mode switches,
-// the files written under Outputs, check's gate under Gate.
+// the files written under Outputs, check's gate under Gate and each of its
+// two modes under its own heading.
 TEST(CliGuidance, HelpGroupsOptionsUnderHeadings) {
   auto under = [](const std::string& help, const std::string& heading, const std::string& option) {
     size_t at = help.find("\n" + heading + ":\n");
@@ -102,15 +103,16 @@ TEST(CliGuidance, HelpGroupsOptionsUnderHeadings) {
   ASSERT_EQ(bench.status, 0) << bench.err;
   EXPECT_TRUE(under(bench.out, "Crowd", "-n,--characters")) << bench.out;
   EXPECT_TRUE(under(bench.out, "Run", "--mode")) << bench.out;
-  EXPECT_TRUE(under(bench.out, "GPU", "--backend")) << bench.out;
-  EXPECT_TRUE(under(bench.out, "View", "--camera")) << bench.out;
+  EXPECT_TRUE(under(bench.out, "Drawing", "--backend")) << bench.out;
+  EXPECT_TRUE(under(bench.out, "Drawing", "--camera")) << bench.out;
   for (const char* option : {"--culling", "--skinning", "--share", "--anim-budget"})
     EXPECT_TRUE(under(bench.out, "Mode switches", option)) << option;
   for (const char* option : {"--json", "--html", "--csv"}) EXPECT_TRUE(under(bench.out, "Outputs", option)) << option;
   auto check = run_cli("check --help");
   ASSERT_EQ(check.status, 0) << check.err;
-  for (const char* option : {"--baseline", "--against", "--tolerance", "--metric"})
-    EXPECT_TRUE(under(check.out, "Gate", option)) << option;
+  for (const char* option : {"--tolerance", "--metric"}) EXPECT_TRUE(under(check.out, "Gate", option)) << option;
+  EXPECT_TRUE(under(check.out, "Stored baseline", "--baseline")) << check.out;
+  EXPECT_TRUE(under(check.out, "A/B of two builds", "--against")) << check.out;
   EXPECT_TRUE(under(check.out, "Outputs", "--junit")) << check.out;
 }
 

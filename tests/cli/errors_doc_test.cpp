@@ -55,6 +55,7 @@ TEST(ErrorsDoc, QuotesWhatTheBinaryPrints) {
       {"bench --backend vulkan HUMANOID", 2},
       {"bench --resolution 0x10 HUMANOID", 2},
       {"bench --mode hwskin HUMANOID", 2},
+      {"gen --bones 10 -o never-written.glb", 2},
       {"check HUMANOID --baseline MISSING --tolerance ten", 2},
       {"check HUMANOID --baseline MISSING --metric fps", 2},
       {"compare HUMANOID --modes bogus", 2},

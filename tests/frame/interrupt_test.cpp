@@ -152,6 +152,17 @@ TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
   ASSERT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("crowdprof: interrupted: round 1 was cut short"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("\nmaster "), std::string::npos) << r.out;
+  // stdout does not read as an answer: marked first and last, and no points
+  // counted from the round that was cut (it said "points 1" beside 0 rounds).
+  EXPECT_EQ(r.out.rfind("INTERRUPTED: partial search, not capacities: round 1 was cut short", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("the table holds the 0 whole rounds before it (points: those measured whole)\n", 0),
+            std::string::npos)
+      << r.out;
+  for (const char* mode : {"\nmaster ", "\nthreaded "}) {
+    std::string row = r.out.substr(r.out.find(mode) + 1);
+    row = row.substr(0, row.find('\n'));
+    EXPECT_EQ(row.substr(row.find_last_of(' ') + 1), "0") << r.out;
+  }
   json j = json::parse(std::ifstream(result));
   EXPECT_TRUE(j["partial"].get<bool>());
   ASSERT_EQ(j["modes"].size(), 2u);

@@ -254,6 +254,21 @@ TEST(Check, ResultsOfAnotherRunAreRefused) {
   EXPECT_NO_THROW(require_same_run(older, newer, "base.json"));
   older.run.backend = newer.run.backend = "egl";
   EXPECT_THROW(require_same_run(older, newer, "base.json"), InputError);
+  // Other switches are named as options, those that differ alone (issue 55:
+  // it printed both "switches" objects as JSON).
+  Result culled = baseline;
+  culled.run.switches.animation_culling = !baseline.run.switches.animation_culling;
+  try {
+    require_same_run(baseline, culled, "base.json");
+    FAIL() << "other switches were accepted";
+  } catch (const InputError& e) {
+    const std::string on = baseline.run.switches.animation_culling ? "on" : "off";
+    const std::string off = baseline.run.switches.animation_culling ? "off" : "on";
+    EXPECT_NE(std::string(e.what()).find("mode switches --culling " + on + " there, --culling " + off + " here"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find('{'), std::string::npos) << e.what();
+  }
 }
 
 TEST(Check, BrokenBaselinesAreInputErrors) {
@@ -302,6 +317,18 @@ TEST(CheckCli, OwnBaselinePassesAPlantedChangeFailsBadInputExits2Or3) {
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
   EXPECT_EQ(r.out.rfind("ok calibrated", 0), 0u) << r.out;
+
+  // Recording a baseline writes no verdict: --junit - leaves stdout to its
+  // line, while --json - takes stdout whole (the declared outputs decide).
+  r = test::run_cli("check --result '" + base + "' --baseline '" + (dir / "again.json").string() +
+                    "' --update-baseline --junit -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("baseline written: ", 0), 0u) << r.out;
+  r = test::run_cli("check --result '" + base + "' --baseline '" + (dir / "again.json").string() +
+                    "' --update-baseline --json -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("baseline written"), std::string::npos) << r.out;
+  EXPECT_NO_THROW((void)json::parse(r.out)) << r.out;
 
   // A fresh run with the baseline's options (taken from it): the counters and
   // digest must match exactly; the timing's tolerance is wide, as a loaded
