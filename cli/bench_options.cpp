@@ -48,10 +48,12 @@ void add_bench_options(CLI::App& cmd, BenchCliOptions& o) {
   }
   for (const SwitchSpec& spec : switch_table()) {
     std::string name(spec.name);
-    cmd.add_option(option_spelling(name), o.typed[name],
-                   std::string(spec.help) + " (overrides the mode's: " + preset_values(spec) + ")")
-        ->type_name(std::string(spec.value))
-        ->group(kModeSwitchesGroup);
+    CLI::Option* option =
+        cmd.add_option(option_spelling(name), o.typed[name],
+                       std::string(spec.help) + " (overrides the mode's: " + preset_values(spec) + ")")
+            ->type_name(std::string(spec.value))
+            ->group(kModeSwitchesGroup);
+    if (spec.repeatable) option->multi_option_policy(CLI::MultiOptionPolicy::Join);
   }
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing on stdout (files still written)")->group(kOutputsGroup);
 }

@@ -6,7 +6,9 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "base/anim_layers.h"
 #include "base/errors.h"
 
 namespace crowdprof {
@@ -137,6 +139,8 @@ struct ModeSwitches {
   double transitions_s = 0.0;
   double blend_in_s = 0.25;
   Crossfade crossfade = Crossfade::Sampled;
+  // Layers (issue 56): actions laid over each copy's, in order.
+  std::vector<AnimLayer> anim_layers;
 
   bool operator==(const ModeSwitches&) const = default;
 };

@@ -255,6 +255,18 @@ const std::array kSwitches = {
                "frame (the BGE's); sampled samples both actions every frame of the fade (blend trees': ozz, Unreal)",
                [](const ModeSwitches& s) { return json(to_string(s.crossfade)); },
                [](ModeSwitches& s, std::string_view t) { return set_choice(s.crossfade, t, kCrossfades); }, false},
+    SwitchSpec{"anim_layer",
+               "LAYER",
+               "An action laid over each copy's, LAYER being action=NAME[,mask=JOINT][,weight=W (1)][,falloff=N "
+               "(0)][,blend=override|add] (repeat for more layers, or join them with ';'): override takes its "
+               "weight on the joint named by mask and the joints under it (every joint without a mask), easing in "
+               "over falloff joints down the chain; add adds its motion since its first frame. Plays on the copy's "
+               "clock (the action's time, wrapped to the layer's length). See crowdprof info for joint names",
+               [](const ModeSwitches& s) { return json(anim_layers_text(s.anim_layers)); },
+               [](ModeSwitches& s, std::string_view t) { return parse_anim_layers(t, &s.anim_layers); },
+               false,
+               {},
+               true},
 };
 
 }  // namespace
@@ -346,6 +358,7 @@ std::string preset_values(const SwitchSpec& spec) {
   std::vector<std::pair<std::string, std::string>> groups;  // value, presets
   for (const ModePreset& preset : mode_presets()) {
     std::string value = readable_switch_text(spec.get(preset.switches));
+    if (value.empty()) value = "none";
     auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == value; });
     if (group == groups.end())
       groups.push_back({value, std::string(preset.name)});

@@ -39,6 +39,9 @@ struct SwitchSpec {
   // default (a default changed after results were recorded); such a switch is
   // always recorded. Empty: the default.
   std::string_view when_absent = {};
+  // The option may be given several times (--anim-layer): the values join
+  // one a line, which `set` takes as it takes ';'.
+  bool repeatable = false;
 };
 
 // In the order help lists them.

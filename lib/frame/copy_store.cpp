@@ -96,6 +96,15 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     const Character& character = *characters[crowd.kind[i]];
     if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
   }
+  if (!mode.anim_layers.empty()) {
+    layer_cursors.resize(n * kMaxAnimLayers);
+    for (size_t i = 0; i < n; ++i) {
+      const CharacterLayers& layers = prepared[crowd.kind[i]].layers;
+      for (size_t l = 0; l < layers.layers.size(); ++l)
+        reset_cursor(characters[crowd.kind[i]]->actions[layers.layers[l].action],
+                     &layer_cursors[i * kMaxAnimLayers + l]);
+    }
+  }
   if (!crowd.transitions.empty()) {
     actions = crowd.action;
     from_actions = crowd.action;

@@ -44,6 +44,9 @@ struct CopyStore {
   std::vector<SamplingCursor> from_cursors;
   std::vector<LocalPose> from_poses;
   std::vector<uint8_t> sampled_twice;  // the last evaluation sampled both actions
+  // Layers (--anim-layer): per copy, a cursor per layer of its character
+  // (layer L of copy i at layer_cursors[i * kMaxAnimLayers + L]); empty without them.
+  std::vector<SamplingCursor> layer_cursors;
   // Per pose storage (one per copy): offsets into palettes and the vertices.
   // Each storage's vertices start on a cache line (whole batches of
   // kSkinBatch vertices), so that skinning can stream whole lines.

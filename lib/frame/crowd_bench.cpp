@@ -382,11 +382,14 @@ void CrowdBench::count_work(Counters& counters) {
     Counters& c = character_counters_[k];
     ++c.poses_updated;
     ++c.actions_sampled;
-    if (transitions_ && job.weight < 1.0f) {
+    const bool fading = transitions_ && job.weight < 1.0f;
+    if (fading) {
       ++c.fades;
       c.actions_sampled += store_->sampled_twice[job.leader];
-      c.joints_blended += prepared_[k].joints;
     }
+    // Layers: their actions sampled, and one blend whether or not it fades.
+    c.actions_sampled += prepared_[k].layers.layers.size();
+    if (fading || !prepared_[k].layers.empty()) c.joints_blended += prepared_[k].joints;
     if (skins_on_gpu(prepared_[k].site)) continue;
     const size_t level = level_of(job.storage), vertices = prepared_[k].vertices_of(level);
     c.vertices_skinned += vertices;

@@ -28,16 +28,17 @@ std::span<const SkinMatrix> CrowdBench::exact_palette(size_t copy, float time, E
   const Character& character = character_of(copy);
   const PreparedCharacter& kind = prepared_[crowd_.kind[copy]];
   if (character.actions.empty()) return scratch.at(character.skeleton, nullptr, {}, time);
+  const ExactLayers layers{&kind.layers, character.actions, kind.bindings, &kind.rest_pose};
   if (!transitions_) {
     const size_t a = crowd_.action[copy];
-    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time);
+    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time, layers);
   }
   const size_t a = store_->actions[copy], from = store_->from_actions[copy];
   if (!(store_->weights[copy] < 1.0f))
-    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time);
+    return scratch.at(character.skeleton, &character.actions[a], kind.bindings[a].targets, time, layers);
   return scratch.fading(character.skeleton, kind.rest_pose, character.actions[from], kind.bindings[from].targets,
                         store_->from_times[copy], character.actions[a], kind.bindings[a].targets, time,
-                        store_->weights[copy]);
+                        store_->weights[copy], layers);
 }
 
 AnimationRecord CrowdBench::measure_animation() const {

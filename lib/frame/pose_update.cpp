@@ -47,14 +47,20 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
   stage_ns_.resize(model_threads_);
-  if (!context.crowd->transitions.empty()) {
-    // Room for the largest skeleton now, so that no frame allocates.
-    blended_.resize(model_threads_);
-    for (LocalPose& pose : blended_) {
+  const bool layers = !context.mode.anim_layers.empty();
+  // Room for the largest skeleton now, so that no frame allocates.
+  auto reserve = [&](std::vector<LocalPose>& poses, size_t count) {
+    poses.resize(count);
+    for (LocalPose& pose : poses) {
       pose.translations.reserve(model_joints_);
       pose.rotations.reserve(model_joints_);
       pose.scales.reserve(model_joints_);
     }
+  };
+  if (!context.crowd->transitions.empty() || layers) reserve(blended_, model_threads_);
+  if (layers) {
+    reserve(layer_poses_, model_threads_ * kMaxAnimLayers);
+    reserve(layer_deltas_, model_threads_ * kMaxAnimLayers);
   }
   if (parallel) {
     threads_ = bench_threads(threads);
@@ -192,7 +198,10 @@ void PoseUpdater::update_state(const StateJob& job, size_t slot, uint64_t* looku
   }
   sample_action(job, slot, action_index, job.time, store_.cursors[copy], pose, lookups);
   since = stage_done(AnimationStage::Sampling, since);
-  const LocalPose* shown = transitions ? fade(job, slot, pose, lookups, since) : &pose;
+  const BlendLayer alone[] = {{&pose, 1.0f}};
+  const LocalPose* shown = transitions               ? fade(job, slot, action_index, pose, lookups, since)
+                           : prepared.layers.empty() ? &pose
+                                                     : layered(job, slot, action_index, alone, lookups, since);
   std::span<glm::mat4> model = std::span(model_).subspan(worker_index() * model_joints_, prepared.joints);
   run_job(LocalToModelJob{&skeleton, shown, model}, "LocalToModelJob");
   run_job(SkinningMatricesJob{&skeleton, model,
@@ -226,12 +235,17 @@ void PoseUpdater::sample_action(const StateJob& job, size_t slot, size_t action_
   run_job(SamplingJob{&action, time, targets, &cursor, &pose}, "SamplingJob");
 }
 
-const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups,
-                                   CategoryClock::Clock::time_point& since) {
+const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, size_t action_index, const LocalPose& pose,
+                                   uint64_t* lookups, CategoryClock::Clock::time_point& since) {
   const size_t copy = job.leader;
   store_.sampled_twice[copy] = 0;
   const float weight = job.weight;
-  if (!(weight < 1.0f)) return &pose;
+  const PreparedCharacter& prepared = context_.prepared[crowd_.kind[copy]];
+  if (!(weight < 1.0f)) {
+    if (prepared.layers.empty()) return &pose;
+    const BlendLayer alone[] = {{&pose, 1.0f}};
+    return layered(job, slot, action_index, alone, lookups, since);
+  }
   LocalPose& from = store_.from_poses[copy];
   // Sampled: the old action at its time now, every frame. Frozen: the old
   // action at the change, once per change (the BGE's m_blendinpose).
@@ -242,20 +256,52 @@ const LocalPose* PoseUpdater::fade(const StateJob& job, size_t slot, const Local
     store_.sampled_twice[copy] = 1;
     since = stage_done(AnimationStage::Sampling, since);
   }
+  // With layers, the fade and the layers are one blend.
+  const BlendLayer layers[] = {{&from, 1.0f - weight}, {&pose, weight}};
+  if (!prepared.layers.empty()) return layered(job, slot, action_index, layers, lookups, since);
   // Into the thread's scratch, not the copy's pose: a joint the new action
   // leaves alone must keep its rest value after the fade, as it would
   // sampled from rest. The blend writes every joint of its output: the
   // scratch is only sized for this character (within the room reserved).
-  const PreparedCharacter& prepared = context_.prepared[crowd_.kind[copy]];
   LocalPose& blended = blended_[worker_index()];
   const size_t joints = prepared.rest_pose.joint_count();
   blended.translations.resize(joints);
   blended.rotations.resize(joints);
   blended.scales.resize(joints);
-  const BlendLayer layers[] = {{&from, 1.0f - weight}, {&pose, weight}};
   run_job(BlendingJob{layers, &prepared.rest_pose, 0.1f, &blended}, "BlendingJob");
   since = stage_done(AnimationStage::Blending, since);
   return &blended;
+}
+
+const LocalPose* PoseUpdater::layered(const StateJob& job, size_t slot, size_t action_index,
+                                      std::span<const BlendLayer> own, uint64_t* lookups,
+                                      CategoryClock::Clock::time_point& since) {
+  const size_t copy = job.leader;
+  const size_t k = crowd_.kind[copy];
+  const Character& character = *context_.characters[k];
+  const PreparedCharacter& prepared = context_.prepared[k];
+  const CharacterLayers& layers = prepared.layers;
+  const size_t thread = worker_index();
+  const std::span<LocalPose> poses = std::span(layer_poses_).subspan(thread * kMaxAnimLayers, layers.layers.size());
+  const std::span<LocalPose> deltas = std::span(layer_deltas_).subspan(thread * kMaxAnimLayers, layers.layers.size());
+  const Action& own_action = character.actions[action_index];
+  for (size_t l = 0; l < layers.layers.size(); ++l) {
+    const size_t action = layers.layers[l].action;
+    // From rest, as the copy's own pose: a joint the layer's action leaves
+    // alone holds its rest value, not another copy's.
+    reset_to_rest(character.skeleton, &poses[l]);
+    sample_action(job, slot, action, layer_time(own_action, job.time, character.actions[action]),
+                  store_.layer_cursors[copy * kMaxAnimLayers + l], poses[l], lookups);
+  }
+  since = stage_done(AnimationStage::Sampling, since);
+  LocalPose& out = blended_[thread];
+  const size_t joints = prepared.rest_pose.joint_count();
+  out.translations.resize(joints);
+  out.rotations.resize(joints);
+  out.scales.resize(joints);
+  run_job(LayeringJob{&layers, own, poses, deltas, &prepared.rest_pose, &out}, "LayeringJob");
+  since = stage_done(AnimationStage::Blending, since);
+  return &out;
 }
 
 size_t PoseUpdater::worker_index() const {

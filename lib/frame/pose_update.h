@@ -76,8 +76,13 @@ class PoseUpdater {
   // Transitions: the pose a copy shows, `pose` or, fading, its blend with the
   // pose of the action it leaves (in the thread's scratch).
   // `since` moves on past the sampling and the blend it times.
-  const LocalPose* fade(const StateJob& job, size_t slot, const LocalPose& pose, uint64_t* lookups,
+  const LocalPose* fade(const StateJob& job, size_t slot, size_t action_index, const LocalPose& pose, uint64_t* lookups,
                         CategoryClock::Clock::time_point& since);
+  // Layers (--anim-layer): the copy's own pose, or a fade's two (`own`), with
+  // its character's layers laid over it, into the thread's scratch. Each
+  // layer's action is sampled at layer_time of the own action's.
+  const LocalPose* layered(const StateJob& job, size_t slot, size_t action_index, std::span<const BlendLayer> own,
+                           uint64_t* lookups, CategoryClock::Clock::time_point& since);
   // Charges the time from `since` to now to `stage` on the calling thread (and
   // records it as a span when tracing); returns now.
   CategoryClock::Clock::time_point stage_done(AnimationStage stage, CategoryClock::Clock::time_point since);
@@ -116,7 +121,9 @@ class PoseUpdater {
   // written and read back from memory every frame at 10,000 copies. Cache-line
   // aligned (a mat4 is one line), so that no two threads' regions share a line.
   std::vector<glm::mat4, CacheLineAllocator<glm::mat4>> model_;
-  std::vector<LocalPose> blended_;  // transitions: per thread, a fading copy's blended pose
+  std::vector<LocalPose> blended_;  // transitions or layers: per thread, a copy's blended pose
+  // Layers: per thread, kMaxAnimLayers sampled poses and additive deltas.
+  std::vector<LocalPose> layer_poses_, layer_deltas_;
   // Per thread, nanoseconds in each stage: a line each, so that no two threads
   // write one.
   struct alignas(64) StageNanoseconds {

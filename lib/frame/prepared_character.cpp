@@ -1,5 +1,7 @@
 #include "frame/prepared_character.h"
 
+#include "base/errors.h"
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -31,6 +33,9 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
     }
     p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
     reset_to_rest(character.skeleton, &p.rest_pose);
+    if (!mode.anim_layers.empty())
+      if (std::string why = resolve_layers(character, p.bindings, mode.anim_layers, &p.layers); !why.empty())
+        throw UsageError("--anim-layer: " + why);
     p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
     if (mode.mesh_lod) {
       p.mesh_lods = mesh_lods_of(character);

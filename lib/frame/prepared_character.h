@@ -11,6 +11,7 @@
 
 #include "animation/bake.h"
 #include "animation/binding.h"
+#include "animation/layering.h"
 #include "animation/local_pose.h"
 #include "asset/character.h"
 #include "asset/mesh_lod.h"
@@ -33,6 +34,7 @@ struct PreparedCharacter {
   bool posed_on_cpu = false;
   std::vector<ActionBindings> bindings;  // per action
   LocalPose rest_pose;                   // what a blend falls back to (animation/blending.h)
+  CharacterLayers layers;                // --anim-layer, resolved; empty without it
   SkinningPlan skinning_plan;            // the mesh prepared for skinning
   BakedCharacter baked;                  // mode baked only
   PositionQuantisation quantisation;     // packed vertices: the character's animated box

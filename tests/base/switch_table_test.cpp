@@ -46,7 +46,8 @@ TEST(SwitchTable, EverySwitchChangesTheSwitches) {
                                                     {"index_order", "file"},
                                                     {"transitions", "2"},
                                                     {"blend_in", "0.5"},
-                                                    {"crossfade", "frozen"}};
+                                                    {"crossfade", "frozen"},
+                                                    {"anim_layer", "action=wave,weight=1,falloff=0,blend=override"}};
   ASSERT_EQ(other.size(), switch_table().size());
   for (const SwitchSpec& spec : switch_table()) {
     ModeSwitches s;

@@ -48,7 +48,7 @@ BenchConfig fading_config(const char* mode, GlCrowdRenderer* renderer, size_t co
   return config;
 }
 
-RendererConfig small_frame() {
+RendererConfig small_fading_frame() {
   RendererConfig rc;
   rc.width = kWidth;
   rc.height = kHeight;
@@ -169,7 +169,7 @@ TEST(TransitionsOnTheGpu, BakedMixesTwoRecordsAsBakedFadeJobDoes) {
   std::vector<std::vector<SkinMatrix>> mixed, unmixed;  // per copy: as drawn, and with the weight ignored
   size_t fading = 0;
   {
-    GlCrowdRenderer renderer(*context, humanoid, 24, small_frame());
+    GlCrowdRenderer renderer(*context, humanoid, 24, small_fading_frame());
     CrowdBench bench(humanoid, fading_config("baked", &renderer));
     for (size_t f = 0; f <= 40; ++f) bench.step();
     baked_image = renderer.read_pixels();
@@ -181,7 +181,7 @@ TEST(TransitionsOnTheGpu, BakedMixesTwoRecordsAsBakedFadeJobDoes) {
   }
   ASSERT_GT(fading, 3u);
   auto drawn_by_hwskin = [&](const std::vector<std::vector<SkinMatrix>>& palettes) {
-    GlCrowdRenderer renderer(*context, humanoid, 24, small_frame());
+    GlCrowdRenderer renderer(*context, humanoid, 24, small_fading_frame());
     CrowdBench bench(humanoid, fading_config("hwskin", &renderer));
     for (size_t f = 0; f <= 40; ++f) bench.step();
     // The same view, each copy's palette replaced by the one given.
@@ -213,7 +213,7 @@ TEST(TransitionsOnTheGpu, BakedFadingCopiesSend32Bytes) {
   OPEN_GL_OR_SKIP(context);
   const Character& humanoid = default_humanoid();
   context->make_current();
-  GlCrowdRenderer renderer(*context, humanoid, 160, small_frame());
+  GlCrowdRenderer renderer(*context, humanoid, 160, small_fading_frame());
   CrowdBench bench(humanoid, fading_config("baked", &renderer, 160));
   Counters counters;
   for (size_t f = 0; f <= 40; ++f) counters = bench.step().counters;
@@ -237,7 +237,7 @@ TEST(TransitionsOnTheGpu, TheDrawnErrorAuditMeasuresBakedFadingCopies) {
   const Character& humanoid = default_humanoid();
   context->make_current();
   for (Crossfade crossfade : {Crossfade::Sampled, Crossfade::Frozen}) {
-    GlCrowdRenderer renderer(*context, humanoid, 24, small_frame());
+    GlCrowdRenderer renderer(*context, humanoid, 24, small_fading_frame());
     CrowdBench baked(humanoid, fading_config("baked", &renderer, 24, crossfade));
     CrowdBench exact(humanoid, fading_config("threaded", nullptr, 24, crossfade));
     for (size_t f = 0; f <= 40; ++f) baked.step(), exact.step();
@@ -268,7 +268,7 @@ TEST(TransitionsOnTheGpu, FrozenBakedFadesHoldTheActionLeft) {
   const Character& humanoid = default_humanoid();
   context->make_current();
   for (Crossfade crossfade : {Crossfade::Frozen, Crossfade::Sampled}) {
-    GlCrowdRenderer renderer(*context, humanoid, 24, small_frame());
+    GlCrowdRenderer renderer(*context, humanoid, 24, small_fading_frame());
     CrowdBench bench(humanoid, fading_config("baked", &renderer, 24, crossfade));
     size_t held = 0, moved = 0;
     std::vector<BakedFade> last(bench.crowd().size());
