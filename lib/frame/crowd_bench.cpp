@@ -389,6 +389,7 @@ void CrowdBench::count_work(Counters& counters) {
     }
     // Layers: their actions sampled, and one blend whether or not it fades.
     c.actions_sampled += prepared_[k].layers.layers.size();
+    c.layers += prepared_[k].layers.layers.size();
     if (fading || !prepared_[k].layers.empty()) c.joints_blended += prepared_[k].joints;
     if (skins_on_gpu(prepared_[k].site)) continue;
     const size_t level = level_of(job.storage), vertices = prepared_[k].vertices_of(level);
@@ -406,6 +407,7 @@ void CrowdBench::count_work(Counters& counters) {
     fallback += c.copies_fallback;
     counters.actions_sampled += c.actions_sampled;
     counters.fades += c.fades;
+    counters.layers += c.layers;
     counters.joints_blended += c.joints_blended;
   }
   counters.poses_updated = posed;

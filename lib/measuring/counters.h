@@ -54,6 +54,9 @@ struct Counters {
   // a fade that samples the action it leaves), evaluations of fading copies,
   // and joints blended in them.
   uint64_t actions_sampled = 0, fades = 0, joints_blended = 0;
+  // Layers (--anim-layer, issue 56): layers laid, one per layer of each pose
+  // evaluated.
+  uint64_t layers = 0;
 };
 
 struct CounterField {
@@ -61,7 +64,7 @@ struct CounterField {
   uint64_t Counters::*member;
 };
 // Every counter with its report name, in report order.
-inline constexpr std::array<CounterField, 36> kCounterFields = {{
+inline constexpr std::array<CounterField, 37> kCounterFields = {{
     {"poses_updated", &Counters::poses_updated},
     {"copies_culled", &Counters::copies_culled},
     {"copies_visible", &Counters::copies_visible},
@@ -98,7 +101,13 @@ inline constexpr std::array<CounterField, 36> kCounterFields = {{
     {"joints_blended", &Counters::joints_blended},
     {"palette_bytes_uploaded", &Counters::palette_bytes_uploaded},
     {"record_bytes_uploaded", &Counters::record_bytes_uploaded},
+    {"layers", &Counters::layers},
 }};
+// The per-frame CSV's columns never move: its counters up to
+// record_bytes_uploaded come before gpu_ms, cpu_ms and the stages' columns,
+// those added since after them.
+inline constexpr size_t kCsvCountersBeforeGpu = 36;
+static_assert(kCounterFields[kCsvCountersBeforeGpu - 1].name == "record_bytes_uploaded");
 // The lod*_ counters of level L.
 inline constexpr uint64_t Counters::*kLodCopies[4] = {&Counters::lod0_copies, &Counters::lod1_copies,
                                                       &Counters::lod2_copies, &Counters::lod3_copies};

@@ -193,8 +193,8 @@ std::string format_profile(const Result& report) {
       << " poses, " << k.vertices_skinned << " vertices skinned, " << k.channel_lookups << " lookups";
   // Transitions from the switch, or from a scene file's groups (seen in their counters).
   if (run.switches.transitions_s > 0 || k.fades > 0 || k.actions_sampled != k.poses_updated)
-    out << ", " << k.actions_sampled << " actions sampled, " << k.fades << " fades, " << k.joints_blended
-        << " joints blended";
+    out << ", " << k.actions_sampled << " actions sampled, " << k.fades << " fades, "
+        << (k.layers > 0 ? std::to_string(k.layers) + " layers, " : "") << k.joints_blended << " joints blended";
   out << " per frame\n";
   if (run.backend != "none" || k.copies_fallback > 0) {
     out << "renderer " << run.renderer << " | " << k.draw_calls << " draw calls, " << k.bytes_uploaded
@@ -301,9 +301,9 @@ std::string csv_header() {
     header += category_column(static_cast<Category>(c));
     header += "_ms";
   }
-  for (const CounterField& field : kCounterFields) {
+  for (size_t i = 0; i < kCsvCountersBeforeGpu; ++i) {
     header += ',';
-    header += field.name;
+    header += kCounterFields[i].name;
   }
   // Appended after the counters, as columns never move: GL timer queries, n/a
   // when not measured; then the CPU time of every thread in the frame (check's
@@ -311,6 +311,11 @@ std::string csv_header() {
   header += ",gpu_ms,cpu_ms";
   // Then Animations by stage, thread ms (measuring/animation_stages.h).
   for (size_t st = 0; st < kAnimationStageCount; ++st) header += "," + animation_stage_series(st);
+  // Counters added since: after everything else, as columns never move.
+  for (size_t i = kCsvCountersBeforeGpu; i < kCounterFields.size(); ++i) {
+    header += ',';
+    header += kCounterFields[i].name;
+  }
   return header;
 }
 
@@ -321,9 +326,11 @@ void write_csv(const Result& report, std::ostream& out) {
     out << i << "," << report.run.mode << "," << report.run.characters << "," << report.run.threads << ","
         << fixed(f.times.total_ms(), 4);
     for (double ms : f.times.ms) out << "," << fixed(ms, 4);
-    for (const CounterField& field : kCounterFields) out << "," << f.counters.*field.member;
+    for (size_t c = 0; c < kCsvCountersBeforeGpu; ++c) out << "," << f.counters.*kCounterFields[c].member;
     out << "," << (std::isfinite(f.gpu_ms) ? fixed(f.gpu_ms, 4) : std::string("n/a")) << "," << fixed(f.cpu_ms, 4);
     for (double ms : f.animation_stages.ms) out << "," << fixed(ms, 4);
+    for (size_t c = kCsvCountersBeforeGpu; c < kCounterFields.size(); ++c)
+      out << "," << f.counters.*kCounterFields[c].member;
     out << "\n";
   }
 }

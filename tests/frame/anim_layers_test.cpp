@@ -64,6 +64,7 @@ TEST(AnimLayers, TheLayersActionsAreSampledAndEveryPoseBlended) {
   const Counters c = bench.step().counters;
   ASSERT_GT(c.poses_updated, 0u);
   EXPECT_EQ(c.actions_sampled, 3 * c.poses_updated) << "its own action and two layers' a pose";
+  EXPECT_EQ(c.layers, 2 * c.poses_updated);
   EXPECT_EQ(c.joints_blended, c.poses_updated * test::default_humanoid().skeleton.joint_count());
 }
 

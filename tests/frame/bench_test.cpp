@@ -171,11 +171,12 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
   std::string line;
   std::getline(csv, line);
   size_t columns = std::count(line.begin(), line.end(), ',') + 1;
-  // then gpu_ms, cpu_ms and Animations by stage
+  // then gpu_ms, cpu_ms, Animations by stage and the counters added since
+  const size_t later = kCounterFields.size() - kCsvCountersBeforeGpu;
   EXPECT_EQ(columns, 5 + kCategoryCount + kCounterFields.size() + 2 + kAnimationStageCount);
   EXPECT_TRUE(
       line.ends_with(",gpu_ms,cpu_ms,animation_sampling_ms,animation_blending_ms,animation_local_to_model_ms,"
-                     "animation_skinning_ms"))
+                     "animation_skinning_ms,layers"))
       << line;
   EXPECT_EQ(line.rfind("frame,mode,characters,threads,frame_ms,physics_ms", 0), 0u);
   int rows = 0;
@@ -189,7 +190,7 @@ TEST(Reports, CsvAndJsonParseAndAddUp) {
     double frame = std::stod(cells[4]), sum = 0;
     for (size_t c = 0; c < kCategoryCount; ++c) sum += std::stod(cells[5 + c]);
     EXPECT_NEAR(sum, frame, frame * 0.01);
-    cpu.push_back(std::stod(cells[cells.size() - 1 - kAnimationStageCount]));
+    cpu.push_back(std::stod(cells[cells.size() - 1 - kAnimationStageCount - later]));
   }
   EXPECT_EQ(rows, 4);
 

@@ -99,7 +99,7 @@ TEST(GpuTimer, ReportsShowGpuTimeBesideTheCategories) {
                        "lod2_vertices,lod3_vertices,lod0_triangles,lod1_triangles,lod2_triangles,"
                        "lod3_triangles,vertices_drawn,actions_sampled,fades,joints_blended,"
                        "palette_bytes_uploaded,record_bytes_uploaded,gpu_ms,cpu_ms,animation_sampling_ms,"
-                       "animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms"))
+                       "animation_blending_ms,animation_local_to_model_ms,animation_skinning_ms,layers"))
       << header;
   std::string row;
   std::getline(csv, row);
