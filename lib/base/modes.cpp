@@ -123,7 +123,8 @@ SettingText conflicts(const ModeSwitches& s) {
            "in size: it needs {share} off";
   if (!s.anim_layers.empty() && s.skinning == SkinningSite::Baked)
     return "{anim_layer} lays actions over each copy's pose; {skinning} baked draws poses baked per action, "
-           "which a layer cannot change: layers run with skinning animations, rasterizer, gpu or compute";
+           "which a layer cannot change: layers run in every mode but baked (master, culled, threaded, hwskin, buffer, "
+           "instanced, shared, budget, compute)";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
   if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s)
