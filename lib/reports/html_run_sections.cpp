@@ -51,7 +51,7 @@ std::vector<std::pair<std::string, std::string>> environment_rows(const Result& 
 // run did not record it).
 std::string counter_rows(const std::vector<ReportRun>& runs, const std::vector<size_t>& rows) {
   std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (last frame)</th>";
-  for (const ReportRun& run : runs) out += "<th>" + html_text(run.label) + "</th>";
+  for (const ReportRun& run : runs) out += "<th class=\"run\">" + html_text(run.label) + "</th>";
   out += "</tr>\n";
   for (size_t i : rows) {
     out += "<tr><td class=\"name\">" + html_text(std::string(kCounterFields[i].name)) + "</td>";

@@ -104,10 +104,37 @@ struct Panel {
   double py(const Axis& a, double y) const { return bottom() - a.at(y) * plot_h(); }
 };
 
+// A margin label that fits `room` px at the charts' 12 px sans-serif (7.5 px
+// a character, wide enough for DejaVu's): a long name loses its middle to
+// an ellipsis and keeps its head and its end (a value, "0.10 ms"); the whole
+// text stays in the element's tooltip.
+std::string fit_label(const std::string& text, double room) {
+  auto is_start = [&](size_t i) { return i >= text.size() || (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80; };
+  size_t chars = 0;
+  for (size_t i = 0; i < text.size(); ++i) chars += is_start(i);
+  const size_t fits = static_cast<size_t>(room / 7.5);
+  if (chars <= fits || fits < 8) return text;
+  const size_t keep_tail = (fits - 1) * 2 / 5, keep_head = fits - 1 - keep_tail;
+  // Byte offsets of the keep_head-th character and of the last keep_tail.
+  size_t head = 0, seen = 0;
+  while (head < text.size() && (seen < keep_head || !is_start(head))) seen += is_start(head++) ? 1 : 0;
+  size_t tail = text.size(), from_end = 0;
+  while (tail > head && from_end < keep_tail) {
+    --tail;
+    if (is_start(tail)) ++from_end;
+  }
+  return text.substr(0, head) + "\u2026" + text.substr(tail);
+}
+
+// A chart's title at 16 px (10 px a character) within `room` px.
+std::string fit_title(const std::string& text, double room) {
+  return fit_label(text, room * 7.5 / 10.0);
+}
+
 void frame(std::string& out, const Panel& p, const std::string& title, const std::string& x_label,
            const std::string& y_label, const Axis& y, const Axis* x) {
-  out += "<text class=\"title\" x=\"" + num(kLeft) + "\" y=\"" + num(p.top + 26) + "\" font-size=\"16\">" +
-         xml_escape(title) + "</text>\n";
+  out += "<text class=\"title\" x=\"" + num(kLeft) + "\" y=\"" + num(p.top + 26) + "\" font-size=\"16\"><title>" +
+         xml_escape(title) + "</title>" + xml_escape(fit_title(title, p.width - kLeft - 8)) + "</text>\n";
   for (double v : y.ticks()) {
     out += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(kLeft + p.plot_w()) + "\" y1=\"" + num(p.py(y, v)) +
            "\" y2=\"" + num(p.py(y, v)) + "\" stroke=\"#ddd\"/>\n";
@@ -145,7 +172,8 @@ void legend_entry(std::string& out, const Panel& p, size_t index, const std::str
   double x = kLeft + p.plot_w() + 16, y = legend_baseline(p, index);
   out += "<g class=\"legend\"" + attr("data-for", name) + "><rect x=\"" + num(x) + "\" y=\"" + num(y - 9) +
          "\" width=\"14\" height=\"10\" fill=\"" + colour + "\"/><text x=\"" + num(x + 20) + "\" y=\"" + num(y) +
-         "\">" + xml_escape(name) + "</text></g>\n";
+         "\"><title>" + xml_escape(name) + "</title>" + xml_escape(fit_label(name, kRight - 16 - 20 - 6)) +
+         "</text></g>\n";
 }
 
 // Baselines for margin labels wanted at `wanted`: each at least kMarginStep
@@ -254,8 +282,8 @@ void SvgDocument::add(const LineChart& chart) {
     if (g.y > y.hi) {  // off the scale: said in the margin, no line
       if (!g.label.empty())
         out += "<text class=\"" + xml_escape(g.kind) + " above\"" + attr("data-value", label(g.y)) + " x=\"" +
-               num(right + 12) + "\" y=\"" + num(label_y[i]) + "\" fill=\"" + g.colour + "\">&#8593; " +
-               xml_escape(g.label) + " (above)</text>\n";
+               num(right + 12) + "\" y=\"" + num(label_y[i]) + "\" fill=\"" + g.colour + "\">" + tip +
+               xml_escape(fit_label("\u2191 " + g.label + " (above)", kRight - 12 - 6)) + "</text>\n";
       continue;
     }
     double gy = p.py(y, g.y);
@@ -265,7 +293,8 @@ void SvgDocument::add(const LineChart& chart) {
     if (!g.label.empty())
       out += "<line x1=\"" + num(right) + "\" x2=\"" + num(right + 8) + "\" y1=\"" + num(gy) + "\" y2=\"" +
              num(label_y[i] - 4) + "\" stroke=\"" + g.colour + "\"/><text x=\"" + num(right + 12) + "\" y=\"" +
-             num(label_y[i]) + "\" fill=\"" + g.colour + "\">" + xml_escape(g.label) + "</text>";
+             num(label_y[i]) + "\" fill=\"" + g.colour + "\">" + tip + xml_escape(fit_label(g.label, kRight - 12 - 6)) +
+             "</text>";
     out += "</g>\n";
   }
   for (size_t k = 0; k < chart.series.size(); ++k) {
@@ -322,8 +351,9 @@ void SvgDocument::add(const StackedBars& chart) {
       ++segments;
     }
     out += "<g class=\"bar\"" + attr("data-name", chart.bars[b]) + " data-segments=\"" + std::to_string(segments) +
-           "\">\n" + rects + "<text x=\"" + num(cx) + "\" y=\"" + num(p.bottom() + 16) + "\" text-anchor=\"middle\">" +
-           xml_escape(chart.bars[b]) + "</text>\n</g>\n";
+           "\">\n" + rects + "<text x=\"" + num(cx) + "\" y=\"" + num(p.bottom() + 16) +
+           "\" text-anchor=\"middle\"><title>" + xml_escape(chart.bars[b]) + "</title>" +
+           xml_escape(fit_label(chart.bars[b], slot - 8)) + "</text>\n</g>\n";
   }
   for (size_t s = 0; s < chart.segments.size(); ++s) legend_entry(out, p, s, chart.segments[s], colour(s));
   out += "</g>\n";
@@ -389,8 +419,8 @@ void SvgDocument::add(const VerdictChart& chart) {
   Axis x = axis_over(lo, hi, false);
   std::string& out = body_;
   out += chart_open("verdicts", chart.id, chart.rows.size());
-  out += "<text class=\"title\" x=\"" + num(kLeft) + "\" y=\"" + num(p.top + 26) + "\" font-size=\"16\">" +
-         xml_escape(chart.title) + "</text>\n";
+  out += "<text class=\"title\" x=\"" + num(kLeft) + "\" y=\"" + num(p.top + 26) + "\" font-size=\"16\"><title>" +
+         xml_escape(chart.title) + "</title>" + xml_escape(fit_title(chart.title, p.width - kLeft - 8)) + "</text>\n";
   double row_h = std::min(40.0, p.plot_h() / std::max<double>(1.0, static_cast<double>(chart.rows.size())));
   double plot_top = p.top + kTop, plot_bottom = plot_top + row_h * static_cast<double>(chart.rows.size());
   auto at = [&](double percent) { return kLeft + 60 + x.at(percent) * (p.plot_w() - 60); };

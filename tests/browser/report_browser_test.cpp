@@ -260,6 +260,23 @@ TEST(ReportInBrowser, ACompareReportWithASweep) {
   }
 }
 
+// Modes named by their switches (the thesis's Fig. 8 and 9 steps) make long
+// labels: they are shortened in the charts' margins and under bars, wrapped in
+// the tables, and the page still passes its layout check at 1280 px.
+TEST(ReportInBrowser, LongModeNamesFitThePage) {
+  REQUIRE_CHROMIUM();
+  Fixture f{crowdprof::test::scratch_dir("browser_long_names")};
+  f.run("compare '" + f.scene + "' " + f.small +
+        " --modes master,master+lookups=bundled,master+lookups=bundled+pose=per-copy+parallel=on+skinning=animations,"
+        "threaded+share=on+share-quantum=0.05,culled+update-lod=on --html '" +
+        f.path("long.html") + "'");
+  const std::string dom = dump_dom(f.path("long.html"));
+  expect_clean_page(dom, "long.html");
+  // The whole name stays in the label's tooltip.
+  EXPECT_NE(dom.find("<title>master+lookups=bundled+pose=per-copy+parallel=on+skinning=animations</title>"),
+            std::string::npos);
+}
+
 TEST(ReportInBrowser, ACapacityReportLeadsWithTheCapacities) {
   REQUIRE_CHROMIUM();
   Fixture f{crowdprof::test::scratch_dir("browser_capacity")};
