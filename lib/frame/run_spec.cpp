@@ -243,10 +243,16 @@ SpecLayer recorded_layer(const Result& result, const std::string& path, const st
   if (mode.ends_with("+custom")) mode.resize(mode.size() - 7);
   v["mode"] = mode;
   // The switches as a result records them (those that differ from the plain
-  // ones, and those always recorded).
+  // ones, and those always recorded), and those that differ from the mode's
+  // preset: a result leaves out a switch at its plain value, which the
+  // preset may not hold (mode shared with share off).
   const json switches = switches_to_json(run.switches);
+  const ModePreset* preset = find_mode(mode);
   for (const SwitchSpec& spec : switch_table())
-    if (switches.contains(spec.name)) v[std::string(spec.name)] = text_of(switches[spec.name]);
+    if (switches.contains(spec.name))
+      v[std::string(spec.name)] = text_of(switches[spec.name]);
+    else if (preset && spec.get(run.switches) != spec.get(preset->switches))
+      v[std::string(spec.name)] = text_of(spec.get(run.switches));
   // Threads were chosen only for a parallel run; a run on one thread records 1.
   if (run.switches.parallel) v["threads"] = std::to_string(run.threads);
   v["backend"] = run.backend;
