@@ -1,7 +1,8 @@
 // Scene files that say how they run ("mode", "switches", "threads"): they run
 // as the same options on the command line do, the command line wins, compare
 // applies their switches to every mode, check re-runs their baselines exactly,
-// bad values are one line naming the key; the codec writes what it reads.
+// bad values are one line naming the key; and bench --scene-out writes a run's
+// configuration as a scene that bench runs as is.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -233,4 +234,79 @@ TEST(SceneMode, AWrittenSceneReadsBackTheSame) {
   EXPECT_EQ(b.threads, 4);
   // Written again from where it lies: the same text.
   EXPECT_EQ(crowdprof::scene_file_text(b, written), read_file(written));
+}
+
+// bench --scene-out: the scene bench runs as is, giving the same crowd,
+// counters and digest as the command that wrote it.
+TEST(SceneOut, BenchRunsTheSceneItWroteAsIs) {
+  auto dir = crowdprof::test::scratch_dir("scene_out_replays");
+  fs::create_directories(dir / "sub");
+  const std::vector<std::string> commands = {
+      // A character file with every scene setting on the command line.
+      "'" + shipped("humanoid.glb") +
+          "' -n 20 --actions random --seed 4 --camera 0.5,2,12,0,1,0 --lens 50 --resolution 640x360 "
+          "--mode threaded --threads 2 --share on --share-quantum 1/30 --update-lod on",
+      "'" + shipped("humanoid.glb") + "' -n 6 --action walk --mode culled",
+      // Generated characters, weighted actions, counts scaled by -n (budget
+      // without its time-driven budget: no test asserts a time).
+      "'" + built("mixed.json") + "' -n 30 --mode budget --anim-budget 0 --camera all",
+      // Groups with their own transitions, and the run's.
+      "'" + built("locomotion.json") + "' -n 25 --transitions 2 --crossfade frozen --mode shared",
+      // A scene's mode and switches, one replaced.
+      "'" + built("mixed.json") + "' -n 12 --actions shared --action wave",
+  };
+  for (size_t i = 0; i < commands.size(); ++i) {
+    const fs::path out = dir / "sub" / ("scene" + std::to_string(i) + ".json");
+    json a = bench_json(commands[i] + " --scene-out '" + out.string() + "'", dir / "a.json");
+    ASSERT_FALSE(a.is_null());
+    json scene = json::parse(read_file(out));
+    EXPECT_TRUE(scene.contains("mode")) << scene.dump();
+    json b = bench_json("'" + out.string() + "'", dir / "b.json");
+    ASSERT_FALSE(b.is_null()) << scene.dump(2);
+    EXPECT_EQ(a["digest"], b["digest"]) << commands[i] << "\n" << scene.dump(2);
+    EXPECT_EQ(a["counters"], b["counters"]) << commands[i];
+    EXPECT_EQ(a["mode"], b["mode"]) << commands[i];
+    EXPECT_EQ(a["switches"], b["switches"]) << commands[i];
+    EXPECT_EQ(a["threads"], b["threads"]) << commands[i];
+    // (The run's action_choice is "scene" now: each group's is compared below.)
+    for (const char* key : {"characters", "seed", "camera", "resolution", "lens"})
+      EXPECT_EQ(a["scene"][key], b["scene"][key]) << commands[i] << ": " << key;
+    ASSERT_EQ(a["crowd"].size(), b["crowd"].size());
+    for (size_t k = 0; k < a["crowd"].size(); ++k) {
+      EXPECT_EQ(a["crowd"][k]["copies"], b["crowd"][k]["copies"]) << commands[i];
+      EXPECT_EQ(a["crowd"][k]["action_choice"], b["crowd"][k]["action_choice"]) << commands[i];
+    }
+    // Written again from the scene it wrote: the same file.
+    const fs::path again = dir / "sub" / "again.json";
+    auto r = run_cli("bench '" + out.string() + "' --frames 1 --warmup 0 -q --scene-out '" + again.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(read_file(again), read_file(out)) << commands[i];
+  }
+}
+
+TEST(SceneOut, NeverOverwritesAnInputNorAFileOnFailure) {
+  auto dir = crowdprof::test::scratch_dir("scene_out_inputs");
+  auto scene = dir / "s.json", kept = dir / "kept.json";
+  std::ofstream(scene) << humanoid_scene(4, "");
+  const std::string scene_text = read_file(scene);
+  auto r = run_cli("bench '" + scene.string() + "' --frames 1 --warmup 0 -q --scene-out '" + scene.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--scene-out"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(scene), scene_text);
+  const std::string glb_text = read_file(shipped("humanoid.glb"));
+  r = run_cli("bench '" + scene.string() + "' --frames 1 --warmup 0 -q --scene-out '" + shipped("humanoid.glb") + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("refusing to overwrite"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(shipped("humanoid.glb")), glb_text);
+  // A run that fails leaves an existing file as it was.
+  std::ofstream(kept) << "earlier";
+  r = run_cli("bench '" + scene.string() + "' --action fly --frames 1 --warmup 0 -q --scene-out '" + kept.string() +
+              "'");
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(read_file(kept), "earlier");
+  // What a scene cannot hold is said.
+  r = run_cli("bench '" + scene.string() + "' --fps 30 --frames 1 --warmup 0 -q --scene-out '" + kept.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("not --fps: give them again"), std::string::npos) << r.err;
+  EXPECT_EQ(crowdprof::load_scene_file(kept.string()).characters.size(), 1u);
 }
