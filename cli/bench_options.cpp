@@ -66,7 +66,7 @@ void group_options(CLI::App& cmd, const std::string& group, std::initializer_lis
 void group_outputs(CLI::App& cmd) {
   group_options(cmd, kOutputsGroup,
                 {"--csv", "--summary-csv", "--json", "--gbench-json", "--trace", "--screenshot", "--svg", "--html",
-                 "--junit", "--markdown", "--quiet"});
+                 "--junit", "--markdown", "--scene-out", "--quiet"});
 }
 
 crowdprof::SpecLayer command_line_layer(const BenchCliOptions& o) {
@@ -103,7 +103,8 @@ constexpr OutputKind kOutputKinds[] = {
     {"--csv", "CSV", nullptr},           {"--json", "JSON", nullptr},        {"--trace", "trace", nullptr},
     {"--screenshot", "PNG", nullptr},    {"--html", "HTML", nullptr},        {"--svg", "SVG", nullptr},
     {"--summary-csv", "CSV", nullptr},   {"--gbench-json", "JSON", nullptr}, {"--junit", "JUnit XML", nullptr},
-    {"--markdown", "Markdown", nullptr}, {"-o", "PNG", "-o,--output"},       {"-o", "HTML", "-o,--output"}};
+    {"--markdown", "Markdown", nullptr}, {"-o", "PNG", "-o,--output"},       {"-o", "HTML", "-o,--output"},
+    {"--scene-out", "scene", nullptr}};
 }  // namespace
 
 CLI::Option* DeclaredOutputs::declare(CLI::App& cmd, OutputOption output, std::string& path, const std::string& help) {

@@ -36,7 +36,8 @@ enum class OutputOption {
   Junit,
   Markdown,
   PngImage,
-  HtmlPage
+  HtmlPage,
+  SceneOut
 };
 
 // The outputs a command opts into (hyperfine's ExportManager): declared on the

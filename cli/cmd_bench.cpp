@@ -27,10 +27,22 @@ using namespace crowdprof;
 
 // Outputs bench has and the other commands' shared options do not.
 struct BenchOutputs {
-  std::string summary_csv, gbench_json;
+  std::string summary_csv, gbench_json, scene_out;
   bool count_instructions = false;
   bool calibrate = false;
 };
+
+// --scene-out: the configuration that ran, as a scene file bench runs as is;
+// a note names what the scene cannot hold.
+void write_scene_out(const std::string& path, const RunSpec& spec, const BenchScene& scene, const BenchConfig& config) {
+  write_file(path, "scene", scene_file_text(run_scene_file(spec, scene, config), path));
+  std::string outside;
+  for (const std::string& name : settings_outside_scene(spec))
+    outside += (outside.empty() ? "" : ", ") + option_name(name);
+  if (!outside.empty())
+    std::cerr << "crowdprof: note: " << path << " holds the crowd, view, mode and switches, not " << outside
+              << ": give them again to run the same frames\n";
+}
 
 int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   const std::string& summary_csv = outputs.summary_csv;
@@ -93,12 +105,15 @@ int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
                  !gbench_json.empty();
     std::cerr << "crowdprof: interrupted: " << report.frames() << " of " << report.frames_planned << " frames measured"
               << (wrote ? ", and written as a partial result" : "") << "\n";
+    if (!outputs.scene_out.empty())
+      std::cerr << "crowdprof: note: --scene-out " << outputs.scene_out << " is not written from a cut run\n";
     return kExitInterrupted;
   }
   if (!options.screenshot.empty()) {
     std::vector<uint8_t> pixels = rendering.renderer->read_pixels();
     write_png(options.screenshot, rendering.renderer->width(), rendering.renderer->height(), pixels);
   }
+  if (!outputs.scene_out.empty()) write_scene_out(outputs.scene_out, spec, scene, config);
   if (!options.html.empty()) {
     HtmlReportInput input;
     add_result(input, report, "this run");
@@ -140,6 +155,10 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
       "task on each worker thread");
   options->outputs.declare(*cmd, OutputOption::Screenshot, options->screenshot,
                            "Write the last frame as a PNG (needs a GL backend)");
+  options->outputs.declare(
+      *cmd, OutputOption::SceneOut, outputs->scene_out,
+      "Write the run's configuration (crowd, camera, resolution, mode, switches, threads) as a scene file that "
+      "bench runs as is (docs/scenes.md); not written when the run is cut short");
   options->outputs.declare(
       *cmd, OutputOption::Html, options->html,
       "Write an HTML report of the run (charts, the profile, environment, the screenshot): one file that "

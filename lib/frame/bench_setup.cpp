@@ -148,6 +148,50 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
   return config;
 }
 
+SceneFile run_scene_file(const RunSpec& spec, const BenchScene& loaded, const BenchConfig& config) {
+  SceneFile out;
+  if (loaded.scene) {
+    out.characters = loaded.scene->characters;
+    out.lens = loaded.scene->lens;
+  } else {
+    SceneCharacter c;
+    c.file = c.path = spec.file;
+    out.characters.push_back(std::move(c));
+  }
+  // The counts as the run made them (largest remainders), which add up to the
+  // crowd's size, so that the scene is run without scaling.
+  const std::vector<CrowdGroup> groups = crowd_groups(config.crowd);
+  for (size_t k = 0; k < out.characters.size(); ++k) {
+    SceneCharacter& c = out.characters[k];
+    c.count = groups[k].copies;
+    if (!config.actions_from_scene) {
+      c.actions = config.crowd.actions;
+      c.weights.clear();
+      c.action = c.actions == ActionChoice::Shared ? spec.action : std::string();
+    }
+  }
+  out.seed = spec.seed;
+  out.layout = config.crowd.layout;
+  out.camera = spec.camera;
+  out.lens = config.lens;
+  out.resolution = config.resolution;
+  out.mode = spec.mode;
+  out.switches = spec.switches;
+  out.threads = spec.threads;
+  return out;
+}
+
+std::vector<std::string> settings_outside_scene(const RunSpec& spec) {
+  const RunSpec defaults;
+  std::vector<std::string> names;
+  if (spec.fps != defaults.fps) names.push_back("fps");
+  if (spec.bake_rate != defaults.bake_rate && spec.mode_switches().skinning == SkinningSite::Baked)
+    names.push_back("bake_rate");
+  if (spec.backend != defaults.backend) names.push_back("backend");
+  if (spec.allow_static) names.push_back("static");
+  return names;
+}
+
 std::vector<NamedPath> bench_input_files(const std::string& file) {
   if (!is_scene_file(file)) return {{"character file", file}};
   // The characters a scene names are inputs too: an output on one of them

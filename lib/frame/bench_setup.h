@@ -60,6 +60,18 @@ std::pair<int, int> resolution_size(const std::string& resolution);
 // spec.allow_static).
 BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& scene);
 
+// The run's final configuration as a scene file (bench --scene-out): its
+// crowd (a mixed scene's counts as scaled to spec.characters, each group's
+// actions as they ran), layout, camera, lens, resolution, mode, switches and
+// threads, so that `bench` of the scene runs the same crowd and gives the same
+// counters and digest. A character file becomes the scene's one character.
+SceneFile run_scene_file(const RunSpec& spec, const BenchScene& loaded, const BenchConfig& config);
+
+// The settings of `spec` that a scene file does not hold and that differ from
+// their defaults (fps, bake_rate, backend, static): what a run of the scene
+// must be given again to replay the same frames.
+std::vector<std::string> settings_outside_scene(const RunSpec& spec);
+
 // The files a bench reads: the character file, or a scene file and every
 // character it names (InputError when the scene file is malformed).
 std::vector<NamedPath> bench_input_files(const std::string& file);

@@ -222,6 +222,9 @@ SpecLayer scene_layer(const SceneFile& scene) {
   layer.values["resolution"] = scene.resolution;
   layer.values["lens"] = switch_text(json(static_cast<double>(scene.lens.focal_mm)));
   layer.values["actions"] = "scene";
+  if (!scene.mode.empty()) layer.values["mode"] = scene.mode;
+  for (const auto& [name, text] : scene.switches) layer.values[name] = text;
+  if (scene.threads > 0) layer.values["threads"] = std::to_string(scene.threads);
   return layer;
 }
 
@@ -243,10 +246,16 @@ SpecLayer recorded_layer(const Result& result, const std::string& path, const st
   if (mode.ends_with("+custom")) mode.resize(mode.size() - 7);
   v["mode"] = mode;
   // The switches as a result records them (those that differ from the plain
-  // ones, and those always recorded).
+  // ones, and those always recorded), and those that differ from the mode's
+  // preset: a result leaves out a switch at its plain value, which the
+  // preset may not hold (mode shared with share off).
   const json switches = switches_to_json(run.switches);
+  const ModePreset* preset = find_mode(mode);
   for (const SwitchSpec& spec : switch_table())
-    if (switches.contains(spec.name)) v[std::string(spec.name)] = text_of(switches[spec.name]);
+    if (switches.contains(spec.name))
+      v[std::string(spec.name)] = text_of(switches[spec.name]);
+    else if (preset && spec.get(run.switches) != spec.get(preset->switches))
+      v[std::string(spec.name)] = text_of(spec.get(run.switches));
   // Threads were chosen only for a parallel run; a run on one thread records 1.
   if (run.switches.parallel) v["threads"] = std::to_string(run.threads);
   v["backend"] = run.backend;
@@ -258,8 +267,17 @@ SpecLayer recorded_layer(const Result& result, const std::string& path, const st
 RunSpec resolve_run_spec(std::span<const SpecLayer> layers) {
   RunSpec spec;
   const SpecLayer* threads_from = nullptr;
+  std::map<std::string, std::string> scene_switches;  // a scene file's own
   for (const SpecLayer& layer : layers) {
-    if (layer.has("mode")) spec.switches.clear();
+    if (layer.has("mode")) {
+      // The command line's --mode keeps the scene file's switches (as it keeps
+      // its own switch options); a scene's or a baseline's mode brings a whole
+      // configuration.
+      if (layer.source == SpecLayer::Source::CommandLine)
+        spec.switches = scene_switches;
+      else
+        spec.switches.clear();
+    }
     if (layer.has("action") && !layer.has("actions") && spec.actions == "scene") spec.actions = "shared";
     for (const auto& [name, text] : layer.values) {
       if (name == "file") {
@@ -268,6 +286,7 @@ RunSpec resolve_run_spec(std::span<const SpecLayer> layers) {
         ModeSwitches scratch;
         if (std::string problem = sw->set(scratch, text); !problem.empty()) bad_value(layer, name, text, problem);
         spec.switches[name] = text;
+        if (layer.source == SpecLayer::Source::SceneFile) scene_switches[name] = text;
       } else if (const SettingSpec* setting = find_setting(name)) {
         if (std::string problem = setting->set(spec, text); !problem.empty()) bad_value(layer, name, text, problem);
         if (name == "threads") threads_from = &layer;
@@ -324,7 +343,14 @@ std::vector<std::string> run_spec_arguments(const RunSpec& spec) {
   if (!spec.action.empty()) args.insert(args.end(), {"--action", spec.action});
   if (spec.threads > 0) args.insert(args.end(), {"--threads", std::to_string(spec.threads)});
   if (spec.lens > 0) args.insert(args.end(), {"--lens", number(spec.lens)});
-  for (const auto& [name, text] : spec.switches) args.insert(args.end(), {option_spelling(name), text});
+  // Of a scene file, every switch: the process reads the scene's switches
+  // again, which the spec may have replaced (a baseline's record).
+  if (is_scene_file(spec.file)) {
+    const ModeSwitches s = spec.mode_switches();
+    for (const SwitchSpec& sw : switch_table()) args.insert(args.end(), {option_spelling(sw.name), switch_text(sw, s)});
+  } else {
+    for (const auto& [name, text] : spec.switches) args.insert(args.end(), {option_spelling(name), text});
+  }
   if (spec.allow_static) args.push_back("--static");
   return args;
 }

@@ -76,8 +76,9 @@ struct SpecLayer {
   bool has(const std::string& name) const { return values.count(name) > 0; }
 };
 
-// What a scene file sets: the crowd size, seed, camera, lens, resolution, and
-// each character's actions ("actions": "scene").
+// What a scene file sets: the crowd size, seed, camera, lens, resolution,
+// each character's actions ("actions": "scene"), and the mode, switches and
+// threads it names.
 SpecLayer scene_layer(const SceneFile& scene);
 
 // What a result recorded (bench --json, a baseline): enough to run it again.
@@ -88,7 +89,9 @@ SpecLayer recorded_layer(const Result& result, const std::string& path, const st
 // Applies the layers in order over the defaults. Rules that make the order
 // mean what users expect:
 // - a layer that names a mode brings that mode's switches: switches set by
-//   earlier layers are dropped;
+//   earlier layers are dropped, except that the command line's mode keeps the
+//   scene file's switches (they apply over whatever mode runs, as switch
+//   options do; a baseline's record replaces them);
 // - a layer that names an action without actions asks for shared actions;
 // - threads recorded in a scene or baseline apply only when the resolved mode
 //   runs in parallel.

@@ -1,5 +1,6 @@
 #include "scene/scene_file.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "base/errors.h"
 #include "base/input_file.h"
 #include "base/modes.h"
+#include "base/switch_table.h"
 
 namespace crowdprof {
 
@@ -149,6 +151,38 @@ TransitionTiming group_transitions(const SceneReader& r, const json& entry, cons
   return t;
 }
 
+// "mode", "switches" and "threads": how the scene runs. Each switch is
+// checked as the command line's option is (a JSON true or false reads as on or
+// off, a number as written), and the scene's switches over its mode (threaded
+// when it names none) must be able to run together.
+void scene_mode_and_switches(const SceneReader& r, const json& doc, SceneFile& scene) {
+  if (doc.contains("mode")) {
+    scene.mode = r.text(doc["mode"], "mode");
+    if (!find_mode(scene.mode)) r.fail("mode", "'" + scene.mode + "': expected one of " + mode_names());
+  }
+  if (doc.contains("threads")) scene.threads = static_cast<int>(r.whole(doc["threads"], "threads", 1, 1024));
+  if (!doc.contains("switches")) return;
+  const json& switches = doc["switches"];
+  if (!switches.is_object())
+    r.fail("switches",
+           "expected an object of switches by name, e.g. {\"culling\": \"on\"}, got " + SceneReader::type_of(switches));
+  ModeSwitches s = find_mode(scene.mode.empty() ? "threaded" : scene.mode)->switches;
+  for (const auto& [name, value] : switches.items()) {
+    const std::string key = "switches." + name;
+    const SwitchSpec* spec = find_switch(name);
+    if (!spec) r.fail(key, "no such switch (the switches are " + switch_names() + ")");
+    if (!value.is_string() && !value.is_boolean() && !value.is_number())
+      r.fail(key, "expected a value as the option " + option_spelling(name) + " takes (" + std::string(spec->value) +
+                      "), got " + SceneReader::type_of(value));
+    const std::string text = switch_text(value);
+    if (std::string problem = spec->set(s, text); !problem.empty()) r.fail(key, "'" + text + "': " + problem);
+    scene.switches[name] = text;
+  }
+  if (SettingText conflict = conflicts(s); !conflict.empty())
+    r.fail("switches", "with mode " + (scene.mode.empty() ? std::string("threaded") : scene.mode) + ": " +
+                           conflict.str([](std::string_view name) { return "switches." + std::string(name); }));
+}
+
 }  // namespace
 
 size_t SceneFile::copies() const {
@@ -187,7 +221,7 @@ SceneFile load_scene_file(const std::string& path) {
   json doc = parse_json_input(path, bytes);
   if (doc.is_object() && doc.contains("crowdprof"))
     throw InputError(path, "this is a crowdprof result, not a scene file: use report, or check --result");
-  r.only_keys(doc, "", {"characters", "seed", "layout", "camera", "resolution"});
+  r.only_keys(doc, "", {"characters", "seed", "layout", "camera", "resolution", "mode", "switches", "threads"});
 
   if (!doc.contains("characters")) r.fail("characters", "missing: a scene needs at least one character");
   const json& characters = doc["characters"];
@@ -323,7 +357,130 @@ SceneFile load_scene_file(const std::string& path) {
     }
     if (!ok) r.fail("resolution", "'" + scene.resolution + "': expected WIDTHxHEIGHT, each 1 to 65536, e.g. 1600x900");
   }
+  scene_mode_and_switches(r, doc, scene);
   return scene;
+}
+
+namespace {
+
+using ordered = nlohmann::ordered_json;
+
+// A float as the shortest decimal that reads back as it (0.3, not
+// 0.30000001192092896), the float's exact value when a double read of that
+// decimal would round to another float.
+double float_number(float f) {
+  char text[32];
+  auto [end, ec] = std::to_chars(text, text + sizeof text, f);
+  if (ec != std::errc()) return f;
+  double d = 0;
+  std::from_chars(text, end, d);
+  return static_cast<float>(d) == f ? d : static_cast<double>(f);
+}
+
+// A generated character's "generate" entry: the values that differ from gen's
+// defaults.
+ordered generate_entry(const GeneratedCharacter& g) {
+  const HumanoidOptions& h = g.humanoid;
+  const HumanoidOptions defaults;
+  ordered entry = ordered::object();
+  if (h.bones != defaults.bones) entry["bones"] = h.bones;
+  if (h.vertices != defaults.vertices) entry["vertices"] = h.vertices;
+  if (h.seed != defaults.seed) entry["seed"] = h.seed;
+  if (h.lod_levels != defaults.lod_levels) entry["lods"] = h.lod_levels;
+  if (h.actions == HumanoidActions::Locomotion) entry["actions"] = "locomotion";
+  if (g.draco) entry["draco"] = true;
+  return entry;
+}
+
+// A character file as seen from `folder` (absolute): relative, unless the
+// scene named it by an absolute path or the two share no folder but the root;
+// FILE#skin=N keeps its skin.
+std::string file_from(const SceneCharacter& c, const std::filesystem::path& folder) {
+  if (std::filesystem::path(c.file.substr(0, c.file.find('#'))).is_absolute()) return c.file;
+  const size_t hash = c.path.find('#');
+  const std::string on_disk = c.path.substr(0, hash), skin = hash == std::string::npos ? "" : c.path.substr(hash);
+  std::filesystem::path file(on_disk);
+  const std::filesystem::path absolute = std::filesystem::absolute(file).lexically_normal();
+  // Relative only when the two share a folder below the root (not ../../usr/...).
+  auto a = absolute.begin(), f = folder.begin();
+  size_t shared = 0;
+  for (; a != absolute.end() && f != folder.end() && *a == *f; ++a, ++f) ++shared;
+  const std::filesystem::path relative = absolute.lexically_relative(folder);
+  return (shared < 2 || relative.empty() ? absolute : relative).generic_string() + skin;
+}
+
+ordered camera_entry(const SceneFile& scene) {
+  ordered camera = ordered::object();
+  if (scene.camera == "default" || scene.camera == "all" || scene.camera == "close") {
+    camera["view"] = scene.camera;
+  } else {
+    // EX,EY,EZ,TX,TY,TZ, read as make_camera reads it: floats, written exactly.
+    float v[6] = {};
+    const char* p = scene.camera.data();
+    const char* end = p + scene.camera.size();
+    for (float& value : v) {
+      auto [next, ec] = std::from_chars(p, end, value);
+      if (ec != std::errc()) throw InputError(scene.path, "camera: '" + scene.camera + "' is not EX,EY,EZ,TX,TY,TZ");
+      p = next < end ? next + 1 : next;
+    }
+    camera["eye"] = {float_number(v[0]), float_number(v[1]), float_number(v[2])};
+    camera["target"] = {float_number(v[3]), float_number(v[4]), float_number(v[5])};
+  }
+  camera["lens_mm"] = float_number(scene.lens.focal_mm);
+  camera["sensor_width_mm"] = float_number(scene.lens.sensor_width_mm);
+  camera["sensor_height_mm"] = float_number(scene.lens.sensor_height_mm);
+  camera["sensor_fit"] = std::string(to_string(scene.lens.fit));
+  return camera;
+}
+
+}  // namespace
+
+std::string scene_file_text(const SceneFile& scene, const std::string& destination) {
+  std::filesystem::path folder = std::filesystem::path(destination).parent_path();
+  folder = std::filesystem::absolute(folder.empty() ? std::filesystem::path(".") : folder).lexically_normal();
+  ordered doc = ordered::object();
+  ordered characters = ordered::array();
+  for (const SceneCharacter& c : scene.characters) {
+    ordered entry = ordered::object();
+    if (c.generate)
+      entry["generate"] = generate_entry(*c.generate);
+    else
+      entry["file"] = file_from(c, folder);
+    entry["count"] = c.count;
+    if (c.actions == ActionChoice::Weighted) {
+      ordered weights = ordered::object();
+      for (const auto& [action, weight] : c.weights) weights[action] = weight;
+      entry["actions"] = weights;
+    } else {
+      entry["actions"] = c.actions == ActionChoice::Random ? "random" : "shared";
+    }
+    if (c.actions == ActionChoice::Shared && !c.action.empty()) entry["action"] = c.action;
+    if (c.transitions) {
+      entry["transitions"] = c.transitions->mean_s;
+      entry["blend_in"] = c.transitions->blend_in_s;
+    }
+    characters.push_back(std::move(entry));
+  }
+  doc["characters"] = std::move(characters);
+  doc["seed"] = scene.seed;
+  ordered layout = {{"type", "grid"}};
+  layout["spacing"] = scene.layout.spacing > 0 ? ordered(float_number(scene.layout.spacing)) : ordered("auto");
+  layout["rows"] = scene.layout.rows > 0 ? ordered(scene.layout.rows) : ordered("auto");
+  layout["jitter"] = float_number(scene.layout.jitter);
+  layout["seed"] = scene.layout.jitter_seed;
+  doc["layout"] = std::move(layout);
+  doc["camera"] = camera_entry(scene);
+  doc["resolution"] = scene.resolution;
+  if (!scene.mode.empty()) doc["mode"] = scene.mode;
+  if (!scene.switches.empty()) {
+    ordered switches = ordered::object();
+    for (const SwitchSpec& spec : switch_table())  // in the table's order
+      if (auto it = scene.switches.find(std::string(spec.name)); it != scene.switches.end())
+        switches[it->first] = it->second;
+    doc["switches"] = std::move(switches);
+  }
+  if (scene.threads > 0) doc["threads"] = scene.threads;
+  return doc.dump(2) + "\n";
 }
 
 CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character) {

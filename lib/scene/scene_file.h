@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -51,6 +52,15 @@ struct SceneFile {
   std::string camera = "default";  // a --camera spec: default, all, close or EX,EY,EZ,TX,TY,TZ
   Lens lens;
   std::string resolution = "1600x900";
+  // "mode": a preset (base/modes.h); empty when the scene names none (the run's
+  // default, threaded, or the command line's --mode).
+  std::string mode;
+  // "switches": overrides of the mode's switches by name (base/switch_table.h),
+  // each as users type it ("1/30", "on"; a JSON true or false as on or off, a
+  // number as written). They apply over whatever mode runs, as a switch option
+  // does: the scene's mode, the command line's --mode, each of compare's --modes.
+  std::map<std::string, std::string> switches;
+  int threads = 0;        // "threads": workers of a parallel mode; 0: every core
   size_t copies() const;  // in all
 };
 
@@ -63,6 +73,14 @@ bool is_scene_file(const std::string& path);
 // below zero or no copies at all, a character file that does not exist, a
 // layout or camera value out of range.
 SceneFile load_scene_file(const std::string& path);
+
+// The scene as a scene file's text (JSON, two-space indents), which
+// load_scene_file reads back as the same scene when the text is saved at
+// `destination`: each character file is written relative to the destination's
+// folder (absolute when the scene named it so, or when they share no folder
+// below the root), a generated character as its
+// "generate" entry, every key explicit.
+std::string scene_file_text(const SceneFile& scene, const std::string& destination);
 
 // The crowd group of scene character `index`, loaded as `character` (index k
 // of the bench's characters): action names resolved. InputError naming the

@@ -61,6 +61,23 @@ TEST(CheckBaseline, RerunsEverythingTheBaselineRecorded) {
   EXPECT_NE(r.err.find("mode \"threaded+custom\" there, \"threaded\" here"), std::string::npos) << r.err;
 }
 
+// A switch at its plain value is left out of a result, yet the preset may
+// hold another (mode shared with share off): the re-run is what ran.
+TEST(CheckBaseline, RerunsASwitchTurnedBackToItsPlainValue) {
+  auto dir = crowdprof::test::scratch_dir("check_plain_switch");
+  auto base = dir / "base.json", run = dir / "run.json";
+  auto made = run_cli("bench '" + humanoid_glb() +
+                      "' -n 10 --mode shared --share off --frames 4 --warmup 0 -q --json '" + base.string() + "'");
+  ASSERT_EQ(made.status, 0) << made.err;
+  ASSERT_EQ(read_json(base)["mode"], "shared+custom");
+  auto r =
+      run_cli("check --spread 0 --baseline '" + base.string() + "' --tolerance 1000% --json '" + run.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("counters and digest match"), std::string::npos) << r.out;
+  EXPECT_EQ(read_json(run)["mode"], "shared+custom");
+  EXPECT_EQ(read_json(run)["switches"], read_json(base)["switches"]);
+}
+
 TEST(CheckBaseline, ValuesNoRunCouldRecordAreTheBaselinesFault) {
   auto dir = crowdprof::test::scratch_dir("check_baseline_corrupt");
   json good = read_json(unusual_baseline(dir));

@@ -83,6 +83,18 @@ TEST(Interrupt, BenchWritesWhatItMeasuredAndExits130) {
   }
 }
 
+TEST(Interrupt, BenchLeavesAnExistingSceneOutAsItWas) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_scene_out");
+  std::string scene = (dir / "tuned.json").string();
+  std::ofstream(scene) << "the earlier scene";
+  Interrupted r =
+      interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0", "--scene-out", scene},
+                    dir, SIGINT, std::chrono::milliseconds(1500));
+  ASSERT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("--scene-out " + scene + " is not written from a cut run"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(scene), "the earlier scene");
+}
+
 TEST(Interrupt, WithoutOutputFilesNothingClaimsToBeWritten) {
   auto dir = crowdprof::test::scratch_dir("interrupt_no_outputs");
   Interrupted r = interrupt_cli({"bench", humanoid_glb(), "-n", "8", "--frames", "10000000", "--warmup", "0"}, dir,

@@ -63,7 +63,16 @@ int main(int argc, char** argv) {
   "seed": 7,
   "layout": {"type": "grid", "spacing": "auto", "rows": 2, "jitter": 0.3, "seed": 2},
   "camera": {"view": "default", "lens_mm": 35, "sensor_width_mm": 32, "sensor_height_mm": 18, "sensor_fit": "vertical"},
-  "resolution": "640x360"
+  "resolution": "640x360",
+  "mode": "culled",
+  "switches": {"share": "on", "share_quantum": "1/30", "update_lod": true, "anim_budget": 2.5, "lod_thresholds": "0.5,0.25,0.125"},
+  "threads": 2
+})");
+    test::write_file(scenes / "placed.json", R"({
+  "characters": [{"file": "character.glb", "count": 2}],
+  "camera": {"eye": [0.5, 2, 12], "target": [0, 1, 0]},
+  "mode": "budget",
+  "switches": {"vertex_format": "packed", "transitions": 2, "crossfade": "frozen"}
 })");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_seeds: %s\n", e.what());

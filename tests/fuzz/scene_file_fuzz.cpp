@@ -1,5 +1,6 @@
 // Fuzz target: bytes as a scene file, through what bench does with one before
-// it runs: load and check the scene, load each character it names, and make
+// it runs: load and check the scene (its mode and switches too), write it back
+// and read that again (the same text), load each character it names, and make
 // each character's crowd group (action names resolved). Beside the scene lies
 // one character, "character.glb" (the tests' small skinned fixture), so that
 // scenes that name it reach past the file checks. Refusals are InputError (or
@@ -28,6 +29,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   (void)character_written;
   try {
     SceneFile scene = load_scene_file(path);
+    // The codec: a scene that reads, written beside it, reads back as the
+    // same text (mode, switches and all).
+    const std::string again = crowdprof::fuzz::input_path("written.json");
+    const std::string text = scene_file_text(scene, again);
+    crowdprof::fuzz::write_input(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "written.json");
+    if (scene_file_text(load_scene_file(again), again) != text) {
+      std::fprintf(stderr, "fuzz: a written scene reads back as another:\n%s\n", text.c_str());
+      std::abort();
+    }
     for (size_t i = 0; i < scene.characters.size(); ++i) {
       // A "generate" entry's values were checked above; making the humanoid
       // (up to 2.5 million vertices) is the generator's, tested on its own.
