@@ -1,8 +1,6 @@
 #include "base/anim_layers.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "base/number_text.h"
 
@@ -52,15 +50,6 @@ std::string parse_one_layer(std::string_view text, AnimLayer* layer) {
   return {};
 }
 
-std::string weight_text(double weight) {
-  char text[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, weight);
-    if (std::strtod(text, nullptr) == weight) break;
-  }
-  return text;
-}
-
 }  // namespace
 
 std::string parse_anim_layers(std::string_view text, std::vector<AnimLayer>* layers) {
@@ -84,7 +73,7 @@ std::string anim_layers_text(const std::vector<AnimLayer>& layers) {
   std::string text;
   for (const AnimLayer& l : layers)
     text += (text.empty() ? "" : ";") + std::string("action=") + l.action + (l.mask.empty() ? "" : ",mask=" + l.mask) +
-            ",weight=" + weight_text(l.weight) + ",falloff=" + std::to_string(l.falloff) +
+            ",weight=" + shortest_text(l.weight) + ",falloff=" + std::to_string(l.falloff) +
             ",blend=" + std::string(to_string(l.blend));
   return text;
 }

@@ -29,6 +29,9 @@ std::string with_thousands(uint64_t count);
 // A test's p-value as reports print it: 4 decimals, or "1.2e-05" below 1e-4.
 std::string p_value_text(double p);
 
+// The shortest decimal that reads back as `value` ("0.25", "1e-07", "3").
+std::string shortest_text(double value);
+
 // A finite number that is the whole text ("0.05", "1e3"; not "5ms" or ""),
 // else nullopt.
 std::optional<double> parse_number(std::string_view text);

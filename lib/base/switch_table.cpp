@@ -16,20 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-// The shortest decimal that reads back as `value`.
-std::string shortest(double value) {
-  char text[32];
-  if (value == std::floor(value) && std::fabs(value) < 1e15) {
-    std::snprintf(text, sizeof text, "%.0f", value);
-    return text;
-  }
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
-}
-
 std::string shortest(float value) {
   char text[32];
   for (int digits = 1; digits <= 9; ++digits) {
@@ -298,7 +284,7 @@ std::string switch_text(const json& value) {
   if (value.is_string()) return value.get<std::string>();
   if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
   if (value.is_number_integer()) return value.dump();
-  if (value.is_number()) return shortest(value.get<double>());
+  if (value.is_number()) return shortest_text(value.get<double>());
   return value.dump();
 }
 
