@@ -97,13 +97,17 @@ std::optional<CapacityMetric> parse_capacity_metric(const std::string& text) {
   return std::nullopt;
 }
 
-CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric, size_t n, size_t round) {
-  std::vector<double> values, frames;
-  for (const FrameRecord& f : report.frame_records) {
-    frames.push_back(f.times.total_ms());
+std::vector<double> metric_values(const Result& report, const CapacityMetric& metric) {
+  std::vector<double> values;
+  for (const FrameRecord& f : report.frame_records)
     values.push_back(metric.category ? f.times[*metric.category] : f.times.total_ms());
-  }
-  Summary s = summarize(values);
+  return values;
+}
+
+CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric, size_t n, size_t round) {
+  std::vector<double> frames;
+  for (const FrameRecord& f : report.frame_records) frames.push_back(f.times.total_ms());
+  Summary s = summarize(metric_values(report, metric));
   CapacityPoint p;
   p.n = n;
   p.median_ms = s.median;

@@ -79,6 +79,9 @@ struct CapacityMetric {
 // "gpu_latency"); none when it is neither.
 std::optional<CapacityMetric> parse_capacity_metric(const std::string& text);
 
+// The metric of each of a report's frames, in order.
+std::vector<double> metric_values(const Result& report, const CapacityMetric& metric);
+
 // The point a report measured at N.
 CapacityPoint capacity_point(const Result& report, const CapacityMetric& metric, size_t n, size_t round);
 

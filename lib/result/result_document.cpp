@@ -190,13 +190,19 @@ ResultDocument result_document_from_json(const json& doc, const std::string& pat
   ResultDocument out;
   require_format(doc, path);
   out.kind = document_kind(doc);
-  if (out.kind != "bench" && out.kind != "compare" && out.kind != "capacity")
-    throw InputError(path,
-                     "a '" + out.kind + "' result; report reads results of bench, check, compare and capacity --json");
+  if (out.kind != "bench" && out.kind != "compare" && out.kind != "capacity" && out.kind != "advise")
+    throw InputError(
+        path, "a '" + out.kind + "' result; report reads results of bench, check, compare, capacity and advise --json");
   // A capacity search holds a comparison's runs (one per mode, at its
   // capacity) and sweep (every size it tried).
   out.runs = bench_results_in(doc, path);
   if (out.kind == "bench") return out;
+  if (out.kind == "advise") {
+    if (!doc.contains("advice")) throw InputError(path, "an advise result without \"advice\"");
+    out.advice = advice_from_json(doc["advice"], path);
+    out.partial = doc.contains("partial") && doc["partial"] == true;
+    return out;
+  }
   if (doc.contains("sweep_axis")) {
     if (doc["sweep_axis"] == "passes")
       out.sweep_axis = SweepAxis::Passes;
@@ -235,8 +241,9 @@ json point_json(const CapacityPoint& p, double budget_ms) {
           {"digest", p.digest}};
 }
 
-json capacity_json(const ResultDocument& d) {
-  const CapacityRecord& c = *d.capacity;
+// The header of a search's document: the first run's build, machine and scene,
+// without the crowd's size when the search varies it.
+json search_header(const ResultDocument& d, const char* kind, bool keep_characters) {
   json j;
   const Result* head = d.described ? &*d.described : d.runs.empty() ? nullptr : &d.runs.front();
   if (head) {
@@ -244,9 +251,24 @@ json capacity_json(const ResultDocument& d) {
     j["crowdprof"] = first["crowdprof"];
     j["environment"] = first["environment"];
     j["scene"] = first["scene"];
-    j["scene"].erase("characters");  // each point has its own
+    if (!keep_characters) j["scene"].erase("characters");
   }
-  j["crowdprof"]["kind"] = "capacity";
+  j["crowdprof"]["kind"] = kind;
+  return j;
+}
+
+json advise_json(const ResultDocument& d) {
+  json j = search_header(d, "advise", true);
+  j["partial"] = d.partial;
+  j["advice"] = advice_to_json(*d.advice);
+  j["runs"] = json::array();
+  for (const Result& run : d.runs) j["runs"].push_back(result_to_json(run));
+  return j;
+}
+
+json capacity_json(const ResultDocument& d) {
+  const CapacityRecord& c = *d.capacity;
+  json j = search_header(d, "capacity", false);  // each point has its own crowd size
   j["budget_ms"] = c.budget_ms;
   j["metric"] = c.metric;
   j["search"] = {{"start", c.start},
@@ -284,6 +306,7 @@ json capacity_json(const ResultDocument& d) {
 json result_document_to_json(const ResultDocument& d) {
   if (d.kind == "bench") return d.runs.empty() ? json::object() : result_to_json(d.runs.front());
   if (d.kind == "capacity" && d.capacity) return capacity_json(d);
+  if (d.kind == "advise" && d.advice) return advise_json(d);
   if (d.kind != "compare") throw std::logic_error("result_document_to_json: a '" + d.kind + "' document");
   json j;
   json runs = json::array(), summary = json::array(), sweep = json::array(), modes = json::array();

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "result/advice_record.h"
 #include "result/result.h"
 #include "result/sweep_axis.h"
 
@@ -79,7 +80,7 @@ struct CapacityRecord {
 };
 
 struct ResultDocument {
-  std::string kind = "bench";        // "bench" (bench, check), "compare" or "capacity"
+  std::string kind = "bench";        // "bench" (bench, check), "compare", "capacity" or "advise"
   std::vector<Result> runs;          // the bench result; a comparison's runs; a search's runs at each capacity
   std::vector<ModeMedians> summary;  // compare: one row per run
   std::vector<ModeMedians> sweep;    // compare --sweep, or every point a capacity search measured whole
@@ -87,6 +88,8 @@ struct ResultDocument {
   size_t block_frames = 10;                // compare: frames per block of the interleaving
   bool partial = false;                    // stopped early (^C)
   std::optional<CapacityRecord> capacity;  // kind "capacity"
+  // kind "advise": the plan; runs holds the start's and the final configuration's runs.
+  std::optional<AdviceRecord> advice;
   // capacity: the first run measured, whose build, environment and scene head
   // the document (none read back: then the first of `runs` heads it).
   std::optional<Result> described;

@@ -60,7 +60,7 @@ Result read_result(const std::string& path) {
 
 std::vector<Result> bench_results_in(const nlohmann::json& doc, const std::string& path) {
   std::string kind = document_kind(doc);
-  if (kind != "compare" && kind != "capacity") return {result_from_json(doc, path)};
+  if (kind != "compare" && kind != "capacity" && kind != "advise") return {result_from_json(doc, path)};
   if (!doc.contains("runs") || !doc["runs"].is_array() || doc["runs"].empty())
     throw InputError(path, "a comparison without \"runs\": not a complete crowdprof result");
   std::vector<Result> out;

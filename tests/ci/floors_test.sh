@@ -17,6 +17,7 @@ floors=(
   "frame"
   "render"
   "gate"
+  "advise"
   "reports"
 )
 declare -A floor_of
