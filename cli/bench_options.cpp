@@ -132,3 +132,17 @@ crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& o, const c
   if (!warning.empty()) std::cerr << "crowdprof: warning: " << as_options(warning) << "\n";
   return rendering;
 }
+
+// --scene-out: the configuration that ran, as a scene file bench runs as is;
+// a note names what the scene cannot hold.
+void write_scene_out(const std::string& path, const crowdprof::RunSpec& spec, const crowdprof::BenchScene& scene,
+                     const crowdprof::BenchConfig& config) {
+  using namespace crowdprof;
+  write_file(path, "scene", scene_file_text(run_scene_file(spec, scene, config), path));
+  std::string outside;
+  for (const std::string& name : settings_outside_scene(spec))
+    outside += (outside.empty() ? "" : ", ") + option_name(name);
+  if (!outside.empty())
+    std::cerr << "crowdprof: note: " << path << " holds the crowd, view, mode and switches, not " << outside
+              << ": give them again to run the same frames\n";
+}

@@ -113,3 +113,8 @@ void require_writable_outputs(const BenchCliOptions& options, const std::vector<
 // says so on stderr and goes on without.
 crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& options, const crowdprof::BenchScene& scene,
                                                crowdprof::BenchConfig& config);
+
+// --scene-out: the configuration that ran, as a scene file bench runs as is
+// (run_scene_file); a note on stderr names what the scene cannot hold.
+void write_scene_out(const std::string& path, const crowdprof::RunSpec& spec, const crowdprof::BenchScene& scene,
+                     const crowdprof::BenchConfig& config);

@@ -32,18 +32,6 @@ struct BenchOutputs {
   bool calibrate = false;
 };
 
-// --scene-out: the configuration that ran, as a scene file bench runs as is;
-// a note names what the scene cannot hold.
-void write_scene_out(const std::string& path, const RunSpec& spec, const BenchScene& scene, const BenchConfig& config) {
-  write_file(path, "scene", scene_file_text(run_scene_file(spec, scene, config), path));
-  std::string outside;
-  for (const std::string& name : settings_outside_scene(spec))
-    outside += (outside.empty() ? "" : ", ") + option_name(name);
-  if (!outside.empty())
-    std::cerr << "crowdprof: note: " << path << " holds the crowd, view, mode and switches, not " << outside
-              << ": give them again to run the same frames\n";
-}
-
 int bench(BenchCliOptions& options, const BenchOutputs& outputs) {
   const std::string& summary_csv = outputs.summary_csv;
   const std::string& gbench_json = outputs.gbench_json;

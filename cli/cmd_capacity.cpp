@@ -36,25 +36,6 @@ struct CapacityCliOptions {
   std::string svg, summary_csv;
 };
 
-// The largest crowd, up to `cap`, whose bench fits its share of the memory
-// when `modes` benches are alive at once (check_fits_in_memory's rule).
-size_t memory_cap(const BenchScene& scene, BenchConfig config, size_t cap, size_t modes) {
-  uint64_t available = available_memory_bytes();
-  if (available == 0) return cap;
-  uint64_t share = available * 9 / 10 / std::max<size_t>(modes, 1);
-  auto fits = [&](size_t n) {
-    config.crowd.copies = n;
-    return estimate_bench_bytes(scene.characters, config.crowd, config.mode) <= share;
-  };
-  if (fits(cap)) return cap;
-  size_t lo = 0, hi = cap;  // fits(lo) (or lo = 0), !fits(hi)
-  while (hi - lo > 1) {
-    size_t mid = lo + (hi - lo) / 2;
-    (fits(mid) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 int capacity(CapacityCliOptions& o) {
   CapacityRule rule;
   rule.budget_ms = o.budget;
@@ -98,7 +79,7 @@ int capacity(CapacityCliOptions& o) {
     ModeCapacity mode;
     mode.mode = config.mode_name;
     mode.rule = rule;
-    mode.rule.cap = memory_cap(scene, config, rule.cap, runnable.size());
+    mode.rule.cap = largest_crowd_in_memory(scene.characters, config, rule.cap, runnable.size());
     if (mode.rule.cap < 1) throw UsageError("mode " + config.mode_name + ": not even one character fits in memory");
     mode.rule.start = std::min(rule.start, mode.rule.cap);
     modes.push_back(mode);
@@ -106,19 +87,7 @@ int capacity(CapacityCliOptions& o) {
 
   install_interrupt_handlers();
   size_t rounds = 0;
-  CapacityMeasure measure = [&](std::span<const size_t> active, std::span<const size_t> ns) {
-    ModeRun run;
-    std::string what = "capacity round " + std::to_string(++rounds) + ":";
-    for (size_t k = 0; k < active.size(); ++k) {
-      run.configs.push_back(runnable[active[k]]);
-      run.configs.back().crowd.copies = ns[k];
-      what += (k ? ", " : " ") + run.configs.back().mode_name + " n=" + std::to_string(ns[k]);
-    }
-    check_fits_in_memory(scene.characters, run.configs);
-    for (const BenchConfig& config : run.configs)
-      run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));
-    return run_modes(run, o.bench, static_cast<size_t>(o.block), rendering, what + ",");
-  };
+  CapacityMeasure measure = capacity_measure(scene, runnable, o.bench, static_cast<size_t>(o.block), rendering, rounds);
   CapacityRun result = run_capacity(std::move(modes), *metric, measure);
   result.block = static_cast<size_t>(o.block);
   result.frames = o.bench.spec.frames;

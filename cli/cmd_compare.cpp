@@ -59,20 +59,39 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
 }
 
 std::vector<Result> run_modes(ModeRun& modes, const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
-                              const std::string& what) {
+                              const std::string& what, const std::atomic<bool>* stop) {
   std::vector<CrowdBench*> benches;
   for (auto& bench : modes.benches) benches.push_back(bench.get());
   RunOptions run;
   run.frames = o.spec.frames;
   run.warmup = o.spec.warmup;
   run.progress = terminal_progress(o.quiet, what);
-  run.stop = &interrupt_requested();
+  run.stop = stop ? stop : &interrupt_requested();
   std::vector<Result> reports = run_interleaved(benches, o.spec.file, run, block);
   for (Result& report : reports) {
     report.run.backend = rendering.backend_name();
     report.run.renderer = rendering.renderer_name();
   }
   return reports;
+}
+
+CapacityMeasure capacity_measure(const BenchScene& scene, const std::vector<BenchConfig>& configs,
+                                 const BenchCliOptions& o, size_t block, const BenchRendering& rendering,
+                                 size_t& rounds, const std::atomic<bool>* stop) {
+  return [&scene, &configs, &o, block, &rendering, &rounds, stop](std::span<const size_t> active,
+                                                                  std::span<const size_t> ns) {
+    ModeRun run;
+    std::string what = "capacity round " + std::to_string(++rounds) + ":";
+    for (size_t k = 0; k < active.size(); ++k) {
+      run.configs.push_back(configs[active[k]]);
+      run.configs.back().crowd.copies = ns[k];
+      what += (k ? ", " : " ") + run.configs.back().mode_name + " n=" + std::to_string(ns[k]);
+    }
+    check_fits_in_memory(scene.characters, run.configs);
+    for (const BenchConfig& config : run.configs)
+      run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));
+    return run_modes(run, o, block, rendering, what + ",", stop);
+  };
 }
 
 namespace {

@@ -70,6 +70,7 @@ int run_command(int argc, char** argv) {
   add_bench_command(app, run);
   add_compare_command(app, run);
   add_capacity_command(app, run);
+  add_advise_command(app, run);
   add_check_command(app, run);
   add_diff_command(app, run);
   add_render_command(app, run);

@@ -8,6 +8,7 @@
 #include "base/number_text.h"
 #include "base/switch_table.h"
 #include "gate/paired_test.h"
+#include "measuring/stats.h"
 
 namespace crowdprof {
 
@@ -56,7 +57,7 @@ AdviceCandidate measured(const AdviseRule& rule, const Result& run, const std::v
   AdviceCandidate c;
   std::vector<double> values = metric_values(run, rule.metric);
   c.metric = interval_of(values);
-  c.frame_ms = metric_median(run, "frame_ms");
+  c.frame_ms = summarize(metric_values(run, CapacityMetric{})).median;
   if (base_values) c.saved = interval_of(paired_savings(*base_values, values));
   if (run.drawn_error) {
     c.error_px = run.drawn_error->max_px;
@@ -189,7 +190,8 @@ std::vector<LeverSetting> next_lever_settings(const AdviseRule& rule, const Advi
       std::string next = next_thresholds(recorded_text(s, thresholds));
       if (!next.empty()) add(family, {{thresholds.c_str(), next}});
     } else if (family == "anim_budget") {
-      const double now = s.anim_budget_ms > 0 ? s.anim_budget_ms : metric_median(base, "Animations");
+      const std::vector<double> animations = metric_values(base, CapacityMetric{Category::Animations});
+      const double now = s.anim_budget_ms > 0 ? s.anim_budget_ms : summarize(animations).median;
       const double half = std::round(now * 50.0) / 100.0;  // half, to 0.01 ms
       if (half >= 0.01 && (s.anim_budget_ms == 0 || half < s.anim_budget_ms))
         add(family, {{"anim_budget", shortest_text(half)}});
@@ -242,9 +244,10 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
   run.final_run = first.front();
   AdviseConfig current = start;
   Result current_run = first.front();
-  double current_ms = metric_values(current_run, rule.metric).empty()
-                          ? 0
-                          : bootstrap_median(metric_values(current_run, rule.metric)).median;
+  record.start = measured(rule, current_run, nullptr);
+  record.start.verdict = "start";
+  record.final = record.start;
+  double current_ms = record.start.metric.median;
 
   for (size_t step_number = 1; current_ms > rule.budget_ms; ++step_number) {
     if (hooks.elapsed_s() >= rule.time_limit_s) {
@@ -290,12 +293,17 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
       std::vector<double> base_values = metric_values(runs[0], rule.metric);
       if (at == 0) {
         AdviceCandidate base = measured(rule, runs[0], nullptr);
-        base.lever = "";
-        base.changes = "";
         base.verdict = "base";
         base_error_px = base.error_px;
         step.candidates.push_back(base);
         current_run = runs[0];
+        if (step_number == 1) {
+          // Measured beside the levers, after the lone start warmed the
+          // machine: the start's figure from now on.
+          run.start_run = runs[0];
+          record.start = base;
+          record.start.verdict = "start";
+        }
       }
       for (size_t k = 1; k < runs.size(); ++k) {
         const LeverSetting* lever = runnable[at + k - 1];
@@ -342,6 +350,7 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
     record.steps.push_back(step);
     current_ms = step.candidates.front().metric.median;
     run.final_run = current_run;
+    record.final = step.candidates.front();
     if (!best) {
       auto [outcome, why] = ran_out(step, rule);
       record.ran_out = why;
@@ -356,29 +365,35 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
       }
     run.final = current;
     run.final_run = current_run;
+    record.final = taken;
     current_ms = taken.metric.median;
     hooks.progress("step " + std::to_string(step_number) + " took " + describe(taken) + ": " +
                    ms(step.candidates.front().metric.median) + " to " + ms(taken.metric.median));
   }
   if (record.outcome.empty()) finish("met");
+  record.final.verdict = "final";
+  record.final.saved = {};
   record.met = current_ms <= rule.budget_ms;
   record.start_options = options_over(AdviseConfig{start.preset, {}, 0}, start);
   record.start_mode = start.preset;
   record.final_options = options_over(start, run.final);
   if (run.partial || record.outcome == "time limit" || record.outcome == "interrupted") return run;
 
-  hooks.progress("capacity of the start and of the final configuration at " + ms(rule.budget_ms));
-  AdviseConfig ends[] = {start, run.final};
+  // One search when no lever was taken: the start is the final configuration.
+  const bool same = run.final == start;
+  hooks.progress(std::string(same ? "capacity of the start" : "capacity of the start and of the final configuration") +
+                 " at " + ms(rule.budget_ms));
+  std::vector<AdviseConfig> ends = {start};
+  if (!same) ends.push_back(run.final);
   CapacityRun capacity = hooks.capacity(ends);
   if (capacity.partial) {
     run.partial = hooks.stop_reason() == "interrupted";
     record.left_out.push_back("the capacities: their search was cut short (" + hooks.stop_reason() + ")");
   } else {
-    const char* names[] = {"start", "final"};
     for (size_t m = 0; m < capacity.modes.size() && m < 2; ++m) {
       const ModeCapacity& mode = capacity.modes[m];
       AdviceCapacity c;
-      c.configuration = names[m];
+      c.configuration = m == 0 ? (same ? "start and final" : "start") : "final";
       if (mode.result.fit) c.fit = mode.result.fit->n;
       if (mode.result.fail) c.over = mode.result.fail->n;
       c.capped = mode.result.capped;

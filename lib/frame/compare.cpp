@@ -24,6 +24,24 @@ void check_fits_in_memory(std::span<const Character* const> characters, std::spa
                    " of memory; this machine has " + mib(available) + " available (compare fewer modes or copies)");
 }
 
+size_t largest_crowd_in_memory(std::span<const Character* const> characters, BenchConfig config, size_t cap,
+                               size_t side_by_side) {
+  uint64_t available = available_memory_bytes();
+  if (available == 0) return cap;
+  uint64_t share = available * 9 / 10 / std::max<size_t>(side_by_side, 1);
+  auto fits = [&](size_t n) {
+    config.crowd.copies = n;
+    return estimate_bench_bytes(characters, config.crowd, config.mode) <= share;
+  };
+  if (fits(cap)) return cap;
+  size_t lo = 0, hi = cap;  // fits(lo) (or lo = 0), !fits(hi)
+  while (hi - lo > 1) {
+    size_t mid = lo + (hi - lo) / 2;
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const std::string& file,
                                     const RunOptions& options, size_t block) {
   block = std::max<size_t>(block, 1);

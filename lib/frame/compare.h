@@ -22,6 +22,12 @@ namespace crowdprof {
 void check_fits_in_memory(const Character& character, std::span<const BenchConfig> configs);
 void check_fits_in_memory(std::span<const Character* const> characters, std::span<const BenchConfig> configs);
 
+// The largest crowd, up to `cap`, whose bench of `config` fits its share of
+// the memory when `side_by_side` benches are alive at once (the rule of
+// check_fits_in_memory); 0 when not even one copy does.
+size_t largest_crowd_in_memory(std::span<const Character* const> characters, BenchConfig config, size_t cap,
+                               size_t side_by_side);
+
 // Runs options.warmup then options.frames frames of every bench, `block` frames
 // of one before the next (warm-up included, so each mode's caches are equally
 // cold after the others ran). progress, if set, counts frames of all benches.

@@ -11,6 +11,8 @@
 #include <ostream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "reports/profile_table.h"
 
 namespace crowdprof {

@@ -8,18 +8,12 @@
 
 namespace crowdprof {
 
-namespace {
-
-// A field as CSV writes it: quoted when it holds a comma or a quote (a mode
-// named with switches: master+lod-thresholds=0.3,0.2,0.1).
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
 }
-
-}  // namespace
 
 std::string summary_csv_header() {
   return "mode,characters,threads,frames,frame_median_ms,frame_p95_ms,frame_p99_ms,frame_fps,cpu_median_ms,"

@@ -16,6 +16,10 @@ namespace crowdprof {
 // frame_fps,cpu_median_ms,cpu_p95_ms,cpu_p99_ms,cpu_fps,partial"
 std::string summary_csv_header();
 
+// A field as CSV writes it: quoted when it holds a comma, a quote or a line
+// break (a mode named with switches: master+lod-thresholds=0.3,0.2,0.1).
+std::string csv_field(const std::string& text);
+
 // The header, then a row per run in the order given.
 void write_summary_csv(const std::vector<const Result*>& runs, std::ostream& out);
 

@@ -135,6 +135,8 @@ json advice_to_json(const AdviceRecord& a) {
             {"outcome", a.outcome},
             {"ran_out", a.ran_out},
             {"elapsed_s", a.elapsed_s}};
+  j["start"] = candidate_json(a.start);
+  j["final"] = candidate_json(a.final);
   j["steps"] = json::array();
   for (const AdviceStep& step : a.steps) {
     json s = {{"taken", optional_count(step.taken)}, {"candidates", json::array()}};
@@ -172,6 +174,8 @@ AdviceRecord advice_from_json(const json& advice, const std::string& path) {
   a.outcome = f.text("outcome");
   a.ran_out = f.text("ran_out");
   a.elapsed_s = f.number("elapsed_s");
+  a.start = read_candidate(Fields(f.at("start"), "advice.start", path));
+  a.final = read_candidate(Fields(f.at("final"), "advice.final", path));
   const json& steps = f.array("steps");
   for (size_t s = 0; s < steps.size(); ++s) {
     const std::string where = "advice.steps[" + std::to_string(s) + "]";

@@ -68,6 +68,10 @@ struct AdviceRecord {
   std::string final_options;          // the options the final configuration adds to the start's
   std::vector<std::string> levers;    // the families it could try
   std::vector<std::string> left_out;  // what it does not try, and why (GPU levers on llvmpipe)
+  // The start measured alone (verdict "start") and the final configuration's
+  // last measurement (verdict "final": the start's, a step's base or its
+  // taken lever); their saved_ms is 0 (they are not a pair).
+  AdviceCandidate start, final;
   std::vector<AdviceStep> steps;
   size_t configurations_measured = 0;
   size_t frames_per_configuration = 0, warmup = 0, block_frames = 0;

@@ -1,0 +1,98 @@
+#include "reports/advise_report.h"
+
+#include "base/number_text.h"
+#include "reports/summary_csv.h"
+#include "reports/text_table.h"
+
+namespace crowdprof {
+
+namespace {
+
+std::string interval_text(const MsInterval& i) {
+  return "[" + fixed(i.low, 3) + ", " + fixed(i.high, 3) + "]";
+}
+
+// The column of the metric: "frame_ms" or "animations_ms".
+std::string metric_column(const AdviceRecord& a) {
+  return a.metric == "frame" ? "frame_ms" : "animations_ms";
+}
+
+}  // namespace
+
+std::string format_advice(const AdviceRecord& a, const Result* start) {
+  std::string out = "advise: " + with_thousands(a.characters) + " copies";
+  if (start) out += " of " + start->run.file;
+  out += ", " + a.metric + " within " + shortest_text(a.budget_ms) + " ms, drawn error within " +
+         shortest_text(a.max_error_px) + " px\n";
+  if (start)
+    out += "host: " + start->environment.cpu + " (" + std::to_string(start->environment.cores) + " cores), SIMD " +
+           start->environment.simd + "\n";
+  std::string levers;
+  for (const std::string& lever : a.levers) levers += (levers.empty() ? "" : ", ") + lever;
+  out += "levers tried: " + levers + "\n";
+  for (const std::string& line : a.left_out) out += "left out: " + line + "\n";
+  out += "start: " + a.start_mode + (a.start_options.empty() ? "" : " " + a.start_options) + ": " +
+         fixed(a.start.metric.median, 3) + " ms " + interval_text(a.start.metric) + ", " + fixed(a.start.error_px, 2) +
+         " px\n";
+  if (a.outcome == "interrupted")
+    out += "INTERRUPTED: a partial plan: the steps below are whole; the one in progress is left out\n";
+
+  std::vector<std::vector<std::string>> rows = {{"step", "lever", "changes", metric_column(a), "interval", "saved_ms",
+                                                 "interval", "error_px", "error_mm", "error_%h", "capacity~",
+                                                 "verdict"}};
+  for (size_t s = 0; s < a.steps.size(); ++s)
+    for (const AdviceCandidate& c : a.steps[s].candidates) {
+      const bool base = c.verdict == "base", unmeasured = c.verdict.rfind("cannot run", 0) == 0;
+      if (unmeasured) {
+        rows.push_back({std::to_string(s + 1), c.lever, c.changes, "-", "", "-", "", "-", "-", "-", "-", c.verdict});
+        continue;
+      }
+      rows.push_back({std::to_string(s + 1), base ? "(base)" : c.lever, c.changes, fixed(c.metric.median, 3),
+                      interval_text(c.metric), base ? "-" : fixed(c.saved.median, 3),
+                      base ? "" : interval_text(c.saved), fixed(c.error_px, 2), fixed(c.error_mm, 2),
+                      fixed(c.error_height_pct, 3), with_thousands(c.capacity_estimate), c.verdict});
+    }
+  if (a.steps.size() > 0) out += "\n" + align_columns(rows, {1, 2, 4, 6, 11}) + "\n";
+
+  const std::string where = fixed(a.final.metric.median, 3) + " ms " + interval_text(a.final.metric);
+  if (a.met)
+    out += "met: " + where + " within " + shortest_text(a.budget_ms) + " ms" +
+           (a.steps.empty() ? " at the start"
+                            : " after " + std::to_string(a.steps.size()) + " step" + (a.steps.size() == 1 ? "" : "s")) +
+           ", drawn error " + fixed(a.final.error_px, 2) + " px (" + fixed(a.final.error_mm, 2) + " mm, " +
+           fixed(a.final.error_height_pct, 3) + "% of height)\n";
+  else
+    out += "NOT MET: " + where + " over " + shortest_text(a.budget_ms) + " ms" +
+           (a.ran_out.empty() ? "" : ": " + a.ran_out) + "\n";
+  out += "final: " + a.start_mode + (a.start_options.empty() ? "" : " " + a.start_options) +
+         (a.final_options.empty() ? " (no lever taken)" : " " + a.final_options) + "\n";
+  if (!a.capacities.empty()) {
+    out += "capacity at " + shortest_text(a.budget_ms) + " ms (capacity's search):";
+    for (const AdviceCapacity& c : a.capacities) {
+      out += " " + c.configuration + " " + (c.fit ? with_thousands(*c.fit) : std::string("0")) +
+             (c.capped ? "+ (the cap fits)" : "") + " copies;";
+    }
+    out.back() = '\n';
+    out += "capacity~: estimated, copies x budget / median\n";
+  }
+  out += "measured " + std::to_string(a.configurations_measured) + " configurations of " +
+         std::to_string(a.frames_per_configuration) + " frames (after " + std::to_string(a.warmup) +
+         " warm-up, interleaved in blocks of " + std::to_string(a.block_frames) + ") in " + fixed(a.elapsed_s, 0) +
+         " s\n";
+  return out;
+}
+
+void write_advice_csv(const AdviceRecord& a, std::ostream& out) {
+  out << "step,lever,changes,verdict,metric,metric_median_ms,metric_low_ms,metric_high_ms,frame_median_ms,"
+         "saved_median_ms,saved_low_ms,saved_high_ms,error_px,error_mm,error_height_pct,capacity_estimate,digest\n";
+  for (size_t s = 0; s < a.steps.size(); ++s)
+    for (const AdviceCandidate& c : a.steps[s].candidates)
+      out << s + 1 << "," << csv_field(c.lever) << "," << csv_field(c.changes) << "," << csv_field(c.verdict) << ","
+          << a.metric << "," << shortest_text(c.metric.median) << "," << shortest_text(c.metric.low) << ","
+          << shortest_text(c.metric.high) << "," << shortest_text(c.frame_ms) << "," << shortest_text(c.saved.median)
+          << "," << shortest_text(c.saved.low) << "," << shortest_text(c.saved.high) << "," << shortest_text(c.error_px)
+          << "," << shortest_text(c.error_mm) << "," << shortest_text(c.error_height_pct) << "," << c.capacity_estimate
+          << "," << c.digest << "\n";
+}
+
+}  // namespace crowdprof
