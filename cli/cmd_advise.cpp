@@ -61,6 +61,12 @@ size_t benches_in_memory(const BenchScene& scene, const BenchConfig& start) {
   return std::clamp<size_t>(static_cast<size_t>(available * 9 / 10 / one), 2, 8);
 }
 
+// The largest crowd the capacities are searched up to: 64 times the crowd
+// (1,000 at least), as capacity's default cap allows at most.
+size_t capacity_cap(size_t characters) {
+  return std::min<size_t>(std::max<size_t>(characters * 64, 1000), 100'000);
+}
+
 int advise(AdviseCliOptions& o) {
   check_block(o.block);
   AdviseRule rule;
@@ -117,7 +123,8 @@ int advise(AdviseCliOptions& o) {
       ModeCapacity mode;
       mode.mode = ends.back().mode_name;
       mode.rule.budget_ms = rule.budget_ms;
-      mode.rule.cap = largest_crowd_in_memory(scene.characters, ends.back(), 100'000, configs.size());
+      mode.rule.cap =
+          largest_crowd_in_memory(scene.characters, ends.back(), capacity_cap(spec.characters), configs.size());
       mode.rule.start = std::clamp<size_t>(spec.characters, 1, std::max<size_t>(mode.rule.cap, 1));
       modes.push_back(mode);
     }
@@ -151,8 +158,9 @@ int advise(AdviseCliOptions& o) {
     run.run.renderer = rendering.renderer_name();
   }
   if (document.runs.empty()) {
-    std::cerr << "crowdprof: interrupted before the start was measured: nothing written\n";
-    return kExitInterrupted;
+    std::cerr << "crowdprof: " << (result.partial ? "interrupted" : "the time limit passed")
+              << " before a frame of the start was measured: nothing written\n";
+    return result.partial ? kExitInterrupted : kExitRegression;
   }
   if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_advice_csv(record, out); });
   if (!o.bench.json.empty())
@@ -169,7 +177,11 @@ int advise(AdviseCliOptions& o) {
   }
   if (result.partial) {
     std::cerr << "crowdprof: interrupted: the plan holds the " << record.steps.size() << " whole step"
-              << (record.steps.size() == 1 ? "" : "s") << " before it\n";
+              << (record.steps.size() == 1 ? "" : "s") << " before it"
+              << (o.bench.json.empty() && o.bench.csv.empty() && o.bench.html.empty() && o.scene_out.empty()
+                      ? ""
+                      : ", written as a partial plan")
+              << "\n";
     return kExitInterrupted;
   }
   return record.met ? kExitOk : kExitRegression;

@@ -34,11 +34,21 @@ std::string recorded_text(const ModeSwitches& s, std::string_view name) {
   return switch_text(find_switch(name)->get(s));
 }
 
-// Saved per pixel of error added: a lever that adds none ranks by its saving
-// alone, above any that adds some.
-double score(const AdviceCandidate& c, double base_error_px) {
-  const double added = std::max(c.error_px - base_error_px, 0.0);
-  return c.saved.median / std::max(added, 0.01);
+// Error a viewer cannot see: a lever adding less is free.
+constexpr double kInvisiblePx = 0.01;
+
+// Whether lever `a` is a better step than `b`: one that meets the budget on its
+// own with the least error added (then the larger saving); else a free one
+// with the larger saving; else the most milliseconds saved per pixel added.
+bool better_step(const AdviceCandidate& a, const AdviceCandidate& b, double base_error_px, double budget_ms) {
+  auto added = [&](const AdviceCandidate& c) { return std::max(c.error_px - base_error_px, 0.0); };
+  const bool a_meets = a.metric.median <= budget_ms, b_meets = b.metric.median <= budget_ms;
+  if (a_meets != b_meets) return a_meets;
+  if (a_meets && added(a) != added(b)) return added(a) < added(b);
+  const bool a_free = added(a) < kInvisiblePx, b_free = added(b) < kInvisiblePx;
+  if (a_free != b_free) return a_free;
+  if (a_free || a_meets) return a.saved.median > b.saved.median;
+  return a.saved.median / added(a) > b.saved.median / added(b);
 }
 
 std::vector<double> paired_savings(const std::vector<double>& base, const std::vector<double>& lever) {
@@ -49,7 +59,10 @@ std::vector<double> paired_savings(const std::vector<double>& base, const std::v
 }
 
 MsInterval interval_of(const std::vector<double>& values) {
-  MedianInterval m = bootstrap_median(values);
+  // Fewer resamples of a long run (a ^C after many fast frames): its interval
+  // is narrow anyway, and 4,000 of a million frames would take minutes.
+  const size_t resamples = std::clamp<size_t>(20'000'000 / std::max<size_t>(values.size(), 1), 200, 4000);
+  MedianInterval m = bootstrap_median(values, 0.95, resamples);
   return {m.median, m.low, m.high};
 }
 
@@ -236,7 +249,17 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
   record.configurations_measured = 1;
   if (first.size() != 1) throw std::logic_error("advise: the start measured the wrong number of runs");
   if (stopped(first)) {
+    // The frames measured so far, as bench keeps a cut run's.
     run.partial = hooks.stop_reason() == "interrupted";
+    if (!first.front().frame_records.empty()) {
+      run.start_run = run.final_run = first.front();
+      record.start = measured(rule, first.front(), nullptr);
+      record.start.verdict = "start";
+      record.final = record.start;
+      record.final.verdict = "final";
+    }
+    record.start_mode = start.preset;
+    record.start_options = options_over(AdviseConfig{start.preset, {}, 0}, start);
     finish(hooks.stop_reason());
     return run;
   }
@@ -341,7 +364,7 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
         c.verdict = "slower";
       else if (c.saved.low <= 0)
         c.verdict = "noise";
-      else if (!best || score(c, base_error_px) > score(step.candidates[*best], base_error_px))
+      else if (!best || better_step(c, step.candidates[*best], base_error_px, rule.budget_ms))
         best = i;
     }
     for (size_t i = 1; i < step.candidates.size(); ++i)

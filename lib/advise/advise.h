@@ -5,6 +5,9 @@
 // AdviseHooks::measure), and takes the one that saves most milliseconds per
 // pixel of drawn error it adds, until the budget is met, no lever saves time
 // outside its interval, or every saving would draw past the error allowed.
+// Two refinements of that rule: a lever that meets the budget on its own
+// beats every one that does not (among them, the least error added wins), and
+// one that adds no visible error (under 0.01 px) beats one that adds some.
 // Then capacity's search of the start and of the end (AdviseHooks::capacity).
 //
 // The search is a pure function of what the hooks measure, so it is tested

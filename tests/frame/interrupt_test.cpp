@@ -185,3 +185,21 @@ TEST(Interrupt, CapacityKeepsTheRoundsBeforeAndMarksTheCutOne) {
     EXPECT_TRUE(mode["largest_fit"].is_null());  // the cut round is left out of the search
   }
 }
+
+TEST(Interrupt, AdviseWritesThePartialPlan) {
+  auto dir = crowdprof::test::scratch_dir("interrupt_advise");
+  std::string result = (dir / "a.json").string();
+  Interrupted r = interrupt_cli({"advise", humanoid_glb(), "--budget", "0.001", "-n", "4", "--frames", "10000000",
+                                 "--warmup", "0", "--json", result},
+                                dir, SIGINT, std::chrono::milliseconds(3000));
+  ASSERT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("crowdprof: interrupted: the plan holds the 0 whole steps before it, written as a partial plan"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("INTERRUPTED: a partial plan"), std::string::npos) << r.out;
+  json j = json::parse(std::ifstream(result));
+  EXPECT_TRUE(j["partial"].get<bool>());
+  EXPECT_EQ(j["advice"]["outcome"], "interrupted");
+  ASSERT_EQ(j["runs"].size(), 2u);  // the start, cut, which is also the final configuration
+  EXPECT_GT(j["runs"][0]["frames"].get<size_t>(), 0u);
+}
