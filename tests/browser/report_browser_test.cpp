@@ -6,183 +6,16 @@
 // Skips, saying why, when chromium is not installed (./setup.sh test installs it).
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <regex>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "advice_fixture.h"
-#include "measuring/category_clock.h"
-#include "result/result_document.h"
-#include "test_support.h"
+#include "browser/browser_page.h"
 
-using crowdprof::Category;
-using crowdprof::category_name;
-using crowdprof::kCategoryCount;
-using crowdprof::series_name;
+using namespace crowdprof::test;
 using nlohmann::json;
-namespace fs = std::filesystem;
-
-namespace {
-
-std::string find_chromium() {
-  if (const char* given = std::getenv("CROWDPROF_CHROMIUM")) return given;
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  for (size_t start = 0; start <= dirs.size();) {
-    size_t end = dirs.find(':', start);
-    if (end == std::string::npos) end = dirs.size();
-    for (const char* name : {"chromium", "chromium-browser"}) {
-      fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
-      if (!candidate.parent_path().empty() && access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    }
-    start = end + 1;
-  }
-  return "";
-}
-
-#define REQUIRE_CHROMIUM()                                                                                 \
-  do {                                                                                                     \
-    if (find_chromium().empty())                                                                           \
-      GTEST_SKIP() << "chromium not found on PATH (or CROWDPROF_CHROMIUM): the HTML report is not loaded " \
-                      "in a browser; ./setup.sh test installs it (apt-get install chromium)";              \
-  } while (0)
-
-// The page's DOM after its scripts ran, as headless chromium serialises it.
-std::string dump_dom(const fs::path& page) {
-  fs::path dir = page.parent_path();
-  fs::path out = dir / (page.filename().string() + ".dom"), err = dir / (page.filename().string() + ".err");
-  std::string command = "timeout 120 '" + find_chromium() +
-                        "' --headless --disable-gpu --no-sandbox --no-first-run --window-size=1280,2000 " +
-                        "--user-data-dir='" + (dir / "chromium-profile").string() + "' --dump-dom 'file://" +
-                        fs::absolute(page).string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
-  int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command << "\n" << crowdprof::test::read_file(err);
-  return crowdprof::test::read_file(out);
-}
-
-std::string attribute(const std::string& tag, const std::string& name) {
-  std::smatch m;
-  if (std::regex_search(tag, m, std::regex(" " + name + "=\"([^\"]*)\""))) return m[1].str();
-  return "";
-}
-
-struct DrawnChart {
-  std::string id;
-  std::string drawn_series;
-  std::vector<std::pair<std::string, std::string>> series;  // name, drawn points
-  std::vector<std::string> bar_segments;                    // drawn segments per bar
-};
-
-// Every chart of the DOM with what the page's script counted the browser drew.
-std::vector<DrawnChart> drawn_charts(const std::string& dom) {
-  std::vector<DrawnChart> charts;
-  const std::string start = "<g class=\"chart ";
-  for (size_t at = dom.find(start); at != std::string::npos;) {
-    size_t next = dom.find(start, at + 1);
-    std::string part = dom.substr(at, next == std::string::npos ? std::string::npos : next - at);
-    std::string tag = part.substr(0, part.find('>'));
-    DrawnChart chart{attribute(tag, "data-chart"), attribute(tag, "data-drawn-series"), {}, {}};
-    for (size_t s = part.find("<g class=\"series\""); s != std::string::npos;
-         s = part.find("<g class=\"series\"", s + 1)) {
-      std::string series = part.substr(s, part.find('>', s) - s);
-      chart.series.push_back({attribute(series, "data-name"), attribute(series, "data-drawn-points")});
-    }
-    for (size_t b = part.find("<g class=\"bar\""); b != std::string::npos; b = part.find("<g class=\"bar\"", b + 1))
-      chart.bar_segments.push_back(attribute(part.substr(b, part.find('>', b) - b), "data-drawn-segments"));
-    charts.push_back(chart);
-    at = next;
-  }
-  return charts;
-}
-
-std::vector<const DrawnChart*> charts_named(const std::vector<DrawnChart>& charts, const std::string& id) {
-  std::vector<const DrawnChart*> out;
-  for (const DrawnChart& chart : charts)
-    if (chart.id == id) out.push_back(&chart);
-  return out;
-}
-
-// No script error, and the page's own check of its charts passed.
-void expect_clean_page(const std::string& dom, const std::string& what) {
-  std::smatch m;
-  EXPECT_FALSE(std::regex_search(dom, m, std::regex("data-js-errors=\"([^\"]*)\""))) << what << ": " << m[1].str();
-  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\"")))
-      << what << ": the page's script never ran";
-  EXPECT_EQ(m[1].str().rfind("ok ", 0), 0u) << what << ": " << m[1].str();
-}
-
-std::vector<std::string> categories_with_time(const json& run) {
-  std::vector<std::string> out;
-  for (size_t c = 0; c < kCategoryCount; ++c) {
-    const std::string name(category_name(static_cast<Category>(c)));
-    const json& samples = run["samples"][series_name(static_cast<Category>(c))];
-    if (std::any_of(samples.begin(), samples.end(), [](const json& v) { return v.get<double>() > 0; }))
-      out.push_back(name);
-  }
-  return out;
-}
-
-// The frame-time chart has a line per run with a point per frame, and each
-// run's categories chart a layer per category that took time, a point per frame.
-void expect_runs_drawn(const std::vector<DrawnChart>& charts, const std::vector<json>& runs, const std::string& what) {
-  auto frame_time = charts_named(charts, "frame-time");
-  ASSERT_EQ(frame_time.size(), 1u) << what;
-  EXPECT_EQ(frame_time[0]->drawn_series, std::to_string(runs.size())) << what;
-  ASSERT_EQ(frame_time[0]->series.size(), runs.size()) << what;
-  auto categories = charts_named(charts, "categories");
-  ASSERT_EQ(categories.size(), runs.size()) << what;
-  for (size_t r = 0; r < runs.size(); ++r) {
-    std::string frames = std::to_string(runs[r]["frames"].get<size_t>());
-    EXPECT_EQ(frame_time[0]->series[r].second, frames) << what << ": run " << r;
-    std::vector<std::string> layers = categories_with_time(runs[r]);
-    EXPECT_EQ(categories[r]->drawn_series, std::to_string(layers.size())) << what << ": run " << r;
-    ASSERT_EQ(categories[r]->series.size(), layers.size()) << what;
-    for (size_t l = 0; l < layers.size(); ++l) {
-      EXPECT_EQ(categories[r]->series[l].first, layers[l]) << what;
-      EXPECT_EQ(categories[r]->series[l].second, frames) << what << ": " << layers[l];
-    }
-  }
-}
-
-// Where `needle` first occurs in the DOM; npos-safe for comparisons in tests.
-size_t first_at(const std::string& dom, const std::string& needle) {
-  return dom.find(needle);
-}
-
-// The page's answer (a table found by `lead`) comes before its first chart.
-void expect_leads(const std::string& dom, const std::string& lead, const std::string& what) {
-  size_t at = first_at(dom, lead), chart = first_at(dom, "<svg");
-  ASSERT_NE(at, std::string::npos) << what << ": no " << lead;
-  ASSERT_NE(chart, std::string::npos) << what << ": no chart";
-  EXPECT_LT(at, chart) << what << ": " << lead << " after the first chart";
-}
-
-// What the page's check said, "ok ..." or "failed: ...", as the DOM holds it
-// (quotes as &quot;).
-std::string page_check(const std::string& dom) {
-  std::smatch m;
-  return std::regex_search(dom, m, std::regex("data-report-check=\"([^\"]*)\"")) ? m[1].str() : "";
-}
-
-struct Fixture {
-  fs::path dir;
-  std::string scene = (crowdprof::test::source_dir() / "scenes" / "humanoid.glb").string();
-  std::string small = "-n 4 --frames 8 --warmup 1 -q";
-  std::string run(const std::string& args) {
-    auto r = crowdprof::test::run_cli(args);
-    EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
-    return r.err;
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-};
-
-}  // namespace
 
 TEST(ReportInBrowser, ABenchReport) {
   REQUIRE_CHROMIUM();
@@ -290,39 +123,6 @@ TEST(ReportInBrowser, ACapacityReportLeadsWithTheCapacities) {
   expect_leads(dom, "id=\"capacity\"", "capacity");
   EXPECT_EQ(charts_named(drawn_charts(dom), "sweep").size(), 1u);
   EXPECT_NE(dom.find("<title>crowdprof report: humanoid.glb \u00d7 "), std::string::npos);
-}
-
-// An advise search's page: its plan leads, its path is drawn on the cost
-// against error chart beside every lever measured, and the page passes its
-// own check. The search's record is made up (tests/advice_fixture.h); its
-// runs, the start's and the final one's, are real benches.
-TEST(ReportInBrowser, AnAdviseReportLeadsWithThePlan) {
-  REQUIRE_CHROMIUM();
-  Fixture f{crowdprof::test::scratch_dir("browser_advise")};
-  crowdprof::ResultDocument doc;
-  doc.kind = "advise";
-  for (const char* name : {"start.json", "final.json"}) {
-    f.run("bench '" + f.scene + "' " + f.small + " --mode threaded --json '" + f.path(name) + "'");
-    doc.runs.push_back(crowdprof::read_result_document(f.path(name)).runs.front());
-  }
-  doc.advice = crowdprof::test::sample_advice(true);
-  std::ofstream(f.path("advise.json")) << crowdprof::result_document_to_json(doc).dump();
-  f.run("report '" + f.path("advise.json") + "' -o '" + f.path("advise.html") + "'");
-  std::string dom = dump_dom(f.path("advise.html"));
-  expect_clean_page(dom, "advise");
-  expect_leads(dom, "id=\"advise\"", "advise");
-  EXPECT_LT(first_at(dom, "data-chart=\"advice\""), first_at(dom, "id=\"headline\"")) << "the path before the runs";
-  auto charts = drawn_charts(dom);
-  auto advice = charts_named(charts, "advice");
-  ASSERT_EQ(advice.size(), 1u);
-  EXPECT_EQ(advice[0]->drawn_series, "4") << "the path, sharing, update_lod, mesh_lod";
-  std::map<std::string, std::string> points(advice[0]->series.begin(), advice[0]->series.end());
-  EXPECT_EQ(points["the path taken"], "3");
-  EXPECT_EQ(points["update_lod"], "2");
-  expect_runs_drawn(
-      charts, {json::parse(std::ifstream(f.path("start.json"))), json::parse(std::ifstream(f.path("final.json")))},
-      "advise");
-  EXPECT_NE(dom.find("advise: 16.7 ms budget on frame: met</title>"), std::string::npos);
 }
 
 // check --against: the A/B's verdict per metric (passed or FAILED, change,
