@@ -123,7 +123,7 @@ std::string advise_section(const AdviceRecord& a) {
          "). A capacity measured is capacity's search of the configuration at the budget: the largest crowd whose "
          "median fits; an estimated one is " +
          std::to_string(a.characters) +
-         " characters scaled by the budget over the median, assuming the cost grows with the crowd. " +
+         " characters scaled by the budget over the median, as if the cost grew in proportion to the crowd. " +
          std::to_string(a.configurations_measured) + " configurations measured, " +
          std::to_string(a.frames_per_configuration) + " frames each after " + std::to_string(a.warmup) +
          " warm-up, side by side in blocks of " + std::to_string(a.block_frames) + " frames; " +
