@@ -1,5 +1,5 @@
 // `crowdprof report RESULT.json [MORE.json ...] -o report.html`: the HTML
-// report of results already written (bench, check or compare --json). Every
+// report of results already written (bench, check, compare, capacity or advise --json). Every
 // input is read and checked before anything is written, so a bad file leaves
 // no report behind.
 #include <iostream>
@@ -42,10 +42,10 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ReportCliOptions>();
   auto* cmd = app.add_subcommand("report",
                                  "Write an HTML report (charts, tables, environment) of results of bench, "
-                                 "check, compare or capacity --json: one file that opens in any browser");
+                                 "check, compare, capacity or advise --json: one file that opens in any browser");
   cmd->footer("Examples:\n  crowdprof report result.json -o report.html");
   cmd->add_option("results", options->files,
-                  "Result files (JSON) of bench, check, compare or capacity --json; several: side by side")
+                  "Result files (JSON) of bench, check, compare, capacity or advise --json; several: side by side")
       ->required();
   // What the page is made of and where it goes, one heading.
   options->outputs.declare(*cmd, OutputOption::HtmlPage, options->output, "The HTML file to write")

@@ -49,8 +49,20 @@ void require_png(const std::string& bytes, const std::string& path) {
 }
 
 void add_document(HtmlReportInput& input, ResultDocument document, const std::string& source) {
-  for (Result& run : document.runs) input.runs.push_back({"", std::move(run), source});
+  // An advise search's runs are its start and its final configuration, whose
+  // modes may well be the same.
+  const bool advise = document.kind == "advise";
+  for (size_t r = 0; r < document.runs.size(); ++r)
+    input.runs.push_back({advise ? (r == 0   ? "start"
+                                    : r == 1 ? "final"
+                                             : "run " + std::to_string(r + 1))
+                                 : "",
+                          std::move(document.runs[r]), source});
   if (document.kind == "bench") return;
+  if (advise) {
+    input.advice = std::move(document.advice);
+    return;
+  }
   input.sweep_axis = document.sweep_axis;
   for (const ModeMedians& m : document.sweep) input.sweep.push_back({m.mode, m.on(document.sweep_axis), m.frame_ms});
   if (document.capacity && document.capacity->metric == "frame" && document.capacity->budget_ms > 0)
@@ -82,8 +94,10 @@ std::string html_report(const HtmlReportInput& given) {
     from += (s ? ", " : " of ") + path_file_name(input.sources[s]);
   if (input.sources.size() > 2) from += " and " + std::to_string(input.sources.size() - 2) + " more";
   std::string title = "crowdprof report" + from + ": " + caption +
-                      (input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) + " ms of " +
-                                            input.capacity->metric
+                      (input.advice ? ", advise: " + significant(input.advice->budget_ms, 3) + " ms budget on " +
+                                          input.advice->metric + ": " + (input.advice->met ? "met" : "not met")
+                       : input.capacity ? ", capacity within " + report_number(input.capacity->budget_ms, 3) +
+                                              " ms of " + input.capacity->metric
                        : input.gate ? ", A/B check against " + path_file_name(input.gate->base) + ": " +
                                           (input.gate->table.failed() ? "FAILED" : "passed")
                        : input.check            ? ", " + input.check->command
@@ -104,6 +118,17 @@ std::string html_report(const HtmlReportInput& given) {
   if (input.gate) body += gate_section(*input.gate);
   if (input.capacity) body += capacity_section(*input.capacity);
   if (input.check) body += check_section(*input.check, input.runs, charts);
+  if (input.advice) {
+    body += advise_section(*input.advice);
+    if (std::optional<LineChart> chart = advice_chart(*input.advice)) {
+      SvgDocument svg;
+      svg.add(*chart);
+      charts += "a";
+      body += "<section id=\"advice-path\"><h2>Cost against error, and the path taken</h2>\n" + svg.inline_svg() +
+              "<p>A dot per lever measured, at its configuration's largest drawn error and its median; the line joins "
+              "the start to each step's lever taken; the red line is the budget.</p></section>\n";
+    }
+  }
   body += headline_section(input.runs);
   const std::vector<CostErrorPoint> costs = run_costs(input.runs);
   if (input.runs.size() > 1)

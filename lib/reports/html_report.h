@@ -1,7 +1,8 @@
 // The HTML report: one self-contained page (inline SVG charts, inline CSS and
 // a small inline script, no network, no external font) that a person opens
 // from a CI artifact store or an e-mail. It opens with its answer: check's
-// verdict per metric, capacity's capacities, the headline, and for several runs
+// verdict per metric, capacity's capacities, advise's plan with its path on
+// the cost-against-error chart, the headline, and for several runs
 // the speedups and each saving's cost beside its error, as tables; then frame
 // time per frame with the 16.7 and 33.3 ms budgets and p50/p95/p99, the BGE
 // table, the categories stacked per frame, the modes side by side and the sweep,
@@ -44,12 +45,14 @@ struct HtmlReportInput {
   std::optional<CheckSection> check;
   std::optional<GateSection> gate;
   std::optional<CapacityRecord> capacity;
-  std::string command;         // what made the page ("diff"), named in its title when no check or capacity is
-  std::string screenshot_png;  // PNG bytes; empty when no screenshot was taken
+  std::optional<AdviceRecord> advice;  // advise: its plan leads, the runs are "start" and "final"
+  std::string command;                 // what made the page ("diff"), named in its title when no check or capacity is
+  std::string screenshot_png;          // PNG bytes; empty when no screenshot was taken
 };
 
 // Adds the document read from `path` (read_result_document): a bench result,
-// a comparison's runs and sweep, or a capacity search. InputError naming the
+// a comparison's runs and sweep, a capacity search, or an advise search (its
+// runs labelled "start" and "final"). InputError naming the
 // file when it is not crowdprof's, truncated, of another format or incomplete.
 void add_result_file(HtmlReportInput& input, const std::string& path);
 

@@ -1,6 +1,7 @@
 // The sections of the HTML report (html_report.h), each a piece of HTML:
 // those that describe runs (html_run_sections.cpp) and those that give a
-// verdict or a capacity (html_verdict_sections.cpp). html_report() puts
+// verdict or a capacity (html_verdict_sections.cpp) or advice
+// (html_advise_sections.cpp). html_report() puts
 // them in order: the answer first.
 #pragma once
 
@@ -53,6 +54,10 @@ std::string environment_section(const std::vector<ReportRun>& runs);
 
 // The lead of a capacity page: per mode, the largest crowd within the budget.
 std::string capacity_section(const CapacityRecord& c);
+// The lead of an advise page (html_advise_sections.cpp): met or not and why,
+// the start's and the final configuration's options and capacities, then a
+// table per step of every lever measured, the one taken highlighted.
+std::string advise_section(const AdviceRecord& a);
 // The A/B's verdict, the page's first section: a row per metric that says
 // passed or FAILED, its change with its interval against the tolerance, then
 // the work and how the builds took turns.

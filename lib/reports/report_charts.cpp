@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "base/number_text.h"
 #include "result/result_codec.h"
 #include "measuring/stats.h"
 
@@ -150,6 +151,41 @@ std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& poi
          {p.frame_ms},
          {p.error.max_px},
          colours.colour(p.mode)});
+  return chart;
+}
+
+std::optional<LineChart> advice_chart(const AdviceRecord& advice) {
+  if (advice.steps.empty() || advice.steps.front().candidates.empty()) return std::nullopt;
+  LineChart chart{"Cost against error: every configuration advise measured, and the path it took",
+                  "largest drawn error (px; at most " + shortest_text(advice.max_error_px) + " allowed)",
+                  advice.metric + " median (ms)",
+                  {},
+                  true};
+  chart.id = "advice";
+  const AdviceCandidate& start = advice.steps.front().candidates.front();
+  LineSeries path{"the path taken", {start.error_px}, {start.metric.median}, "#222222"};
+  std::vector<LineSeries> levers;
+  for (const AdviceStep& step : advice.steps) {
+    if (step.taken) {
+      path.x.push_back(step.candidates[*step.taken].error_px);
+      path.y.push_back(step.candidates[*step.taken].metric.median);
+    }
+    // The base is the configuration of the moment (on the path); a lever
+    // that could not run was not measured.
+    for (size_t c = 1; c < step.candidates.size(); ++c) {
+      const AdviceCandidate& candidate = step.candidates[c];
+      if (candidate.metric.median <= 0 || candidate.verdict.rfind("cannot run", 0) == 0) continue;
+      auto it =
+          std::find_if(levers.begin(), levers.end(), [&](const LineSeries& s) { return s.name == candidate.lever; });
+      if (it == levers.end()) it = levers.insert(levers.end(), LineSeries{candidate.lever, {}, {}, {}, false});
+      it->x.push_back(candidate.error_px);
+      it->y.push_back(candidate.metric.median);
+    }
+  }
+  chart.series.push_back(std::move(path));
+  for (LineSeries& lever : levers) chart.series.push_back(std::move(lever));
+  chart.guides.push_back(
+      {advice.budget_ms, "budget " + significant(advice.budget_ms, 3) + " ms", "#B00020", "8,4", "budget", true});
   return chart;
 }
 

@@ -69,6 +69,13 @@ LineChart sweep_chart(const std::vector<SweepPoint>& points, SweepAxis axis, con
 // fewer than two runs carry a drawn error.
 std::optional<LineChart> cost_error_chart(const std::vector<CostErrorPoint>& points, ModeColours& colours);
 
+// An advise search's every measured configuration, its metric's median (ms,
+// up) against its largest drawn error (px, across): a dot per lever tried
+// (a series per lever family), the path taken from the start through each
+// step's lever as a line, and the budget as a horizontal line; nullopt when
+// the search measured nothing.
+std::optional<LineChart> advice_chart(const AdviceRecord& advice);
+
 // The runs' points of cost against error (reports/cost_error.h): empty when
 // fewer than two runs carry a drawn error.
 std::vector<CostErrorPoint> run_costs(const std::vector<ReportRun>& runs);

@@ -307,12 +307,16 @@ void SvgDocument::add(const LineChart& chart) {
       ++drawn;
       std::string at = num(p.px(x, s.x[i])) + "," + num(p.py(y, s.y[i]));
       points += (points.empty() ? "" : " ") + at;
-      if (chart.markers)
-        dots += "<circle cx=\"" + num(p.px(x, s.x[i])) + "\" cy=\"" + num(p.py(y, s.y[i])) + "\" r=\"3\"/>";
+      if (chart.markers || !s.joined)
+        dots += "<circle cx=\"" + num(p.px(x, s.x[i])) + "\" cy=\"" + num(p.py(y, s.y[i])) + "\" r=\"" +
+                (s.joined ? "3" : "4") + "\"/>";
     }
-    out += "<g class=\"series\"" + attr("data-name", s.name) + " data-geometry=\"line\" data-points=\"" +
-           std::to_string(drawn) + "\" fill=\"" + colour + "\">\n<polyline points=\"" + points +
-           "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>" + dots + "\n</g>\n";
+    out +=
+        "<g class=\"series\"" + attr("data-name", s.name) + " data-geometry=\"" + (s.joined ? "line" : "dots") +
+        "\" data-points=\"" + std::to_string(drawn) + "\" fill=\"" + colour + "\">\n" +
+        (s.joined ? "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>"
+                  : std::string()) +
+        dots + "\n</g>\n";
   }
   out += "</g>\n";
   height_ += kPanelHeight;

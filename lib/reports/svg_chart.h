@@ -14,6 +14,9 @@ struct LineSeries {
   std::string name;
   std::vector<double> x, y;  // as many x as y
   std::string colour = {};   // empty: the series' place in the chart picks one
+  // False: its points as dots, no line between them (data-geometry="dots"),
+  // for points that are not a sequence (every lever a search measured).
+  bool joined = true;
 };
 
 // A horizontal line across a line chart at `y`: a frame budget, a percentile.

@@ -149,7 +149,7 @@ TEST(HelpText, CheckSaysBothModesDefaultsAndWhatProbesAre) {
 TEST(HelpText, ReportNamesEveryResultItReads) {
   auto r = run_cli("report --help");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("bench, check, compare or capacity --json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bench, check, compare, capacity or advise --json"), std::string::npos) << r.out;
 }
 
 // gen's bounds are named as the command and option the user typed.
