@@ -32,7 +32,7 @@ struct AdviseCliOptions {
   std::string metric = "frame";
   double max_error = 1.0;
   double time_limit = 180;
-  std::vector<std::string> levers;
+  std::string levers;  // comma-separated
   long long block = 10;
   std::string scene_out;
 };
@@ -73,7 +73,11 @@ int advise(AdviseCliOptions& o) {
   rule.budget_ms = o.budget;
   rule.max_error_px = o.max_error;
   rule.time_limit_s = o.time_limit;
-  rule.levers = o.levers;
+  for (size_t at = 0; !o.levers.empty() && at <= o.levers.size();) {
+    size_t comma = std::min(o.levers.find(',', at), o.levers.size());
+    rule.levers.push_back(o.levers.substr(at, comma - at));
+    at = comma + 1;
+  }
   std::optional<CapacityMetric> metric = parse_capacity_metric(o.metric);
   if (!metric) throw UsageError("--metric '" + o.metric + "': expected frame or Animations");
   rule.metric = *metric;
@@ -203,21 +207,23 @@ void add_advise_command(CLI::App& app, std::function<int()>& run) {
       "GPU levers (hwskin, buffer, instanced, compute, baked) are not tried: timed on a software GL they would give "
       "wrong advice.");
   add_bench_options(*cmd, options->bench);
-  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps)")->required();
+  cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps)")->required()->type_name("MS");
   cmd->add_option("--metric", options->metric, "What must fit the budget: frame or Animations (their medians)")
+      ->type_name("frame|Animations")
       ->capture_default_str();
   cmd->add_option("--max-error", options->max_error,
                   "The largest drawn error in pixels a lever may bring the crowd to (at the scene's camera and "
                   "resolution)")
+      ->type_name("PX")
       ->capture_default_str();
   cmd->add_option("--time-limit", options->time_limit,
                   "Seconds the search may take: at the limit the step or capacity search running is cut and left out, "
                   "and the plan is what the whole steps found")
+      ->type_name("SECONDS")
       ->capture_default_str();
   cmd->add_option("--levers", options->levers,
                   "The lever families to try (default: all of " + lever_family_names() + ")")
-      ->delimiter(',')
-      ->allow_extra_args(false);
+      ->type_name("A,B,...");
   cmd->add_option("--block", options->block, "Frames of one configuration before the next runs")->capture_default_str();
   options->bench.outputs.declare(*cmd, OutputOption::Csv, options->bench.csv,
                                  "Write one row per configuration measured, step by step");

@@ -69,8 +69,9 @@ std::string format_advice(const AdviceRecord& a, const Result* start) {
   if (!a.capacities.empty()) {
     out += "capacity at " + shortest_text(a.budget_ms) + " ms (capacity's search):";
     for (const AdviceCapacity& c : a.capacities) {
-      out += " " + c.configuration + " " + (c.fit ? with_thousands(*c.fit) : std::string("0")) +
-             (c.capped ? "+ (the cap fits)" : "") + " copies;";
+      out += " " + c.configuration + " " + (c.capped ? "at least " : "") +
+             (c.fit ? with_thousands(*c.fit) : std::string("0")) + " copies" +
+             (c.capped ? " (the largest tried, in memory)" : "") + ";";
     }
     out.back() = '\n';
     out += "capacity~: estimated, copies x budget / median\n";

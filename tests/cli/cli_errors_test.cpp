@@ -32,8 +32,8 @@ void expect_usage(const std::string& args, std::initializer_list<const char*> wo
 }  // namespace
 
 TEST(CliErrors, AnUnknownCommandNamesTheNearestAndTheList) {
-  expect_usage("bnech " + character(),
-               {"unknown command 'bnech'; did you mean bench?", "info, gen, bench, compare, capacity, advise, check, diff"});
+  expect_usage("bnech " + character(), {"unknown command 'bnech'; did you mean bench?",
+                                        "info, gen, bench, compare, capacity, advise, check, diff"});
   expect_usage("--simd SCALAR comapre x.glb", {"unknown command 'comapre'; did you mean compare?"});
   expect_usage("frobnicate", {"unknown command 'frobnicate'", "commands: info, gen, bench"});
   expect_usage("", {"no command given", "commands: info"});
