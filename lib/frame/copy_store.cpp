@@ -96,7 +96,7 @@ CopyStore::CopyStore(std::span<const Character* const> characters, std::span<con
     const Character& character = *characters[crowd.kind[i]];
     if (!character.actions.empty()) reset_cursor(character.actions[crowd.action[i]], &cursors[i]);
   }
-  if (!mode.anim_layers.empty()) {
+  if (any_layers(prepared)) {
     layer_cursors.resize(n * kMaxAnimLayers);
     for (size_t i = 0; i < n; ++i) {
       const CharacterLayers& layers = prepared[crowd.kind[i]].layers;

@@ -53,7 +53,8 @@ CrowdBench::CrowdBench(std::span<const Character* const> characters, const Bench
   frustum_ = frustum_of(camera_.view_projection());
   // The immutable data first, then the arrays each copy writes, then the jobs.
   prepared_ = prepare_characters(characters_, crowd_.character_boxes, mode,
-                                 config.renderer ? config.renderer->max_gpu_joints(mode) : 0);
+                                 config.renderer ? config.renderer->max_gpu_joints(mode) : 0,
+                                 kind_layers(characters_.size(), config.crowd.groups, mode));
   character_counters_.resize(characters_.size());
   if (mode.mesh_lod) choose_mesh_levels();
   store_ = std::make_unique<CopyStore>(characters_, prepared_, crowd_, mode, mesh_level_);

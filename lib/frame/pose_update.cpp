@@ -47,7 +47,7 @@ PoseUpdater::PoseUpdater(const PoseUpdateContext& context)
   model_threads_ = parallel ? arena_slots(threads) : 1;
   model_.resize(model_joints_ * model_threads_);
   stage_ns_.resize(model_threads_);
-  const bool layers = !context.mode.anim_layers.empty();
+  const bool layers = any_layers(context.prepared);
   // Room for the largest skeleton now, so that no frame allocates.
   auto reserve = [&](std::vector<LocalPose>& poses, size_t count) {
     poses.resize(count);

@@ -15,7 +15,8 @@ namespace crowdprof {
 
 std::vector<PreparedCharacter> prepare_characters(std::span<const Character* const> characters,
                                                   std::span<const Aabb> boxes, const ModeSwitches& mode,
-                                                  size_t max_gpu_joints) {
+                                                  size_t max_gpu_joints,
+                                                  std::span<const std::vector<AnimLayer>> layers) {
   std::vector<PreparedCharacter> prepared;
   prepared.reserve(characters.size());
   for (size_t k = 0; k < characters.size(); ++k) {
@@ -33,9 +34,16 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
     }
     p.posed_on_cpu = !p.bindings.empty() && p.site != SkinningSite::Baked;
     reset_to_rest(character.skeleton, &p.rest_pose);
-    if (!mode.anim_layers.empty())
-      if (std::string why = resolve_layers(character, p.bindings, mode.anim_layers, &p.layers); !why.empty())
+    if (!layers[k].empty()) {
+      // A scene group's layers were checked against its character when read:
+      // what fails here is --anim-layer's.
+      if (std::string why = resolve_layers(character, p.bindings, layers[k], &p.layers); !why.empty())
         throw UsageError("--anim-layer: " + why);
+      if (mode.skinning == SkinningSite::Baked && !p.layers.empty())
+        throw UsageError(
+            "a scene group's layers: skinning baked draws poses baked per action, which a layer cannot "
+            "change: layers run in every mode but baked");
+    }
     p.quantisation = position_quantisation(boxes[k].min, boxes[k].max);
     if (mode.mesh_lod) {
       p.mesh_lods = mesh_lods_of(character);
@@ -48,6 +56,20 @@ std::vector<PreparedCharacter> prepare_characters(std::span<const Character* con
     prepared.push_back(std::move(p));
   }
   return prepared;
+}
+
+std::vector<std::vector<AnimLayer>> kind_layers(size_t characters, std::span<const CrowdGroup> groups,
+                                                const ModeSwitches& mode) {
+  std::vector<std::vector<AnimLayer>> layers(characters, mode.anim_layers);
+  for (const CrowdGroup& group : groups)
+    if (group.layers && group.character < characters) layers[group.character] = *group.layers;
+  return layers;
+}
+
+bool any_layers(std::span<const PreparedCharacter> prepared) {
+  for (const PreparedCharacter& p : prepared)
+    if (!p.layers.empty()) return true;
+  return false;
 }
 
 std::vector<SkinMatrix> rest_palette(const Character& character) {

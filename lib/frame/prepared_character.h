@@ -18,6 +18,7 @@
 #include "frame/frame_view.h"
 #include "base/modes.h"
 #include "scene/bounds.h"
+#include "scene/crowd.h"
 #include "skinning/packed_vertex.h"
 #include "skinning/skinning_plan.h"
 #include "result/result.h"
@@ -51,10 +52,21 @@ struct PreparedCharacter {
 
 // Prepares each character for `mode`; `boxes` are the characters' animated
 // bounds (Crowd::character_boxes), `max_gpu_joints` the renderer's bone limit
-// for the mode (0 without a renderer). Allocates; a load-time step.
+// for the mode (0 without a renderer), `layers` each character's layers (a
+// scene group's own, else mode.anim_layers: kind_layers). Allocates; a
+// load-time step.
 std::vector<PreparedCharacter> prepare_characters(std::span<const Character* const> characters,
                                                   std::span<const Aabb> boxes, const ModeSwitches& mode,
-                                                  size_t max_gpu_joints);
+                                                  size_t max_gpu_joints,
+                                                  std::span<const std::vector<AnimLayer>> layers);
+
+// Each character's layers: those of the group that plays it when the group
+// states its own (a scene file's "layers"), else the mode's.
+std::vector<std::vector<AnimLayer>> kind_layers(size_t characters, std::span<const CrowdGroup> groups,
+                                                const ModeSwitches& mode);
+
+// Whether any character has a layer (a blend per copy, and cursors per layer).
+bool any_layers(std::span<const PreparedCharacter> prepared);
 
 // Mode baked, at load: bakes every character's actions at `rate_hz` into
 // prepared[k].baked (a character without actions: its rest palette twice, one

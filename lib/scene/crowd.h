@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <optional>
+
 #include <span>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "base/anim_layers.h"
 #include "asset/character.h"
 #include "scene/bounds.h"
 
@@ -37,6 +39,8 @@ struct CrowdGroup {
   std::vector<double> weights;  // with Weighted: one per action of the character, not all zero
   // The group's own transitions (a scene file's "transitions"), else the crowd's.
   std::optional<TransitionTiming> transitions;
+  // The group's own layers (a scene file's "layers"), else the mode's anim_layers.
+  std::optional<std::vector<AnimLayer>> layers;
 };
 
 // Where copies stand: a grid of rows across X, front row at +Z.

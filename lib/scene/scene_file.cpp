@@ -1,3 +1,5 @@
+#include "animation/binding.h"
+#include "animation/layering.h"
 #include "scene/scene_file.h"
 
 #include <charconv>
@@ -135,6 +137,19 @@ std::string folder_of(const std::string& path) {
 // A group's "transitions" (0: it keeps its actions; else seconds, as
 // --transitions takes) and "blend_in" (as --blend-in, its default too; at most
 // half of the group's transitions, so that its fades never overlap).
+// A group's "layers": a list of layers, each as --anim-layer takes one
+// ("action=wave,mask=spine"); at most kMaxAnimLayers (base/anim_layers.h).
+std::vector<AnimLayer> group_layers(const SceneReader& r, const json& list, const std::string& key) {
+  if (!list.is_array())
+    r.fail(key, "expected a list of layers such as [\"action=wave,mask=spine\"], got " + SceneReader::type_of(list));
+  std::string joined;
+  for (size_t i = 0; i < list.size(); ++i)
+    joined += (i ? "\n" : "") + r.text(list[i], key + "[" + std::to_string(i) + "]");
+  std::vector<AnimLayer> layers;
+  if (std::string why = parse_anim_layers(joined, &layers); !why.empty()) r.fail(key, why);
+  return layers;
+}
+
 TransitionTiming group_transitions(const SceneReader& r, const json& entry, const std::string& key) {
   TransitionTiming t;
   t.mean_s = r.number(entry["transitions"], key + ".transitions", 0, 3600);
@@ -232,7 +247,7 @@ SceneFile load_scene_file(const std::string& path) {
   for (size_t i = 0; i < characters.size(); ++i) {
     std::string key = "characters[" + std::to_string(i) + "]";
     const json& entry = characters[i];
-    r.only_keys(entry, key, {"file", "generate", "count", "actions", "action", "transitions", "blend_in"});
+    r.only_keys(entry, key, {"file", "generate", "count", "actions", "action", "transitions", "blend_in", "layers"});
     SceneCharacter c;
     if (entry.contains("file") && entry.contains("generate"))
       r.fail(key + ".generate", "with file: give one of the two");
@@ -284,6 +299,7 @@ SceneFile load_scene_file(const std::string& path) {
     if (entry.contains("blend_in") && !entry.contains("transitions"))
       r.fail(key + ".blend_in", "only with \"transitions\" in the same entry");
     if (entry.contains("transitions")) c.transitions = group_transitions(r, entry, key);
+    if (entry.contains("layers")) c.layers = group_layers(r, entry["layers"], key + ".layers");
     scene.characters.push_back(std::move(c));
   }
   if (scene.copies() == 0) r.fail("characters", "no copies at all: every count is 0");
@@ -459,6 +475,11 @@ std::string scene_file_text(const SceneFile& scene, const std::string& destinati
       entry["transitions"] = c.transitions->mean_s;
       entry["blend_in"] = c.transitions->blend_in_s;
     }
+    if (c.layers) {
+      ordered layers = ordered::array();
+      for (const AnimLayer& layer : *c.layers) layers.push_back(anim_layers_text({layer}));
+      entry["layers"] = std::move(layers);
+    }
     characters.push_back(std::move(entry));
   }
   doc["characters"] = std::move(characters);
@@ -491,6 +512,7 @@ CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& ch
   group.copies = c.count;
   group.actions = c.actions;
   group.transitions = c.transitions;
+  group.layers = c.layers;
   auto find = [&](const std::string& name, const std::string& at) {
     std::string names;
     for (size_t a = 0; a < character.actions.size(); ++a) {
@@ -507,6 +529,14 @@ CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& ch
   if (c.actions == ActionChoice::Weighted) {
     group.weights.assign(character.actions.size(), 0.0);
     for (const auto& [name, weight] : c.weights) group.weights[find(name, key + ".actions." + name)] += weight;
+  }
+  if (c.layers && !c.layers->empty()) {
+    // Named actions and joints checked here, where the error can name the key.
+    std::vector<ActionBindings> bindings;
+    for (const Action& action : character.actions) bindings.push_back(bind_action(character.skeleton, action));
+    CharacterLayers resolved;
+    if (std::string why = resolve_layers(character, bindings, *c.layers, &resolved); !why.empty())
+      throw InputError(scene.path, key + ".layers: " + why);
   }
   return group;
 }

@@ -41,6 +41,9 @@ struct SceneCharacter {
   // "transitions" and "blend_in": the group's own, over --transitions and
   // --blend-in (a mean of 0 keeps its actions while others change).
   std::optional<TransitionTiming> transitions;
+  // "layers": the group's own actions laid over its copies' (each as
+  // --anim-layer takes it), over --anim-layer; an empty list: none.
+  std::optional<std::vector<AnimLayer>> layers;
 };
 
 struct SceneFile {

@@ -24,7 +24,7 @@ struct Plan {
     options.copies = copies;
     options.actions = actions;
     crowd = make_crowd(characters, options);
-    prepared = prepare_characters(characters, crowd.character_boxes, mode, 0);
+    prepared = prepare_characters(characters, crowd.character_boxes, mode, 0, kind_layers(characters.size(), {}, mode));
     times.assign(copies, characters[0]->actions[0].start);
     for (size_t i = 0; i < copies; ++i)
       if (!crowd.phase.empty()) times[i] += crowd.phase[i];

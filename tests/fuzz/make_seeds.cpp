@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
         R"({"characters": [{"file": "character.glb", "count": 3, "actions": "shared", "action": "bend"}]})");
     test::write_file(scenes / "everything.json", R"({
   "characters": [
-    {"file": "character.glb", "count": 4, "actions": "random", "transitions": 2, "blend_in": 0.5},
+    {"file": "character.glb", "count": 4, "actions": "random", "transitions": 2, "blend_in": 0.5,
+     "layers": ["action=bend,mask=joint_1,falloff=1", "action=bend,weight=0.5,blend=add"]},
     {"file": "character.glb#skin=0", "count": 2, "actions": {"bend": 3}, "transitions": 0}
   ],
   "seed": 7,

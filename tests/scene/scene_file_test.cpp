@@ -329,3 +329,54 @@ TEST(SceneFile, AGeneratedCharacterIsTheFileGenWouldWrite) {
   EXPECT_NE(info.out.find("joints:      30 "), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("(Draco decoded)"), std::string::npos) << info.out;
 }
+
+TEST(SceneFile, EachGroupLaysItsOwnLayers) {
+  auto dir = crowdprof::test::scratch_dir("scene_layers");
+  auto scene = dir / "layered.json";
+  // The locomotion character: idle over the walk on the first group's upper
+  // body; the second group plays its own action alone.
+  std::ofstream(scene) << R"({"characters": [
+    {"generate": {"actions": "locomotion"}, "count": 30, "actions": "shared", "action": "walk",
+     "layers": ["action=idle,mask=spine_03,falloff=2"]},
+    {"generate": {"actions": "locomotion", "seed": 2}, "count": 10, "actions": "shared", "action": "walk"}]})";
+  auto own = dir / "own.json", over = dir / "over.json", none = dir / "none.json", again = dir / "again.json";
+  auto out = dir / "out.json";
+  const std::string run = "bench '" + scene.string() + "' --camera all --frames 4 --warmup 0 -q ";
+  auto r = run_cli(run + "--json '" + own.string() + "' --scene-out '" + out.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json a = read_json(own);
+  // One layer per posed copy of the first group: 30 with every copy on screen.
+  EXPECT_EQ(a["counters"]["layers"], 30);
+  // --anim-layer reaches the group that states none; the first keeps its own.
+  r = run_cli(run + "--anim-layer action=run,mask=spine_03 --json '" + over.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json(over)["counters"]["layers"], 40);
+  EXPECT_NE(read_json(over)["digest"], a["digest"]);
+  // Without the group's layers the crowd is another.
+  std::string text = read_file(scene);
+  text.replace(text.find("\"layers\""), std::string("\"layers\": [\"action=idle,mask=spine_03,falloff=2\"]").size(),
+               "\"layers\": []");
+  std::ofstream(dir / "plain.json") << text;
+  r = run_cli("bench '" + (dir / "plain.json").string() + "' --camera all --frames 4 --warmup 0 -q --json '" +
+              none.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json(none)["counters"]["layers"], 0);
+  EXPECT_NE(read_json(none)["digest"], a["digest"]);
+  // --scene-out keeps the group's layers: the same frames again.
+  EXPECT_NE(read_file(out).find("\"action=idle,mask=spine_03,weight=1,falloff=2,blend=override\""), std::string::npos);
+  r = run_cli("bench '" + out.string() + "' --camera all --frames 4 --warmup 0 -q --json '" + again.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json(again)["digest"], a["digest"]);
+  // A layer the character cannot play names the file and the key, exit 3.
+  for (const auto& [layer, why] : {std::pair{std::string("action=fly"), std::string("no action 'fly'")},
+                                   {std::string("action=idle,mask=tail"), std::string("no joint 'tail'")},
+                                   {std::string("action=idle,weight=2"), std::string("weight")}}) {
+    auto bad = dir / "bad.json";
+    std::ofstream(bad) << R"({"characters": [{"generate": {"actions": "locomotion"}, "count": 2, "layers": [")" << layer
+                       << R"("]}]})";
+    r = run_cli("bench '" + bad.string() + "' --frames 1 --warmup 0 -q");
+    EXPECT_EQ(r.status, 3) << layer << "\n" << r.err;
+    EXPECT_NE(r.err.find(bad.string() + ": characters[0].layers"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  }
+}
