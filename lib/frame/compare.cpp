@@ -115,6 +115,11 @@ Sweep parse_sweep(const std::string& text) {
   return sweep;
 }
 
+namespace {
+// The fields of a layer after its first (base/anim_layers.h).
+constexpr const char* kLayerFields[] = {"action=", "mask=", "weight=", "falloff=", "blend="};
+}  // namespace
+
 std::string apply_mode_spec(const std::string& spec, RunSpec& run) {
   std::string preset = spec.substr(0, spec.find('+'));
   if (!find_mode(preset)) throw UsageError("--modes '" + spec + "': expected some of " + mode_names());
@@ -149,7 +154,20 @@ BenchConfig config_for(const RunSpec& shared, const std::string& mode, const Ben
 }
 
 std::vector<std::string> modes_to_run(const std::vector<std::string>& asked) {
-  std::vector<std::string> names = asked;
+  // The list came split at every comma; a layer's fields (anim_layer=action=
+  // wave,mask=spine) go back to the mode they belong to.
+  std::vector<std::string> names;
+  for (const std::string& piece : asked) {
+    const bool field = !names.empty() &&
+                       (names.back().find("anim_layer=") != std::string::npos ||
+                        names.back().find("anim-layer=") != std::string::npos) &&
+                       std::any_of(std::begin(kLayerFields), std::end(kLayerFields),
+                                   [&](const char* key) { return piece.rfind(key, 0) == 0; });
+    if (field)
+      names.back() += "," + piece;
+    else
+      names.push_back(piece);
+  }
   if (names.empty())
     for (const ModePreset& preset : mode_presets()) names.emplace_back(preset.name);
   for (size_t i = 0; i < names.size(); ++i) {

@@ -42,6 +42,8 @@ std::vector<Result> run_interleaved(std::span<CrowdBench* const> benches, const 
 std::string apply_mode_spec(const std::string& spec, RunSpec& run);
 
 // --modes checked (UsageError for a bad or repeated mode); empty: every preset.
+// The list as split at commas: the fields of a layer a mode sets
+// (threaded+anim_layer=action=wave,mask=spine) are joined back to it.
 std::vector<std::string> modes_to_run(const std::vector<std::string>& asked);
 
 // UsageError unless --block is 1 to 1,000,000.

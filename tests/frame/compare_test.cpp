@@ -196,3 +196,16 @@ TEST(CompareCli, SweepsPassesWhereTheGlAllows) {
   EXPECT_NE(text.find("Passes sweep"), std::string::npos);
   EXPECT_NE(text.find("passes (draws of the crowd a frame)"), std::string::npos);
 }
+
+TEST(CompareModes, ALayerSetByAModeKeepsItsFields) {
+  // --modes splits at every comma; a layer's own commas go back to its mode.
+  const std::vector<std::string> split = {"threaded",  "threaded+anim_layer=action=wave", "mask=spine_03",
+                                          "falloff=1", "culled+anim-layer=action=walk",   "blend=add"};
+  EXPECT_EQ(crowdprof::modes_to_run(split),
+            (std::vector<std::string>{"threaded", "threaded+anim_layer=action=wave,mask=spine_03,falloff=1",
+                                      "culled+anim-layer=action=walk,blend=add"}));
+  // A mode named after a layer still starts a mode of its own.
+  EXPECT_EQ(crowdprof::modes_to_run({"threaded+anim_layer=action=wave", "culled"}).size(), 2u);
+  // Fields without a layer before them are no mode: refused by name.
+  EXPECT_THROW(crowdprof::modes_to_run({"threaded", "mask=spine_03"}), crowdprof::UsageError);
+}
