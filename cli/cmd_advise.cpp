@@ -62,7 +62,8 @@ size_t benches_in_memory(const BenchScene& scene, const BenchConfig& start) {
 }
 
 // The largest crowd the capacities are searched up to: 64 times the crowd
-// (1,000 at least), as capacity's default cap allows at most.
+// (1,000 at least, and no more than capacity's default cap, 100,000), so that
+// a cheap final configuration does not search far past what was asked.
 size_t capacity_cap(size_t characters) {
   return std::min<size_t>(std::max<size_t>(characters * 64, 1000), 100'000);
 }
@@ -83,6 +84,11 @@ int advise(AdviseCliOptions& o) {
   rule.metric = *metric;
   if (SettingText why = rule.Validate(); !why.empty()) throw SettingsUsageError(why);
   resolve_bench_spec(o.bench);
+  // A saving is told from noise by its interval over the frames: one or two
+  // frames give none.
+  if (o.bench.spec.frames < 5)
+    throw UsageError("--frames " + std::to_string(o.bench.spec.frames) +
+                     ": advise needs at least 5 frames a configuration to tell a saving from noise");
   validate_run_spec(o.bench.spec);
   require_writable_outputs(o.bench);
   const RunSpec& spec = o.bench.spec;
@@ -149,8 +155,12 @@ int advise(AdviseCliOptions& o) {
   record.warmup = spec.warmup;
   record.block_frames = static_cast<size_t>(o.block);
 
-  const Result* start_run = result.start_run ? &*result.start_run : nullptr;
-  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet)) std::cout << format_advice(record, start_run);
+  if (!result.start_run) {
+    std::cerr << "crowdprof: " << (result.partial ? "interrupted" : "the time limit passed")
+              << " before a frame of the start was measured: nothing printed or written\n";
+    return result.partial ? kExitInterrupted : kExitRegression;
+  }
+  if (o.bench.outputs.files().prints_on_stdout(o.bench.quiet)) std::cout << format_advice(record, &*result.start_run);
   ResultDocument document;
   document.kind = "advise";
   document.partial = result.partial;
@@ -160,11 +170,6 @@ int advise(AdviseCliOptions& o) {
   for (Result& run : document.runs) {
     run.run.backend = rendering.backend_name();
     run.run.renderer = rendering.renderer_name();
-  }
-  if (document.runs.empty()) {
-    std::cerr << "crowdprof: " << (result.partial ? "interrupted" : "the time limit passed")
-              << " before a frame of the start was measured: nothing written\n";
-    return result.partial ? kExitInterrupted : kExitRegression;
   }
   if (!o.bench.csv.empty()) write_text(o.bench.csv, "CSV", [&](std::ostream& out) { write_advice_csv(record, out); });
   if (!o.bench.json.empty())
@@ -200,8 +205,9 @@ void add_advise_command(CLI::App& app, std::function<int()>& run) {
   auto* cmd = app.add_subcommand(
       "advise",
       "Find which CPU levers fit this crowd in a frame budget: a greedy search that measures each lever beside the "
-      "configuration of the moment and takes the one that saves most milliseconds per pixel of drawn error; "
-      "exits 0 when the budget is met, 1 when not");
+      "configuration of the moment and takes the one that saves most milliseconds per pixel of drawn error (one "
+      "that meets the budget alone first, with the least error; then one that adds none); exits 0 when the budget "
+      "is met, 1 when not");
   cmd->footer(
       "Examples:\n  crowdprof advise scenes/thesis.json -n 2000 --budget 16.7 --scene-out fitted.json\n"
       "GPU levers (hwskin, buffer, instanced, compute, baked) are not tried: timed on a software GL they would give "

@@ -64,12 +64,14 @@ inline AdviceRecord sample_advice(bool met) {
     second.taken = 1;
     a.steps.push_back(second);
     a.final = second.candidates[1];
-    a.final_options = "--sharing on --update_lod on";
+    a.final_options = "--mode threaded --sharing on --update_lod on";
+    a.added_options = "--sharing on --update_lod on";
     a.capacities = {{"start", 110, 112, false, 7}, {"final", 165, 168, false, 8}};
     a.configurations_measured = 7;
     a.met = true;
     a.outcome = "met";
   } else {
+    a.final_options = a.start_options;
     a.configurations_measured = 4;
     a.outcome = "noise";
     a.ran_out = "the best saving, sharing's 0.3 ms, reaches 0 in its interval: more frames would tell";

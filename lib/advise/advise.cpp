@@ -70,8 +70,11 @@ AdviceCandidate measured(const AdviseRule& rule, const Result& run, const std::v
   AdviceCandidate c;
   std::vector<double> values = metric_values(run, rule.metric);
   c.metric = interval_of(values);
+  // The median capacity's search and the reports read (the lower of two).
+  c.metric.median = summarize(values).median;
   c.frame_ms = summarize(metric_values(run, CapacityMetric{})).median;
   if (base_values) c.saved = interval_of(paired_savings(*base_values, values));
+  c.error_measured = run.drawn_error.has_value();
   if (run.drawn_error) {
     c.error_px = run.drawn_error->max_px;
     c.error_mm = run.drawn_error->max * 1000.0;
@@ -82,6 +85,12 @@ AdviceCandidate measured(const AdviseRule& rule, const Result& run, const std::v
         static_cast<size_t>(std::floor(static_cast<double>(rule.characters) * rule.budget_ms / c.metric.median));
   c.digest = run.digest;
   return c;
+}
+
+std::string lever_list(const std::vector<std::string>& levers) {
+  std::string text;
+  for (const std::string& lever : levers) text += (text.empty() ? "" : ", ") + lever;
+  return text;
 }
 
 std::string describe(const AdviceCandidate& c) {
@@ -246,7 +255,7 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
   AdviseConfig one[] = {start};
   hooks.progress("measuring the start (" + start.preset + (start.switches.empty() ? "" : ", as given") + ")");
   std::vector<Result> first = hooks.measure(one);
-  record.configurations_measured = 1;
+  record.configurations_measured = stopped(first) ? 0 : 1;
   if (first.size() != 1) throw std::logic_error("advise: the start measured the wrong number of runs");
   if (stopped(first)) {
     // The frames measured so far, as bench keeps a cut run's.
@@ -259,7 +268,7 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
       record.final.verdict = "final";
     }
     record.start_mode = start.preset;
-    record.start_options = options_over(AdviseConfig{start.preset, {}, 0}, start);
+    record.start_options = record.final_options = options_over(AdviseConfig{start.preset, {}, 0}, start);
     finish(hooks.stop_reason());
     return run;
   }
@@ -288,7 +297,7 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
       std::string why;
       for (const LeverSetting& lever : levers) why += "; " + lever.family + " cannot run: " + lever.why_not.marked();
       record.ran_out =
-          "every lever is taken" + std::string(levers.empty() ? "" : " or cannot run with the configuration") + why;
+          "no lever of " + lever_list(record.levers) + " has a setting left to try over this configuration" + why;
       finish("no lever left");
       break;
     }
@@ -308,11 +317,11 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
       for (size_t k = at; k < std::min(runnable.size(), at + per_group); ++k) group.push_back(runnable[k]->config);
       std::vector<Result> runs = hooks.measure(group);
       if (runs.size() != group.size()) throw std::logic_error("advise: a step measured the wrong number of runs");
-      record.configurations_measured += group.size();
       if (stopped(runs)) {
         cut = true;
         break;
       }
+      record.configurations_measured += group.size();
       std::vector<double> base_values = metric_values(runs[0], rule.metric);
       if (at == 0) {
         AdviceCandidate base = measured(rule, runs[0], nullptr);
@@ -358,10 +367,12 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
     for (size_t i = 1; i < step.candidates.size(); ++i) {
       AdviceCandidate& c = step.candidates[i];
       if (!c.verdict.empty()) continue;
-      if (c.error_px > rule.max_error_px + 1e-12)
-        c.verdict = "past max error";
-      else if (c.saved.median <= 0)
+      // Past the error allowed only when it adds to it: a start already past
+      // it may still take a lever that draws no further off.
+      if (c.saved.median <= 0)
         c.verdict = "slower";
+      else if (c.error_px > rule.max_error_px + 1e-12 && c.error_px > base_error_px + kInvisiblePx)
+        c.verdict = "past max error";
       else if (c.saved.low <= 0)
         c.verdict = "noise";
       else if (!best || better_step(c, step.candidates[*best], base_error_px, rule.budget_ms))
@@ -399,7 +410,8 @@ AdviseRun run_advise(const AdviseRule& rule, const AdviseConfig& start, const Ad
   record.met = current_ms <= rule.budget_ms;
   record.start_options = options_over(AdviseConfig{start.preset, {}, 0}, start);
   record.start_mode = start.preset;
-  record.final_options = options_over(start, run.final);
+  record.final_options = options_over(AdviseConfig{start.preset, {}, 0}, run.final);
+  record.added_options = options_over(start, run.final);
   if (run.partial || record.outcome == "time limit" || record.outcome == "interrupted") return run;
 
   // One search when no lever was taken: the start is the final configuration.

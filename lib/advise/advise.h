@@ -52,13 +52,13 @@ struct AdviseConfig {
 
 struct AdviseRule {
   double budget_ms = 1000.0 / 60.0;
-  CapacityMetric metric;            // what must fit: the frame or Animations
-  double max_error_px = 1.0;        // a lever that would draw the crowd further off is not taken
-  std::vector<std::string> levers;  // families to try (lever_families()); empty: all
-  int cores = 1;                    // of this machine, for the threads lever
-  size_t characters = 0;            // the crowd measured, for the estimated capacities
-  size_t side_by_side = 8;          // most configurations measured at once (memory)
-  double time_limit_s = 180;        // no step starts after it
+  CapacityMetric metric;                  // what must fit: the frame or Animations
+  double max_error_px = kVisibleErrorPx;  // a lever that would draw the crowd further off is not taken
+  std::vector<std::string> levers;        // families to try (lever_families()); empty: all
+  int cores = 1;                          // of this machine, for the threads lever
+  size_t characters = 0;                  // the crowd measured, for the estimated capacities
+  size_t side_by_side = 8;                // most configurations measured at once (memory)
+  double time_limit_s = 180;              // no step starts after it
   // Empty when the rule can run, else why not, naming the setting ({budget},
   // {max_error}, {levers}, {time_limit}).
   SettingText Validate() const;

@@ -31,6 +31,10 @@ std::string format_advice(const AdviceRecord& a, const Result* start) {
   for (const std::string& lever : a.levers) levers += (levers.empty() ? "" : ", ") + lever;
   out += "levers tried: " + levers + "\n";
   for (const std::string& line : a.left_out) out += "left out: " + line + "\n";
+  if (!a.start.error_measured && a.outcome != "interrupted")
+    out +=
+        "no copy is on screen at the scene's camera: drawn errors are not measured (-), and levers are weighed "
+        "by time alone\n";
   out += "start: " + a.start_mode + (a.start_options.empty() ? "" : " " + a.start_options) + ": " +
          fixed(a.start.metric.median, 3) + " ms " + interval_text(a.start.metric) + ", " + fixed(a.start.error_px, 2) +
          " px\n";
@@ -47,10 +51,11 @@ std::string format_advice(const AdviceRecord& a, const Result* start) {
         rows.push_back({std::to_string(s + 1), c.lever, c.changes, "-", "", "-", "", "-", "-", "-", "-", c.verdict});
         continue;
       }
-      rows.push_back({std::to_string(s + 1), base ? "(base)" : c.lever, c.changes, fixed(c.metric.median, 3),
-                      interval_text(c.metric), base ? "-" : fixed(c.saved.median, 3),
-                      base ? "" : interval_text(c.saved), fixed(c.error_px, 2), fixed(c.error_mm, 2),
-                      fixed(c.error_height_pct, 3), with_thousands(c.capacity_estimate), c.verdict});
+      rows.push_back(
+          {std::to_string(s + 1), base ? "(base)" : c.lever, c.changes, fixed(c.metric.median, 3),
+           interval_text(c.metric), base ? "-" : fixed(c.saved.median, 3), base ? "" : interval_text(c.saved),
+           c.error_measured ? fixed(c.error_px, 2) : "-", c.error_measured ? fixed(c.error_mm, 2) : "-",
+           c.error_measured ? fixed(c.error_height_pct, 3) : "-", with_thousands(c.capacity_estimate), c.verdict});
     }
   if (a.steps.size() > 0) out += "\n" + align_columns(rows, {1, 2, 4, 6, 11}) + "\n";
 
@@ -64,22 +69,22 @@ std::string format_advice(const AdviceRecord& a, const Result* start) {
   else
     out += "NOT MET: " + where + " over " + shortest_text(a.budget_ms) + " ms" +
            (a.ran_out.empty() ? "" : ": " + a.ran_out) + "\n";
-  out += "final: " + a.start_mode + (a.start_options.empty() ? "" : " " + a.start_options) +
-         (a.final_options.empty() ? " (no lever taken)" : " " + a.final_options) + "\n";
+  out += "final: " + a.start_mode + (a.final_options.empty() ? "" : " " + a.final_options) +
+         (a.added_options.empty() ? " (no lever taken)" : "") + "\n";
   if (!a.capacities.empty()) {
     out += "capacity at " + shortest_text(a.budget_ms) + " ms (capacity's search):";
     for (const AdviceCapacity& c : a.capacities) {
       out += " " + c.configuration + " " + (c.capped ? "at least " : "") +
              (c.fit ? with_thousands(*c.fit) : std::string("0")) + " copies" +
-             (c.capped ? " (the largest tried, in memory)" : "") + ";";
+             (c.capped ? " (the largest tried: 64 times the crowd, or what memory holds)" : "") + ";";
     }
     out.back() = '\n';
     out += "capacity~: estimated, copies x budget / median\n";
   }
-  out += "measured " + std::to_string(a.configurations_measured) + " configurations of " +
-         std::to_string(a.frames_per_configuration) + " frames (after " + std::to_string(a.warmup) +
-         " warm-up, interleaved in blocks of " + std::to_string(a.block_frames) + ") in " + fixed(a.elapsed_s, 0) +
-         " s\n";
+  out += "measured " + std::to_string(a.configurations_measured) + " configuration" +
+         (a.configurations_measured == 1 ? "" : "s") + " of " + std::to_string(a.frames_per_configuration) +
+         " frames (after " + std::to_string(a.warmup) + " warm-up, interleaved in blocks of " +
+         std::to_string(a.block_frames) + ") in " + fixed(a.elapsed_s, 0) + " s\n";
   return out;
 }
 
@@ -87,13 +92,19 @@ void write_advice_csv(const AdviceRecord& a, std::ostream& out) {
   out << "step,lever,changes,verdict,metric,metric_median_ms,metric_low_ms,metric_high_ms,frame_median_ms,"
          "saved_median_ms,saved_low_ms,saved_high_ms,error_px,error_mm,error_height_pct,capacity_estimate,digest\n";
   for (size_t s = 0; s < a.steps.size(); ++s)
-    for (const AdviceCandidate& c : a.steps[s].candidates)
+    for (const AdviceCandidate& c : a.steps[s].candidates) {
+      // Empty where nothing was measured: a lever that could not run, the
+      // base's saving, an error with no copy on screen.
+      const bool ran = c.verdict.rfind("cannot run", 0) != 0, paired = ran && c.verdict != "base",
+                 drawn = ran && c.error_measured;
+      auto cell = [](bool known, double value) { return known ? shortest_text(value) : std::string(); };
       out << s + 1 << "," << csv_field(c.lever) << "," << csv_field(c.changes) << "," << csv_field(c.verdict) << ","
-          << a.metric << "," << shortest_text(c.metric.median) << "," << shortest_text(c.metric.low) << ","
-          << shortest_text(c.metric.high) << "," << shortest_text(c.frame_ms) << "," << shortest_text(c.saved.median)
-          << "," << shortest_text(c.saved.low) << "," << shortest_text(c.saved.high) << "," << shortest_text(c.error_px)
-          << "," << shortest_text(c.error_mm) << "," << shortest_text(c.error_height_pct) << "," << c.capacity_estimate
-          << "," << c.digest << "\n";
+          << a.metric << "," << cell(ran, c.metric.median) << "," << cell(ran, c.metric.low) << ","
+          << cell(ran, c.metric.high) << "," << cell(ran, c.frame_ms) << "," << cell(paired, c.saved.median) << ","
+          << cell(paired, c.saved.low) << "," << cell(paired, c.saved.high) << "," << cell(drawn, c.error_px) << ","
+          << cell(drawn, c.error_mm) << "," << cell(drawn, c.error_height_pct) << ","
+          << (ran ? std::to_string(c.capacity_estimate) : std::string()) << "," << c.digest << "\n";
+    }
 }
 
 }  // namespace crowdprof

@@ -23,7 +23,7 @@ struct CostErrorInput {
 // under which a viewer cannot see it. A faster point drawn further off is
 // marked past it instead (a budget that bends a pose by 15% of the height is
 // fast, not a bargain).
-inline constexpr double kFrontMaxErrorPx = 1.0;
+inline constexpr double kFrontMaxErrorPx = kVisibleErrorPx;
 
 struct CostErrorPoint {
   std::string mode, base;  // base: the point its saving is measured against

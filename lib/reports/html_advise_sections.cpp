@@ -41,8 +41,8 @@ std::string advice_options_html(const std::string& options) {
 std::string measured_capacity_cells(const AdviceRecord& a, const std::string& configuration) {
   for (const AdviceCapacity& c : a.capacities)
     if (c.configuration == configuration || c.configuration == "start and final")
-      return "<td><b>" + (c.fit ? std::to_string(*c.fit) : std::string("none")) + "</b></td><td>" +
-             (c.over ? std::to_string(*c.over) : std::string(c.capped ? "none (the cap fits)" : "-")) + "</td><td>" +
+      return "<td><b>" + (c.fit ? with_thousands(*c.fit) : std::string("none")) + "</b></td><td>" +
+             (c.over ? with_thousands(*c.over) : std::string(c.capped ? "none (the cap fits)" : "-")) + "</td><td>" +
              std::to_string(c.measured) + "</td>";
   return "<td>not measured</td><td>-</td><td>-</td>";
 }
@@ -52,9 +52,9 @@ std::string plan_row(const AdviceRecord& a, const std::string& configuration, co
   return "<tr><td class=\"name\">" + configuration + "</td><td class=\"name\">" +
          advice_options_html(options.empty() ? "(none)" : options) + "</td><td>" +
          (at ? advice_interval_text(at->metric) : std::string("-")) + "</td><td>" +
-         (at ? report_number(at->error_px, 2) : std::string("-")) + "</td>" +
+         (at && at->error_measured ? report_number(at->error_px, 2) : std::string("-")) + "</td>" +
          measured_capacity_cells(a, configuration) + "<td>" +
-         (at ? std::to_string(at->capacity_estimate) : std::string("-")) + "</td></tr>\n";
+         (at ? with_thousands(at->capacity_estimate) : std::string("-")) + "</td></tr>\n";
 }
 
 std::string verdict_cell(const AdviceCandidate& c) {
@@ -79,13 +79,16 @@ std::string step_table(const AdviceRecord& a, const AdviceStep& step, size_t num
                                   : candidate.verdict == "noise" ? " class=\"noise\""
                                                                  : "";
     auto cell = [&](const std::string& text) { return "<td>" + (measured ? text : std::string("-")) + "</td>"; };
+    auto error_cell = [&](double value, int decimals) {
+      return cell(candidate.error_measured ? report_number(value, decimals) : std::string("-"));
+    };
     out += "<tr" + row_class + "><td class=\"name\">" + (is_base ? "(the step's base)" : html_text(candidate.lever)) +
            "</td><td class=\"name\">" + (is_base ? "" : advice_options_html(candidate.changes)) + "</td>" +
            cell(advice_interval_text(candidate.metric)) +
-           (is_base ? "<td>-</td>" : cell(advice_interval_text(candidate.saved))) +
-           cell(report_number(candidate.error_px, 2)) + cell(report_number(candidate.error_mm, 2)) +
-           cell(report_number(candidate.error_height_pct, 2)) + cell(std::to_string(candidate.capacity_estimate)) +
-           "<td class=\"name\">" + verdict_cell(candidate) + "</td></tr>\n";
+           (is_base ? "<td>-</td>" : cell(advice_interval_text(candidate.saved))) + error_cell(candidate.error_px, 2) +
+           error_cell(candidate.error_mm, 2) + error_cell(candidate.error_height_pct, 3) +
+           cell(with_thousands(candidate.capacity_estimate)) + "<td class=\"name\">" + verdict_cell(candidate) +
+           "</td></tr>\n";
   }
   return out + "</table>\n";
 }
@@ -98,15 +101,13 @@ std::string advise_section(const AdviceRecord& a) {
                     (a.met ? "<span class=\"ok\">met</span>" : "<span class=\"regression\">not met</span>") +
                     "</h2>\n<p>Outcome: <b>" + html_text(a.outcome) + "</b>." +
                     (a.met || a.ran_out.empty() ? std::string() : " " + html_text(a.ran_out)) + "</p>\n";
-  const std::string final_options =
-      a.start_options + (a.start_options.empty() || a.final_options.empty() ? "" : " ") + a.final_options;
   out += "<table class=\"advice-plan\"><tr><th class=\"name\">configuration</th><th class=\"name\">options</th><th>" +
          html_text(a.metric) +
          " median ms [interval]</th><th>error px</th><th>capacity (measured)</th><th>first crowd over</th>"
          "<th>sizes measured</th><th>capacity (estimated)</th></tr>\n" +
-         plan_row(a, "start", a.start_options, &a.start) + plan_row(a, "final", final_options, &a.final) +
+         plan_row(a, "start", a.start_options, &a.start) + plan_row(a, "final", a.final_options, &a.final) +
          "</table>\n<p>The final configuration adds <code>" +
-         html_text(a.final_options.empty() ? "nothing" : a.final_options) + "</code> to the start (preset " +
+         html_text(a.added_options.empty() ? "nothing" : a.added_options) + "</code> to the start (preset " +
          html_text(a.start_mode) +
          "). A capacity measured is capacity's search of the configuration at the budget: the largest crowd whose "
          "median fits; an estimated one is " +
@@ -118,7 +119,10 @@ std::string advise_section(const AdviceRecord& a) {
          report_number(a.elapsed_s, 0) +
          " s in all. A lever is taken when its saving's interval is above 0 and "
          "its error within " +
-         shortest_text(a.max_error_px) + " px; of those, the one saving most per pixel of error it adds.</p>\n";
+         shortest_text(a.max_error_px) +
+         " px (or no further off than the step's base); of those, one that meets the budget alone with the least "
+         "error added, else one that adds none visible (under 0.01 px) by its saving, else the one saving most per "
+         "pixel of error it adds.</p>\n";
   if (!a.levers.empty()) {
     out += "<p>Levers it could try: ";
     for (size_t l = 0; l < a.levers.size(); ++l) out += (l ? ", " : "") + html_text(a.levers[l]);

@@ -52,6 +52,10 @@ void add_document(HtmlReportInput& input, ResultDocument document, const std::st
   // An advise search's runs are its start and its final configuration, whose
   // modes may well be the same.
   const bool advise = document.kind == "advise";
+  // A page leads with one plan: a second would take the first one's place.
+  if (advise && (input.advice || !input.runs.empty()))
+    throw InputError(source, "an advise result is a page of its own: report it alone");
+  if (!advise && input.advice) throw InputError(source, "after an advise result: report the advise result alone");
   for (size_t r = 0; r < document.runs.size(); ++r)
     input.runs.push_back({advise ? (r == 0   ? "start"
                                     : r == 1 ? "final"
@@ -71,6 +75,7 @@ void add_document(HtmlReportInput& input, ResultDocument document, const std::st
 }
 
 void add_result(HtmlReportInput& input, Result result, const std::string& source) {
+  if (input.advice) throw InputError(source, "after an advise result: report the advise result alone");
   input.runs.push_back({"", std::move(result), source});
 }
 

@@ -20,6 +20,7 @@ json candidate_json(const AdviceCandidate& c) {
           {"metric_ms", interval_json(c.metric)},
           {"frame_median_ms", c.frame_ms},
           {"saved_ms", interval_json(c.saved)},
+          {"error_measured", c.error_measured},
           {"error_px", c.error_px},
           {"error_mm", c.error_mm},
           {"error_height_pct", c.error_height_pct},
@@ -105,6 +106,7 @@ AdviceCandidate read_candidate(const Fields& f) {
   c.metric = f.interval("metric_ms", false);
   c.frame_ms = f.number("frame_median_ms");
   c.saved = f.interval("saved_ms", true);
+  c.error_measured = f.flag("error_measured");
   c.error_px = f.number("error_px");
   c.error_mm = f.number("error_mm");
   c.error_height_pct = f.number("error_height_pct");
@@ -125,6 +127,7 @@ json advice_to_json(const AdviceRecord& a) {
             {"start_mode", a.start_mode},
             {"start_options", a.start_options},
             {"final_options", a.final_options},
+            {"added_options", a.added_options},
             {"levers", a.levers},
             {"left_out", a.left_out},
             {"configurations_measured", a.configurations_measured},
@@ -164,6 +167,7 @@ AdviceRecord advice_from_json(const json& advice, const std::string& path) {
   a.start_mode = f.text("start_mode");
   a.start_options = f.text("start_options");
   a.final_options = f.text("final_options");
+  a.added_options = f.text("added_options");
   a.levers = f.texts("levers");
   a.left_out = f.texts("left_out");
   a.configurations_measured = f.count("configurations_measured");

@@ -32,7 +32,9 @@ struct AdviceCandidate {
   // the same blocks), its median and interval; positive: it saves time.
   MsInterval saved;
   // The drawn error of the whole configuration (the base's own plus this
-  // lever's): the largest over the copies checked.
+  // lever's): the largest over the copies checked. Not measured (all 0) when
+  // no copy was on screen, or for a lever that could not run.
+  bool error_measured = true;
   double error_px = 0, error_mm = 0, error_height_pct = 0;
   // Copies the budget holds at this cost per copy: n x budget / metric,
   // estimated (the search measures only the start and the end).
@@ -64,8 +66,9 @@ struct AdviceRecord {
   double time_limit_s = 180;
   size_t characters = 0;
   std::string start_mode;             // the preset it started from, with the user's switches
-  std::string start_options;          // the options the start set, as users type them
-  std::string final_options;          // the options the final configuration adds to the start's
+  std::string start_options;          // the options the start sets over its preset, as users type them
+  std::string final_options;          // the options the final configuration sets over the preset: a command line
+  std::string added_options;          // what the final configuration changes from the start
   std::vector<std::string> levers;    // the families it could try
   std::vector<std::string> left_out;  // what it does not try, and why (GPU levers on llvmpipe)
   // The start measured alone (verdict "start") and the final configuration's

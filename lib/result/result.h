@@ -109,6 +109,11 @@ struct DrawnErrorRecord {
   double switches_per_second = 0;  // changes of update period, all copies
 };
 
+// The drawn error a saving may cost and still count as unseen: a pixel.
+// compare's Pareto front marks points past it; advise takes no lever past it
+// unless --max-error says otherwise.
+inline constexpr double kVisibleErrorPx = 1.0;
+
 // The GPU's memory as the GL reports it (NVX_gpu_memory_info or ATI_meminfo),
 // read when the renderer was made; "unknown" where the GL says nothing, with
 // the largest storage block it allows.

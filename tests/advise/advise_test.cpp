@@ -26,6 +26,7 @@ struct FakeCrowd {
   double elapsed = 0;              // what elapsed_s says
   double seconds_per_measure = 0;  // added to elapsed per measure call
   std::optional<size_t> stop_at;   // the measure call that comes back partial
+  bool on_screen = true;           // false: no copy drawn, so no drawn error
   std::vector<std::vector<AdviseConfig>> calls;
   size_t capacity_calls = 0;
 
@@ -54,7 +55,7 @@ struct FakeCrowd {
     e.max_px = error(s);
     e.max = e.max_px / 1000.0;
     e.max_fraction = e.max_px / 500.0;
-    r.drawn_error = e;
+    if (on_screen) r.drawn_error = e;
     r.digest = std::to_string(static_cast<long long>(cost(s) * 1e6));
     return r;
   }
@@ -223,7 +224,10 @@ TEST(AdviseSearch, KeepsTheTransitionsLayersAndSwitchesTheUserGave) {
     }
   EXPECT_EQ(run.record.start_options,
             "--anim-layer action=wave,mask=spine,weight=0.5 --index-order file --transitions 3");
-  EXPECT_EQ(run.record.final_options.find("--transitions"), std::string::npos) << run.record.final_options;
+  EXPECT_EQ(run.record.added_options.find("--transitions"), std::string::npos) << run.record.added_options;
+  // The final options are a command line of their own: the start's and the levers'.
+  EXPECT_EQ(run.record.final_options.find("--transitions 3"), run.record.final_options.find("--transitions"));
+  EXPECT_NE(run.record.final_options.find("--transitions 3"), std::string::npos) << run.record.final_options;
 }
 
 TEST(AdviseSearch, TheTimeLimitAndAnInterruptEndTheSearchWithWholeSteps) {
@@ -336,4 +340,38 @@ TEST(AdviceRecordCodec, RoundTripsAndNamesABadField) {
   bad = j;
   bad.erase("advice");
   EXPECT_THROW(result_document_from_json(bad, "bad.json"), InputError);
+}
+
+TEST(AdviseSearch, AStartPastTheErrorAllowedMayStillTakeALeverThatAddsNone) {
+  FakeCrowd crowd;
+  AdviseConfig start;
+  start.switches = {{"update_lod", "on"}};  // 3 px already
+  AdviseRule rule = rule_of(1);
+  rule.levers = {"sharing", "vertex_format"};
+  AdviseRun run = run_advise(rule, start, crowd.hooks());
+  ASSERT_FALSE(run.record.steps.empty());
+  EXPECT_EQ(lever(run.record.steps[0], "sharing").verdict, "past max error");  // 3.2 px: it adds 0.2
+  EXPECT_EQ(lever(run.record.steps[0], "vertex_format").verdict, "taken");     // 3 px: it adds none
+}
+
+TEST(AdviseSearch, NoCopyOnScreenWeighsLeversByTimeAlone) {
+  FakeCrowd crowd;
+  crowd.on_screen = false;
+  AdviseRun run = run_advise(rule_of(5.5), AdviseConfig{}, crowd.hooks());
+  EXPECT_FALSE(run.record.start.error_measured);
+  ASSERT_FALSE(run.record.steps.empty());
+  for (const AdviceCandidate& c : run.record.steps[0].candidates) EXPECT_FALSE(c.error_measured) << c.lever;
+  // update_lod would draw 3 px were anything drawn: here it is weighed by its saving.
+  EXPECT_NE(lever(run.record.steps[0], "update_lod").verdict, "past max error");
+}
+
+TEST(AdviseSearch, ALeverFamilyWithNothingLeftSaysSo) {
+  FakeCrowd crowd;
+  AdviseRule rule = rule_of(1);
+  rule.levers = {"threads"};  // every core already
+  AdviseRun run = run_advise(rule, AdviseConfig{}, crowd.hooks());
+  EXPECT_EQ(run.record.outcome, "no lever left");
+  EXPECT_NE(run.record.ran_out.find("no lever of threads has a setting left to try"), std::string::npos)
+      << run.record.ran_out;
+  EXPECT_TRUE(run.record.steps.empty());
 }

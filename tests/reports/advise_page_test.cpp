@@ -98,7 +98,7 @@ TEST(AdvisePage, ThePlanLeadsThenThePathThenTheRuns) {
                       option("--sharing on") + "</code></td><td>19.0" + interval("[18.7, 19.4]") + "</td><td>5.00" +
                       interval("[4.60, 5.30]") +
                       "</td><td>0.40</td>"
-                      "<td>1.20</td><td>0.20</td>"),
+                      "<td>1.20</td><td>0.200</td>"),
             std::string::npos);
   EXPECT_NE(html.find("<tr class=\"noise\"><td class=\"name\">update_lod</td>"), std::string::npos);
   EXPECT_NE(html.find("<td>23.8" + interval("[23.1, 24.4]") + "</td><td>0.200" + interval("[-0.100, 0.500]") + "</td>"),
@@ -148,7 +148,8 @@ TEST(AdvisePage, TheDocumentRoundTrips) {
   // Every field, as its JSON says it; then a few by hand, in case both ways
   // dropped one alike.
   EXPECT_EQ(advice_to_json(b), advice_to_json(a));
-  EXPECT_EQ(b.final_options, "--sharing on --update_lod on");
+  EXPECT_EQ(b.final_options, "--mode threaded --sharing on --update_lod on");
+  EXPECT_EQ(b.added_options, "--sharing on --update_lod on");
   ASSERT_EQ(b.steps.size(), 2u);
   EXPECT_EQ(b.steps[0].taken, std::optional<size_t>(1));
   ASSERT_EQ(b.steps[0].candidates.size(), 4u);
@@ -201,4 +202,13 @@ TEST(ReportCli, AnAdvisePage) {
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("bad_advise.json"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.html"));
+}
+
+TEST(AdvisePage, AnAdviseResultIsReportedAlone) {
+  // One plan leads a page: a second, or other results beside it, would have
+  // it show one plan's verdict over another's runs.
+  HtmlReportInput input;
+  add_document(input, advise_document(true), "a.json");
+  EXPECT_THROW(add_document(input, advise_document(false), "b.json"), InputError);
+  EXPECT_THROW(add_result(input, input.runs.front().result, "c.json"), InputError);
 }
