@@ -117,6 +117,12 @@ int advise(AdviseCliOptions& o) {
   });
   AdviseHooks hooks;
   hooks.measure = [&](std::span<const AdviseConfig> configs) {
+    if (stop.load()) {
+      // Stopped already: no benches built for nothing (a crowd takes seconds to make).
+      std::vector<Result> cut(configs.size());
+      for (Result& run : cut) run.partial = true;
+      return cut;
+    }
     std::vector<BenchConfig> benches;
     for (const AdviseConfig& config : configs) benches.push_back(bench_config(config));
     ModeRun run = make_benches(scene, benches, spec.characters, true, false);
