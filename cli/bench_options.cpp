@@ -146,3 +146,13 @@ void write_scene_out(const std::string& path, const crowdprof::RunSpec& spec, co
     std::cerr << "crowdprof: note: " << path << " holds the crowd, view, mode and switches, not " << outside
               << ": give them again to run the same frames\n";
 }
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> items;
+  for (size_t at = 0; !text.empty() && at <= text.size();) {
+    const size_t comma = std::min(text.find(',', at), text.size());
+    items.push_back(text.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return items;
+}

@@ -118,3 +118,8 @@ crowdprof::BenchRendering open_bench_rendering(const BenchCliOptions& options, c
 // (run_scene_file); a note on stderr names what the scene cannot hold.
 void write_scene_out(const std::string& path, const crowdprof::RunSpec& spec, const crowdprof::BenchScene& scene,
                      const crowdprof::BenchConfig& config);
+
+// A comma-separated option's items, as typed ("a,b" -> {"a", "b"}; "" -> {}):
+// one value on the command line, so a file after it stays the file, and help
+// shows it as one (CLI11 lists a vector option as "VALUE ...").
+std::vector<std::string> split_commas(const std::string& text);

@@ -74,11 +74,7 @@ int advise(AdviseCliOptions& o) {
   rule.budget_ms = o.budget;
   rule.max_error_px = o.max_error;
   rule.time_limit_s = o.time_limit;
-  for (size_t at = 0; !o.levers.empty() && at <= o.levers.size();) {
-    size_t comma = std::min(o.levers.find(',', at), o.levers.size());
-    rule.levers.push_back(o.levers.substr(at, comma - at));
-    at = comma + 1;
-  }
+  rule.levers = split_commas(o.levers);
   std::optional<CapacityMetric> metric = parse_capacity_metric(o.metric);
   if (!metric) throw UsageError("--metric '" + o.metric + "': expected frame or Animations");
   rule.metric = *metric;

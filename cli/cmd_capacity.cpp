@@ -27,7 +27,7 @@ namespace {
 
 struct CapacityCliOptions {
   BenchCliOptions bench;
-  std::vector<std::string> modes;  // empty: every mode the backend can run
+  std::string modes;  // comma-separated; empty: every mode the backend can run
   double budget = 0;
   std::string metric = "frame";
   long long start = 10, max_characters = 100'000;
@@ -52,7 +52,7 @@ int capacity(CapacityCliOptions& o) {
     throw UsageError("--metric '" + o.metric + "': expected frame or a category (Animations, Rasterizer, ...)");
   check_block(o.block);
   bool named = !o.modes.empty();
-  std::vector<std::string> names = modes_to_run(o.modes);
+  std::vector<std::string> names = modes_to_run(split_commas(o.modes));
 
   resolve_bench_spec(o.bench);
   require_writable_outputs(o.bench);
@@ -148,8 +148,7 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--modes", options->modes,
                   "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
                   "preset, e.g. master+lookups=bundled")
-      ->delimiter(',')
-      ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
+      ->type_name("MODE,...");
   cmd->add_option("--metric", options->metric,
                   "What must fit the budget: frame (the median frame time) or a category's median, e.g. Animations")
       ->capture_default_str();

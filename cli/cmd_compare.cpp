@@ -31,7 +31,7 @@ namespace {
 
 struct CompareCliOptions {
   BenchCliOptions bench;
-  std::vector<std::string> modes;  // empty: every mode the backend can run
+  std::string modes;  // comma-separated; empty: every mode the backend can run
   std::string sweep;
   long long block = 10;
   std::string svg, trace, summary_csv, gbench_json;
@@ -100,7 +100,7 @@ int compare(CompareCliOptions& o) {
   check_block(o.block);
   Sweep sweep = o.sweep.empty() ? Sweep{} : parse_sweep(o.sweep);
   bool named = !o.modes.empty();
-  std::vector<std::string> names = modes_to_run(o.modes);
+  std::vector<std::string> names = modes_to_run(split_commas(o.modes));
 
   resolve_bench_spec(o.bench);
   require_writable_outputs(o.bench);
@@ -209,8 +209,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
                       mode_names() +
                       "); a mode may set switches away from its preset, "
                       "e.g. master+lookups=bundled")
-      ->delimiter(',')
-      ->allow_extra_args(false);  // one comma-separated value: a file after it stays the file
+      ->type_name("MODE,...");
   cmd->add_option("--block", options->block, "Frames of one mode before the next mode runs")->capture_default_str();
   cmd->add_option("--sweep", options->sweep,
                   "Also run every mode at these crowd sizes, e.g. n=10,20,40,80,160, or drawn this many times a "
