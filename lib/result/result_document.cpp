@@ -190,6 +190,10 @@ ResultDocument result_document_from_json(const json& doc, const std::string& pat
   ResultDocument out;
   require_format(doc, path);
   out.kind = document_kind(doc);
+  if (out.kind == "ab_check")
+    throw InputError(path,
+                     "an A/B check of two builds (check --against --json): report reads results of bench, check "
+                     "--baseline, compare, capacity and advise; the A/B's page is check --against BASE --html FILE");
   if (out.kind != "bench" && out.kind != "compare" && out.kind != "capacity" && out.kind != "advise")
     throw InputError(
         path, "a '" + out.kind + "' result; report reads results of bench, check, compare, capacity and advise --json");

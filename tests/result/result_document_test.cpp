@@ -151,3 +151,15 @@ TEST(ResultDocument, AHostileRowIsRefusedNamingIt) {
 
 }  // namespace
 }  // namespace crowdprof
+
+TEST(ResultDocument, AnABCheckIsNotAReportsInputAndSaysWhereItsPageIs) {
+  const nlohmann::json ab = {{"crowdprof", {{"version", "0.1.0"}, {"format", 2}, {"kind", "ab_check"}}}};
+  try {
+    crowdprof::result_document_from_json(ab, "ab.json");
+    FAIL() << "read an A/B check as a result";
+  } catch (const crowdprof::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ab.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("check --against BASE --html FILE"), std::string::npos) << what;
+  }
+}
