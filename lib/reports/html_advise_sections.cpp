@@ -97,7 +97,7 @@ std::string step_table(const AdviceRecord& a, const AdviceStep& step, size_t num
 
 std::string advise_section(const AdviceRecord& a) {
   std::string out = "<section id=\"advise\"><h2>Advice: " + html_text(a.metric) + " within " +
-                    significant(a.budget_ms, 3) + " ms at " + std::to_string(a.characters) + " characters: " +
+                    significant(a.budget_ms, 3) + " ms at " + with_thousands(a.characters) + " characters: " +
                     (a.met ? "<span class=\"ok\">met</span>" : "<span class=\"regression\">not met</span>") +
                     "</h2>\n<p>Outcome: <b>" + html_text(a.outcome) + "</b>." +
                     (a.met || a.ran_out.empty() ? std::string() : " " + html_text(a.ran_out)) + "</p>\n";
@@ -111,7 +111,7 @@ std::string advise_section(const AdviceRecord& a) {
          html_text(a.start_mode) +
          "). A capacity measured is capacity's search of the configuration at the budget: the largest crowd whose "
          "median fits; an estimated one is " +
-         std::to_string(a.characters) +
+         with_thousands(a.characters) +
          " characters scaled by the budget over the median, as if the cost grew in proportion to the crowd. " +
          std::to_string(a.configurations_measured) + " configurations measured, " +
          std::to_string(a.frames_per_configuration) + " frames each after " + std::to_string(a.warmup) +
