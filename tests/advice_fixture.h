@@ -21,7 +21,7 @@ inline AdviceCandidate advice_candidate(const std::string& lever, MsInterval met
   c.error_px = px;
   c.error_mm = px * 3;
   c.error_height_pct = px / 2;
-  c.capacity_estimate = static_cast<size_t>(160 * 16.7 / metric.median);
+  c.capacity_estimate = metric.median > 0 ? static_cast<size_t>(160 * 16.7 / metric.median) : 0;
   c.digest = "00000000000000aa";
   c.verdict = verdict;
   return c;
