@@ -46,6 +46,7 @@ struct CheckCliOptions {
   // Seconds a confirmation spreads its runs over: a slow spell of the machine
   // lasts seconds to a minute, and runs spread over one sample both sides of it.
   double confirm_spread = 60;
+  std::string count_work = "on";
   std::string junit, markdown;
   CLI::App* command = nullptr;  // to tell options given from defaults
 };
@@ -70,6 +71,7 @@ CheckRun request_of(const CheckCliOptions& o) {
   r.groups = o.groups;
   r.confirm = o.confirm;
   r.confirm_spread = o.confirm_spread;
+  r.count_work = o.count_work == "on";
   r.command_line = command_line_layer(o.bench);
   r.defaults = o.bench.defaults;
   r.quiet = o.bench.quiet;
@@ -188,6 +190,15 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
                   "after a slow spell (at least --spread); 0 to 3600")
       ->check(CLI::Range(0.0, 3600.0).description(""))
       ->capture_default_str();
+  cmd->add_option("--count-work", options->count_work,
+                  "With --update-baseline of a timed metric: also count the instructions per frame of a few frames "
+                  "(hardware counter, else callgrind: about 10 s at 160 copies), so that a later check that runs "
+                  "slower with the same count, on a machine seen to have changed (other processes on the cores, the "
+                  "probe's own time), warns instead of failing, and one with more instructions fails without "
+                  "measuring again")
+      ->type_name("on|off")
+      ->check(CLI::IsMember({"on", "off"}).description(""))
+      ->capture_default_str();
   cmd->add_flag("--timings-only", options->timings_only,
                 "Compare timings alone, of runs that may differ (another crowd size): for measuring the gate itself "
                 "(tests/scripts/measure_gate.sh); counters and digest are not compared");
@@ -205,7 +216,8 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
   // Both modes' gate, then each mode's own options.
   group_options(*cmd, kGateGroup, {"--metric", "--tolerance", "--floor", "--alpha", "--timings-only"});
   group_options(*cmd, "Stored baseline",
-                {"--baseline", "--update-baseline", "--result", "--runs", "--spread", "--confirm", "--confirm-spread"});
+                {"--baseline", "--update-baseline", "--result", "--runs", "--spread", "--confirm", "--confirm-spread",
+                 "--count-work"});
   group_options(*cmd, "A/B of two builds", {"--against", "--groups"});
   cmd->callback([&run, options] { run = [options] { return check(*options); }; });
 }

@@ -19,9 +19,11 @@
 #include "frame/interrupt.h"
 #include "frame/run_bench.h"
 #include "gate/ab_run.h"
+#include "gate/counted_runs.h"
 #include "gate/processes.h"
 #include "measuring/environment.h"
 #include "measuring/instruction_counter.h"
+#include "measuring/other_load.h"
 #include "render/bench_rendering.h"
 #include "result/pooled_runs.h"
 #include "result/result_codec.h"
@@ -41,6 +43,7 @@ struct CheckState {
   bool calibrate = false;  // time the calibration probe after each frame
   bool action_from_baseline = false;
   bool file_from_baseline = false;  // the scene file is the one the baseline recorded
+  mutable OtherLoad load;           // what other processes took during the last timed runs
 };
 
 bool same_path(const std::string& a, const std::string& b) {
@@ -152,86 +155,9 @@ std::optional<Result> read_baseline(const CheckRun& r) {
   return std::nullopt;
 }
 
-// crowdprof's own line among a run's stderr (valgrind's banner comes first).
-std::string crowdprof_line(const std::string& text) {
-  size_t at = text.rfind("crowdprof: ");
-  if (at != std::string::npos && (at == 0 || text[at - 1] == '\n')) return first_line(text.substr(at));
-  return first_line(text);
-}
-
-// A counted run (--metric instructions): this binary's bench in a process of
-// its own, on one thread (waiting is never counted), counted by the CPU's
-// hardware counter where the host exposes one, else under callgrind (which
-// must start the process, so never a fork). A run's count is the instructions
-// of its measured frames over their number.
+// --metric instructions: the spec's runs counted (gate/counted_runs.h).
 std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& plan, const std::optional<Result>&) {
-  std::string perf_problem = perf_event_problem();
-  const bool callgrind = !perf_problem.empty();
-  if (callgrind && !on_path("valgrind"))
-    throw std::runtime_error("--metric instructions: nothing counts instructions here: no hardware counter (" +
-                             perf_problem + ") and no valgrind (apt-get install valgrind)");
-  RunSpec spec = s.spec;
-  spec.threads = 1;
-  ScratchFolder scratch;
-  const std::string result_path = scratch.file("run.json"), callgrind_path = scratch.file("callgrind.out");
-  std::vector<std::string> bench_args = {"bench"};
-  for (std::string& arg : run_spec_arguments(spec)) bench_args.push_back(std::move(arg));
-  bench_args.insert(bench_args.end(), {"--count-instructions", "-q", "--json", result_path});
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  std::string program = self;
-  std::vector<std::string> args = bench_args;
-  if (callgrind) {
-    program = "valgrind";
-    args = {"--tool=callgrind", "--collect-atstart=no", "--callgrind-out-file=" + callgrind_path, self};
-    args.insert(args.end(), bench_args.begin(), bench_args.end());
-  }
-  install_interrupt_handlers();
-  std::vector<Result> runs;
-  std::vector<double> counts;
-  for (size_t i = 1; i <= plan.runs; ++i) {
-    if (!s.r.quiet && ::isatty(STDERR_FILENO))
-      std::cerr << "\rcrowdprof: check: counting instructions" << (callgrind ? " under callgrind" : "") << ", run " << i
-                << " of " << plan.runs << std::flush;
-    Finished finished = run_program(program, args, scratch.file("run.err"));
-    if (interrupt_requested().load()) {
-      std::cerr << "\ncrowdprof: interrupted: instructions are not compared from a cut run\n";
-      return std::nullopt;
-    }
-    if (finished.status != 0)
-      throw std::runtime_error("--metric instructions: the counted run failed (exit " +
-                               std::to_string(finished.status) + "): " + crowdprof_line(finished.error_text));
-    Result run = read_result(result_path);
-    // The run wrote its scene file relative to the scratch folder; as an
-    // in-process run records it, it is the spec's (relative to here).
-    run.run.file = spec.file;
-    run.file_from_result = false;
-    InstructionRecord& instructions = run.instructions ? *run.instructions : run.instructions.emplace();
-    if (callgrind) {
-      std::string problem;
-      uint64_t total = callgrind_totals(callgrind_path, problem);
-      if (!problem.empty()) throw std::runtime_error("--metric instructions: " + problem);
-      // The frames toggle collection through valgrind's header, found at build time.
-      if (total == 0)
-        throw std::runtime_error(
-            "--metric instructions: callgrind counted nothing: this crowdprof was built without "
-            "valgrind's callgrind.h (apt-get install valgrind, then build again)");
-      instructions.source = "callgrind";
-      instructions.per_frame = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
-    } else if (!instructions.per_frame) {
-      throw std::runtime_error("--metric instructions: the run counted none (" +
-                               (instructions.problem.empty() ? std::string("no count") : instructions.problem) + ")");
-    }
-    counts.push_back(*instructions.per_frame);
-    runs.push_back(std::move(run));
-  }
-  if (!s.r.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
-  // The run whose count is the median, with every run's count beside it.
-  std::vector<size_t> order(runs.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return counts[a] < counts[b]; });
-  Result median = runs[order[(order.size() - 1) / 2]];
-  median.instructions->runs = counts;
-  return median;
+  return count_instruction_runs(s.spec, plan.runs, s.r.quiet);
 }
 
 // Timed runs: plan.runs runs, each a process of its own (gate/processes.h):
@@ -245,6 +171,7 @@ std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, cons
   std::vector<Result> runs;
   json partial;                  // a cut run's document: written as it is, never read back
   install_interrupt_handlers();  // here, to forward a ^C to the run in progress
+  OtherLoadMeter others;
   auto start = std::chrono::steady_clock::now();
   for (size_t i = 1; i <= plan.runs && partial.is_null(); ++i) {
     // Run i starts (i - 1) / (runs - 1) of the way through the spread.
@@ -283,6 +210,7 @@ std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, cons
     // when the runs were not calibrated, as the gate then falls back to it.
     std::string key = plan.gate.metrics.front();
     if (!metric_samples(runs.front(), key)) key = metric_samples(runs.front(), "cpu_ms") ? "cpu_ms" : "frame_ms";
+    s.load = others.read();
     return pooled_runs(std::move(runs), key);
   }
   // The frames measured so far: the cut run's, or the last whole one's.
@@ -320,20 +248,28 @@ std::optional<Result> measure(CheckState& s, const CheckPlan& plan, const std::o
   return runs(s, plan, baseline);
 }
 
-// What an instruction count was made with: counts compare only within one.
-std::string instruction_origin(const InstructionRecord& i) {
-  auto known = [](const std::string& text) { return text.empty() ? std::string("?") : text; };
-  return known(i.source) + " (SIMD " + known(i.simd) + ", " + known(i.compiler) + ", " + std::to_string(i.threads) +
-         " thread)";
-}
+// What a judge may do again once the first runs are in: run them again (a
+// confirmation), count this build's instructions as the baseline's work
+// witness was counted, and read what other processes took during the last
+// runs. Empty where the result was read from a file.
+struct Remeasure {
+  std::function<std::optional<Result>()> runs;
+  CountWork count;
+  std::function<OtherLoad()> load;
+};
 
 // The counts against the tolerance (no test of significance: the count does
 // not vary with the machine), then the work.
-void judge_count(const CheckRun& r, CheckOutcome& outcome, const std::function<std::optional<Result>()>&) {
+void judge_count(const CheckRun& r, CheckOutcome& outcome, const Remeasure&) {
   const Result& baseline = *outcome.baseline;
   const Result& current = outcome.current;
   if (!baseline.instructions || !baseline.instructions->per_frame)
     throw InputError(r.baseline, "has no instruction count: record one with --metric instructions --update-baseline");
+  if (baseline.instructions->frames > 0)
+    throw InputError(r.baseline, "its instructions are a timed baseline's work witness, counted over " +
+                                     std::to_string(baseline.instructions->frames) +
+                                     " frames: record an instruction baseline with --metric instructions "
+                                     "--update-baseline");
   if (!current.instructions || !current.instructions->per_frame)
     throw InputError(r.result.empty() ? std::string("the run") : r.result,
                      "has no instruction count (a result of check --metric instructions, or bench --count-instructions "
@@ -362,6 +298,17 @@ bool only_timings_regressed(const CheckResult& result) {
   return result.regressed() && result.counters.empty() && result.counters_missing.empty() && !result.digest_differs();
 }
 
+// The median beyond the tolerance and floor but not significant (runs too
+// spread to test), with the same counters and digest.
+std::vector<MetricCheck*> untested_slowdowns(CheckResult& result) {
+  std::vector<MetricCheck*> slower;
+  if (result.regressed() || !result.counters.empty() || !result.counters_missing.empty() || result.digest_differs())
+    return slower;
+  for (MetricCheck& m : result.metrics)
+    if (m.tested && m.beyond_tolerance && m.beyond_floor && !m.significant) slower.push_back(&m);
+  return slower;
+}
+
 std::string slower_metrics(const CheckResult& result) {
   std::string names;
   for (const MetricCheck& m : result.metrics)
@@ -371,8 +318,11 @@ std::string slower_metrics(const CheckResult& result) {
 
 // The timed gate. `remeasure` runs the check's runs again (empty when the
 // result was read from a file): a timed failure with the work unchanged must
-// repeat r.confirm times.
-void judge_timings(const CheckRun& r, CheckOutcome& outcome, const std::function<std::optional<Result>()>& remeasure) {
+// repeat r.confirm times. Where the baseline holds a work witness, a timed
+// failure is counted first: more instructions fail it at once, the same
+// instructions on a machine seen to have changed make the confirmed slowdown
+// a warning (gate/work_witness.h).
+void judge_timings(const CheckRun& r, CheckOutcome& outcome, const Remeasure& remeasure) {
   const Result& baseline = *outcome.baseline;
   Result& current = outcome.current;
   CheckOptions& options = outcome.plan.gate;
@@ -390,11 +340,46 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const std::function
                                    "\" (recorded by an older crowdprof): record it again, or "
                                    "check another --metric");
   CheckResult result = check_results(baseline, current, options);
-  for (long long round = 1; remeasure && round <= r.confirm && only_timings_regressed(result); ++round) {
+  std::optional<WorkWitness> witness;
+  if (std::vector<MetricCheck*> unsure = untested_slowdowns(result); !unsure.empty()) {
+    // A median far beyond the tolerance that the test cannot call (runs in
+    // two groups, as beside a neighbour): work grown as much fails it.
+    std::string names;
+    for (const MetricCheck* m : unsure) names += (names.empty() ? "" : ", ") + m->metric + " " + percent(m->change);
+    witness = witness_count(baseline, current, remeasure.count, remeasure.load, names + ", not significant");
+    if (interrupt_requested().load()) {
+      outcome.kind = CheckOutcome::Kind::Interrupted;
+      return;
+    }
+    if (witness && witness->change > options.tolerance) {
+      std::cerr << "crowdprof: note: instructions per frame " << percent(witness->change) << ", beyond the "
+                << percent(options.tolerance).substr(1) << " tolerance: the build's own slowdown\n";
+      for (MetricCheck* m : unsure) m->regressed = m->work_grew = true;
+      result.witness = std::move(witness);
+    }
+    outcome.result = std::move(result);
+    outcome.kind = CheckOutcome::Kind::Gated;
+    return;
+  }
+  if (only_timings_regressed(result)) {
+    witness = witness_count(baseline, current, remeasure.count, remeasure.load, slower_metrics(result));
+    if (interrupt_requested().load()) {
+      outcome.kind = CheckOutcome::Kind::Interrupted;
+      return;
+    }
+  }
+  const bool more_work = witness && witness->verdict == WorkWitness::Verdict::MoreWork;
+  if (more_work)
+    std::cerr << "crowdprof: note: not measured again: instructions per frame " << percent(witness->change)
+              << ", the build's own slowdown\n";
+  else if (witness)
+    std::cerr << "crowdprof: note: the same instructions per frame (" << percent(witness->change) << ")\n";
+  for (long long round = 1; remeasure.runs && !more_work && round <= r.confirm && only_timings_regressed(result);
+       ++round) {
     std::cerr << "crowdprof: note: slower than the baseline (" << slower_metrics(result)
               << ") with the same work: measuring again to confirm (" << round << " of " << r.confirm
               << ", --confirm)\n";
-    std::optional<Result> again = remeasure();
+    std::optional<Result> again = remeasure.runs();
     if (!again) {
       outcome.kind = CheckOutcome::Kind::Interrupted;
       return;
@@ -407,6 +392,19 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const std::function
     else if (round == r.confirm)
       std::cerr << "crowdprof: note: confirmed: slower again (" << slower_metrics(result) << ")\n";
   }
+  if (witness && !only_timings_regressed(result)) witness.reset();  // cleared by the confirmation
+  if (witness && !more_work) {
+    observe_machine(*witness, baseline, current, remeasure.load ? remeasure.load() : OtherLoad{});
+    if (witness->excuses()) {
+      std::cerr << "crowdprof: warning: slower than the baseline (" << slower_metrics(result)
+                << "), but with the same instructions per frame (" << percent(witness->change) << ") on a machine "
+                << "that was not as it was for the baseline: " << witness->machine()
+                << ". Not a failure: a stored baseline cannot tell this from a slower build; time the change "
+                   "against its base build with check --against BASE_BINARY\n";
+      result.excuse_timings();
+    }
+  }
+  result.witness = std::move(witness);
   outcome.result = std::move(result);
   outcome.kind = CheckOutcome::Kind::Gated;
 }
@@ -416,7 +414,7 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const std::function
 // tolerance alone). The one place the two part.
 struct CheckWay {
   MakeRuns runs;
-  void (*judge)(const CheckRun&, CheckOutcome&, const std::function<std::optional<Result>()>&);
+  void (*judge)(const CheckRun&, CheckOutcome&, const Remeasure&);
 };
 
 CheckWay way_of(const CheckPlan& plan) {
@@ -453,13 +451,35 @@ CheckOutcome check_outcome(const CheckRun& r) {
   if (!current) return outcome;
   outcome.current = std::move(*current);
   if (r.plan.update_baseline) {
+    if (!plan.counted() && r.count_work && r.result.empty()) {
+      std::string problem;
+      std::optional<InstructionRecord> witness =
+          count_work(state.spec, std::min(state.spec.frames, kWitnessFrames),
+                     std::min(state.spec.warmup, kWitnessWarmup), r.quiet, problem);
+      if (interrupt_requested().load()) {
+        std::cerr << "crowdprof: interrupted: the baseline is not updated\n";
+        return outcome;
+      }
+      if (witness)
+        outcome.current.instructions = std::move(*witness);
+      else
+        std::cerr << "crowdprof: note: the baseline holds no instruction count (" << problem
+                  << "): a check that runs slower against it cannot tell a changed machine from a slower build "
+                     "(--count-work off skips the count)\n";
+    }
     outcome.kind = CheckOutcome::Kind::BaselineWritten;
     return outcome;
   }
-  std::function<std::optional<Result>()> remeasure;
+  Remeasure remeasure;
   CheckPlan confirming = plan;
   confirming.spread_s = std::max(plan.spread_s, r.confirm_spread);
-  if (r.result.empty()) remeasure = [&] { return measure(state, confirming, outcome.baseline, way.runs); };
+  if (r.result.empty()) {
+    remeasure.runs = [&] { return measure(state, confirming, outcome.baseline, way.runs); };
+    remeasure.count = [&](const InstructionRecord& like, std::string& problem) {
+      return count_work(state.spec, like.frames, like.warmup, r.quiet, problem);
+    };
+    remeasure.load = [&] { return state.load; };
+  }
   way.judge(r, outcome, remeasure);
   return outcome;
 }

@@ -38,6 +38,11 @@ struct CheckRun {
   // Seconds a confirmation spreads its runs over: a slow spell of the machine
   // lasts seconds to a minute, and runs spread over one sample both sides of it.
   double confirm_spread = 60;
+  // A timed baseline also holds instructions per frame, counted once when it
+  // is recorded (hardware counter, else callgrind), so that a check that runs
+  // slower with the same count can tell a changed machine from a slower
+  // build (gate/work_witness.h). --count-work off skips it.
+  bool count_work = true;
 
   SpecLayer command_line;                                   // the settings given, the scene file among them
   SpecLayer defaults{SpecLayer::Source::Defaults, "", {}};  // the command's own

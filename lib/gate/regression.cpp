@@ -60,6 +60,14 @@ bool CheckResult::regressed() const {
   return std::any_of(metrics.begin(), metrics.end(), [](const MetricCheck& m) { return m.regressed; });
 }
 
+void CheckResult::excuse_timings() {
+  for (MetricCheck& m : metrics)
+    if (m.regressed) {
+      m.regressed = false;
+      m.excused = true;
+    }
+}
+
 namespace {
 
 void decide(MetricCheck& m, const CheckOptions& options) {
@@ -187,6 +195,12 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
   };
   for (const MetricCheck& m : result.metrics)
     if (m.regressed) metric_line(m, "REGRESSION");
+  for (const MetricCheck& m : result.metrics)
+    if (m.excused) metric_line(m, "WARNING, slower");
+  if (result.witness) out << result.witness->line() << "\n";
+  if (result.witness && result.witness->excuses())
+    out << "warning: a stored baseline cannot tell a slower machine from a slower build beyond this; to time the "
+           "change, run both builds side by side: check --against BASE_BINARY\n";
   for (const CounterDifference& d : result.counters)
     out << "CHANGED counter " << d.name << ": " << d.baseline << " -> " << d.current << " per frame\n";
   for (const std::string& name : result.counters_missing)
@@ -204,7 +218,9 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
     out << " " << m.metric << " " << metric_value_text(m, m.baseline.median) << " -> "
         << metric_value_text(m, m.current.median) << " " << m.value_unit << " (" << percent(m.change)
         << ", p = " << p_value_text(m.p_adjusted);
-    if (m.beyond_tolerance && !m.beyond_floor)
+    if (m.excused)
+      out << ", slower beyond " << tolerance << ": a warning, the same instructions per frame";
+    else if (m.beyond_tolerance && !m.beyond_floor)
       out << ", beyond " << tolerance << " but under the floor of " << metric_value_text(m, m.floor_ms) << " "
           << m.value_unit;
     else if (m.beyond_tolerance)

@@ -6,12 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "gate/check_options.h"
 #include "gate/mann_whitney.h"
+#include "gate/work_witness.h"
 #include "result/result.h"
 #include "measuring/stats.h"
 
@@ -36,6 +38,14 @@ struct MetricCheck {
   // the calibration probe's time at the same moment).
   std::string value_unit = "ms";
   bool regressed = false;
+  // Slower beyond the gate, but the work witness found the same instructions
+  // on a machine that had changed (gate/work_witness.h): a warning, not a
+  // failure (regressed is then false).
+  bool excused = false;
+  // Its median beyond the tolerance and floor, not significant, and the work
+  // witness counted instructions per frame grown beyond the tolerance too: the
+  // build's slowdown, which runs too noisy to test do not hide (regressed).
+  bool work_grew = false;
 };
 
 struct CounterDifference {
@@ -85,6 +95,11 @@ struct CheckResult {
   // vertex order" or both.
   std::string digest_not_compared_why() const;
   bool regressed() const;
+  // The instructions per frame counted when the timings regressed and the
+  // baseline holds a count (check_run.h); its verdict may excuse them.
+  std::optional<WorkWitness> witness;
+  // Marks every regressed metric excused (the witness's verdict).
+  void excuse_timings();
 };
 
 // Why digests hashed in two vertex orders (Result::vertex_order) are not

@@ -20,6 +20,23 @@
 
 namespace crowdprof {
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define CROWDPROF_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define CROWDPROF_SANITIZED 1
+#endif
+
+bool sanitizer_build() {
+#ifdef CROWDPROF_SANITIZED
+  return true;
+#else
+  return false;
+#endif
+}
+
 const char* instruction_source_name(InstructionSource source) {
   switch (source) {
     case InstructionSource::PerfEvent:

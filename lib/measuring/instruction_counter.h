@@ -56,6 +56,10 @@ class InstructionCounter {
   std::string why_none_ = "not asked for";
 };
 
+// Whether this binary was built with a sanitizer (ASan, TSan): valgrind
+// cannot run it, so callgrind counts nothing of it.
+bool sanitizer_build();
+
 // Whether this process can count with perf_event (a hardware counter opens);
 // "" when it can, else why not ("perf_event_open: No such file or directory").
 std::string perf_event_problem();

@@ -69,7 +69,13 @@ int report_baseline(const CheckRun& r, const CheckOutcome& o, std::ostream& out)
         << (r.result.empty() && o.plan.runs > 1 ? ", the median of " + std::to_string(o.plan.runs) + " runs by " +
                                                       metric_display_name(o.plan.gate.metrics.front())
                                                 : "")
-        << ", digest " << current.digest << ")\n";
+        << ", digest " << current.digest
+        << (current.instructions && current.instructions->per_frame && current.instructions->frames > 0
+                ? ", " + with_thousands(static_cast<uint64_t>(*current.instructions->per_frame)) +
+                      " instructions per frame over " + std::to_string(current.instructions->frames) + " frames (" +
+                      current.instructions->source + ")"
+                : "")
+        << ")\n";
   return kExitOk;
 }
 

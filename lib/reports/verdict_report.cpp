@@ -142,7 +142,11 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
     row.change = metric.change;
     row.p = metric.p_adjusted;
     bool faster = metric.significant && metric.change < -options.tolerance;
-    row.verdict = !metric.tested ? "not tested" : metric.regressed ? "slower" : faster ? "faster" : "no change";
+    row.verdict = !metric.tested     ? "not tested"
+                  : metric.regressed ? "slower"
+                  : metric.excused   ? "slower, a warning"
+                  : faster           ? "faster"
+                                     : "no change";
     row.has_p = metric.tested;
     row.failed = metric.regressed;
     row.unit = metric.value_unit;
@@ -150,6 +154,15 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
       row.why = "slower by more than the " + percent(options.tolerance).substr(1) + " tolerance and the " +
                 ms(metric.floor_ms) + " " + metric.value_unit + " floor, significant at " +
                 format("%g", options.alpha) + " (Mann-Whitney over " + metric.unit + ")";
+    if (metric.work_grew && result.witness)
+      row.why = "its median slower by more than the " + percent(options.tolerance).substr(1) +
+                " tolerance (runs too spread to test) and instructions per frame " + percent(result.witness->change) +
+                ", beyond it too";
+    if (metric.excused && result.witness)
+      row.why =
+          "slower beyond the tolerance with the same instructions per frame, on a machine that was not as it "
+          "was for the baseline (" +
+          result.witness->machine() + "): time the change with check --against";
     table.metrics.push_back(std::move(row));
   }
   table.work_compared = options.compare_work;

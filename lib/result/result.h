@@ -188,6 +188,9 @@ struct InstructionRecord {
   std::string simd, compiler;
   std::string problem;       // with "none": why nothing counted
   std::vector<double> runs;  // per process, when check pooled several
+  // A timed baseline's work witness (gate/work_witness.h) counts a few frames
+  // of its own, not the run's: how many, after how many uncounted. 0: the run's.
+  size_t frames = 0, warmup = 0;
 };
 
 // Several runs of one scene pooled into one result (check --runs): the median

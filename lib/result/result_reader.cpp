@@ -517,6 +517,8 @@ void read_extras(const Reader& in, Result& r) {
     i.problem = in.text_or("/instructions/problem", "");
     if (in.has("/instructions/runs"))
       i.runs = in.array_of<double>("/instructions/runs", milliseconds, "an array of counts");
+    i.frames = static_cast<size_t>(std::min<uint64_t>(in.count_or("/instructions/frames", 0), 1000000));
+    i.warmup = static_cast<size_t>(std::min<uint64_t>(in.count_or("/instructions/warmup", 0), 1000000));
     r.instructions = std::move(i);
   }
   if (in.has("/pid")) {

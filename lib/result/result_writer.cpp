@@ -105,6 +105,10 @@ json instructions_json(const InstructionRecord& i) {
   j["per_frame"] = i.per_frame ? json(*i.per_frame) : json(nullptr);
   if (!i.problem.empty()) j["problem"] = i.problem;
   if (!i.runs.empty()) j["runs"] = i.runs;
+  if (i.frames > 0) {
+    j["frames"] = i.frames;
+    j["warmup"] = i.warmup;
+  }
   return j;
 }
 

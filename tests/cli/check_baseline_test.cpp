@@ -169,8 +169,9 @@ TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
 TEST(CheckBaseline, ATimedFailureIsConfirmedBeforeItFails) {
   auto dir = crowdprof::test::scratch_dir("check_confirm");
   std::string base = (dir / "base.json").string();
+  // No work witness: this is the timed confirmation alone (work_witness_cli_test.cpp).
   auto r = run_cli("check --spread 0 '" + humanoid_glb() + "' -n 6 --frames 8 --warmup 1 --runs 2 --baseline '" + base +
-                   "' --update-baseline -q");
+                   "' --update-baseline --count-work off -q");
   ASSERT_EQ(r.status, 0) << r.err;
   json fast = read_json(base);
   for (const char* key : {"cpu_ms", "frame_ms"})

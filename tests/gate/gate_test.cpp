@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <fstream>
 #include <set>
 
@@ -182,12 +183,19 @@ TEST(GateCli, EachRunIsAProcessOfItsOwnAndEightRunsAreJudgedByTheirMedians) {
 
   // A baseline ten times faster than any machine, runs and frames: a real check
   // of 8 runs regresses, and so does one of a single run, judged on frames.
+  // Every value a tenth of the fastest it recorded, as a loaded machine spreads
+  // a tiny scene's runs over more than ten times (0.03 to 1.16 probes seen).
+  auto tenth_of_fastest = [](json& values) {
+    double fastest = std::numeric_limits<double>::infinity();
+    for (const json& v : values)
+      if (v.is_number()) fastest = std::min(fastest, v.get<double>());
+    for (json& v : values)
+      if (v.is_number()) v = fastest / 10.0;
+  };
   json fast = recorded;
   for (auto& [key, values] : fast["samples"].items())
-    if (values.is_array() && key != "probe_ms")  // the machine was as fast as ever
-      for (auto& v : values) v = v.get<double>() / 10.0;
-  for (auto& [key, values] : fast["runs"]["median_ms"].items())
-    for (auto& v : values) v = v.get<double>() / 10.0;
+    if (values.is_array() && key != "probe_ms") tenth_of_fastest(values);  // the machine as fast as ever
+  for (auto& [key, values] : fast["runs"]["median_ms"].items()) tenth_of_fastest(values);
   std::ofstream(dir / "fast.json") << fast.dump();
   std::string fast_path = (dir / "fast.json").string();
   r = test::run_cli("check --spread 0 --confirm 0 --baseline '" + fast_path + "' --floor 0ms");

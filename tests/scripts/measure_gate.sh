@@ -120,6 +120,7 @@ one_check() {
   shift 2
   local status=0
   "$crowdprof" check --baseline "$base" --json "$out/current.json" -q "${extra[@]}" "$@" 2>"$out/stderr" || status=$?
+  { echo "== $phase $run: exit $status"; cat "$out/stderr"; } >>"$out/stderr.log"
   if ((status > 1)); then
     echo "measure_gate: check failed with exit $status:" >&2
     cat "$out/stderr" >&2
@@ -133,7 +134,7 @@ one_check() {
   echo "$status"
 }
 
-false_alarms=0 instruction_alarms=0 confirmations=0
+false_alarms=0 instruction_alarms=0 confirmations=0 warnings=0 slower_warnings=0 counted=0
 phase_start=$SECONDS
 for ((i = 1; i <= runs; ++i)); do
   # With a load that comes and goes, the checks are spread over the span.
@@ -143,6 +144,7 @@ for ((i = 1; i <= runs; ++i)); do
   fi
   [[ $(one_check unchanged "$i") == 1 ]] && false_alarms=$((false_alarms + 1))
   grep -q "measuring again to confirm" "$out/stderr" && confirmations=$((confirmations + 1))
+  grep -q "crowdprof: warning: slower than the baseline" "$out/stderr" && warnings=$((warnings + 1))
   if ((instructions)); then
     status=0
     "$crowdprof" --simd AVX2 check "$scene" -n "$n" --mode "$mode" --frames 20 --warmup 2 --metric instructions \
@@ -153,12 +155,14 @@ for ((i = 1; i <= runs; ++i)); do
   fi
 done
 echo "false alarms: $false_alarms of $runs unchanged checks (goal: at most 1); $confirmations measured again to confirm," \
-  "over $((SECONDS - phase_start)) s"
+  "$warnings warned (slower, the same instructions per frame, the machine seen to differ), over $((SECONDS - phase_start)) s"
 ((instructions)) && echo "instruction metric: $instruction_alarms false alarms of $runs unchanged checks (goal: at most 1)"
 
 detected=0
 for ((i = 1; i <= detect; ++i)); do
   [[ $(one_check slower "$i" -n "$n_slower" --timings-only) == 1 ]] && detected=$((detected + 1))
+  grep -q "crowdprof: warning: slower than the baseline" "$out/stderr" && slower_warnings=$((slower_warnings + 1))
+  grep -q "not measured again: instructions per frame" "$out/stderr" && counted=$((counted + 1))
 done
 # How the runs spread and how much slower the variant measured (medians over checks).
 summary=$(awk -F, 'NR > 1 { r = $6 / $5 - 1; if ($1 == "unchanged") u[++nu] = r; else s[++ns] = r;
@@ -168,7 +172,8 @@ summary=$(awk -F, 'NR > 1 { r = $6 / $5 - 1; if ($1 == "unchanged") u[++nu] = r;
   END { mu = med(u, nu); ms = med(s, ns)  # sorts u and s
     printf "unchanged checks: median change %+.1f%%, range %+.1f%% to %+.1f%%, single runs %+.1f%% to %+.1f%%; slower: median change %+.1f%%, range %+.1f%% to %+.1f%%",
       100 * mu, 100 * u[1], 100 * u[nu], 100 * lo, 100 * hi, 100 * ms, 100 * s[1], 100 * s[ns] }' "$out/runs.csv")
-echo "detections: $detected of $detect checks of -n $n_slower (goal: at least 19)"
+echo "detections: $detected of $detect checks of -n $n_slower (goal: at least 19); $counted failed on more instructions" \
+  "per frame without measuring again, $slower_warnings only warned"
 echo "measure_gate: CPU time of the median run against the baseline's, $summary"
 # The same for the calibrated frame, the default metric (columns 11 and 12).
 calibrated=$(awk -F, 'NR > 1 && $11 > 0 { r = $12 / $11 - 1; if ($1 == "unchanged") u[++nu] = r; else s[++ns] = r }
