@@ -111,7 +111,10 @@ void add_check_command(CLI::App& app, std::function<int()>& run) {
       "frame over a calibration probe timed beside it, in probes: 0.45 probes is a frame that took 0.45 times as "
       "long as its probe) with a tolerance of " +
           CheckRequest{}.tolerance + ", an A/B on the " + metric_display_name(AbOptions{}.metrics.front()) + " with " +
-          fixed(kAbTolerance * 100, 0) + "%. See docs/compare-and-check.md and docs/ci.md.");
+          fixed(kAbTolerance * 100, 0) +
+          "%. A stored baseline also holds instructions per frame (--count-work): a check slower with the same "
+          "count, on a machine seen to have changed, warns (exit 0) instead of failing. See "
+          "docs/compare-and-check.md and docs/ci.md.");
   cmd->footer(
       "Examples:\n  crowdprof check scenes/thesis.json --baseline base.json --update-baseline\n"
       "  crowdprof check scenes/thesis.json --baseline base.json\n"

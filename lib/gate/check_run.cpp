@@ -43,7 +43,7 @@ struct CheckState {
   bool calibrate = false;  // time the calibration probe after each frame
   bool action_from_baseline = false;
   bool file_from_baseline = false;  // the scene file is the one the baseline recorded
-  mutable OtherLoad load;           // what other processes took during the last timed runs
+  OtherLoad load;                   // what other processes took during the last timed runs
 };
 
 bool same_path(const std::string& a, const std::string& b) {
@@ -156,8 +156,14 @@ std::optional<Result> read_baseline(const CheckRun& r) {
 }
 
 // --metric instructions: the spec's runs counted (gate/counted_runs.h).
-std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& plan, const std::optional<Result>&) {
-  return count_instruction_runs(s.spec, plan.runs, s.r.quiet);
+std::optional<Result> count_instructions(CheckState& s, const CheckPlan& plan, const std::optional<Result>&) {
+  try {
+    std::optional<Result> counted = count_instruction_runs(s.spec, plan.runs, s.r.quiet);
+    if (!counted) std::cerr << "crowdprof: interrupted: instructions are not compared from a cut run\n";
+    return counted;
+  } catch (const CountProblem& e) {
+    throw std::runtime_error(std::string("--metric instructions: ") + e.what());
+  }
 }
 
 // Timed runs: plan.runs runs, each a process of its own (gate/processes.h):
@@ -166,7 +172,7 @@ std::optional<Result> count_instructions(const CheckState& s, const CheckPlan& p
 // processes, and the gate compares their medians. The CSV is of the last run.
 // A ^C writes the frames measured so far as a partial result (--json) and
 // returns nullopt.
-std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline) {
+std::optional<Result> time_runs(CheckState& s, const CheckPlan& plan, const std::optional<Result>& baseline) {
   const CheckRun& r = s.r;
   std::vector<Result> runs;
   json partial;                  // a cut run's document: written as it is, never read back
@@ -233,7 +239,7 @@ std::optional<Result> time_runs(const CheckState& s, const CheckPlan& plan, cons
   return std::nullopt;
 }
 
-using MakeRuns = std::optional<Result> (*)(const CheckState&, const CheckPlan&, const std::optional<Result>&);
+using MakeRuns = std::optional<Result> (*)(CheckState&, const CheckPlan&, const std::optional<Result>&);
 
 // The runs: the spec resolves as defaults, scene file, baseline, command line;
 // then `runs` makes them.
@@ -316,6 +322,28 @@ std::string slower_metrics(const CheckResult& result) {
   return names;
 }
 
+// Why the count decides as it does, for the note on stderr.
+std::string witness_note(const WorkWitness& w) {
+  switch (w.verdict) {
+    case WorkWitness::Verdict::MoreWork:
+      return "beyond the " + percent(w.tolerance).substr(1) + " tolerance, " +
+             (w.runs_differ ? "the runs' own work (--timings-only)" : "the build's own slowdown") +
+             ": not measured again";
+    case WorkWitness::Verdict::OtherWork:
+      return "other work than the baseline's, within the tolerance: the timed verdict stands";
+    case WorkWitness::Verdict::MachineMoved:
+    case WorkWitness::Verdict::SameMachine:
+      break;
+  }
+  return "the same work";
+}
+
+// Only metrics timed on the CPU regressed: instructions say nothing of the GPU.
+bool only_cpu_metrics_regressed(const CheckResult& result) {
+  return std::all_of(result.metrics.begin(), result.metrics.end(),
+                     [](const MetricCheck& m) { return !m.regressed || cpu_timed_metric(m.metric); });
+}
+
 // The timed gate. `remeasure` runs the check's runs again (empty when the
 // result was read from a file): a timed failure with the work unchanged must
 // repeat r.confirm times. Where the baseline holds a work witness, a timed
@@ -340,40 +368,36 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const Remeasure& re
                                    "\" (recorded by an older crowdprof): record it again, or "
                                    "check another --metric");
   CheckResult result = check_results(baseline, current, options);
+  // The work witness first, where the baseline holds one (gate/work_witness.h).
+  std::vector<MetricCheck*> unsure = untested_slowdowns(result);
   std::optional<WorkWitness> witness;
-  if (std::vector<MetricCheck*> unsure = untested_slowdowns(result); !unsure.empty()) {
-    // A median far beyond the tolerance that the test cannot call (runs in
-    // two groups, as beside a neighbour): work grown as much fails it.
-    std::string names;
-    for (const MetricCheck* m : unsure) names += (names.empty() ? "" : ", ") + m->metric + " " + percent(m->change);
-    witness = witness_count(baseline, current, remeasure.count, remeasure.load, names + ", not significant");
+  if (!unsure.empty() || only_timings_regressed(result)) {
+    std::string slower = slower_metrics(result);
+    for (const MetricCheck* m : unsure)
+      slower += (slower.empty() ? "" : ", ") + m->metric + " " + percent(m->change) + ", not significant";
+    witness = witness_count(baseline, current, remeasure.count, remeasure.load, slower, options.tolerance);
     if (interrupt_requested().load()) {
       outcome.kind = CheckOutcome::Kind::Interrupted;
       return;
     }
-    if (witness && witness->change > options.tolerance) {
-      std::cerr << "crowdprof: note: instructions per frame " << percent(witness->change) << ", beyond the "
-                << percent(options.tolerance).substr(1) << " tolerance: the build's own slowdown\n";
-      for (MetricCheck* m : unsure) m->regressed = m->work_grew = true;
-      result.witness = std::move(witness);
+    if (witness) {
+      witness->runs_differ = r.plan.timings_only;
+      std::cerr << "crowdprof: note: instructions per frame " << percent(witness->change) << ": "
+                << witness_note(*witness) << "\n";
     }
+  }
+  const bool more_work = witness && witness->verdict == WorkWitness::Verdict::MoreWork;
+  if (!unsure.empty()) {
+    // A median far beyond the tolerance that the test cannot call (runs in
+    // two groups, as beside a neighbour): work grown as much fails it.
+    if (more_work)
+      for (MetricCheck* m : unsure) m->regressed = m->work_grew = true;
+    result.witness = std::move(witness);
     outcome.result = std::move(result);
     outcome.kind = CheckOutcome::Kind::Gated;
     return;
   }
-  if (only_timings_regressed(result)) {
-    witness = witness_count(baseline, current, remeasure.count, remeasure.load, slower_metrics(result));
-    if (interrupt_requested().load()) {
-      outcome.kind = CheckOutcome::Kind::Interrupted;
-      return;
-    }
-  }
-  const bool more_work = witness && witness->verdict == WorkWitness::Verdict::MoreWork;
-  if (more_work)
-    std::cerr << "crowdprof: note: not measured again: instructions per frame " << percent(witness->change)
-              << ", the build's own slowdown\n";
-  else if (witness)
-    std::cerr << "crowdprof: note: the same instructions per frame (" << percent(witness->change) << ")\n";
+  bool confirmed = false;
   for (long long round = 1; remeasure.runs && !more_work && round <= r.confirm && only_timings_regressed(result);
        ++round) {
     std::cerr << "crowdprof: note: slower than the baseline (" << slower_metrics(result)
@@ -389,16 +413,19 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const Remeasure& re
     if (!result.regressed())
       std::cerr << "crowdprof: note: not confirmed: measured again, it is within the gate (a slow moment of the "
                    "machine, not of the build)\n";
-    else if (round == r.confirm)
+    else if (round == r.confirm) {
       std::cerr << "crowdprof: note: confirmed: slower again (" << slower_metrics(result) << ")\n";
+      confirmed = true;
+    }
   }
   if (witness && !only_timings_regressed(result)) witness.reset();  // cleared by the confirmation
   if (witness && !more_work) {
+    // Decided again on the machine of the last runs, the confirmation's.
     observe_machine(*witness, baseline, current, remeasure.load ? remeasure.load() : OtherLoad{});
-    if (witness->excuses()) {
+    if (confirmed && witness->excuses() && only_cpu_metrics_regressed(result)) {
       std::cerr << "crowdprof: warning: slower than the baseline (" << slower_metrics(result)
-                << "), but with the same instructions per frame (" << percent(witness->change) << ") on a machine "
-                << "that was not as it was for the baseline: " << witness->machine()
+                << "), confirmed, but with the same instructions per frame (" << percent(witness->change)
+                << ") on a machine that was not as it was for the baseline: " << witness->machine()
                 << ". Not a failure: a stored baseline cannot tell this from a slower build; time the change "
                    "against its base build with check --against BASE_BINARY\n";
       result.excuse_timings();

@@ -30,8 +30,11 @@ std::optional<Result> count_instruction_runs(const RunSpec& run_spec, size_t cou
   std::string perf_problem = perf_event_problem();
   const bool callgrind = !perf_problem.empty();
   if (callgrind && !on_path("valgrind"))
-    throw std::runtime_error("--metric instructions: nothing counts instructions here: no hardware counter (" +
-                             perf_problem + ") and no valgrind (apt-get install valgrind)");
+    throw CountProblem("nothing counts instructions here: no hardware counter (" + perf_problem +
+                       ") and no valgrind (apt-get install valgrind)");
+  if (callgrind && sanitizer_build())
+    throw CountProblem("valgrind cannot run a sanitizer build, and no hardware counter opens here (" + perf_problem +
+                       ")");
   RunSpec spec = run_spec;
   spec.threads = 1;
   ScratchFolder scratch;
@@ -56,12 +59,12 @@ std::optional<Result> count_instruction_runs(const RunSpec& run_spec, size_t cou
                 << " of " << count << std::flush;
     Finished finished = run_program(program, args, scratch.file("run.err"));
     if (interrupt_requested().load()) {
-      std::cerr << "\ncrowdprof: interrupted: instructions are not compared from a cut run\n";
+      if (!quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
       return std::nullopt;
     }
     if (finished.status != 0)
-      throw std::runtime_error("--metric instructions: the counted run failed (exit " +
-                               std::to_string(finished.status) + "): " + crowdprof_line(finished.error_text));
+      throw CountProblem("the counted run failed (exit " + std::to_string(finished.status) +
+                         "): " + crowdprof_line(finished.error_text));
     Result run = read_result(result_path);
     // The run wrote its scene file relative to the scratch folder; as an
     // in-process run records it, it is the spec's (relative to here).
@@ -71,17 +74,17 @@ std::optional<Result> count_instruction_runs(const RunSpec& run_spec, size_t cou
     if (callgrind) {
       std::string problem;
       uint64_t total = callgrind_totals(callgrind_path, problem);
-      if (!problem.empty()) throw std::runtime_error("--metric instructions: " + problem);
+      if (!problem.empty()) throw CountProblem(problem);
       // The frames toggle collection through valgrind's header, found at build time.
       if (total == 0)
-        throw std::runtime_error(
-            "--metric instructions: callgrind counted nothing: this crowdprof was built without "
+        throw CountProblem(
+            "callgrind counted nothing: this crowdprof was built without "
             "valgrind's callgrind.h (apt-get install valgrind, then build again)");
       instructions.source = "callgrind";
       instructions.per_frame = static_cast<double>(total) / static_cast<double>(std::max<size_t>(1, spec.frames));
     } else if (!instructions.per_frame) {
-      throw std::runtime_error("--metric instructions: the run counted none (" +
-                               (instructions.problem.empty() ? std::string("no count") : instructions.problem) + ")");
+      throw CountProblem("the run counted none (" +
+                         (instructions.problem.empty() ? std::string("no count") : instructions.problem) + ")");
     }
     counts.push_back(*instructions.per_frame);
     runs.push_back(std::move(run));
@@ -98,10 +101,6 @@ std::optional<Result> count_instruction_runs(const RunSpec& run_spec, size_t cou
 
 std::optional<InstructionRecord> count_work(const RunSpec& run_spec, size_t frames, size_t warmup, bool quiet,
                                             std::string& problem) {
-  if (sanitizer_build() && !perf_event_problem().empty()) {
-    problem = "valgrind cannot run a sanitizer build, and no hardware counter opens here";
-    return std::nullopt;
-  }
   RunSpec spec = run_spec;
   spec.frames = frames;
   spec.warmup = warmup;
@@ -116,10 +115,8 @@ std::optional<InstructionRecord> count_work(const RunSpec& run_spec, size_t fram
     record.warmup = warmup;
     record.runs.clear();
     return record;
-  } catch (const std::runtime_error& e) {
+  } catch (const CountProblem& e) {
     problem = e.what();
-    const std::string prefix = "--metric instructions: ";
-    if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
     return std::nullopt;
   }
 }

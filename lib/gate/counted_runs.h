@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "frame/run_spec.h"
@@ -14,10 +15,16 @@
 
 namespace crowdprof {
 
+// Why nothing was counted: no counter here, or a counted run that failed (its
+// own line). Callers say what the count was for.
+struct CountProblem : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // `count` counted runs of `spec` (its threads set to 1); each run's count is
 // the instructions of its measured frames over their number. The run whose
 // count is the median, every run's count in its instructions.runs; nullopt
-// after a ^C. std::runtime_error where nothing counts or a run failed.
+// after a ^C (the caller says so). CountProblem where nothing counts or a run failed.
 std::optional<Result> count_instruction_runs(const RunSpec& spec, size_t count, bool quiet);
 
 // One count of `frames` frames after `warmup` of `spec`, as a work witness

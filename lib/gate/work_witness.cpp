@@ -1,5 +1,6 @@
 #include "gate/work_witness.h"
 
+#include <cctype>
 #include <cmath>
 #include <iostream>
 
@@ -11,30 +12,43 @@ namespace crowdprof {
 
 namespace {
 
-bool machine_seen(const WorkWitness& w) {
-  return (w.load.known && w.load.others_cores + w.load.steal_cores >= kBusyNeighbourCores) ||
-         (w.probe_known && std::abs(w.probe_change) >= kProbeMoved);
+bool busy(const WorkWitness& w) {
+  return w.load.known && w.load.others_cores + w.load.steal_cores >= kBusyNeighbourCores;
+}
+
+bool probe_moved(const WorkWitness& w) {
+  return w.probe_known && std::abs(w.probe_change) >= kProbeMoved;
 }
 
 }  // namespace
 
 void decide_witness(WorkWitness& w) {
   w.change = w.base > 0 ? w.current / w.base - 1 : 0;
-  if (std::abs(w.change) > kWitnessTolerance)
+  if (w.change > w.tolerance)
     w.verdict = WorkWitness::Verdict::MoreWork;
+  else if (std::abs(w.change) > kWitnessTolerance)
+    w.verdict = WorkWitness::Verdict::OtherWork;
   else
-    w.verdict = machine_seen(w) ? WorkWitness::Verdict::MachineMoved : WorkWitness::Verdict::SameMachine;
+    w.verdict = busy(w) || probe_moved(w) ? WorkWitness::Verdict::MachineMoved : WorkWitness::Verdict::SameMachine;
+}
+
+bool cpu_timed_metric(const std::string& metric) {
+  std::string lower;
+  for (char c : metric) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower.find("gpu") == std::string::npos;
 }
 
 std::string WorkWitness::machine() const {
   std::string seen;
   auto add = [&](const std::string& part) { seen += (seen.empty() ? "" : "; ") + part; };
-  if (load.known && load.others_cores >= kBusyNeighbourCores / 2)
-    add("other processes took " + fixed(load.others_cores, 2) + " of " + std::to_string(load.cores) +
-        " cores during the runs");
-  if (load.known && load.steal_cores >= kBusyNeighbourCores / 2)
-    add("the hypervisor gave " + fixed(load.steal_cores, 2) + " cores to other guests (steal)");
-  if (probe_known && std::abs(probe_change) >= kProbeMoved)
+  if (busy(*this)) {
+    if (load.others_cores >= 0.01)
+      add("other processes took " + fixed(load.others_cores, 2) + " of " + std::to_string(load.cores) +
+          " cores during the runs");
+    if (load.steal_cores >= 0.01)
+      add("the hypervisor gave " + fixed(load.steal_cores, 2) + " cores to other guests (steal)");
+  }
+  if (probe_moved(*this))
     add("the calibration probe, whose work never changes, ran " + fixed(std::abs(probe_change) * 100, 0) + "% " +
         (probe_change > 0 ? "slower" : "faster") + " than when the baseline was recorded");
   return seen;
@@ -47,8 +61,11 @@ std::string WorkWitness::line() const {
                      " frames counted by " + origin + "): ";
   switch (verdict) {
     case Verdict::MoreWork:
-      return text +
-             (change > 0 ? "more work per frame: the slowdown is the build's" : "less work per frame, yet slower");
+      return text + "more work per frame, beyond the " + percent(tolerance).substr(1) + " tolerance: " +
+             (runs_differ ? "the runs differ (--timings-only), and so does their work" : "the slowdown is the build's");
+    case Verdict::OtherWork:
+      return text + (change > 0 ? "more work per frame, within the tolerance" : "less work per frame") +
+             ": the timed verdict stands";
     case Verdict::MachineMoved:
       return text + "the same work, on a machine that was not as it was for the baseline (" + machine() + ")";
     case Verdict::SameMachine:
@@ -82,7 +99,8 @@ void observe_machine(WorkWitness& witness, const Result& baseline, const Result&
 }
 
 std::optional<WorkWitness> witness_count(const Result& baseline, const Result& current, const CountWork& count,
-                                         const std::function<OtherLoad()>& load, const std::string& slower) {
+                                         const std::function<OtherLoad()>& load, const std::string& slower,
+                                         double tolerance) {
   if (!count || !baseline.instructions || !baseline.instructions->per_frame || baseline.instructions->frames == 0)
     return std::nullopt;
   const InstructionRecord& base = *baseline.instructions;
@@ -92,7 +110,9 @@ std::optional<WorkWitness> witness_count(const Result& baseline, const Result& c
   std::string problem;
   std::optional<InstructionRecord> now = count(base, problem);
   if (!now) {
-    if (!interrupt_requested().load())
+    if (interrupt_requested().load())
+      std::cerr << "crowdprof: interrupted: instructions are not compared from a cut run\n";
+    else
       std::cerr << "crowdprof: note: instructions not counted (" << problem << "): the timed verdict stands\n";
     return std::nullopt;
   }
@@ -106,6 +126,7 @@ std::optional<WorkWitness> witness_count(const Result& baseline, const Result& c
   witness.current = *now->per_frame;
   witness.frames = base.frames;
   witness.origin = instruction_origin(*now);
+  witness.tolerance = tolerance;
   observe_machine(witness, baseline, current, load ? load() : OtherLoad{});
   return witness;
 }

@@ -24,9 +24,11 @@ inline constexpr size_t kWitnessFrames = 3, kWitnessWarmup = 1;
 // The count's tolerance: what `--metric instructions` allows (two processes
 // count the same binary's frames within 0.1%).
 inline constexpr double kWitnessTolerance = 0.01;
-// What says the machine was not the one of the baseline: other processes
-// took this much of a core during the runs, or the calibration probe (work
-// that never changes) ran this much slower or faster than the baseline's.
+// What says the machine was not the one of the baseline: other processes and
+// the hypervisor's steal took this much of a core together during the runs
+// (the check's own moment, against none: the baseline's load is not
+// recorded), or the calibration probe (work that never changes) ran this much
+// slower or faster than the baseline's.
 inline constexpr double kBusyNeighbourCores = 0.25, kProbeMoved = 0.05;
 
 struct WorkWitness {
@@ -34,13 +36,16 @@ struct WorkWitness {
   double change = 0;             // a fraction: +0.2 is 20% more
   size_t frames = 0;             // frames counted, each side
   std::string origin;            // what counted (source, SIMD target, compiler, threads)
+  double tolerance = 0.07;       // the timed gate's: more work than this fails at once
+  bool runs_differ = false;      // --timings-only: the two runs need not be of one scene
   OtherLoad load;                // during the check's last runs
   bool probe_known = false;
   double probe_change = 0;  // of the calibration probe's median time, against the baseline's
   enum class Verdict {
-    MoreWork,      // the count moved with the time: the build's slowdown, it fails
-    MachineMoved,  // same count, and the machine was seen to differ: a warning
-    SameMachine,   // same count, nothing seen of the machine: it fails (memory, threads)
+    MoreWork,      // grown beyond the timed tolerance: the build's slowdown, it fails at once
+    OtherWork,     // moved beyond the count's 1% but not so far: the timed verdict stands
+    MachineMoved,  // the same count, and the machine was seen to differ: a confirmed slowdown warns
+    SameMachine,   // the same count, nothing seen of the machine: it fails (memory, threads)
   };
   Verdict verdict = Verdict::MoreWork;
   bool excuses() const { return verdict == Verdict::MachineMoved; }
@@ -55,6 +60,10 @@ struct WorkWitness {
 
 // Fills change and verdict from the counts, the load and the probe.
 void decide_witness(WorkWitness& witness);
+
+// Whether a metric is timed on the CPU, where instructions per frame say what
+// the work was; a GPU metric's slowdown is never excused by them.
+bool cpu_timed_metric(const std::string& metric);
 
 // What an instruction count was made with, in words: counts compare only
 // within one ("callgrind (SIMD AVX2, GNU 12.2.0, 1 thread)").
@@ -72,6 +81,7 @@ void observe_machine(WorkWitness& witness, const Result& baseline, const Result&
 // build's count beside the baseline's witness, where the baseline holds one and
 // `count` counts alike; nullopt, with a note saying why, where not.
 std::optional<WorkWitness> witness_count(const Result& baseline, const Result& current, const CountWork& count,
-                                         const std::function<OtherLoad()>& load, const std::string& slower);
+                                         const std::function<OtherLoad()>& load, const std::string& slower,
+                                         double tolerance);
 
 }  // namespace crowdprof

@@ -133,6 +133,7 @@ int report_gate(const CheckRun& r, const CheckOutcome& o, std::ostream& out) {
   if (!r.files.path("--junit").empty() || !r.files.path("--markdown").empty()) {
     GateTable table = check_verdict_table(o.result, options);
     table.title = "stored baseline " + r.baseline + " against " + current_name + ", " + fixed(o.wall_s, 1) + " s";
+    if (o.result.witness) table.title += "\n" + o.result.witness->line();
     write_verdict_files(r, table, current, o.wall_s);
   }
   if (r.files.prints_on_stdout(r.quiet)) out << format_check(o.result, options);

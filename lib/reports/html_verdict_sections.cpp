@@ -131,7 +131,10 @@ std::string cost_error_table(const std::vector<CostErrorPoint>& points) {
 
 std::string check_section(const CheckSection& check, const std::vector<ReportRun>& runs, std::string& charts) {
   const CheckResult& r = check.result;
-  std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>" : "<span class=\"ok\">ok</span>";
+  const bool warned = std::any_of(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.excused; });
+  std::string verdict = r.regressed() ? "<span class=\"regression\">REGRESSION</span>"
+                        : warned      ? "<span class=\"warning\">ok, with a warning</span>"
+                                      : "<span class=\"ok\">ok</span>";
   std::string out = "<section id=\"check\"><h2>" +
                     std::string(check.command == "diff" ? "Diff against " : "Check against ") +
                     html_text(check.baseline) + ": " + verdict + "</h2>\n";
@@ -161,7 +164,14 @@ std::string check_section(const CheckSection& check, const std::vector<ReportRun
   SvgDocument svg;
   svg.add(rows);
   charts += "v";
-  out += svg.inline_svg() + "<p>";
+  out += svg.inline_svg();
+  if (r.witness)
+    out += "<p" + std::string(warned ? " class=\"warning\"" : "") + ">" + html_text(r.witness->line()) +
+           (warned ? ". A stored baseline cannot tell this from a slower build: time the change against its base "
+                     "build with <code>check --against</code>."
+                   : ".") +
+           "</p>\n";
+  out += "<p>";
   const bool digests_equal = r.baseline_digest == r.current_digest;
   if (r.counters.empty() && r.counters_missing.empty() && digests_equal)
     out += "Counters and digest match the baseline.";

@@ -257,13 +257,17 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
   chart.id = "verdict";
   for (const MetricCheck& m : result.metrics) {
     // The words format_check uses for the same outcomes.
-    std::string verdict = !m.tested                                                       ? "not tested"
-                          : m.regressed                                                   ? "REGRESSION"
+    std::string verdict = !m.tested     ? "not tested"
+                          : m.regressed ? "REGRESSION"
+                          : m.excused   ? "slower, a warning (the same instructions per frame)"
                           : m.beyond_tolerance && !m.beyond_floor                         ? "slower, under the floor"
                           : m.beyond_tolerance                                            ? "slower, not significant"
                           : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
                                                                                           : "ok";
-    std::string colour = !m.tested ? "#767676" : m.regressed ? "#B00020" : m.beyond_tolerance ? "#A66A00" : "#1B7F3B";
+    std::string colour = !m.tested                         ? "#767676"
+                         : m.regressed                     ? "#B00020"
+                         : m.excused || m.beyond_tolerance ? "#A66A00"
+                                                           : "#1B7F3B";
     const std::string unit = " " + m.value_unit;
     std::string detail = m.metric + ": median " + metric_value_text(m, m.baseline.median) + " -> " +
                          metric_value_text(m, m.current.median) + unit +

@@ -216,7 +216,8 @@ std::string verdict_junit(const GateTable& table) {
           << xml_escape(table.reproduce.empty() ? "" : "reproduce: " + table.reproduce) << "</failure>\n";
     out << "      <system-out>"
         << xml_escape(row.verdict + ": " + value(row, row.base_ms) + " -> " + value(row, row.current_ms) + ", " +
-                      percent(row.change) + ", interval " + interval(row) + ", p " + p_text(row))
+                      percent(row.change) + ", interval " + interval(row) + ", p " + p_text(row) +
+                      (!row.failed && !row.why.empty() ? ": " + row.why : ""))
         << "</system-out>\n"
         << "    </testcase>\n";
   }
@@ -251,6 +252,9 @@ std::string verdict_markdown(const GateTable& table) {
         << " | " << percent(row.change) << " | " << interval(row) << " | " << p_text(row) << " | "
         << (row.failed ? "**" + row.verdict + "**" : row.verdict) << " |\n";
   out << "\n";
+  for (const GateRow& row : table.metrics)
+    if (!row.failed && !row.why.empty())
+      out << "Warning, " << markdown_cell(row.metric) << ": " << markdown_cell(row.why) << ".\n\n";
   if (table.work_compared)
     out << "Work: " << (table.work_equal ? "the same" : "**changed**") << " (" << markdown_cell(table.work_detail)
         << ").\n";

@@ -49,7 +49,10 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   more["instructions"]["per_frame"] = recorded["instructions"]["per_frame"].get<double>() / 1.2;
   r = run_cli(run + "--baseline '" + write_json(dir / "more.json", more) + "'");
   EXPECT_EQ(r.status, 1) << r.err;
-  EXPECT_NE(r.err.find("not measured again: instructions per frame +20.0%"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("instructions per frame +20.0%: beyond the 7.0% tolerance, the build's own slowdown: not "
+                       "measured again"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(r.err.find("measuring again to confirm"), std::string::npos) << r.err;
 
   // A median far beyond the tolerance that the test cannot call (the
@@ -64,7 +67,7 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   r = run_cli(loud + "--baseline '" + write_json(dir / "split.json", split) + "'");
   EXPECT_EQ(r.status, 1) << r.err << r.out;
   EXPECT_NE(r.err.find("not significant): counting this build's instructions"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("instructions per frame +20.0%, beyond the 7.0% tolerance"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("instructions per frame +20.0%: beyond the 7.0% tolerance"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("REGRESSION calibrated"), std::string::npos) << r.out;
   split["instructions"]["per_frame"] = recorded["instructions"]["per_frame"];
   r = run_cli(loud + "--baseline '" + write_json(dir / "split.json", split) + "'");
@@ -80,7 +83,7 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   r = run_cli("check --spread 0 --confirm-spread 0 --runs 8 --baseline '" + write_json(dir / "moved.json", moved) +
               "' --junit '" + junit + "'");
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("the same instructions per frame (+0.0%)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("instructions per frame +0.0%: the same work"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("measuring again to confirm"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("crowdprof: warning: slower than the baseline (calibrated +"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("the calibration probe, whose work never changes, ran"), std::string::npos) << r.err;
@@ -89,7 +92,14 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   EXPECT_NE(r.out.find("the same work, on a machine that was not as it was for the baseline"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("a warning, the same instructions per frame"), std::string::npos) << r.out;
-  EXPECT_NE(crowdprof::test::read_file(junit).find("failures=\"0\""), std::string::npos);
+  const std::string xml = crowdprof::test::read_file(junit);
+  EXPECT_NE(xml.find("failures=\"0\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("slower, a warning"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("time the change with check --against"), std::string::npos) << xml;
+  // Not confirmed (--confirm 0), the same slowdown is no warning: it fails.
+  r = run_cli(run + "--confirm 0 --baseline '" + (dir / "moved.json").string() + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.find("warning: slower"), std::string::npos) << r.err;
 
   // --count-work off: no count, and a check against it keeps the timed verdict.
   const std::string plain = (dir / "plain.json").string();
