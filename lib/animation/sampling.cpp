@@ -8,10 +8,6 @@
 namespace crowdprof {
 namespace {
 
-// Above this cosine (keys less than about 5.1 degrees apart) nlerp stays within
-// 1.4e-6 of slerp; below it the exact slerp is worth its acos and sines.
-constexpr float kNlerpAboveDot = 0.999f;
-
 // Index k of the key segment [times[k], times[k+1]) holding t, for n >= 2 keys and
 // times[0] < t < times[n-1]. `hint` is the segment found last time.
 uint32_t find_segment(const float* times, uint32_t n, float t, uint32_t hint) {
@@ -33,12 +29,7 @@ glm::vec3 vec3_at(const float* p) {
 }
 
 glm::quat quat_at(const float* p) {
-  glm::quat q;
-  q.x = p[0];
-  q.y = p[1];
-  q.z = p[2];
-  q.w = p[3];
-  return q;
+  return quat_from_xyzw(p);
 }
 
 // glTF's cubic Hermite spline between values v0 and v1 with out-tangent b0 and
@@ -99,23 +90,9 @@ glm::vec3 sample_vec3(const Channel& channel, const Segment& s) {
 // slerp_shortest, inlined into the sampling loop: called, its quaternion came
 // back in two registers, was stored in two halves and reloaded whole, which
 // stalled on store forwarding once a rotation channel.
-inline __attribute__((always_inline)) glm::quat slerp_shortest_inlined(const glm::quat& a, const glm::quat& b_in,
+inline __attribute__((always_inline)) glm::quat slerp_shortest_inlined(const glm::quat& a, const glm::quat& b,
                                                                        float t) {
-  glm::quat b = b_in;
-  float cosine = glm::dot(a, b);
-  if (cosine < 0.0f) {  // q and -q are the same rotation: take the shorter way
-    b = -b;
-    cosine = -cosine;
-  }
-  if (cosine > kNlerpAboveDot) return glm::normalize(a * (1.0f - t) + b * t);
-  const float angle = std::acos(cosine);
-  // sin^2 = (1 - c)(1 + c), not 1 - c*c: near c = 1 the subtraction 1 - c is
-  // exact, while 1 - c*c cancels all but the rounding error of c*c. That form
-  // was off by up to 3.0e-6 wherever the compiler did not fuse it into an FMA
-  // (clang -O1, or GCC without -march=native) and 1.2e-6 where it did; this
-  // one is within 1.3e-6 on GCC and clang, FMA or not (sampling_test).
-  const float inv_sine = 1.0f / std::sqrt((1.0f - cosine) * (1.0f + cosine));
-  return a * (std::sin((1.0f - t) * angle) * inv_sine) + b * (std::sin(t * angle) * inv_sine);
+  return slerp_along(a, b, slerp_segment(a, b), t);
 }
 
 glm::quat sample_quat(const Channel& channel, const Segment& s) {
@@ -132,6 +109,9 @@ glm::quat sample_quat(const Channel& channel, const Segment& s) {
   }
   const float* key = v + 4 * s.k;
   if (s.hold || channel.interpolation == Interpolation::Step) return quat_at(key);
+  // Prepared (the loader's channels): the key pair's acos, square root and
+  // divide were done once at load; only the two sines are left.
+  if (!channel.slerp.empty()) return slerp_along(quat_at(key), quat_at(key + 4), channel.slerp[s.k], s.alpha);
   return slerp_shortest_inlined(quat_at(key), quat_at(key + 4), s.alpha);
 }
 
@@ -163,6 +143,10 @@ bool SamplingJob::Validate() const {
     const Channel& channel = action->channels[i];
     if (targets[i] >= static_cast<int64_t>(joints)) return false;
     if (channel.times.empty() || channel.values.size() != channel.times.size() * floats_per_key(channel)) return false;
+    if (!channel.slerp.empty() &&
+        (channel.path != ChannelPath::Rotation || channel.interpolation != Interpolation::Linear ||
+         channel.slerp.size() + 1 != channel.times.size()))
+      return false;
   }
   return true;
 }

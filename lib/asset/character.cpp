@@ -38,6 +38,18 @@ const char* to_string(ChannelPath path) {
   return "?";
 }
 
+void prepare_slerp(Channel* channel) {
+  channel->slerp.clear();
+  const size_t keys = channel->times.size();
+  if (channel->path != ChannelPath::Rotation || channel->interpolation != Interpolation::Linear || keys < 2 ||
+      channel->values.size() != 4 * keys)
+    return;
+  channel->slerp.resize(keys - 1);
+  const float* v = channel->values.data();
+  for (size_t k = 0; k + 1 < keys; ++k)
+    channel->slerp[k] = slerp_segment(quat_from_xyzw(v + 4 * k), quat_from_xyzw(v + 4 * k + 4));
+}
+
 template <typename T>
 static size_t bytes_of(const std::vector<T>& v) {
   return v.size() * sizeof(T);

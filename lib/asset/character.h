@@ -11,6 +11,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "asset/slerp_segment.h"
+
 namespace crowdprof {
 
 // Joints in parent-before-child order: parents[j] < j, or -1 for a root.
@@ -67,10 +69,21 @@ struct Channel {
   // Per key: `components()` floats, or for CUBICSPLINE three groups of them
   // (in-tangent, value, out-tangent), as in glTF. Rotations are x, y, z, w.
   std::vector<float> values;
+  // LINEAR rotations: per key segment k (keys k and k+1), what slerp needs of the
+  // pair alone (asset/slerp_segment.h), so sampling pays only two sines a
+  // sample. Set by prepare_slerp (the loader and the generator call it); empty
+  // otherwise, and sampling then works it out per sample, to the same bits.
+  // Derived from `values`: call prepare_slerp again after changing them.
+  // Not counted in Character::shared_bytes (12 bytes a rotation key segment).
+  std::vector<SlerpSegment> slerp;
 
   int components() const { return path == ChannelPath::Rotation ? 4 : 3; }
   size_t key_count() const { return times.size(); }
 };
+
+// Fills `channel->slerp` for a LINEAR rotation channel of two keys or more;
+// clears it for any other.
+void prepare_slerp(Channel* channel);
 
 // One glTF animation restricted to the skeleton's joints.
 struct Action {

@@ -102,6 +102,7 @@ std::vector<Action> convert_actions(const tinygltf::Model& model, const std::vec
           }
         }
       }
+      prepare_slerp(&channel);
       action.start = std::min(action.start, channel.times.front());
       action.end = std::max(action.end, channel.times.back());
       action.channels.push_back(std::move(channel));

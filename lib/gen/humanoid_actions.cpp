@@ -251,6 +251,7 @@ Action sample(const std::string& name, double duration, const Rig& rig, const Sk
   for (Channel& c : action.channels) {
     size_t n = static_cast<size_t>(c.components());
     for (size_t k = 0; k < n; ++k) c.values.push_back(c.values[k]);
+    prepare_slerp(&c);
   }
   return action;
 }

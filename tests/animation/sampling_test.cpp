@@ -1,6 +1,7 @@
 // Sampling: STEP, LINEAR and CUBICSPLINE against values worked out by hand, the
 // cursor against time going backwards and looping, and InterpolationTest.glb.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -145,6 +146,95 @@ TEST(Sampling, SlerpMatchesExactSlerpAtAllKeySpacings) {
     }
   }
   EXPECT_LT(worst, 2e-6);
+}
+
+// A LINEAR rotation channel of `keys` keys, each the last turned by a random
+// angle (up to `max_degrees`) about a random axis, stored as q or -q at random.
+Channel random_rotations(std::mt19937* rng, int keys, double max_degrees) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<float> times, values;
+  glm::dquat q = glm::normalize(glm::dquat(u(*rng), u(*rng), u(*rng), u(*rng)));
+  for (int k = 0; k < keys; ++k) {
+    times.push_back(0.25f * static_cast<float>(k));
+    const glm::dquat stored = u(*rng) < 0 ? -q : q;
+    values.insert(values.end(), {float(stored.x), float(stored.y), float(stored.z), float(stored.w)});
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(u(*rng), u(*rng), u(*rng)));
+    q = glm::normalize(glm::angleAxis(glm::radians(max_degrees * (u(*rng) + 1) / 2), axis) * q);
+  }
+  return channel(0, ChannelPath::Rotation, Interpolation::Linear, std::move(times), std::move(values));
+}
+
+TEST(Sampling, PreparedSlerpGivesTheSameBits) {
+  // The key pair's half of slerp worked out once at load (prepare_slerp) must
+  // sample to exactly what the whole slerp gives per sample: digests depend on it.
+  std::mt19937 rng(11);
+  for (double max_degrees : {2.0, 12.0, 90.0, 360.0}) {
+    Channel c = random_rotations(&rng, 64, max_degrees);
+    Sampler whole(action_of({c}));
+    prepare_slerp(&c);
+    ASSERT_EQ(c.slerp.size(), c.times.size() - 1);
+    Sampler prepared(action_of({c}));
+    for (int step = 0; step <= 63 * 16; ++step) {
+      const float time = 0.25f * static_cast<float>(step) / 16.0f + 0.003f;
+      const glm::quat want = whole.rotation(time), got = prepared.rotation(time);
+      ASSERT_EQ(std::memcmp(&want, &got, sizeof(glm::quat)), 0)
+          << max_degrees << " degrees at most, t " << time << ": " << got.x << " " << got.y << " " << got.z << " "
+          << got.w << " against " << want.x << " " << want.y << " " << want.z << " " << want.w;
+    }
+  }
+  // Between them the channels took every branch: the shorter-arc flip, nlerp, slerp.
+  Channel c = random_rotations(&rng, 256, 30.0);
+  prepare_slerp(&c);
+  size_t flips = 0, nlerps = 0;
+  for (const SlerpSegment& s : c.slerp) flips += s.flip, nlerps += s.nlerp;
+  EXPECT_GT(flips, 0u);
+  EXPECT_GT(nlerps, 0u);
+  EXPECT_LT(nlerps, c.slerp.size());
+}
+
+TEST(Sampling, PrepareSlerpOnlyForLinearRotations) {
+  Channel c = channel(0, ChannelPath::Rotation, Interpolation::Step, {0, 1}, {0, 0, 0, 1, 0, 0, kHalf, kHalf});
+  prepare_slerp(&c);
+  EXPECT_TRUE(c.slerp.empty());
+  c.interpolation = Interpolation::Linear;
+  prepare_slerp(&c);
+  ASSERT_EQ(c.slerp.size(), 1u);
+  EXPECT_FALSE(c.slerp[0].flip);
+  EXPECT_FALSE(c.slerp[0].nlerp);
+  EXPECT_FLOAT_EQ(c.slerp[0].angle, glm::radians(45.0f));  // half of the 90 degree turn
+  Channel t = channel(0, ChannelPath::Translation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 1, 1});
+  prepare_slerp(&t);
+  EXPECT_TRUE(t.slerp.empty());
+  Channel one = channel(0, ChannelPath::Rotation, Interpolation::Linear, {0}, {0, 0, 0, 1});
+  prepare_slerp(&one);
+  EXPECT_TRUE(one.slerp.empty());
+}
+
+TEST(Sampling, ValidateRefusesStalePreparedSlerp) {
+  Channel c = channel(0, ChannelPath::Rotation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, kHalf, kHalf});
+  prepare_slerp(&c);
+  Sampler s(action_of({c}));
+  EXPECT_TRUE(s.at(0.5f));
+  s.action.channels[0].slerp.push_back({});  // one segment more than the keys have
+  EXPECT_FALSE(s.at(0.5f));
+  s.action.channels[0].slerp.pop_back();
+  s.action.channels[0].interpolation = Interpolation::Step;  // prepared for LINEAR only
+  EXPECT_FALSE(s.at(0.5f));
+}
+
+TEST(Sampling, LoaderPreparesLinearRotations) {
+  const std::string file = std::string(CROWDPROF_SAMPLES_DIR) + "/Fox/glTF-Binary/Fox.glb";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "sample not found: " << file;
+  const GltfAsset asset = load_gltf(file);
+  ASSERT_FALSE(asset.characters.empty());
+  size_t prepared = 0;
+  for (const Action& action : asset.characters[0].actions)
+    for (const Channel& c : action.channels) {
+      const bool slerps = c.path == ChannelPath::Rotation && c.interpolation == Interpolation::Linear;
+      EXPECT_EQ(c.slerp.size(), slerps ? c.times.size() - 1 : 0u);
+      prepared += c.slerp.size();
+    }
+  EXPECT_GT(prepared, 0u);
 }
 
 TEST(Sampling, CubicSplineIsGltfHermite) {
