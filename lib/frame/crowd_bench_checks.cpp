@@ -61,7 +61,6 @@ AnimationRecord CrowdBench::measure_animation() const {
                                                store_->storage_weight[storage] == store_->weights[i]));
     if (same_state) continue;
     ++fidelity.copies_deviating;
-    const Character& character = character_of(i);
     const PreparedCharacter& kind = prepared_[crowd_.kind[i]];
     const std::span<const SkinMatrix> palette = exact_palette(i, store_->times[i], reference);
     for (auto* v : {&drawn, &drawn_normals, &exact, &exact_normals}) v->resize(kind.vertices);
@@ -131,7 +130,6 @@ DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t ma
       const size_t i = on_screen[n * error.copy_stride];
       const size_t k = crowd_.kind[i];
       const PreparedCharacter& kind = prepared_[k];
-      const Character& character = *characters_[k];
       if (kind.vertices == 0) continue;
       CopyError& e = copies[n];
       e.checked = true;

@@ -100,7 +100,7 @@ const std::array kSettings = {
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
                   if (!v) return "expected a number (a rate between 0 and 100000)";
-                  if (!(*v > 0) || *v > 100000) return "expected a rate between 0 and 100000";
+                  if (!(*v > 0) || *v > 100000) return "expected frames a second above 0, at most 100000";
                   s.fps = *v;
                   return {};
                 },
