@@ -176,4 +176,26 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
   return full.string();
 }
 
+std::vector<std::string> gltf_external_files(const std::string& path) {
+  std::vector<std::string> files;
+  try {
+    const GltfContainer c = read_gltf_container(path);
+    for (const char* kind : {"buffers", "images"}) {
+      const auto list = c.json.find(kind);
+      if (list == c.json.end() || !list->is_array()) continue;
+      for (const nlohmann::json& item : *list) {
+        if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+        const std::string uri = item["uri"].get<std::string>();
+        if (uri.rfind("data:", 0) == 0) continue;
+        try {
+          files.push_back(resolve_inside(c, uri, kind));
+        } catch (const InputError&) {
+        }
+      }
+    }
+  } catch (const InputError&) {
+  }
+  return files;
+}
+
 }  // namespace crowdprof

@@ -44,6 +44,11 @@ void preflight_gltf(const GltfContainer& container);
 // Returns the absolute path. Throws InputError naming `what` ("buffer 0").
 std::string resolve_inside(const GltfContainer& container, const std::string& uri, const std::string& what);
 
+// The files a glTF file reads beside itself (buffers and images by URI), as
+// resolved paths: inputs that no output may overwrite. None where the file
+// cannot be read or a URI would be refused (loading it says why).
+std::vector<std::string> gltf_external_files(const std::string& path);
+
 // An index or count as error messages print it.
 inline std::string str(size_t i) {
   return std::to_string(i);

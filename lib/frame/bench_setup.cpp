@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "base/errors.h"
+#include "asset/gltf_container.h"
 #include "asset/gltf_loader.h"
 #include "asset/vertex_order.h"
 #include "gen/gltf_writer.h"
@@ -193,12 +194,26 @@ std::vector<std::string> settings_outside_scene(const RunSpec& spec) {
 }
 
 std::vector<NamedPath> bench_input_files(const std::string& file) {
-  if (!is_scene_file(file)) return {{"character file", file}};
+  // A character's buffers and textures are inputs too (a .gltf's .bin).
+  auto add_character = [](std::vector<NamedPath>& inputs, const std::string& what, const std::string& path) {
+    inputs.push_back({what, path});
+    std::string gltf = path;
+    try {
+      gltf = parse_character_spec(path).file;  // "hero.gltf#skin=1"
+    } catch (const UsageError&) {
+    }
+    for (const std::string& external : gltf_external_files(gltf)) inputs.push_back({"file read by " + gltf, external});
+  };
+  std::vector<NamedPath> inputs;
+  if (!is_scene_file(file)) {
+    add_character(inputs, "character file", file);
+    return inputs;
+  }
   // The characters a scene names are inputs too: an output on one of them
   // would overwrite a user's character (the scene is read again by the run).
-  std::vector<NamedPath> inputs = {{"scene file", file}};
+  inputs.push_back({"scene file", file});
   for (const SceneCharacter& character : load_scene_file(file).characters)
-    inputs.push_back({"character file of the scene", character.path});
+    add_character(inputs, "character file of the scene", character.path);
   return inputs;
 }
 

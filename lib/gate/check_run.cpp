@@ -135,6 +135,18 @@ void require_safe_outputs(const CheckRun& r, const std::string& file) {
   files.require_usable(inputs);
 }
 
+// An empty file, or a JSON object with a "crowdprof" section.
+bool replaceable_baseline(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_regular_file(path, error) && std::filesystem::file_size(path, error) == 0) return true;
+  try {
+    const nlohmann::json doc = read_json_file(path);
+    return doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object();
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 // A bad baseline is found before a long run, not after it. One being replaced
 // only lends its options, if it can.
 std::optional<Result> read_baseline(const CheckRun& r) {
@@ -149,6 +161,11 @@ std::optional<Result> read_baseline(const CheckRun& r) {
     try {
       return read_result(r.baseline);
     } catch (const InputError& e) {
+      // Only crowdprof's own file is replaced (an older format, a cut run):
+      // anything else is a user's file at a mistyped path.
+      if (!replaceable_baseline(r.baseline))
+        throw UsageError("refusing to replace --baseline " + std::string(e.what()) +
+                         ": --update-baseline replaces only crowdprof's own results (choose another path)");
       std::cerr << "crowdprof: note: replacing a baseline that cannot be read (" << e.what() << ")\n";
     }
   }

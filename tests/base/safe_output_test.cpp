@@ -64,6 +64,23 @@ TEST(SafeOutput, AnOutputThatIsTheInputIsRefusedAndTheInputUnchanged) {
   expect_refused("bench '" + x.string() + "#skin=0' -n 2 --frames 2 --json " + q, x, "is the character file");
 }
 
+// A .gltf reads its buffers and textures beside it: they are inputs too.
+TEST(SafeOutput, AnOutputOnAFileTheGltfReadsIsRefused) {
+  auto dir = crowdprof::test::scratch_dir("safe_gltf_external");
+  std::ofstream(dir / "X.gltf") << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "X.bin", "byteLength": 4}],
+    "images": [{"uri": "skin%20tex.png"}, {"uri": "data:image/png;base64,AAAA"}]})";
+  std::ofstream(dir / "X.bin") << "abcd";
+  std::ofstream(dir / "skin tex.png") << "not really a png";
+  std::ofstream(dir / "scene.json") << R"({"characters": [{"file": "X.gltf", "count": 2}]})";
+  const std::string g = "'" + (dir / "X.gltf").string() + "'", s = "'" + (dir / "scene.json").string() + "'";
+  const std::string bin = "'" + (dir / "X.bin").string() + "'", png = "'" + (dir / "skin tex.png").string() + "'";
+  expect_refused("bench " + g + " -n 2 --frames 2 --csv " + bin, dir / "X.bin", "is the file read by");
+  expect_refused("bench " + g + " -n 2 --frames 2 --screenshot " + png, dir / "skin tex.png", "is the file read by");
+  expect_refused("check " + g + " -n 2 --frames 2 --baseline " + bin + " --update-baseline", dir / "X.bin",
+                 "--baseline " + (dir / "X.bin").string() + " is the file read by");
+  expect_refused("bench " + s + " --frames 2 --json " + bin, dir / "X.bin", "is the file read by");
+}
+
 TEST(SafeOutput, AnOutputOnACharacterOfTheSceneIsRefused) {
   auto dir = crowdprof::test::scratch_dir("safe_scene_character");
   fs::path x = character_copy(dir);

@@ -160,6 +160,29 @@ TEST(CheckBaseline, AComparisonNeverOverwritesItsBaseline) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// --update-baseline replaces a crowdprof result it cannot read (an older
+// format, a cut run), never a user's other file at a mistyped path.
+TEST(CheckBaseline, UpdatingReplacesOnlyCrowdprofsOwnFile) {
+  auto dir = crowdprof::test::scratch_dir("check_baseline_replace");
+  const std::string notes = (dir / "NOTES.md").string(), old = (dir / "old.json").string();
+  std::ofstream(notes) << "# my notes\n";
+  std::ofstream(dir / "other.json") << R"({"name": "not crowdprof's"})";
+  std::ofstream(old) << R"({"crowdprof": {"format": 1, "version": "0.0.1"}})";
+  const std::string run = "check --spread 0 --runs 2 --count-work off '" + humanoid_glb() + "' -n 2 --frames 2 ";
+  for (const std::string& path : {notes, (dir / "other.json").string()}) {
+    const std::string before = crowdprof::test::read_file(path);
+    auto r = run_cli(run + "--baseline '" + path + "' --update-baseline");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("refusing to replace --baseline " + path + ": not a crowdprof result"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(crowdprof::test::read_file(path), before);
+  }
+  auto r = run_cli(run + "--baseline '" + old + "' --update-baseline");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("note: replacing a baseline that cannot be read"), std::string::npos) << r.err;
+  EXPECT_TRUE(read_json(old).contains("samples"));
+}
+
 }  // namespace
 
 // A timed failure with the same work is measured again before it fails
