@@ -19,6 +19,10 @@ for file in bin/crowdprof share/crowdprof/scenes/thesis.json share/crowdprof/sce
     lib/cmake/crowdprof/crowdprofConfig.cmake; do
   [[ -f $prefix/$file ]] || fail "cmake --install did not install $file"
 done
+# A man page for every command the top-level help lists.
+for command in $("$prefix/bin/crowdprof" --help | sed -n '/^Subcommands:/,/^$/s/^  \([a-z]*\) .*/\1/p'); do
+  [[ -f $prefix/share/man/man1/crowdprof-$command.1 ]] || fail "no man page crowdprof-$command.1"
+done
 # The man page of a command holds that command's options and its example.
 # (roff escapes each dash: \-\-mode).
 page=$prefix/share/man/man1/crowdprof-bench.1
