@@ -281,7 +281,8 @@ std::string CrowdBench::digest() const {
     if (!store_->visible[i]) continue;
     auto palette = skinning_matrices(i);
     fnv1a(hash, palette.data(), palette.size_bytes());
-    if (!mesh_level_.empty()) fnv1a(hash, &mesh_level_[i], 1);  // the mesh it draws
+    // The mesh it draws, when not the full one (no LOD level digests as LOD off).
+    if (!mesh_level_.empty() && mesh_level_[i] != 0) fnv1a(hash, &mesh_level_[i], 1);
     if (prepared_[crowd_.kind[i]].site == SkinningSite::Baked) {
       // Never posed on the CPU: what the GPU is told to draw is the copy's place among its samples.
       BakedInstance instance =

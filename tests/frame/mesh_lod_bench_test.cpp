@@ -80,6 +80,12 @@ TEST(MeshLodBench, ThresholdsOfZeroKeepEveryCopyWhole) {
   Counters c = bench.step().counters;
   EXPECT_EQ(c.lod0_copies, c.copies_visible);
   EXPECT_EQ(c.lod1_copies + c.lod2_copies + c.lod3_copies, 0u);
+  // Every copy drawn whole is the run without mesh LOD: the same digest.
+  BenchConfig plain = config;
+  plain.mode.mesh_lod = false;
+  CrowdBench full(test::default_humanoid(), plain);
+  full.step();
+  EXPECT_EQ(bench.digest(), full.digest());
 }
 
 TEST(MeshLodBench, SharingIsRefusedNamingTheSwitchEveryModeTakesIt) {
