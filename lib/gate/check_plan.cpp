@@ -67,6 +67,16 @@ GateMetrics gate_metrics(const Result& baseline, const Result& current, std::vec
                                         std::to_string(current.calibration_probe) +
                                         ": the calibrated frame does not compare; record the baseline again, or check "
                                         "another --metric");
+  // The probe leaves the frame after it with cold caches (its frames run
+  // longer) and its workers spin on into it: one side timed with it and the
+  // other without compare no timed metric like for like.
+  if (!named && metrics == std::vector<std::string>{"calibrated"} && base_probe != current_probe)
+    throw InputError(baseline_path, std::string("was timed ") + (base_probe ? "with" : "without") +
+                                        " the calibration probe between frames and " + current_name + " " +
+                                        (current_probe ? "with" : "without") +
+                                        " it: the probe slows the frame after it, so no timed metric compares like "
+                                        "for like; time both alike (bench --calibrate or check --json for both, or "
+                                        "neither), or name a --metric to compare anyway");
   if (!named && metrics == std::vector<std::string>{"calibrated"}) {
     std::string why;
     if (!base_probe || !current_probe)
@@ -76,16 +86,14 @@ GateMetrics gate_metrics(const Result& baseline, const Result& current, std::vec
       why = "the two were calibrated by different probes (version " + std::to_string(baseline.calibration_probe) +
             " and " + std::to_string(current.calibration_probe) + ")";
     if (!why.empty()) {
-      const bool alike = base_probe == current_probe;
-      const bool cpu = alike && metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
+      const bool cpu = metric_samples(baseline, "cpu_ms") && metric_samples(current, "cpu_ms");
       metrics = {cpu ? "cpu_ms" : "frame_ms"};
-      out.notes.push_back(why + ": checking " + metric_display_name(metrics.front()) + " instead" +
-                          (alike ? "" : " (only one of the two ran the probe, which raises CPU time)"));
+      out.notes.push_back(why + ": checking " + metric_display_name(metrics.front()) + " instead");
     }
-  } else if (base_probe != current_probe && uses("cpu_ms")) {
+  } else if (base_probe != current_probe && !uses("calibrated")) {  // named calibrated: the gate refuses
     out.notes.push_back(
-        "only one of the two ran the calibration probe, whose workers raise CPU time: cpu does not compare like for "
-        "like");
+        "warning: only one of the two ran the calibration probe, which slows the frame after it and whose workers "
+        "raise CPU time: no timed metric compares like for like");
   }
   out.metrics = std::move(metrics);
   return out;

@@ -374,7 +374,8 @@ void judge_timings(const CheckRun& r, CheckOutcome& outcome, const Remeasure& re
   std::string current_name = r.result.empty() ? std::string("the run") : r.result;
   GateMetrics chosen = gate_metrics(baseline, current, options.metrics, r.metric_given, r.baseline, current_name);
   options.metrics = std::move(chosen.metrics);
-  for (const std::string& note : chosen.notes) std::cerr << "crowdprof: note: " << note << "\n";
+  for (const std::string& note : chosen.notes)
+    std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";
   if (!r.plan.timings_only) require_same_run(baseline, current, r.baseline);
   for (const std::string& note : comparison_notes(baseline, current))
     std::cerr << "crowdprof: " << (note.rfind("warning: ", 0) == 0 ? "" : "note: ") << note << "\n";

@@ -3,8 +3,10 @@
 // that runs slower counts this build's and fails at once when they grew, and
 // warns instead of failing when they did not and the machine was seen to
 // differ (here: the calibration probe, whose work never changes, recorded as
-// ten times as fast in the baseline: a factor no load on the test machine
-// between the recording and the check can undo, as twice could). Skipped where nothing counts instructions.
+// 100 times as fast in the baseline). The baseline's frames are made 10,000
+// times faster (or slower): a 6-copy frame lasts hundredths of a millisecond,
+// and a loaded test machine moved its calibrated median 28-fold between the
+// recording and the check. Skipped where nothing counts instructions.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -46,7 +48,7 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
 
   // More instructions: the build's slowdown, failed without measuring again.
   json more = recorded;
-  scale_runs(more, "calibrated", 0.25);
+  scale_runs(more, "calibrated", 1e-4);
   more["instructions"]["per_frame"] = recorded["instructions"]["per_frame"].get<double>() / 1.2;
   r = run_cli(run + "--baseline '" + write_json(dir / "more.json", more) + "'");
   EXPECT_EQ(r.status, 1) << r.err;
@@ -57,12 +59,12 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   EXPECT_EQ(r.err.find("measuring again to confirm"), std::string::npos) << r.err;
 
   // A median far beyond the tolerance that the test cannot call (the
-  // baseline's runs in two groups: five twice as fast as this build, three
-  // five times as slow): more instructions fail it, the same pass.
+  // baseline's runs in two groups: five far faster than this build, three far
+  // slower): more instructions fail it, the same pass.
   json split = recorded;
   json& medians = split["runs"]["median_ms"]["calibrated"];
   ASSERT_EQ(medians.size(), 8u);
-  for (size_t i = 0; i < medians.size(); ++i) medians[i] = medians[i].get<double>() * (i < 5 ? 0.5 : 5.0);
+  for (size_t i = 0; i < medians.size(); ++i) medians[i] = medians[i].get<double>() * (i < 5 ? 1e-4 : 1e4);
   split["instructions"]["per_frame"] = recorded["instructions"]["per_frame"].get<double>() / 1.2;
   const std::string loud = "check --spread 0 --confirm-spread 0 --runs 8 ";
   r = run_cli(loud + "--baseline '" + write_json(dir / "split.json", split) + "'");
@@ -75,11 +77,11 @@ TEST(WorkWitnessCli, ASlowerCheckCountsItsWorkAndWarnsOnlyWhenTheMachineChanged)
   EXPECT_EQ(r.status, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("but not significant"), std::string::npos) << r.out;
 
-  // The same instructions, and the probe ten times as fast at the baseline:
+  // The same instructions, and the probe 100 times as fast at the baseline:
   // the machine changed, and the confirmed slowdown is a warning, exit 0.
   json moved = recorded;
-  scale_runs(moved, "calibrated", 0.25);
-  for (json& v : moved["samples"]["probe_ms"]) v = v.get<double>() * 0.1;
+  scale_runs(moved, "calibrated", 1e-4);
+  for (json& v : moved["samples"]["probe_ms"]) v = v.get<double>() * 0.01;
   const std::string junit = (dir / "moved.xml").string();
   r = run_cli("check --spread 0 --confirm-spread 0 --runs 8 --baseline '" + write_json(dir / "moved.json", moved) +
               "' --junit '" + junit + "'");

@@ -107,13 +107,14 @@ TEST(Interrupt, WithoutOutputFilesNothingClaimsToBeWritten) {
 TEST(Interrupt, CheckNeverRecordsABaselineFromAPartialRun) {
   auto dir = crowdprof::test::scratch_dir("interrupt_check");
   std::string base = (dir / "base.json").string();
-  std::ofstream(base) << "the earlier baseline";
+  const std::string earlier = R"({"crowdprof": {"format": 1}, "the earlier baseline": true})";
+  std::ofstream(base) << earlier;
   Interrupted r = interrupt_cli({"check", "--spread", "0", humanoid_glb(), "-n", "8", "--frames", "10000000",
                                  "--warmup", "0", "--baseline", base, "--update-baseline"},
                                 dir, SIGINT, std::chrono::milliseconds(2500));
   EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_NE(r.err.find("the baseline is not updated from a partial run"), std::string::npos) << r.err;
-  EXPECT_EQ(read_file(base), "the earlier baseline");
+  EXPECT_EQ(read_file(base), earlier);
 }
 
 TEST(Interrupt, CheckForwardsTheSignalToItsRunAndWritesWhatItMeasured) {

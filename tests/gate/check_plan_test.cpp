@@ -89,13 +89,22 @@ TEST(GateMetrics, UnnamedCalibratedFallsBackAndSaysWhy) {
   EXPECT_EQ(neither.metrics, std::vector<std::string>{"cpu_ms"});
   ASSERT_EQ(neither.notes.size(), 1u);
   EXPECT_NE(neither.notes[0].find("base.json has no calibrated frame time"), std::string::npos) << neither.notes[0];
-  // Only one ran the probe, whose workers raise CPU time: the frame.
-  GateMetrics one = gate_metrics(timed(0), timed(1), {"calibrated"}, false, "base.json", "the run");
+  // Only one ran the probe, which slows the frame after it: nothing timed
+  // compares, unless named.
+  try {
+    gate_metrics(timed(0), timed(1), {"calibrated"}, false, "base.json", "the run");
+    ADD_FAILURE() << "one side probed, the other not, compared";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "base.json: was timed without the calibration probe between frames and the run with it: the probe "
+                 "slows the frame after it, so no timed metric compares like for like; time both alike (bench "
+                 "--calibrate or check --json for both, or neither), or name a --metric to compare anyway");
+  }
+  EXPECT_THROW(gate_metrics(timed(1), timed(0), {"calibrated"}, false, "base.json", "now.json"), InputError);
+  GateMetrics one = gate_metrics(timed(0), timed(1), {"frame_ms"}, true, "base.json", "the run");
   EXPECT_EQ(one.metrics, std::vector<std::string>{"frame_ms"});
   ASSERT_EQ(one.notes.size(), 1u);
-  EXPECT_NE(one.notes[0].find("only one of the two ran the probe"), std::string::npos) << one.notes[0];
-  GateMetrics other = gate_metrics(timed(1), timed(0), {"calibrated"}, false, "base.json", "now.json");
-  EXPECT_NE(other.notes[0].find("now.json has no calibrated"), std::string::npos) << other.notes[0];
+  EXPECT_EQ(one.notes[0].rfind("warning: only one of the two ran the calibration probe", 0), 0u) << one.notes[0];
   // Two probe versions: CPU time, as both ran a probe.
   GateMetrics versions = gate_metrics(timed(1), timed(2), {"calibrated"}, false, "base.json", "the run");
   EXPECT_EQ(versions.metrics, std::vector<std::string>{"cpu_ms"});
@@ -121,7 +130,7 @@ TEST(GateMetrics, NamedMetricsAreNeverSwapped) {
   GateMetrics cpu = gate_metrics(timed(0), timed(1), {"cpu_ms"}, true, "base.json", "the run");
   EXPECT_EQ(cpu.metrics, std::vector<std::string>{"cpu_ms"});
   ASSERT_EQ(cpu.notes.size(), 1u);
-  EXPECT_NE(cpu.notes[0].find("cpu does not compare like for like"), std::string::npos);
+  EXPECT_NE(cpu.notes[0].find("no timed metric compares like for like"), std::string::npos) << cpu.notes[0];
   // Named calibrated where one lacks it is left to the gate's own error.
   EXPECT_EQ(gate_metrics(timed(0), timed(1), {"calibrated"}, true, "b", "r").metrics,
             std::vector<std::string>{"calibrated"});
