@@ -28,7 +28,7 @@ std::string shown(const T& value) {
 const char* verdict(const MetricCheck& m, const CheckOptions& options) {
   if (!m.tested) return "not tested";
   if (m.regressed) return "SLOWER";
-  if (m.change < -options.tolerance && m.p_adjusted < options.alpha && m.test.z < 0) return "faster";
+  if (significantly_faster(m, options)) return "faster";
   return "same";
 }
 

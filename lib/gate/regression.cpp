@@ -225,8 +225,10 @@ std::string format_check(const CheckResult& result, const CheckOptions& options)
           << m.value_unit;
     else if (m.beyond_tolerance)
       out << ", beyond " << tolerance << " but not significant";
-    else if (m.change < -options.tolerance && m.p_adjusted < options.alpha)
+    else if (significantly_faster(m, options))
       out << ", faster";
+    else if (m.change < -options.tolerance)
+      out << ", faster beyond " << tolerance << " but not significant";
     else
       out << ", within " << tolerance;
     out << ");";

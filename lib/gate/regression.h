@@ -48,6 +48,12 @@ struct MetricCheck {
   bool work_grew = false;
 };
 
+// Faster beyond the tolerance, and significantly so: the test's p is
+// two-sided, `significant` is slower's side alone.
+inline bool significantly_faster(const MetricCheck& m, const CheckOptions& options) {
+  return m.tested && m.change < -options.tolerance && m.p_adjusted < options.alpha && m.test.z < 0;
+}
+
 struct CounterDifference {
   std::string name;
   uint64_t baseline = 0, current = 0;

@@ -260,10 +260,10 @@ VerdictChart verdict_chart(const CheckResult& result, const CheckOptions& option
     std::string verdict = !m.tested     ? "not tested"
                           : m.regressed ? "REGRESSION"
                           : m.excused   ? "slower, a warning (the same instructions per frame)"
-                          : m.beyond_tolerance && !m.beyond_floor                         ? "slower, under the floor"
-                          : m.beyond_tolerance                                            ? "slower, not significant"
-                          : m.change < -options.tolerance && m.p_adjusted < options.alpha ? "faster"
-                                                                                          : "ok";
+                          : m.beyond_tolerance && !m.beyond_floor ? "slower, under the floor"
+                          : m.beyond_tolerance                    ? "slower, not significant"
+                          : significantly_faster(m, options)      ? "faster"
+                                                                  : "ok";
     std::string colour = !m.tested                         ? "#767676"
                          : m.regressed                     ? "#B00020"
                          : m.excused || m.beyond_tolerance ? "#A66A00"

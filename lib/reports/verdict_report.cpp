@@ -141,7 +141,7 @@ GateTable check_verdict_table(const CheckResult& result, const CheckOptions& opt
     row.current_ms = metric.current.median;
     row.change = metric.change;
     row.p = metric.p_adjusted;
-    bool faster = metric.significant && metric.change < -options.tolerance;
+    const bool faster = significantly_faster(metric, options);
     row.verdict = !metric.tested     ? "not tested"
                   : metric.regressed ? "slower"
                   : metric.excused   ? "slower, a warning"

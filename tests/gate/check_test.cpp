@@ -11,6 +11,7 @@
 #include "gen/humanoid.h"
 #include "frame/run_bench.h"
 #include "gate/regression.h"
+#include "reports/verdict_report.h"
 #include "result/result_codec.h"
 #include "result/run_match.h"
 #include "test_support.h"
@@ -123,6 +124,27 @@ TEST(Check, EitherConditionAloneDoesNotFail) {
   // Faster never fails.
   MetricCheck faster = check_metric("frame", slower, before, {});
   EXPECT_FALSE(faster.regressed);
+}
+
+// Significantly faster reads "faster" on the terminal, in Markdown and JUnit
+// alike; faster beyond the tolerance but not significant is not "within" it.
+TEST(Check, FasterIsSaidAlikeOnEveryPage) {
+  CheckOptions options;
+  CheckResult result;
+  result.metrics.push_back(check_metric("frame", noisy_frames(3, 120, 12.0), noisy_frames(4, 120, 10.0), options));
+  ASSERT_LT(result.metrics[0].p_adjusted, options.alpha);
+  EXPECT_TRUE(significantly_faster(result.metrics[0], options));
+  EXPECT_NE(format_check(result, options).find("faster)"), std::string::npos) << format_check(result, options);
+  EXPECT_EQ(check_verdict_table(result, options).metrics.at(0).verdict, "faster");
+  EXPECT_NE(verdict_markdown(check_verdict_table(result, options)).find("| faster |"), std::string::npos)
+      << verdict_markdown(check_verdict_table(result, options));
+  // Three runs each: too few to test, so never called faster.
+  const std::vector<double> three = {12, 12.1, 11.9}, later = {10, 10.1, 9.9};
+  result.metrics[0] = check_metric("frame", three, later, options);
+  EXPECT_FALSE(significantly_faster(result.metrics[0], options));
+  EXPECT_NE(format_check(result, options).find("faster beyond 7% but not significant"), std::string::npos)
+      << format_check(result, options);
+  EXPECT_EQ(check_verdict_table(result, options).metrics.at(0).verdict, "no change");
 }
 
 TEST(Check, AResultAgainstItselfPassesAndAPlantedCounterFails) {
