@@ -143,7 +143,7 @@ const std::array kSettings = {
                 "Drawing"},
     SettingSpec{"lens", "MM",
                 "Focal length in mm on Blender's 32 mm sensor fitted to the larger side (35 is Blender's, 49.1 "
-                "degrees across)",
+                "degrees across; 0 keeps 35, or the scene's)",
                 "35, or the scene's",
                 [](RunSpec& s, std::string_view t) -> std::string {
                   std::optional<double> v = parse_number(t);
@@ -279,6 +279,11 @@ RunSpec resolve_run_spec(std::span<const SpecLayer> layers) {
         spec.switches.clear();
     }
     if (layer.has("action") && !layer.has("actions") && spec.actions == "scene") spec.actions = "shared";
+    // One action for every copy and a choice per copy, said together: not one silently dropped.
+    if (layer.has("action") && layer.has("actions") && layer.values.at("actions") != "shared")
+      bad_value(layer, "action", layer.values.at("action"),
+                "plays one action for every copy, which --actions " + layer.values.at("actions") +
+                    " does not (it gives each copy its own): give one or the other");
     for (const auto& [name, text] : layer.values) {
       if (name == "file") {
         spec.file = text;

@@ -104,6 +104,11 @@ TEST(RunSpec, BadValuesNameTheSettingOrTheFile) {
   EXPECT_EQ(setting_error({{"backend", "vulkan"}}).name, "backend");
   EXPECT_EQ(setting_error({{"mode", "fastest"}}).name, "mode");
   EXPECT_EQ(setting_error({{"culling", "maybe"}}).why, "expected on or off");
+  // One action for every copy beside a choice per copy: neither is dropped.
+  EXPECT_EQ(setting_error({{"actions", "random"}, {"action", "wave"}}).name, "action");
+  EXPECT_EQ(
+      resolve_run_spec(std::vector{layer(Source::CommandLine, {{"actions", "shared"}, {"action", "wave"}})}).action,
+      "wave");
   // Not the command line's fault: the baseline's, by its path.
   try {
     resolve_run_spec(std::vector{layer(Source::Baseline, {{"frames", "0"}}, "base.json")});
