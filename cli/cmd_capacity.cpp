@@ -144,7 +144,8 @@ void add_capacity_command(CLI::App& app, std::function<int()>& run) {
   cmd->remove_option(cmd->get_option("--mode"));        // --modes instead
   cmd->remove_option(cmd->get_option("--characters"));  // the search picks the sizes
   cmd->add_option("--budget", options->budget, "The budget in ms, e.g. 16.7 (60 fps, as the reports draw it)")
-      ->required();
+      ->required()
+      ->type_name("MS");
   cmd->add_option("--modes", options->modes,
                   "Modes to search (default: every mode the backend can run); a mode may set switches away from its "
                   "preset, e.g. master+lookups=bundled")

@@ -41,6 +41,7 @@ struct CompareCliOptions {
 
 ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, size_t copies, bool named, bool note) {
   ModeRun run;
+  std::vector<SettingText> refused;
   for (BenchConfig& config : configs) {
     config.crowd.copies = copies;
     SettingText why = why_cannot_run(config);
@@ -48,10 +49,22 @@ ModeRun make_benches(const BenchScene& scene, std::vector<BenchConfig> configs, 
       run.configs.push_back(config);
     else if (named)
       throw SettingsUsageError(why);
-    else if (note)
+    else
+      refused.push_back(why);
+    if (!why.empty() && note)
       std::cerr << "crowdprof: note: skipping mode " << config.mode_name << ": " << as_options(why) << "\n";
   }
-  if (run.configs.empty()) throw UsageError("none of the modes can run here");
+  if (run.configs.empty()) {
+    // One reason for every mode (a --passes without a GL backend): that reason alone.
+    const bool one_reason =
+        !refused.empty() && std::all_of(refused.begin(), refused.end(), [&](const SettingText& why) {
+          return as_options(why) == as_options(refused.front());
+        });
+    if (one_reason) throw SettingsUsageError(refused.front());
+    // Else the first mode's (master's, in the order modes are listed).
+    throw UsageError("none of the modes can run here" +
+                     (refused.empty() ? std::string() : " (the first: " + as_options(refused.front()) + ")"));
+  }
   check_fits_in_memory(scene.characters, run.configs);  // only the modes that will run
   for (const BenchConfig& config : run.configs)
     run.benches.push_back(std::make_unique<CrowdBench>(scene.characters, config));

@@ -41,8 +41,12 @@ int run_command(int argc, char** argv) {
   // The SIMD target skinning runs on: the CPU's best, else CROWDPROF_SIMD, else
   // --simd (applied as soon as it is parsed, so that --version shows it).
   std::string simd_error;
+  // An error from the environment names it: the user may not know it is set.
+  auto from_environment = [](const char* variable, const std::string& error) {
+    return error.empty() ? error : "the environment's " + std::string(variable) + ": " + error;
+  };
   if (const char* from_env = std::getenv(crowdprof::kSimdEnvironmentVariable))
-    simd_error = crowdprof::force_simd_target(from_env);
+    simd_error = from_environment(crowdprof::kSimdEnvironmentVariable, crowdprof::force_simd_target(from_env));
   bool version = false;
   app.add_flag("-v,--version", version, "Print the version, commit, build type, compiler and SIMD target on one line");
   std::string compiled;  // the targets of this build, which Highway's version decides
@@ -55,7 +59,7 @@ int run_command(int argc, char** argv) {
   // How skinned vertices are stored (output_stores.h): CROWDPROF_STORES, else --stores.
   std::string stores_error;
   if (const char* from_env = std::getenv(crowdprof::kStoresEnvironmentVariable))
-    stores_error = crowdprof::force_output_stores(from_env);
+    stores_error = from_environment(crowdprof::kStoresEnvironmentVariable, crowdprof::force_output_stores(from_env));
   app.add_option_function<std::string>(
          "--stores", [&](const std::string& name) { stores_error = crowdprof::force_output_stores(name); },
          "How CPU skinning writes float vertices: auto (streaming stores when a frame's output is larger than "

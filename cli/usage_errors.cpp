@@ -67,7 +67,10 @@ const CLI::Option* find_option(const CLI::App& command, const std::string& name)
 std::string expected_value(const CLI::Option& option) {
   std::string type = option.get_type_name();
   if (type == "INT" || type == "UINT") return "a whole number";
-  if (type == "FLOAT") return "a number";
+  if (type == "FLOAT" || type == "FLOAT:FLOAT") return "a number";
+  if (type == "MS") return "a number of milliseconds";
+  if (type == "PX") return "a number of pixels";
+  if (type == "SECONDS") return "a number of seconds";
   return "a value";
 }
 

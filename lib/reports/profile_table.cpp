@@ -124,8 +124,10 @@ std::string format_culling_audit(const CullingAudit& c) {
     std::string name(cull_box_name(static_cast<CullBox>(b)));
     std::replace(name.begin(), name.end(), '_', '-');
     out << (b ? " |" : "") << " " << name << (static_cast<CullBox>(b) == CullBox::EveryAction ? " (this run's)" : "")
-        << " " << box.false_culls << " false culls, " << box.missed_culls << " missed, slack "
-        << fixed(box.slack_mean, 2) << "x";
+        << " " << box.false_culls << " false culls, " << box.missed_culls
+        << " missed, slack "
+        // None measured where every exact box is flat (no volume to compare).
+        << (box.slack_mean > 0 ? fixed(box.slack_mean, 2) + "x" : std::string("n/a (flat)"));
   }
   out << "\n";
   return out.str();

@@ -29,7 +29,7 @@ struct SceneReader {
   std::string file;
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw InputError(file, key + ": " + problem);
+    throw InputError(file, key.empty() ? problem : key + ": " + problem);  // empty: the whole file
   }
 
   void only_keys(const json& object, const std::string& key, std::initializer_list<const char*> allowed) const {
@@ -48,7 +48,8 @@ struct SceneReader {
   static std::string type_of(const json& value) {
     if (value.is_number_integer() || value.is_number_unsigned()) return "a whole number";
     if (value.is_number()) return "a number";
-    return std::string("a ") + value.type_name();
+    const std::string name = value.type_name();
+    return (name == "array" || name == "object" ? "an " : "a ") + name;
   }
 
   std::string text(const json& value, const std::string& key) const {

@@ -153,6 +153,13 @@ TEST(CompareCli, PrintsATableAndRefusesBadModes) {
     EXPECT_EQ(r.status, 2) << bad << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+  // Every mode skipped at a sweep's point: why, not only that none can run.
+  r = test::run_cli("compare '" + scene + "' -n 2 --frames 2 --sweep passes=1,2 --backend none");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("crowdprof: none of the modes can run here (the first: --passes 2 draws the crowd several "
+                       "times a frame, which needs a GL backend"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(CompareCli, SweepsPassesWhereTheGlAllows) {

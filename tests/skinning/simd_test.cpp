@@ -196,7 +196,8 @@ TEST(SimdCli, OptionAndEnvironmentForceTheTargetAndReportIt) {
   r = test::run_cli("bench '" + scene + "' -n 4 --frames 2 --warmup 1");
   unsetenv(kSimdEnvironmentVariable);
   EXPECT_EQ(2, r.status);
-  EXPECT_NE(std::string::npos, r.err.find("crowdprof: SIMD target \"PENTIUM\" is not compiled into this build"))
+  EXPECT_NE(std::string::npos,
+            r.err.find("crowdprof: the environment's CROWDPROF_SIMD: SIMD target \"PENTIUM\" is not compiled"))
       << r.err;
   EXPECT_EQ(1, std::count(r.err.begin(), r.err.end(), '\n')) << r.err;
 
