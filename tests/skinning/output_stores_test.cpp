@@ -176,7 +176,10 @@ TEST(OutputStoresCli, OptionAndEnvironmentChooseThePolicy) {
   r = test::run_cli(run);
   unsetenv(kStoresEnvironmentVariable);
   EXPECT_EQ(2, r.status);
-  EXPECT_EQ("crowdprof: unknown store policy \"sometimes\": expected auto, regular or streaming\n", r.err);
+  EXPECT_EQ(
+      "crowdprof: the environment's CROWDPROF_STORES: unknown store policy \"sometimes\": expected auto, regular or "
+      "streaming\n",
+      r.err);
   r = test::run_cli("--stores never" + run);
   EXPECT_EQ(2, r.status);
   EXPECT_EQ("crowdprof: unknown store policy \"never\": expected auto, regular or streaming\n", r.err);
