@@ -73,7 +73,13 @@ AdviceCandidate measured(const AdviseRule& rule, const Result& run, const std::v
   // The median capacity's search and the reports read (the lower of two).
   c.metric.median = summarize(values).median;
   c.frame_ms = summarize(metric_values(run, CapacityMetric{})).median;
-  if (base_values) c.saved = interval_of(paired_savings(*base_values, values));
+  if (base_values) {
+    const std::vector<double> saved = paired_savings(*base_values, values);
+    c.saved = interval_of(saved);
+    // The same median as the frame's (the lower of two): a saving is then
+    // never more than the base's frame_ms, as a midpoint could read.
+    c.saved.median = summarize(saved).median;
+  }
   c.error_measured = run.drawn_error.has_value();
   if (run.drawn_error) {
     c.error_px = run.drawn_error->max_px;

@@ -122,6 +122,10 @@ TEST(AdviseSearch, TakesTheLeverThatSavesMostPerPixelUntilTheBudgetIsMet) {
   EXPECT_EQ(lever(first, "sharing").verdict, "not the best");
   EXPECT_NEAR(lever(first, "sharing").saved.median, 4.0, 0.2);
   EXPECT_NEAR(lever(first, "sharing").error_px, 0.2, 1e-9);
+  // No saving reads more than the base's frame (the same median, the lower of two).
+  for (const AdviceStep& step : a.steps)
+    for (const AdviceCandidate& c : step.candidates)
+      EXPECT_LE(c.saved.median, step.candidates[0].metric.median) << c.lever;
   // Then sharing: 9.8 ms x 0.6 = 5.88, not yet 5.5; a coarser quantum then meets it.
   EXPECT_EQ(lever(a.steps[1], "sharing").verdict, "taken");
   EXPECT_EQ(run.final.switches.at("share"), "on");
