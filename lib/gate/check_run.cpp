@@ -135,20 +135,24 @@ void require_safe_outputs(const CheckRun& r, const std::string& file) {
   files.require_usable(inputs);
 }
 
-// An empty file, or a JSON object with a "crowdprof" section.
+// What --update-baseline may replace when it cannot read it as a baseline:
+// not a regular file (a device, a pipe: written in place), an empty file, or
+// a bench result of crowdprof's (an older format, a cut run). Anything else is
+// a user's file at a mistyped path, or another command's result.
 bool replaceable_baseline(const std::string& path) {
   std::error_code error;
-  if (std::filesystem::is_regular_file(path, error) && std::filesystem::file_size(path, error) == 0) return true;
+  if (!std::filesystem::is_regular_file(path, error)) return true;
   try {
     const nlohmann::json doc = read_json_file(path);
-    return doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object();
-  } catch (const InputError&) {
-    return false;
+    return doc.is_object() && doc.contains("crowdprof") && doc["crowdprof"].is_object() &&
+           document_kind(doc) == "bench";
+  } catch (const InputError& e) {
+    return std::string(e.what()).find("empty file") != std::string::npos;
   }
 }
 
 // A bad baseline is found before a long run, not after it. One being replaced
-// only lends its options, if it can.
+// only lends its options (not with --result), if it can.
 std::optional<Result> read_baseline(const CheckRun& r) {
   if (!r.plan.update_baseline) {
     std::error_code error;
@@ -157,17 +161,17 @@ std::optional<Result> read_baseline(const CheckRun& r) {
     return read_result(r.baseline);
   }
   std::error_code error;
-  if (r.result.empty() && std::filesystem::exists(r.baseline, error)) {
-    try {
-      return read_result(r.baseline);
-    } catch (const InputError& e) {
-      // Only crowdprof's own file is replaced (an older format, a cut run):
-      // anything else is a user's file at a mistyped path.
-      if (!replaceable_baseline(r.baseline))
-        throw UsageError("refusing to replace --baseline " + std::string(e.what()) +
-                         ": --update-baseline replaces only crowdprof's own results (choose another path)");
+  if (is_standard_output(r.baseline) || !std::filesystem::exists(r.baseline, error)) return std::nullopt;
+  try {
+    Result replaced = read_result(r.baseline);
+    if (r.result.empty()) return replaced;
+  } catch (const InputError& e) {
+    if (!replaceable_baseline(r.baseline))
+      throw UsageError("refusing to replace --baseline " + std::string(e.what()) +
+                       ": --update-baseline replaces only a result of crowdprof bench or check (choose another "
+                       "path)");
+    if (std::filesystem::is_regular_file(r.baseline, error))
       std::cerr << "crowdprof: note: replacing a baseline that cannot be read (" << e.what() << ")\n";
-    }
   }
   return std::nullopt;
 }

@@ -181,6 +181,22 @@ TEST(CheckBaseline, UpdatingReplacesOnlyCrowdprofsOwnFile) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("note: replacing a baseline that cannot be read"), std::string::npos) << r.err;
   EXPECT_TRUE(read_json(old).contains("samples"));
+  // From a --result too; another command's result is not a baseline to replace.
+  const std::string diff = (dir / "diff.json").string();
+  ASSERT_EQ(run_cli("diff '" + old + "' '" + old + "' -q --json '" + diff + "'").status, 0);
+  for (const std::string& path : {notes, diff}) {
+    const std::string before = crowdprof::test::read_file(path);
+    r = run_cli("check --result '" + old + "' --baseline '" + path + "' --update-baseline");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("refusing to replace --baseline " + path), std::string::npos) << r.err;
+    EXPECT_EQ(crowdprof::test::read_file(path), before);
+  }
+  // An empty file (or only blanks), or a device, written in place, is taken.
+  std::ofstream(dir / "blank.json") << "  \n";
+  r = run_cli("check --result '" + old + "' --baseline '" + (dir / "blank.json").string() + "' --update-baseline");
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = run_cli("check --result '" + old + "' --baseline /dev/null --update-baseline");
+  EXPECT_EQ(r.status, 0) << r.err;
 }
 
 }  // namespace
