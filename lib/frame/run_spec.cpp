@@ -278,7 +278,8 @@ RunSpec resolve_run_spec(std::span<const SpecLayer> layers) {
       else
         spec.switches.clear();
     }
-    if (layer.has("action") && !layer.has("actions") && spec.actions == "scene") spec.actions = "shared";
+    // An action over actions chosen below (a scene's, a baseline's random) means shared.
+    if (layer.has("action") && !layer.has("actions")) spec.actions = "shared";
     // One action for every copy and a choice per copy, said together: not one silently dropped.
     if (layer.has("action") && layer.has("actions") && layer.values.at("actions") != "shared")
       bad_value(layer, "action", layer.values.at("action"),

@@ -83,6 +83,12 @@ TEST(RunSpec, AnActionOverAScenesActionsMeansShared) {
   RunSpec spec = resolve_run_spec(layers);
   EXPECT_EQ(spec.actions, "shared");
   EXPECT_EQ(spec.action, "wave");
+  // Over a baseline's random actions too: the action is never dropped.
+  layers = {layer(Source::Baseline, {{"actions", "random"}}, "base.json"),
+            layer(Source::CommandLine, {{"action", "wave"}})};
+  spec = resolve_run_spec(layers);
+  EXPECT_EQ(spec.actions, "shared");
+  EXPECT_EQ(spec.action, "wave");
 }
 
 TEST(RunSpec, BadValuesNameTheSettingOrTheFile) {
