@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "base/errors.h"
 
@@ -141,12 +142,22 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
   if (uri.find('\\') != std::string::npos) refuse("holds a backslash; URIs separate folders with /");
   if (uri.find(':') != std::string::npos) refuse("has a scheme; only data: URIs and relative paths are read");
   if (uri[0] == '/') refuse("is an absolute path; refused, assets may only read beside themselves");
-  // Check the decoded form, so that "..%2F" cannot slip past.
+  // Check the decoded form, so that "..%2F" cannot slip past, decoded as
+  // tiny_gltf's urldecode does (the file it will read): '+' is a space, and a
+  // '%' with two characters after it is a byte, a character that is not a hex
+  // digit counting as 0.
+  auto nibble = [](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return 0;
+  };
   std::string decoded;
   for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      decoded += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+    if (uri[i] == '+') {
+      decoded += ' ';
+    } else if (uri[i] == '%' && i + 2 < uri.size()) {
+      decoded += static_cast<char>(nibble(uri[i + 1]) << 4 | nibble(uri[i + 2]));
       i += 2;
     } else {
       decoded += uri[i];
@@ -177,23 +188,44 @@ std::string resolve_inside(const GltfContainer& c, const std::string& uri, const
 }
 
 std::vector<std::string> gltf_external_files(const std::string& path) {
+  // The JSON alone (of a GLB, its first chunk): a character's BIN chunk may be
+  // a gigabyte, and only the URIs are wanted here.
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::string text(20, '\0');
+  in.read(text.data(), 20);
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() == 20 && text.compare(0, 4, "glTF") == 0) {
+    uint32_t length = 0;
+    for (int i = 3; i >= 0; --i) length = length << 8 | static_cast<unsigned char>(text[12 + i]);
+    if (length > kMaxAssetBytes) return {};
+    text.assign(length, '\0');
+    in.read(text.data(), length);
+    text.resize(static_cast<size_t>(in.gcount()));
+  } else {
+    std::error_code ec;
+    if (fs::file_size(path, ec) > kMaxAssetBytes || ec) return {};
+    text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  GltfContainer c;
+  c.path = path;
+  std::error_code ec;
+  c.base_dir = fs::absolute(path, ec).parent_path().string();
+  c.json = nlohmann::json::parse(text, nullptr, false);
   std::vector<std::string> files;
-  try {
-    const GltfContainer c = read_gltf_container(path);
-    for (const char* kind : {"buffers", "images"}) {
-      const auto list = c.json.find(kind);
-      if (list == c.json.end() || !list->is_array()) continue;
-      for (const nlohmann::json& item : *list) {
-        if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
-        const std::string uri = item["uri"].get<std::string>();
-        if (uri.rfind("data:", 0) == 0) continue;
-        try {
-          files.push_back(resolve_inside(c, uri, kind));
-        } catch (const InputError&) {
-        }
+  if (!c.json.is_object()) return files;  // also a parse error; loading it says why
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = c.json.find(kind);
+    if (list == c.json.end() || !list->is_array()) continue;
+    for (const nlohmann::json& item : *list) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) continue;
+      try {
+        files.push_back(resolve_inside(c, uri, kind));
+      } catch (const InputError&) {
       }
     }
-  } catch (const InputError&) {
   }
   return files;
 }

@@ -67,8 +67,11 @@ TEST(SafeOutput, AnOutputThatIsTheInputIsRefusedAndTheInputUnchanged) {
 // A .gltf reads its buffers and textures beside it: they are inputs too.
 TEST(SafeOutput, AnOutputOnAFileTheGltfReadsIsRefused) {
   auto dir = crowdprof::test::scratch_dir("safe_gltf_external");
-  std::ofstream(dir / "X.gltf") << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "X.bin", "byteLength": 4}],
+  // URIs decoded as tiny_gltf decodes them: "p+q.bin" reads "p q.bin".
+  std::ofstream(dir / "X.gltf") << R"({"asset": {"version": "2.0"},
+    "buffers": [{"uri": "X.bin", "byteLength": 4}, {"uri": "p+q.bin", "byteLength": 4}],
     "images": [{"uri": "skin%20tex.png"}, {"uri": "data:image/png;base64,AAAA"}]})";
+  std::ofstream(dir / "p q.bin") << "efgh";
   std::ofstream(dir / "X.bin") << "abcd";
   std::ofstream(dir / "skin tex.png") << "not really a png";
   std::ofstream(dir / "scene.json") << R"({"characters": [{"file": "X.gltf", "count": 2}]})";
@@ -79,6 +82,8 @@ TEST(SafeOutput, AnOutputOnAFileTheGltfReadsIsRefused) {
   expect_refused("check " + g + " -n 2 --frames 2 --baseline " + bin + " --update-baseline", dir / "X.bin",
                  "--baseline " + (dir / "X.bin").string() + " is the file read by");
   expect_refused("bench " + s + " --frames 2 --json " + bin, dir / "X.bin", "is the file read by");
+  expect_refused("bench " + g + " -n 2 --frames 2 --csv '" + (dir / "p q.bin").string() + "'", dir / "p q.bin",
+                 "is the file read by");
 }
 
 TEST(SafeOutput, AnOutputOnACharacterOfTheSceneIsRefused) {
