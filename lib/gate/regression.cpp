@@ -47,12 +47,20 @@ std::string CheckResult::digest_note() const {
   }
   if (order_differs())
     why += (why.empty() ? "" : "; ") + vertex_order_note(baseline_vertex_order, current_vertex_order);
+  if (scheme_differs)
+    why += std::string(why.empty() ? "" : "; ") +
+           "one was recorded before a copy drawn whole under mesh LOD digested as without it (record it again)";
   return "not compared: " + why;
 }
 
 std::string CheckResult::digest_not_compared_why() const {
-  if (arithmetic_differs() && order_differs()) return "other arithmetic and vertex order";
-  return arithmetic_differs() ? "other arithmetic" : "other vertex order";
+  std::vector<std::string> why;
+  if (arithmetic_differs()) why.push_back("other arithmetic");
+  if (order_differs()) why.push_back(why.empty() ? "other vertex order" : "vertex order");
+  if (scheme_differs) why.push_back(why.empty() ? "other digest scheme" : "digest scheme");
+  std::string text;
+  for (size_t i = 0; i < why.size(); ++i) text += (i == 0 ? "" : i + 1 == why.size() ? " and " : ", ") + why[i];
+  return text;
 }
 
 bool CheckResult::regressed() const {
@@ -163,6 +171,8 @@ CheckResult check_results(const Result& baseline, const Result& current, const C
   result.digest_of_kernels = baseline.digest_cpu_vertices || current.digest_cpu_vertices;
   result.baseline_vertex_order = baseline.vertex_order;
   result.current_vertex_order = current.vertex_order;
+  result.scheme_differs = baseline.digest_scheme != current.digest_scheme &&
+                          (baseline.mesh_lod.has_value() || current.mesh_lod.has_value());
   return result;
 }
 

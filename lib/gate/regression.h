@@ -90,15 +90,18 @@ struct CheckResult {
   bool order_differs() const {
     return vertex_orders_differ(baseline_vertex_order, current_vertex_order, digest_of_kernels);
   }
-  // The digests differ and say nothing: one of the two reasons above.
+  // A mesh-LOD run recorded before a copy drawn whole digested as without
+  // mesh LOD (Result::digest_scheme): its digest hashed every copy's level.
+  bool scheme_differs = false;
+  // The digests differ and say nothing: one of the reasons above.
   bool digest_not_comparable() const {
-    return baseline_digest != current_digest && (arithmetic_differs() || order_differs());
+    return baseline_digest != current_digest && (arithmetic_differs() || order_differs() || scheme_differs);
   }
   bool digest_differs() const { return baseline_digest != current_digest && !digest_not_comparable(); }
   // What to say of the digests: "same", "CHANGED" or why they were not compared.
   std::string digest_note() const;
-  // digest_not_comparable's reason in a few words: "other arithmetic", "other
-  // vertex order" or both.
+  // digest_not_comparable's reasons in a few words: "other arithmetic", "other
+  // vertex order", "other digest scheme", joined by "and".
   std::string digest_not_compared_why() const;
   bool regressed() const;
   // The instructions per frame counted when the timings regressed and the

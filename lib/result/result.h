@@ -30,6 +30,9 @@ inline constexpr int kResultFormat = 2;
 // as CSV columns and metrics are. Both are read.
 inline constexpr int kOldestResultFormat = 1;
 
+// Result::digest_scheme this version writes.
+inline constexpr int kDigestScheme = 2;
+
 // Most runs a result may pool (check --runs).
 inline constexpr size_t kMaxRuns = 100;
 
@@ -221,6 +224,10 @@ struct Result {
   // asset/vertex_order.h, since 2026-11-27), or "file" (the file's order:
   // results without the key). Digests of runs that differ here differ by design.
   std::string vertex_order = "joints";
+  // How the digest hashes mesh LOD: 2, a copy drawn whole hashes as without
+  // mesh LOD (since 2026-11-30); 1, every copy's level (results without the
+  // key). Mesh-LOD digests of the two differ by design.
+  int digest_scheme = kDigestScheme;
   std::string stores;  // "streaming" or "regular" (skinning/output_stores.h); "" when not recorded
   // Bytes sent to GL buffers in a frame per copy on screen (bytes_uploaded over
   // copies_visible), the median of the frames with a copy on screen (0 without

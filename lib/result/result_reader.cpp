@@ -416,6 +416,9 @@ std::optional<double> bytes_per_copy(const Reader& in, const std::string& pointe
 void read_extras(const Reader& in, Result& r) {
   r.digest = in.text("/digest");
   r.digest_cpu_vertices = in.flag_or("/digest_cpu_vertices", true);
+  const double scheme = in.number_or("/digest_scheme", 1);
+  if (scheme != 1 && scheme != 2) in.fail("\"digest_scheme\" is " + std::to_string(scheme) + "; it should be 1 or 2");
+  r.digest_scheme = static_cast<int>(scheme);
   r.vertex_order = in.text_or("/vertex_order", "file");
   if (r.vertex_order != "file" && r.vertex_order != "joints")
     in.fail("\"vertex_order\" is \"" + printable(r.vertex_order, 40) + "\"; it should be \"file\" or \"joints\"");

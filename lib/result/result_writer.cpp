@@ -269,6 +269,7 @@ nlohmann::json result_to_json(const Result& r) {
   j["digest"] = r.digest;
   j["digest_cpu_vertices"] = r.digest_cpu_vertices;
   j["vertex_order"] = r.vertex_order;
+  j["digest_scheme"] = r.digest_scheme;
   if (!r.stores.empty()) j["stores"] = r.stores;
   if (r.bytes_uploaded_per_copy_on_screen)
     j["bytes_uploaded_per_copy_on_screen"] = *r.bytes_uploaded_per_copy_on_screen;

@@ -126,8 +126,9 @@ TEST(Check, EitherConditionAloneDoesNotFail) {
   EXPECT_FALSE(faster.regressed);
 }
 
-// Significantly faster reads "faster" on the terminal, in Markdown and JUnit
-// alike; faster beyond the tolerance but not significant is not "within" it.
+// Significantly faster reads "faster" on the terminal and in the verdict
+// table that Markdown, JUnit and the HTML page print; faster beyond the tolerance but not significant is not "within"
+// it.
 TEST(Check, FasterIsSaidAlikeOnEveryPage) {
   CheckOptions options;
   CheckResult result;

@@ -207,3 +207,31 @@ TEST(Diff, TheSameCharacterIsTheSameFileContent) {
   EXPECT_THROW(diff_of(old_renamed), InputError);
   EXPECT_NO_THROW(diff_of(old_a));
 }
+
+// A mesh-LOD result from before a copy drawn whole digested as without mesh LOD
+// (no "digest_scheme") hashed every copy's level: its digest is not compared,
+// and the line says to record it again. Without mesh LOD nothing changed.
+TEST(Diff, AMeshLodDigestOfTheOldSchemeIsNotCompared) {
+  auto dir = test::scratch_dir("diff_digest_scheme");
+  const std::string now = (dir / "now.json").string(), plain = (dir / "plain.json").string();
+  const std::string bench = "bench '" + test::humanoid_glb() + "' -n 4 --frames 2 --warmup 1 -q --backend none ";
+  ASSERT_EQ(run_cli(bench + "--mesh-lod on --json '" + now + "'").status, 0);
+  ASSERT_EQ(run_cli(bench + "--json '" + plain + "'").status, 0);
+  for (const std::string& path : {now, plain}) {
+    nlohmann::json old = test::read_json(path);
+    EXPECT_EQ(old["digest_scheme"], kDigestScheme);
+    old.erase("digest_scheme");
+    old["digest"] = "0123456789abcdef";
+    const std::string before = test::write_json(dir / "before.json", old);
+    auto r = run_cli("diff '" + before + "' '" + path + "'");
+    if (path == now) {
+      EXPECT_EQ(r.status, 0) << r.out << r.err;
+      EXPECT_NE(r.out.find("not compared: one was recorded before a copy drawn whole under mesh LOD"),
+                std::string::npos)
+          << r.out;
+    } else {
+      EXPECT_EQ(r.status, 1) << r.out << r.err;
+      EXPECT_NE(r.out.find("CHANGED"), std::string::npos) << r.out;
+    }
+  }
+}

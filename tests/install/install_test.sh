@@ -20,7 +20,9 @@ for file in bin/crowdprof share/crowdprof/scenes/thesis.json share/crowdprof/sce
   [[ -f $prefix/$file ]] || fail "cmake --install did not install $file"
 done
 # A man page for every command the top-level help lists.
-for command in $("$prefix/bin/crowdprof" --help | sed -n '/^Subcommands:/,/^$/s/^  \([a-z]*\) .*/\1/p'); do
+commands=$("$prefix/bin/crowdprof" --help | sed -n '/^Subcommands:/,/^$/s/^  \([a-z]*\) .*/\1/p')
+grep -qx advise <<<"$commands" || fail "the command list was not read from --help: $commands"
+for command in $commands; do
   [[ -f $prefix/share/man/man1/crowdprof-$command.1 ]] || fail "no man page crowdprof-$command.1"
 done
 # The man page of a command holds that command's options and its example.
