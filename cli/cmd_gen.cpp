@@ -1,3 +1,4 @@
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -20,7 +21,8 @@ struct GenArgs {
 };
 
 int gen(const GenArgs& args) {
-  const std::string ext = std::filesystem::path(args.output).extension().string();
+  std::string ext = std::filesystem::path(args.output).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (args.gltf && ext == ".glb")
     throw crowdprof::UsageError("--gltf writes JSON glTF, but " + args.output + " ends in .glb");
   crowdprof::GltfWriteOptions options;
@@ -33,6 +35,9 @@ int gen(const GenArgs& args) {
   if (crowdprof::is_standard_output(args.output)) return crowdprof::kExitOk;  // stdout holds the file alone
   std::error_code error;                                                      // a pipe has no size
   uintmax_t bytes = std::filesystem::file_size(args.output, error);
+  if (static_cast<long long>(character.file_lods.size()) < humanoid.lod_levels)
+    std::cerr << "crowdprof: note: --lods " << humanoid.lod_levels << " asked, " << character.file_lods.size()
+              << " written: a level keeps at least 500 vertices and fewer than the level above\n";
   std::cout << "wrote " << args.output << ": " << character.skeleton.joint_count() << " joints, "
             << character.mesh.vertex_count() << " vertices, " << character.actions.size() << " actions"
             << (character.file_lods.empty() ? std::string()
@@ -70,7 +75,10 @@ void add_gen_command(CLI::App& app, std::function<int()>& run) {
       ->type_name("default|locomotion")
       ->capture_default_str();
   cmd->add_flag("--draco", args->draco, "Compress the mesh with Draco (KHR_draco_mesh_compression)");
-  cmd->add_flag("--gltf", args->gltf, "Write JSON glTF (buffer embedded as a data: URI) whatever the extension");
+  cmd->add_flag(
+      "--gltf", args->gltf,
+      "Write JSON glTF (buffer embedded as a data: URI) whatever the extension but .glb (refused); an -o ending "
+      "in .gltf is JSON glTF without it");
   group_options(*cmd, "Humanoid", {"--bones", "--vertices", "--seed", "--lods", "--actions"});
   group_options(*cmd, "Output", {"--draco", "--gltf"});
   cmd->callback([&run, args] { run = [args] { return gen(*args); }; });

@@ -66,7 +66,8 @@ const CLI::Option* find_option(const CLI::App& command, const std::string& name)
 
 std::string expected_value(const CLI::Option& option) {
   std::string type = option.get_type_name();
-  if (type == "INT" || type == "UINT") return "a whole number";
+  if (type == "INT") return "a whole number";
+  if (type == "UINT" || type == "N") return "a whole number, 0 or more";
   if (type == "FLOAT" || type == "FLOAT:FLOAT") return "a number";
   if (type == "MS") return "a number of milliseconds";
   if (type == "PX") return "a number of pixels";
@@ -182,10 +183,18 @@ std::string describe_parse_error(CLI::App& app, const CLI::ParseError& error) {
   } else if (dynamic_cast<const CLI::RequiredError*>(&error)) {
     line = missing(command, message);
   } else if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
-    // "--frames: 1 required INT missing": a value was not given.
+    // "--frames: 1 required INT missing": a value was not given; "--frames: At
+    // Most 1 required but received 2": the option was given twice.
     std::string name = message.substr(0, message.find(':'));
     const CLI::Option* option = find_option(command, name);
-    line = option ? spelled(*option) + " needs a value: " + expected_value(*option) : message;
+    if (!option)
+      line = message;
+    else if (message.find("received") != std::string::npos)
+      line = spelled(*option) + " was given more than once; it takes one value";
+    else
+      line = spelled(*option) + " needs a value" +
+             (option->get_type_name().empty() ? std::string()
+                                              : " (" + spelled(*option) + " " + option->get_type_name() + ")");
   } else {
     line = message;
   }

@@ -1,6 +1,7 @@
 #include "base/modes.h"
 
 #include <array>
+#include <sstream>
 
 namespace crowdprof {
 
@@ -127,9 +128,17 @@ SettingText conflicts(const ModeSwitches& s) {
            "instanced, shared, budget, compute)";
   if (s.share_quantum_s > 0 && !s.share_poses)
     return "{share_quantum} snaps times so that copies share poses: it needs {share} on";
-  if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s)
-    return "{blend_in} is at most half of {transitions}: a copy's fades must not overlap (changes come after at "
-           "least half the mean)";
+  if (s.transitions_s > 0 && s.blend_in_s > 0.5 * s.transitions_s) {
+    auto seconds = [](double value) {
+      std::ostringstream text;
+      text << value << " s";
+      return text.str();
+    };
+    return "{blend_in} " + seconds(s.blend_in_s) + " (0.25 s unless given) is more than half of {transitions} " +
+           seconds(s.transitions_s) +
+           ": a copy's fades must not overlap (changes come after at least half the mean); give {blend_in} " +
+           seconds(0.5 * s.transitions_s) + " or less";
+  }
   if (s.transitions_s > 0 && s.frustum == FrustumTest::Gpu)
     return "{frustum} gpu times each copy in its cull pass from a clock fixed at load, which knows no changes of "
            "action: {transitions} need {frustum} cpu (skinning baked fades there)";

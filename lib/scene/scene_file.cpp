@@ -539,6 +539,17 @@ CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& ch
     if (std::string why = resolve_layers(character, bindings, *c.layers, &resolved); !why.empty())
       throw InputError(scene.path, key + ".layers: " + why);
   }
+  // The scene's own anim_layer switch too: its fault, not the command line's.
+  if (auto it = scene.switches.find("anim_layer"); it != scene.switches.end() && !group.layers) {
+    ModeSwitches parsed;
+    if (find_switch("anim_layer")->set(parsed, it->second).empty() && !parsed.anim_layers.empty()) {
+      std::vector<ActionBindings> bindings;
+      for (const Action& action : character.actions) bindings.push_back(bind_action(character.skeleton, action));
+      CharacterLayers resolved;
+      if (std::string why = resolve_layers(character, bindings, parsed.anim_layers, &resolved); !why.empty())
+        throw InputError(scene.path, "switches.anim_layer: " + why);
+    }
+  }
   return group;
 }
 

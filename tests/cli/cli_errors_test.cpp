@@ -64,6 +64,14 @@ TEST(CliErrors, ANumberThatIsNotOneIsNamedInWords) {
   expect_usage("bench " + character() + " -n abc",
                {"bench: -n/--characters 'abc': expected a whole number", "see crowdprof bench --help"});
   expect_usage("bench " + character() + " --fps fast", {"--fps 'fast': expected a number"});
+  expect_usage("capacity " + character() + " --budget abc", {"--budget 'abc': expected a number of milliseconds"});
+  expect_usage("gen -o x.glb --seed -1", {"gen: --seed '-1': expected a whole number, 0 or more"});
+}
+
+TEST(CliErrors, AValueLeftOutOrGivenTwiceIsSaidSo) {
+  expect_usage("bench " + character() + " --frames", {"bench: --frames needs a value (--frames N)"});
+  expect_usage("bench " + character() + " --frames 2 --frames 3",
+               {"bench: --frames was given more than once; it takes one value"});
 }
 
 TEST(CliErrors, AMissingFileSaysWhatToGive) {

@@ -379,4 +379,11 @@ TEST(SceneFile, EachGroupLaysItsOwnLayers) {
     EXPECT_NE(r.err.find(bad.string() + ": characters[0].layers"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
   }
+  // So does the scene's own anim_layer switch: the file's fault, not --anim-layer's.
+  auto bad = dir / "bad_switch.json";
+  std::ofstream(bad) << R"({"characters": [{"generate": {"actions": "locomotion"}, "count": 2}],
+    "switches": {"anim_layer": "action=fly"}})";
+  r = run_cli("bench '" + bad.string() + "' --frames 1 --warmup 0 -q");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find(bad.string() + ": switches.anim_layer: no action 'fly'"), std::string::npos) << r.err;
 }
