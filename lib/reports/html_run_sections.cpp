@@ -254,7 +254,7 @@ std::string counters_section(const std::vector<ReportRun>& runs) {
     if (present) (above_zero ? counted : zero).push_back(i);
   }
   if (counted.empty() && zero.empty()) return {};
-  std::string out = "<section id=\"counters\"><h2>Counters (the last frame)</h2>\n";
+  std::string out = "<section id=\"counters\"><h2>Counters (per frame, the median over frames)</h2>\n";
   if (!counted.empty()) out += counter_rows(runs, counted);
   if (!zero.empty())
     out += "<details class=\"zero-counters\"><summary>" + std::to_string(zero.size()) +

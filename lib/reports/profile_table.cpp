@@ -184,7 +184,8 @@ std::string format_profile(const Result& report) {
     out << "; " << fixed(100.0 * split->coverage, 0) << "% of Animations'" << (split->threads > 1 ? " thread time" : "")
         << ")\n";
   }
-  const Counters& k = frame.counters;
+  // The counters the JSON and the page record: each the median over frames.
+  const Counters& k = report.counters.values;
   if (run.crowd.size() > 1)
     out << run.characters << " characters of " << run.crowd.size() << " kinds (up to " << run.joints << " joints, "
         << run.vertices << " vertices) | mode ";

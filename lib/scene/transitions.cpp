@@ -45,7 +45,9 @@ TransitionSchedule::TransitionSchedule(std::span<const Character* const> charact
 
 void TransitionSchedule::schedule_first_changes() {
   // A schedule already running when the run starts: the first change comes
-  // a random part of an interval in, so fades are as common from frame 0 on.
+  // a random part of an interval in, so changes are as common from frame 0
+  // on. No copy is mid-fade at 0: fades reach their share after blend_in
+  // (docs/modes.md says to warm up that long).
   for (size_t i = 0; i < copies_.size(); ++i)
     next_[i] = timing_[i].mean_s > 0 ? draw(crowd_->schedule_stream[i], 0, 3) * interval(i, 1)
                                      : std::numeric_limits<double>::infinity();
