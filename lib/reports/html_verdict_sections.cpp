@@ -33,7 +33,7 @@ std::string signed_percent(double fraction, int decimals) {
 // Why a calibrated verdict and the raw frame times beside it disagree: the
 // calibration removes the machine's speed, the raw times keep it. Empty when
 // no metric is calibrated or the page does not hold both runs.
-std::string calibration_note(const CheckResult& r, const std::vector<ReportRun>& runs) {
+std::string calibration_note(const CheckResult& r, const std::vector<ReportRun>& runs, bool diff) {
   if (runs.size() != 2 ||
       std::none_of(r.metrics.begin(), r.metrics.end(), [](const MetricCheck& m) { return m.value_unit == "probes"; }))
     return {};
@@ -44,8 +44,8 @@ std::string calibration_note(const CheckResult& r, const std::vector<ReportRun>&
          "at the moment of a run (other load, its clock, another machine) moves frame and probe alike, so the ratio "
          "keeps the code's change and drops the machine's. The raw frame times on this page are not calibrated: "
          "median " +
-         duration_text(base) + " in the baseline, " + duration_text(current) + " now (" +
-         signed_percent(base > 0 ? current / base - 1 : NAN, 1) +
+         duration_text(base) + (diff ? " in A, " : " in the baseline, ") + duration_text(current) +
+         (diff ? " in B (" : " now (") + signed_percent(base > 0 ? current / base - 1 : NAN, 1) +
          "); what of that the calibrated change does not show is the machine's drift between the two runs, not "
          "the code.</p>\n";
 }
@@ -138,11 +138,22 @@ std::string check_section(const CheckSection& check, const std::vector<ReportRun
   std::string out = "<section id=\"check\"><h2>" +
                     std::string(check.command == "diff" ? "Diff against " : "Check against ") +
                     html_text(check.baseline) + ": " + verdict + "</h2>\n";
-  out +=
-      "<table class=\"verdict\"><tr><th class=\"name\">metric</th><th>baseline median</th><th>current "
-      "median</th><th>change</th>"
-      "<th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
+  // A diff has two results, A and B, and its own verdict words (gate/diff.h).
+  const bool diff = check.command == "diff";
+  const std::string base = diff ? "A" : "the baseline", here = diff ? "in B" : "here";
+  auto verdict_word = [&](const std::string& word) {
+    if (!diff) return word;
+    return word == "ok" ? std::string("same") : word == "REGRESSION" ? std::string("SLOWER") : word;
+  };
+  out += std::string("<table class=\"verdict\"><tr><th class=\"name\">metric</th><th>") +
+         (diff ? "A median" : "baseline median") + "</th><th>" + (diff ? "B median" : "current median") +
+         "</th><th>change</th><th>p (Mann-Whitney U, Holm)</th><th>floor</th><th class=\"name\">verdict</th></tr>\n";
   VerdictChart rows = verdict_chart(r, check.options);
+  if (diff) {
+    rows.title = "diff: change of each metric's median, A to B";
+    rows.against = "A";
+    for (VerdictRow& row : rows.rows) row.verdict = verdict_word(row.verdict);
+  }
   for (size_t m = 0; m < r.metrics.size(); ++m) {
     const MetricCheck& metric = r.metrics[m];
     // Milliseconds, or "probes" for the calibrated frame (a ratio).
@@ -160,7 +171,7 @@ std::string check_section(const CheckSection& check, const std::vector<ReportRun
          "% and the floor (a slowdown must pass both; the green band is the larger), "
          "significance level " +
          report_number(check.options.alpha, 3) + " after Holm's correction over the metrics.</p>\n" +
-         calibration_note(r, runs);
+         calibration_note(r, runs, diff);
   SvgDocument svg;
   svg.add(rows);
   charts += "v";
@@ -174,14 +185,15 @@ std::string check_section(const CheckSection& check, const std::vector<ReportRun
   out += "<p>";
   const bool digests_equal = r.baseline_digest == r.current_digest;
   if (r.counters.empty() && r.counters_missing.empty() && digests_equal)
-    out += "Counters and digest match the baseline.";
+    out += "Counters and digest match " + base + ".";
   else if (r.counters.empty() && r.counters_missing.empty() && !r.digest_differs())
-    out += "Counters match the baseline; digest " + html_text(r.digest_note()) + ".";
+    out += "Counters match " + base + "; digest " + html_text(r.digest_note()) + ".";
   for (const CounterDifference& d : r.counters)
     out += "<span class=\"regression\">Counter " + html_text(d.name) + " changed: " + std::to_string(d.baseline) +
            " &#8594; " + std::to_string(d.current) + " per frame.</span><br>";
   for (const std::string& name : r.counters_missing)
-    out += "<span class=\"regression\">Counter " + html_text(name) + " is in the baseline, missing here.</span><br>";
+    out += "<span class=\"regression\">Counter " + html_text(name) + " is in " + base + ", missing " + here +
+           ".</span><br>";
   if (r.digest_differs())
     out += "<span class=\"regression\">Digest changed: " + html_text(r.baseline_digest) + " &#8594; " +
            html_text(r.current_digest) + "</span>";

@@ -442,8 +442,8 @@ void SvgDocument::add(const VerdictChart& chart) {
            signed_label(v) + "%</text>\n";
   }
   out += "<text x=\"" + num(at(x.lo) + (at(x.hi) - at(x.lo)) / 2) + "\" y=\"" + num(plot_bottom + 40) +
-         "\" text-anchor=\"middle\">change of the median against the baseline (%; the green band is the "
-         "tolerance)</text>\n";
+         "\" text-anchor=\"middle\">change of the median against " + chart.against +
+         " (%; the green band is the tolerance)</text>\n";
   for (size_t r = 0; r < chart.rows.size(); ++r) {
     const VerdictRow& row = chart.rows[r];
     double cy = plot_top + row_h * (static_cast<double>(r) + 0.5);

@@ -85,6 +85,7 @@ struct VerdictChart {
   std::string title;
   std::vector<VerdictRow> rows;
   std::string id = {};
+  std::string against = "the baseline";  // the axis's words: "A" for a diff
 };
 
 // Charts stacked top to bottom in one <svg>. Every chart is a

@@ -107,6 +107,8 @@ TEST(Diff, SideBySideWithTheGateRule) {
   EXPECT_NE(page.find(", diff</title>"), std::string::npos) << page.substr(0, 600);
   EXPECT_EQ(page.find(", check</title>"), std::string::npos);
   EXPECT_NE(page.find("<h2>Diff against "), std::string::npos);
+  EXPECT_NE(page.find("<th>A median</th><th>B median</th>"), std::string::npos);
+  EXPECT_EQ(page.find("baseline"), std::string::npos) << "a diff has no baseline";
   EXPECT_NE(page.find("a.json"), std::string::npos);
   EXPECT_NE(page.find("b.json"), std::string::npos);
   EXPECT_EQ(run_cli("diff '" + a + "' '" + b + "' --html '" + b + "'").status, 2);
