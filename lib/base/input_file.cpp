@@ -1,8 +1,10 @@
 #include "base/input_file.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <fstream>
+#include <vector>
 
 #include "base/errors.h"
 
@@ -13,13 +15,29 @@ namespace {
 // nlohmann's DOM builder with a depth limit. The callback parser did the same
 // through a std::function called on every event and kept stacks of its own; a
 // fuzzer spent a third of each glTF input in it.
+// With `unique_keys`, a key given twice in one object is refused: nlohmann
+// keeps the last silently, so a typo'd copy of a key would change a benchmark.
 class DepthLimitedDom : public nlohmann::detail::json_sax_dom_parser<nlohmann::json> {
  public:
-  DepthLimitedDom(nlohmann::json& out, const std::string& path) : json_sax_dom_parser(out), path_(path) {}
-  bool start_object(std::size_t size) { return enter() && json_sax_dom_parser::start_object(size); }
+  DepthLimitedDom(nlohmann::json& out, const std::string& path, bool unique_keys)
+      : json_sax_dom_parser(out), path_(path), unique_keys_(unique_keys) {}
+  bool start_object(std::size_t size) {
+    if (unique_keys_) keys_.emplace_back();
+    return enter() && json_sax_dom_parser::start_object(size);
+  }
   bool start_array(std::size_t size) { return enter() && json_sax_dom_parser::start_array(size); }
+  bool key(string_t& name) {
+    if (unique_keys_ && !keys_.empty()) {
+      if (std::find(keys_.back().begin(), keys_.back().end(), name) != keys_.back().end())
+        throw InputError(path_, "the key \"" + printable(name, 60) +
+                                    "\" is given twice in one object (JSON would keep the last without a word)");
+      keys_.back().push_back(name);
+    }
+    return json_sax_dom_parser::key(name);
+  }
   bool end_object() {
     --depth_;
+    if (unique_keys_ && !keys_.empty()) keys_.pop_back();
     return json_sax_dom_parser::end_object();
   }
   bool end_array() {
@@ -35,14 +53,16 @@ class DepthLimitedDom : public nlohmann::detail::json_sax_dom_parser<nlohmann::j
   }
   const std::string& path_;
   int depth_ = 0;
+  bool unique_keys_ = false;
+  std::vector<std::vector<std::string>> keys_;  // of each open object, with unique_keys_
 };
 
 }  // namespace
 
-nlohmann::json parse_json_input(const std::string& path, std::string_view text) {
+nlohmann::json parse_json_input(const std::string& path, std::string_view text, bool unique_keys) {
   try {
     nlohmann::json out;
-    DepthLimitedDom dom(out, path);
+    DepthLimitedDom dom(out, path, unique_keys);
     nlohmann::json::sax_parse(text.begin(), text.end(), &dom);
     return out;
   } catch (const nlohmann::json::parse_error& e) {

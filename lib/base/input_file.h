@@ -26,7 +26,9 @@ inline constexpr size_t kFormatProbeBytes = 4096;
 // deeper than kMaxJsonDepth, and "a number too large for a double: ..." for a
 // literal such as 1e400 (nlohmann reports that as out_of_range, not as a parse
 // error, and it used to escape as "the run failed").
-nlohmann::json parse_json_input(const std::string& path, std::string_view text);
+// With `unique_keys` (scene files, which people write by hand), a key given
+// twice in one object is an InputError naming it.
+nlohmann::json parse_json_input(const std::string& path, std::string_view text, bool unique_keys = false);
 
 // The first min(kFormatProbeBytes, size) bytes of the file, or "" when it cannot
 // be opened (the caller's full read reports that).

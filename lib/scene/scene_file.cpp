@@ -234,7 +234,7 @@ SceneFile load_scene_file(const std::string& path) {
   scene.hash = fnv1a64_hex(bytes);
   // The parser every input file shares: a number past a double (1e400) or
   // absurd nesting is refused like broken JSON, naming the file.
-  json doc = parse_json_input(path, bytes);
+  json doc = parse_json_input(path, bytes, /*unique_keys=*/true);
   if (doc.is_object() && doc.contains("crowdprof"))
     throw InputError(path, "this is a crowdprof result, not a scene file: use report, or check --result");
   r.only_keys(doc, "", {"characters", "seed", "layout", "camera", "resolution", "mode", "switches", "threads"});

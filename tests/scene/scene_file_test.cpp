@@ -203,6 +203,8 @@ TEST(SceneFile, MalformedScenesNameTheFileAndTheKey) {
       {"{\"characters\": [" + ok_character + "]", "truncated JSON"},
       {"{\"characters\": [" + ok_character + "], \"seed\": 1e400}", "a number too large for a double"},
       {"{\"characters\": [" + ok_character + "]]}", "broken JSON"},
+      {"{\"characters\": [{\"file\": \"" + glb + "\", \"count\": 2, \"count\": 3}]}",
+       "the key \"count\" is given twice in one object"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     auto path = dir / ("bad" + std::to_string(i) + ".json");
