@@ -203,7 +203,11 @@ std::string format_asset(const GltfAsset& asset, int only_skin) {
     out << "  height:      " << height << " m as it stands (rest pose in world space, +Y up)\n";
     out << "  mesh LOD:    ";
     const nlohmann::json lods = describe_mesh_lods(c);
-    if (lods.empty()) out << "none (the simplifier found nothing to remove within its error limits)";
+    if (lods.empty())
+      out << (c.mesh.vertex_count() >= 3 * c.mesh.triangle_count()
+                  ? "none (no vertex is shared between triangles, so the simplifier can merge none: weld the mesh's "
+                    "vertices in its exporter)"
+                  : "none (the simplifier found nothing to remove within its error limits)");
     if (!c.file_lods.empty())
       out << "the file's own (MSFT_lod, " << c.file_lods.size() << " level" << (c.file_lods.size() > 1 ? "s" : "")
           << " used; error: surface distance)\n               ";

@@ -208,7 +208,11 @@ DrawnErrorRecord CrowdBench::measure_drawn_error(int screen_height_px, size_t ma
 
 MeshLodRecord CrowdBench::mesh_lod_fidelity(int screen_height_px) const {
   MeshLodRecord record;
-  record.levels.resize(kMeshLevels);
+  // The levels some character has: a mesh the simplifier could not reduce
+  // (the Fox: no vertex shared between triangles) records its full mesh alone.
+  size_t used = 1;
+  for (const PreparedCharacter& p : prepared_) used = std::max(used, std::min<size_t>(p.levels(), kMeshLevels));
+  record.levels.resize(mesh_level_.empty() ? kMeshLevels : used);
   std::vector<MeshLevelRecord>& levels = record.levels;
   if (mesh_level_.empty()) return record;
   // Each level's error, the worst character's, whether or not a copy is at it.

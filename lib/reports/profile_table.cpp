@@ -280,7 +280,7 @@ std::string format_profile(const Result& report) {
     const MeshLodRecord& m = *report.mesh_lod;
     out << "mesh LOD: copies on screen by level (0: full mesh)";
     for (size_t l = 0; l < m.levels.size(); ++l) out << (l ? " / " : " ") << m.levels[l].copies;
-    out << " | error by level";
+    out << (m.levels.size() > 1 ? " | error by level" : " | no coarser level: info says why");
     for (size_t l = 1; l < m.levels.size(); ++l) {
       const MeshLevelRecord& level = m.levels[l];
       out << (l > 1 ? " / " : " ") << fixed(level.error * 1000.0, 2) << " mm ("
