@@ -29,7 +29,9 @@ std::string format_advice(const AdviceRecord& a, const Result* start) {
            start->environment.simd + "\n";
   std::string levers;
   for (const std::string& lever : a.levers) levers += (levers.empty() ? "" : ", ") + lever;
-  out += "levers tried: " + levers + "\n";
+  // Considered, not all measured: one with nothing to change (threads already
+  // at every core, packed vertices already packed) has no row.
+  out += "levers considered: " + levers + " (one with nothing to change here has no row)\n";
   for (const std::string& line : a.left_out) out += "left out: " + line + "\n";
   if (!a.start.error_measured && a.outcome != "interrupted")
     out +=

@@ -18,6 +18,13 @@ namespace crowdprof {
 
 namespace {
 
+// Milliseconds in a profile cell: two decimals, more under a millisecond so
+// that a fast run's categories do not all read 0.00.
+std::string ms_cell(double ms) {
+  if (ms == 0 || !std::isfinite(ms) || std::abs(ms) >= 1) return report_number(ms, 2);
+  return report_number(ms, std::abs(ms) >= 0.1 ? 3 : 4);
+}
+
 // The switches a result records, in the table's order as options spell them
 // ("--culling on, --index-order optimized"): words a narrow page can wrap.
 std::string switches_line(const ModeSwitches& switches) {
@@ -89,7 +96,7 @@ std::pair<std::string, std::string> gpu_time_cells(const ReportRun& run) {
   double median = metric_median(run.result, "gpu_ms");
   if (timed && described.gpu_timer_resolution_ms > 0 && median < described.gpu_timer_resolution_ms)
     return {"-", "below the timer's resolution"};
-  if (timed) return {report_number(median, 2), "timer queries"};
+  if (timed) return {ms_cell(median), "timer queries"};
   return {"n/a", html_text(described.gpu_timing_missing.empty() ? "not recorded" : described.gpu_timing_missing)};
 }
 
@@ -103,7 +110,7 @@ std::string profile_by_category(const std::vector<ReportRun>& runs, const std::v
   for (const ReportRun& run : runs) out += "<th>" + html_text(run.label) + " ms</th><th>%</th>";
   out += "</tr>\n<tr><td class=\"name\"><b>Frametime</b></td>";
   for (const FrameTimes& t : medians)
-    out += "<td><b>" + report_number(t.total_ms(), 2) + "</b></td><td>" +
+    out += "<td><b>" + ms_cell(t.total_ms()) + "</b></td><td>" +
            (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + " fps</td>";
   out += "</tr>\n";
   for (size_t c = 0; c < kCategoryCount; ++c) {
@@ -111,7 +118,7 @@ std::string profile_by_category(const std::vector<ReportRun>& runs, const std::v
     out += "<tr><td class=\"name\">" + swatch(category) + html_text(std::string(category_name(category))) + "</td>";
     for (const FrameTimes& t : medians) {
       double share = t.total_ms() > 0 ? t.ms[c] / t.total_ms() : 0.0;
-      out += "<td>" + report_number(t.ms[c], 2) + "</td><td class=\"name\">" + report_number(share * 100, 0) +
+      out += "<td>" + ms_cell(t.ms[c]) + "</td><td class=\"name\">" + report_number(share * 100, 0) +
              "% <span class=\"bar\" style=\"width:" + report_number(share * 60, 1) +
              "px;background:" + category_colour(category) + "\"></span></td>";
     }
@@ -139,9 +146,9 @@ std::string profile_by_run(const std::vector<ReportRun>& runs, const std::vector
   out += "<th>GPU time</th></tr>\n";
   for (size_t r = 0; r < runs.size(); ++r) {
     const FrameTimes& t = medians[r];
-    out += "<tr><td class=\"name\">" + html_text(runs[r].label) + "</td><td><b>" + report_number(t.total_ms(), 2) +
+    out += "<tr><td class=\"name\">" + html_text(runs[r].label) + "</td><td><b>" + ms_cell(t.total_ms()) +
            "</b></td><td>" + (t.total_ms() > 0 ? report_number(1000.0 / t.total_ms(), 1) : "-") + "</td>";
-    for (size_t c : shown) out += "<td>" + report_number(t.ms[c], 2) + "</td>";
+    for (size_t c : shown) out += "<td>" + ms_cell(t.ms[c]) + "</td>";
     auto [value, how] = gpu_time_cells(runs[r]);
     out += "<td title=\"" + how + "\">" + value + "</td></tr>\n";
   }
