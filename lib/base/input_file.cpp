@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <fstream>
+#include <unordered_set>
 #include <vector>
 
 #include "base/errors.h"
@@ -28,10 +29,9 @@ class DepthLimitedDom : public nlohmann::detail::json_sax_dom_parser<nlohmann::j
   bool start_array(std::size_t size) { return enter() && json_sax_dom_parser::start_array(size); }
   bool key(string_t& name) {
     if (unique_keys_ && !keys_.empty()) {
-      if (std::find(keys_.back().begin(), keys_.back().end(), name) != keys_.back().end())
+      if (!keys_.back().insert(name).second)
         throw InputError(path_, "the key \"" + printable(name, 60) +
                                     "\" is given twice in one object (JSON would keep the last without a word)");
-      keys_.back().push_back(name);
     }
     return json_sax_dom_parser::key(name);
   }
@@ -54,7 +54,7 @@ class DepthLimitedDom : public nlohmann::detail::json_sax_dom_parser<nlohmann::j
   const std::string& path_;
   int depth_ = 0;
   bool unique_keys_ = false;
-  std::vector<std::vector<std::string>> keys_;  // of each open object, with unique_keys_
+  std::vector<std::unordered_set<std::string>> keys_;  // of each open object, with unique_keys_
 };
 
 }  // namespace

@@ -134,8 +134,8 @@ SettingText conflicts(const ModeSwitches& s) {
       text << value << " s";
       return text.str();
     };
-    return "{blend_in} " + seconds(s.blend_in_s) + " (0.25 s unless given) is more than half of {transitions} " +
-           seconds(s.transitions_s) +
+    return "{blend_in} " + seconds(s.blend_in_s) + (s.blend_in_s == 0.25 ? " (the default)" : "") +
+           " is more than half of {transitions} " + seconds(s.transitions_s) +
            ": a copy's fades must not overlap (changes come after at least half the mean); give {blend_in} " +
            seconds(0.5 * s.transitions_s) + " or less";
   }

@@ -135,8 +135,12 @@ BenchConfig make_bench_config(const RunSpec& spec, const BenchScene& loaded) {
     config.scene_hash = scene.hash;
     config.crowd.layout = scene.layout;
     config.lens = scene.lens;
+    // The scene's anim_layer switch is its fault only where the run plays it
+    // (the command line's, compare's or a baseline's value replaces it).
+    const auto ours = scene.switches.find("anim_layer"), run = spec.switches.find("anim_layer");
+    const bool scene_layers = ours != scene.switches.end() && run != spec.switches.end() && ours->second == run->second;
     for (size_t k = 0; k < loaded.characters.size(); ++k) {
-      CrowdGroup group = scene_group(scene, k, *loaded.characters[k]);
+      CrowdGroup group = scene_group(scene, k, *loaded.characters[k], scene_layers);
       if (!config.actions_from_scene) {
         group.actions = config.crowd.actions;
         group.weights.clear();

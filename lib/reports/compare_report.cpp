@@ -54,7 +54,7 @@ std::vector<ModeMedians> mode_medians(const std::vector<Result>& runs) {
     auto [first, inserted] = first_at_size.emplace(std::pair(m.characters, m.passes), m.frame_ms);
     m.speedup = m.frame_ms > 0 ? first->second / m.frame_ms : 0.0;
     m.digest = run.digest;
-    if (!run.frame_records.empty()) m.counters = run.frame_records[median_frame(run.frame_records)].counters;
+    m.counters = run.counters.values;  // the medians over frames, as the run's JSON
     out.push_back(m);
   }
   return out;
@@ -125,8 +125,7 @@ std::string format_comparison(const Comparison& comparison) {
       if (!gpu[r].empty() && resolution > 0 && median < resolution) (cell = "<") += fixed(resolution, 4);
       row.push_back(cell);
     }
-    uint64_t culled =
-        run.frame_records.empty() ? 0 : run.frame_records[median_frame(run.frame_records)].counters.copies_culled;
+    uint64_t culled = run.counters.values.copies_culled;
     row.push_back(fixed(m.speedup, 2));
     row.push_back(std::to_string(culled));
     row.push_back(run.digest);

@@ -1,5 +1,7 @@
 #include "reports/cost_error.h"
 
+#include <algorithm>
+
 #include "base/number_text.h"
 #include "reports/text_table.h"
 
@@ -9,20 +11,36 @@ std::vector<CostErrorPoint> cost_error_points(const std::vector<CostErrorInput>&
   std::vector<CostErrorPoint> points;
   for (const CostErrorInput& in : inputs)
     if (in.error)
-      points.push_back(CostErrorPoint{
-          in.mode, {}, in.frame_ms, in.animations_ms, 0, *in.error, in.error->max_px > kFrontMaxErrorPx, false});
+      points.push_back(CostErrorPoint{in.mode,
+                                      {},
+                                      in.frame_ms,
+                                      in.animations_ms,
+                                      0,
+                                      *in.error,
+                                      in.error->max_px > kFrontMaxErrorPx,
+                                      false,
+                                      in.copies});
   if (points.size() < 2) return {};
+  // Times compare only within one crowd (capacity's modes each ran its own).
   for (CostErrorPoint& p : points) {
     const size_t plus = p.mode.find('+');
-    const CostErrorPoint* base = &points.front();
+    const CostErrorPoint* base = nullptr;
     for (const CostErrorPoint& q : points)
-      if (plus != std::string::npos && q.mode == p.mode.substr(0, plus)) base = &q;
+      if (q.copies == p.copies && !base) base = &q;  // the first of its crowd
+    for (const CostErrorPoint& q : points)
+      if (plus != std::string::npos && q.mode == p.mode.substr(0, plus) && q.copies == p.copies) base = &q;
+    if (base == &p && std::count_if(points.begin(), points.end(),
+                                    [&](const CostErrorPoint& q) { return q.copies == p.copies; }) == 1) {
+      p.base.clear();  // alone in its crowd: nothing to save against
+      continue;
+    }
     p.base = base->mode;
     p.saved_ms = base->frame_ms - p.frame_ms;
   }
   for (CostErrorPoint& p : points) {
     p.front = !p.past_threshold;
     for (const CostErrorPoint& q : points) {
+      if (q.copies != p.copies) continue;
       const bool as_good = q.frame_ms <= p.frame_ms && q.error.max_px <= p.error.max_px;
       const bool better = q.frame_ms < p.frame_ms || q.error.max_px < p.error.max_px;
       if (as_good && better) p.front = false;
@@ -39,7 +57,11 @@ std::string format_cost_error(const std::vector<CostErrorPoint>& points) {
   for (const CostErrorPoint& p : points) {
     const DrawnErrorRecord& e = p.error;
     const std::string saved = fixed(p.saved_ms, 3) + (p.saved_ms < 0 ? " (slower)" : "");
-    rows.push_back({p.mode, fixed(p.frame_ms, 3), p.mode == p.base ? "-" : saved, p.mode == p.base ? "-" : p.base,
+    const bool none = p.mode == p.base || p.base.empty();
+    rows.push_back({p.mode, fixed(p.frame_ms, 3), none ? "-" : saved,
+                    p.base.empty() ? "- (crowd of its own)"
+                    : none         ? "-"
+                                   : p.base,
                     fixed(p.animations_ms, 3), fixed(e.max * 1000.0, 2), fixed(e.rms * 1000.0, 2),
                     fixed(e.max_fraction * 100.0, 3), fixed(e.max_px, 2), fixed(e.rms_px, 2),
                     fixed(e.switches_per_second, 1),

@@ -17,6 +17,7 @@ struct CostErrorInput {
   std::string mode;                        // as the comparison names it: "threaded+update_lod=on"
   double frame_ms = 0, animations_ms = 0;  // medians
   std::optional<DrawnErrorRecord> error;
+  size_t copies = 0;  // the crowd: points compare only with points of the same (0: all the same)
 };
 
 // The error a saving may cost and still be offered on the front: a pixel,
@@ -26,7 +27,7 @@ struct CostErrorInput {
 inline constexpr double kFrontMaxErrorPx = kVisibleErrorPx;
 
 struct CostErrorPoint {
-  std::string mode, base;  // base: the point its saving is measured against
+  std::string mode, base;  // base: the point its saving is measured against; "" for none of its crowd
   double frame_ms = 0, animations_ms = 0;
   double saved_ms = 0;  // base's frame_ms - this one's (negative: it costs time)
   DrawnErrorRecord error;
@@ -34,6 +35,7 @@ struct CostErrorPoint {
   bool past_threshold = false;
   // On the Pareto front and within the threshold.
   bool front = false;
+  size_t copies = 0;
 };
 
 // The points of the inputs that carry an error; empty when fewer than two do.

@@ -57,7 +57,7 @@ std::vector<std::pair<std::string, std::string>> environment_rows(const Result& 
 // The rows of counters: a row per counter, a column per run (blank where a
 // run did not record it).
 std::string counter_rows(const std::vector<ReportRun>& runs, const std::vector<size_t>& rows) {
-  std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (last frame)</th>";
+  std::string out = "<table class=\"counters\"><tr><th class=\"name\">counter (per frame, median)</th>";
   for (const ReportRun& run : runs) out += "<th class=\"run\">" + html_text(run.label) + "</th>";
   out += "</tr>\n";
   for (size_t i : rows) {
@@ -384,13 +384,17 @@ std::string modes_table(const std::vector<ReportRun>& runs) {
       "<table><tr><th class=\"name\">run</th><th>characters</th><th>threads</th><th>median frame ms</th>"
       "<th>speedup</th><th class=\"name\">digest</th></tr>\n";
   std::map<size_t, double> first;  // per crowd size: the first run's median
+  std::map<size_t, size_t> of_size;
+  for (const ReportRun& run : runs) ++of_size[run.result.run.characters];
   for (const ReportRun& run : runs) {
     size_t n = run.result.run.characters;
     double median = quantile(run.result.samples.frame_ms, 0.5);
     double reference = first.emplace(n, median).first->second;
+    // Alone at its crowd size (capacity's modes each at its own): nothing to compare.
+    const bool alone = of_size[n] == 1;
     out += "<tr><td class=\"name\">" + html_text(run.label) + "</td><td>" + std::to_string(n) + "</td><td>" +
            std::to_string(run.result.run.threads) + "</td><td>" + report_number(median, 3) + "</td><td>" +
-           (median > 0 ? report_number(reference / median, 2) + "x" : "-") + "</td><td class=\"name\">" +
+           (median > 0 && !alone ? report_number(reference / median, 2) + "x" : "-") + "</td><td class=\"name\">" +
            html_text(run.result.digest) + "</td></tr>\n";
   }
   return out + "</table><p>speedup: the first run of the same crowd size's median over this run's.</p>\n";

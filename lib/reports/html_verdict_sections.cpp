@@ -111,12 +111,15 @@ std::string cost_error_table(const std::vector<CostErrorPoint>& points) {
       "<th class=\"name\">against</th><th>largest error px</th><th>rms error px</th><th>largest error mm</th>"
       "<th class=\"name\">front</th></tr>\n";
   for (const CostErrorPoint& p : points) {
-    const bool base = p.mode == p.base;
+    const bool base = p.mode == p.base || p.base.empty();
     out += "<tr><td class=\"name\">" + html_text(p.mode) + "</td><td>" + report_number(p.frame_ms, 3) + "</td><td>" +
            (base ? "-" : report_number(p.saved_ms, 3) + (p.saved_ms < 0 ? " (slower)" : "")) +
-           "</td><td class=\"name\">" + (base ? "-" : html_text(p.base)) + "</td><td>" +
-           report_number(p.error.max_px, 2) + "</td><td>" + report_number(p.error.rms_px, 2) + "</td><td>" +
-           report_number(p.error.max * 1000.0, 2) + "</td><td class=\"name\">" +
+           "</td><td class=\"name\">" +
+           (p.base.empty() ? std::string("- (a crowd of its own)")
+            : base         ? "-"
+                           : html_text(p.base)) +
+           "</td><td>" + report_number(p.error.max_px, 2) + "</td><td>" + report_number(p.error.rms_px, 2) +
+           "</td><td>" + report_number(p.error.max * 1000.0, 2) + "</td><td class=\"name\">" +
            (p.past_threshold ? "past " + report_number(kFrontMaxErrorPx, 0) + " px"
             : p.front        ? "on the front"
                              : "") +
@@ -143,7 +146,9 @@ std::string check_section(const CheckSection& check, const std::vector<ReportRun
   const std::string base = diff ? "A" : "the baseline", here = diff ? "in B" : "here";
   auto verdict_word = [&](const std::string& word) {
     if (!diff) return word;
-    return word == "ok" ? std::string("same") : word == "REGRESSION" ? std::string("SLOWER") : word;
+    // diff's terminal says "same" for whatever does not fail and is not faster.
+    if (word == "REGRESSION") return std::string("SLOWER");
+    return word == "faster" || word == "not tested" ? word : std::string("same");
   };
   out += std::string("<table class=\"verdict\"><tr><th class=\"name\">metric</th><th>") +
          (diff ? "A median" : "baseline median") + "</th><th>" + (diff ? "B median" : "current median") +

@@ -241,6 +241,9 @@ std::string format_profile(const Result& report) {
     for (const CharacterRun& c : run.crowd)
       width = std::max(width, static_cast<int>(std::min<size_t>(c.file.size(), 48)));
     const auto w = static_cast<size_t>(width);
+    // Each kind's counters are its last frame's (the run keeps no per-kind
+    // frames): with changing work they need not add up to the medians above.
+    out << "by character, the last frame:\n";
     std::snprintf(line, sizeof line, "%-*s %6s %6s %8s %9s %6s %6s %16s %9s\n", width, "file", "copies", "joints",
                   "vertices", "on screen", "culled", "poses", "vertices skinned", "fallbacks");
     out << line;

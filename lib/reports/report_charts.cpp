@@ -122,7 +122,7 @@ std::vector<CostErrorPoint> run_costs(const std::vector<ReportRun>& runs) {
   for (const ReportRun& run : runs)
     inputs.push_back({run.label, quantile(result_samples(run.result, "frame_ms"), 0.5),
                       quantile(result_samples(run.result, series_name(Category::Animations)), 0.5),
-                      run.result.drawn_error});
+                      run.result.drawn_error, run.result.run.characters});
   return cost_error_points(inputs);
 }
 

@@ -505,7 +505,7 @@ std::string scene_file_text(const SceneFile& scene, const std::string& destinati
   return doc.dump(2) + "\n";
 }
 
-CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character) {
+CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character, bool switch_layers_run) {
   const SceneCharacter& c = scene.characters[index];
   std::string key = "characters[" + std::to_string(index) + "]";
   CrowdGroup group;
@@ -540,7 +540,7 @@ CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& ch
       throw InputError(scene.path, key + ".layers: " + why);
   }
   // The scene's own anim_layer switch too: its fault, not the command line's.
-  if (auto it = scene.switches.find("anim_layer"); it != scene.switches.end() && !group.layers) {
+  if (auto it = scene.switches.find("anim_layer"); switch_layers_run && it != scene.switches.end() && !group.layers) {
     ModeSwitches parsed;
     if (find_switch("anim_layer")->set(parsed, it->second).empty() && !parsed.anim_layers.empty()) {
       std::vector<ActionBindings> bindings;

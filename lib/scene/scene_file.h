@@ -87,8 +87,11 @@ std::string scene_file_text(const SceneFile& scene, const std::string& destinati
 
 // The crowd group of scene character `index`, loaded as `character` (index k
 // of the bench's characters): action names resolved. InputError naming the
-// scene file and the key when the character has no such action.
-CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character);
+// scene file and the key when the character has no such action, nor the
+// joint or action of a layer: the group's own, and with `switch_layers_run`
+// (the run plays the scene's anim_layer switch, not one given over it) the
+// switch's.
+CrowdGroup scene_group(const SceneFile& scene, size_t index, const Character& character, bool switch_layers_run = true);
 
 // FNV-1a 64 of `bytes` as 16 hex digits.
 std::string fnv1a64_hex(std::string_view bytes);

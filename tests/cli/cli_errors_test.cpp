@@ -68,6 +68,14 @@ TEST(CliErrors, ANumberThatIsNotOneIsNamedInWords) {
   expect_usage("gen -o x.glb --seed -1", {"gen: --seed '-1': expected a whole number, 0 or more"});
 }
 
+TEST(CliErrors, AFadeLongerThanHalfTheIntervalNamesBothValues) {
+  expect_usage(
+      "bench " + character() + " --transitions 0.4",
+      {"--blend-in 0.25 s (the default) is more than half of --transitions 0.4 s", "give --blend-in 0.2 s or less"});
+  expect_usage("bench " + character() + " --transitions 0.5 --blend-in 0.3",
+               {"--blend-in 0.3 s is more than half of --transitions 0.5 s"});
+}
+
 TEST(CliErrors, AValueLeftOutOrGivenTwiceIsSaidSo) {
   expect_usage("bench " + character() + " --frames", {"bench: --frames needs a value (--frames N)"});
   expect_usage("bench " + character() + " --frames 2 --frames 3",

@@ -147,7 +147,8 @@ TEST(Calibration, APairThatCannotCompareTheCalibratedFrameFallsBackAndSaysWhy) {
                        "name a --metric to compare anyway\n");
   EXPECT_TRUE(r.out.empty()) << r.out;
   r = test::run_cli("check --result '" + calibrated + "' --baseline '" + plain + "' --metric cpu --tolerance 900%");
-  EXPECT_EQ(r.status, 0) << r.err;
+  // Compared anyway (its verdict is the probe's doing, either way: not asserted).
+  EXPECT_NE(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("crowdprof: warning: only one of the two ran the calibration probe"), std::string::npos)
       << r.err;
 

@@ -388,4 +388,7 @@ TEST(SceneFile, EachGroupLaysItsOwnLayers) {
   r = run_cli("bench '" + bad.string() + "' --frames 1 --warmup 0 -q");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find(bad.string() + ": switches.anim_layer: no action 'fly'"), std::string::npos) << r.err;
+  // A switch given over the scene's replaces it: the scene's is not played, nor judged.
+  r = run_cli("bench '" + bad.string() + "' --frames 1 --warmup 0 -q --anim-layer action=idle");
+  EXPECT_EQ(r.status, 0) << r.err;
 }
