@@ -20,6 +20,7 @@ using nlohmann::json;
 Comparison two_modes_and_a_sweep() {
   Comparison c;
   c.runs = {test::fake_run("master", 40, {10, 11, 9}, 0.5), test::fake_run("threaded", 40, {5, 5, 6}, 0.5)};
+  c.runs[1].frame_records[0].counters.copies_visible = 31;  // two of three frames: the median
   c.runs[1].frame_records[1].counters.copies_visible = 31;
   c.sweep = {c.runs[0], c.runs[1], test::fake_run("master", 80, {20, 21, 19}),
              test::fake_run("threaded", 80, {8, 9, 8})};
@@ -36,7 +37,7 @@ TEST(ResultDocument, AComparisonReadsBackToTheSameDocument) {
   ASSERT_EQ(read.summary.size(), 2u);
   EXPECT_DOUBLE_EQ(read.summary[1].frame_ms, 5.0);
   EXPECT_DOUBLE_EQ(read.summary[1].speedup, 2.0);
-  EXPECT_EQ(read.summary[1].counters.copies_visible, 31u) << "the median frame's counters";
+  EXPECT_EQ(read.summary[1].counters.copies_visible, 31u) << "each counter's median over frames";
   EXPECT_EQ(read.summary[0].digest, "00000000000000aa");
   ASSERT_EQ(read.sweep.size(), 4u);
   EXPECT_EQ(read.sweep[3].characters, 80u);
