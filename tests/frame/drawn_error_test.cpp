@@ -150,6 +150,25 @@ TEST(CostError, SavingsAreWeighedAgainstTheirOwnModeAndTheFrontIsFound) {
   EXPECT_NE(table.find("among those within 1 px"), std::string::npos) << table;
 }
 
+// Runs of different crowds (capacity's modes, each at its own size) are not
+// weighed against each other: no saving, and no front across them.
+TEST(CostError, RunsOfDifferentCrowdsAreNotWeighedAgainstEachOther) {
+  DrawnErrorRecord exact;
+  std::vector<CostErrorInput> inputs = {{"master", 0.018, 0.01, exact, 6},
+                                        {"threaded", 0.010, 0.008, exact, 9},
+                                        {"threaded+share=on", 0.004, 0.002, exact, 9}};
+  std::vector<CostErrorPoint> points = cost_error_points(inputs);
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_EQ(points[0].base, "") << "alone at 6 copies";
+  EXPECT_EQ(points[1].base, "threaded");
+  EXPECT_EQ(points[2].base, "threaded");
+  EXPECT_NEAR(points[2].saved_ms, 0.006, 1e-12);
+  EXPECT_TRUE(points[0].front) << "no run of its crowd is faster";
+  EXPECT_FALSE(points[1].front);
+  const std::string table = format_cost_error(points);
+  EXPECT_NE(table.find("- (crowd of its own)"), std::string::npos) << table;
+}
+
 // Rate switches a second: one computation over the measured frames, the same
 // figure in bench's run and in compare's, the warm-up's switches in neither
 // (issue 50: bench said 240 a second where every copy was updated every frame).
